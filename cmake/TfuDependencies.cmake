@@ -1,0 +1,19 @@
+# Every dependency comes from Debian 12 packages installed by scripts/bootstrap.
+find_package(Threads REQUIRED)
+find_package(fmt REQUIRED)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 CONFIG QUIET)
+if(NOT TARGET CLI11::CLI11)
+  # Debian's libcli11-dev is header-only; its CMake package may be absent.
+  add_library(CLI11::CLI11 INTERFACE IMPORTED)
+endif()
+find_package(GTest REQUIRED)
+find_package(benchmark REQUIRED)
+
+# OpenImageIO 2.4 (Debian 12): the CMake package's imported target lists /usr/include/opencv4 in
+# INTERFACE_INCLUDE_DIRECTORIES, which does not exist unless libopencv-dev is installed, and
+# generation then fails. Use pkg-config (OpenImageIO.pc) instead and build our own imported target.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+add_library(tfu_oiio INTERFACE)
+target_link_libraries(tfu_oiio INTERFACE PkgConfig::OIIO)

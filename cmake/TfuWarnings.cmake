@@ -1,0 +1,10 @@
+# Warning and sanitizer flags for project targets only (third-party headers are SYSTEM includes).
+add_library(tfu_warnings INTERFACE)
+target_compile_options(tfu_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+if(TFU_WERROR)
+  target_compile_options(tfu_warnings INTERFACE -Werror)
+endif()
+if(TFU_SANITIZE)
+  target_compile_options(tfu_warnings INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(tfu_warnings INTERFACE -fsanitize=address,undefined)
+endif()

@@ -1,0 +1,5 @@
+// PLACEHOLDER: replaced by the real subcommand in this same change.
+#include "sim/tfu/commands.hpp"
+namespace tfu::cli {
+void register_rom(CLI::App&) {}
+}

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs every case of a cases file against the tfu binary; fails on the first broken expectation.
+# Case file format, one case per line ('#' starts a comment line):
+#   EXIT | REGEX | ARGS...
+# EXIT is the expected exit code; REGEX an extended regular expression that the combined
+# stdout+stderr must match ('-' for none); ARGS are passed to tfu as words ({WORK} expands to a
+# scratch directory). A case with EXIT 2 must also print exactly one line on stderr.
+set -u
+tfu=$1 cases=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+n=0 failed=0
+while IFS= read -r line; do
+  [[ -z "${line// }" || "$line" == \#* ]] && continue
+  IFS='|' read -r want regex args <<<"$line"
+  want=${want// /}; regex=$(sed -e 's/^ *//' -e 's/ *$//' <<<"$regex")
+  args=${args//\{WORK\}/$work}
+  n=$((n + 1))
+  # shellcheck disable=SC2086
+  timeout 120 "$tfu" $args >"$work/out.txt" 2>"$work/err.txt"
+  got=$?
+  ok=1
+  [[ "$got" == "$want" ]] || ok=0
+  if [[ "$regex" != "-" ]] && ! cat "$work/out.txt" "$work/err.txt" | grep -Eq -- "$regex"; then ok=0; fi
+  if [[ "$want" == 2 ]] && [[ $(wc -l <"$work/err.txt") -ne 1 ]]; then ok=0; fi
+  if [[ $ok == 0 ]]; then
+    failed=$((failed + 1))
+    echo "FAIL: tfu $args (exit $got, want $want, regex '$regex')"
+    sed 's/^/  stdout: /' "$work/out.txt" | head -5
+    sed 's/^/  stderr: /' "$work/err.txt" | head -5
+  fi
+done <"$cases"
+echo "cli cases: $((n - failed)) passed, $failed failed"
+[[ $failed == 0 ]]
