@@ -1,5 +1,126 @@
-// PLACEHOLDER: replaced by the real subcommand in this same change.
+// tfu rom: dump any ROM (tile-weight or Lee & Jen direction-weight) as CSV or $readmemh hex.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cmodel/direction_rom.hpp"
+#include "cmodel/error.hpp"
+#include "cmodel/rom_dump.hpp"
 #include "sim/tfu/commands.hpp"
+
 namespace tfu::cli {
-void register_rom(CLI::App&) {}
+namespace {
+
+struct RomOptions {
+  std::string kind = "tile";
+  std::string kernel = "catmull-rom";
+  int samples = 64;
+  unsigned bits = 8;
+  std::string pos = "centre";
+  std::string rounding = "sum";
+  std::string dir = "all";
+  std::string format = "csv";
+  std::string out;
+  bool force = false;
+  bool list = false;
+};
+
+void list_directions(std::ostream& os) {
+  using namespace lee_jen;
+  const auto& shapes = kernel_shapes();
+  os << "| index | direction | family | Cp | Cq | ROI | t |";
+  for (const auto& s : shapes) os << ' ' << s.name() << " |";
+  os << "\n|---:|---|---|---|---|---:|---|";
+  for (size_t i = 0; i < shapes.size(); ++i) os << "---|";
+  os << '\n';
+  for (const Direction& d : directions()) {
+    os << fmt::format("| {} | {} | {} | C{} | C{} | {:.4f} | {} |", d.index, d.name(), d.family(), d.p, d.q, d.roi,
+                      d.axis == BlendAxis::X ? "xf" : "yf");
+    for (const auto& s : shapes) os << (usable_directions(s.mask) >> d.index & 1u ? " yes |" : " - |");
+    os << '\n';
+  }
+  os << "| | usable directions | | | | | |";
+  for (const auto& s : shapes) os << ' ' << std::popcount(usable_directions(s.mask)) << " |";
+  os << '\n';
 }
+
+int parse_dir(const std::string& s) {
+  if (s == "all") return -1;
+  std::size_t used = 0;
+  int d = -2;
+  try {
+    d = std::stoi(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || d < 0 || d >= lee_jen::kDirections)
+    throw InputError("--dir must be 0..21 or 'all', got '" + s + "'");
+  return d;
+}
+
+void run(const RomOptions& o) {
+  if (o.kind != "tile" && o.kind != "direction") throw InputError("unknown --kind '" + o.kind + "' (valid: tile, direction)");
+  if (o.format != "csv" && o.format != "hex") throw InputError("unknown --format '" + o.format + "' (valid: csv, hex)");
+  std::unique_ptr<TileWeightRom> tile;
+  int dir = -1;
+  if (o.kind == "tile") {
+    TileRomSpec spec;
+    spec.samples = o.samples;
+    spec.bits = o.bits;
+    if (o.pos != "centre" && o.pos != "corner") throw InputError("unknown --pos '" + o.pos + "' (valid: centre, corner)");
+    spec.pos = o.pos == "centre" ? SamplePos::Centre : SamplePos::Corner;
+    if (o.rounding != "sum" && o.rounding != "nearest")
+      throw InputError("unknown --rounding '" + o.rounding + "' (valid: sum, nearest)");
+    spec.rounding = o.rounding == "sum" ? RomRounding::SumPreserving : RomRounding::Nearest;
+    tile = std::make_unique<TileWeightRom>(FilterKernel::by_name(o.kernel), spec);
+  } else {
+    dir = parse_dir(o.dir);
+  }
+
+  std::ofstream file;
+  std::ostream* os = &std::cout;
+  if (!o.out.empty()) {
+    if (std::filesystem::exists(o.out) && !o.force)
+      throw InputError("--out '" + o.out + "' already exists (use --force to overwrite)");
+    file.open(o.out);
+    if (!file) throw InputError("cannot write --out '" + o.out + "'");
+    os = &file;
+  }
+  if (o.list) {
+    list_directions(*os);
+  } else if (tile) {
+    o.format == "csv" ? dump_tile_rom_csv(*tile, *os) : dump_tile_rom_hex(*tile, *os);
+  } else {
+    o.format == "csv" ? dump_direction_rom_csv(dir, *os) : dump_direction_rom_hex(dir, *os);
+  }
+  os->flush();
+  if (!*os) throw InputError("write failed for '" + (o.out.empty() ? std::string("stdout") : o.out) + "'");
+  if (!o.out.empty()) std::cerr << "tfu rom: wrote " << o.out << '\n';
+}
+
+}  // namespace
+
+void register_rom(CLI::App& app) {
+  auto o = std::make_shared<RomOptions>();
+  auto* cmd = app.add_subcommand("rom", "Dump a ROM as CSV or as hex for $readmemh (tile-weight or Lee & Jen direction-weight)");
+  cmd->add_option("--kind", o->kind, "tile or direction")->capture_default_str();
+  cmd->add_option("--kernel", o->kernel, "tile: kernel (bspline, catmull-rom, mitchell, kaiser, blackman, tent, box)")
+      ->capture_default_str();
+  cmd->add_option("--samples", o->samples, "tile: samples per tile R (16..512)")->capture_default_str();
+  cmd->add_option("--bits", o->bits, "tile: magnitude bits b (4..16)")->capture_default_str();
+  cmd->add_option("--pos", o->pos, "tile: sample positions centre ((k+.5)/R) or corner (k/R)")->capture_default_str();
+  cmd->add_option("--rounding", o->rounding, "tile: sum (sum-preserving rows) or nearest (Eq. 3.4)")->capture_default_str();
+  cmd->add_option("--dir", o->dir, "direction: index 0..21 or all")->capture_default_str();
+  cmd->add_flag("--list", o->list, "direction: print the table of the 22 directions and kernel shapes");
+  cmd->add_option("--format", o->format, "csv or hex")->capture_default_str();
+  cmd->add_option("--out", o->out, "Output file (default: stdout)");
+  cmd->add_flag("--force", o->force, "Overwrite --out if it exists");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace tfu::cli

@@ -1,0 +1,82 @@
+// Lee & Jen 2003 direction-weight ROMs and kernel shapes (Eq. 1-3, Sec. 3, Sec. 6).
+//
+// One ROM per measured direction i:
+//   in  xf4 [3:0]  4-bit x fraction of the sample point in the centre square
+//   in  yf4 [3:0]  4-bit y fraction
+//   out w   [7:0]  weight w_i = 1 / (1 - d_i / ROI_i) (Eq. 2), unsigned 4.4 fixed point:
+//                  code = min(254, round(16 w)); code 255 = "never choose" (d_i >= ROI_i,
+//                  i.e. 1 - d/ROI <= 1e-9)
+// address = (yf4 << 4) | xf4; the 256 sub-regions are sampled at their centres
+// ((xf4 + 1/2)/16, (yf4 + 1/2)/16). Contents are generated here, in double precision, and nowhere
+// else (the cycle model and the SystemVerilog read these tables).
+//
+// Texel numbering (Eq. 4), x right, y down, C4 at (0,0); the sample point is in [0,1)^2:
+//            C1  C2
+//        C3  C4  C5  C6
+//        C7  C8  C9  C10
+//            C11 C12
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tfu::lee_jen {
+
+inline constexpr int kTexels = 12;
+inline constexpr int kDirections = 22;
+inline constexpr uint8_t kNeverChoose = 255;
+inline constexpr uint8_t kMaxWeightCode = 254;
+inline constexpr int kWeightFracBits = 4;  // 4.4 fixed point
+// 1 - d/ROI at or below this counts as d >= ROI (Lee & Jen: "a very small threshold").
+inline constexpr double kNeverChooseThreshold = 1e-9;
+
+struct TexelPos {
+  int x, y;
+};
+// Position of texel Cn (n = 1..12).
+TexelPos texel_pos(int n);
+// Texel number at (x, y), or 0 if (x, y) is not part of the 12-texel cross.
+int texel_at(int x, int y);
+
+enum class BlendAxis { X, Y };  // t of Eq. 3 is xf or yf
+
+struct Direction {
+  int index;        // 0..21, the order used by every block
+  int p, q;         // endpoint texel numbers: C_low = (1 - t) Cp + t Cq (Eq. 3)
+  double roi;       // region of influence
+  BlendAxis axis;   // Cp has coordinate 0 and Cq coordinate 1 on this axis
+  std::string name() const;  // e.g. "C4-C5"
+  const char* family() const;  // horizontal, vertical, centre-diagonal, outer-diagonal, 2x1
+};
+const std::array<Direction, kDirections>& directions();
+
+// Euclidean distance from (x, y) to the infinite line through the endpoints of direction i.
+double distance_to_direction(int dir, double x, double y);
+// Exact weight w = 1/(1 - d/ROI) at (x, y); +infinity when d >= ROI.
+double exact_weight(int dir, double x, double y);
+// The ROM of direction i: 256 codes, address (yf4 << 4) | xf4.
+const std::array<uint8_t, 256>& direction_weight_rom(int dir);
+// Real weight of a code (infinity for kNeverChoose).
+double decode_weight(uint8_t code);
+
+// ---- Kernel shapes (Sec. 3): which of the 12 texels are available, bit n-1 = texel Cn ----
+using TexelMask = uint16_t;
+inline constexpr TexelMask kAllTexels = 0x0FFF;
+
+enum class ShapeKind { Cross, T, L };
+struct KernelShape {
+  ShapeKind kind;
+  int rotation;  // quarter turns clockwise about the centre of the centre square, 0..3
+  TexelMask mask;
+  std::string name() const;  // "cross", "T0".."T3", "L0".."L3"
+};
+// Rotate a mask by one quarter turn clockwise about (0.5, 0.5).
+TexelMask rotate_mask(TexelMask m);
+// The 9 shapes: cross, T (C1, C2 missing) and L (C1, C2, C3, C7 missing) in four rotations.
+const std::vector<KernelShape>& kernel_shapes();
+// Directions whose both endpoints are available, as a 22-bit mask (bit i = direction i).
+uint32_t usable_directions(TexelMask available);
+
+}  // namespace tfu::lee_jen
