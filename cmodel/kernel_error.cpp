@@ -105,9 +105,9 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
   const int T = ax.taps, N = spec.effective_locations(), d = spec.dims;
   const auto sample = [&](int idx) { return idx < 0 ? 0.0 : ax.sample[static_cast<size_t>(idx)]; };
 
-  // 2D: precompute the quantized 2D tile entries for every (x-entry, y-entry) pair on demand is
-  // cheap enough: each location reads <= 4 entries per weight. Quantization is of the d-D kernel
-  // sample h(x)h(y)[h(z)], as the dissertation stores d-dimensional tiles.
+  // Rows of locations (y, and z inside) are handed out to threads through an atomic counter;
+  // each thread keeps its own maximum. Tiles composition quantizes the d-D sample h(x)h(y)[h(z)]
+  // on the fly (no R^d table), reading 2^d entries per weight for linear reconstruction.
   unsigned nthreads = spec.threads > 0 ? static_cast<unsigned>(spec.threads) : std::thread::hardware_concurrency();
   nthreads = std::max(1u, nthreads);
   std::atomic<int> next_row{0};
