@@ -16,4 +16,11 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Thrown when a self-check of the model fails (a measured error above its bound, a golden compare
+// mismatch). The CLI prints the one-line message and exits with kExitCheckFailed.
+class CheckFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace tfu

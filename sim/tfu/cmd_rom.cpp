@@ -1,4 +1,5 @@
 // tfu rom: dump any ROM (tile-weight or Lee & Jen direction-weight) as CSV or $readmemh hex.
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -46,7 +47,20 @@ void list_directions(std::ostream& os) {
   }
   os << "| | usable directions | | | | | |";
   for (const auto& s : shapes) os << ' ' << std::popcount(usable_directions(s.mask)) << " |";
-  os << '\n';
+  os << "\n\n";
+  // Per shape: the missing texels and the directions that need them.
+  for (const auto& s : shapes) {
+    os << fmt::format("{}: {} texels, {} directions", s.name(), std::popcount(static_cast<unsigned>(s.mask)),
+                      std::popcount(usable_directions(s.mask)));
+    std::string missing, dropped;
+    for (int n = 1; n <= kTexels; ++n)
+      if (!(s.mask >> (n - 1) & 1u)) missing += fmt::format("{}C{}", missing.empty() ? "" : " ", n);
+    const uint32_t usable = usable_directions(s.mask);
+    for (const Direction& d : directions())
+      if (!(usable >> d.index & 1u)) dropped += fmt::format("{}{}", dropped.empty() ? "" : " ", d.name());
+    if (!missing.empty()) os << "; missing " << missing << "; drops " << dropped;
+    os << '\n';
+  }
 }
 
 int parse_dir(const std::string& s) {
@@ -66,6 +80,7 @@ int parse_dir(const std::string& s) {
 void run(const RomOptions& o) {
   if (o.kind != "tile" && o.kind != "direction") throw InputError("unknown --kind '" + o.kind + "' (valid: tile, direction)");
   if (o.format != "csv" && o.format != "hex") throw InputError("unknown --format '" + o.format + "' (valid: csv, hex)");
+  if (o.list && o.kind != "direction") throw InputError("--list needs --kind direction (got --kind " + o.kind + ")");
   std::unique_ptr<TileWeightRom> tile;
   int dir = -1;
   if (o.kind == "tile") {
@@ -77,7 +92,9 @@ void run(const RomOptions& o) {
     if (o.rounding != "sum" && o.rounding != "nearest")
       throw InputError("unknown --rounding '" + o.rounding + "' (valid: sum, nearest)");
     spec.rounding = o.rounding == "sum" ? RomRounding::SumPreserving : RomRounding::Nearest;
-    tile = std::make_unique<TileWeightRom>(FilterKernel::by_name(o.kernel), spec);
+    spec.validate();                                      // R, b out of range -> InputError
+    const FilterKernel kernel = FilterKernel::by_name(o.kernel);  // unknown name -> InputError
+    tile = std::make_unique<TileWeightRom>(kernel, spec);
   } else {
     dir = parse_dir(o.dir);
   }

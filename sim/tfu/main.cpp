@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   } catch (const tfu::InputError& e) {
     std::fprintf(stderr, "tfu: error: %s\n", e.what());
     return tfu::kExitBadInput;
+  } catch (const tfu::CheckFailed& e) {
+    std::fprintf(stderr, "tfu: check failed: %s\n", e.what());
+    return tfu::kExitCheckFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tfu: internal error: %s\n", e.what());
     return 3;
