@@ -8,7 +8,14 @@
 //                  i.e. 1 - d/ROI <= 1e-9)
 // address = (yf4 << 4) | xf4; the 256 sub-regions are sampled at their centres
 // ((xf4 + 1/2)/16, (yf4 + 1/2)/16). Contents are generated here, in double precision, and nowhere
-// else (the cycle model and the SystemVerilog read these tables).
+// else (the cycle model and the SystemVerilog read these tables; Lee & Jen Sec. 6: "four-bit
+// precision for each coordinate", 256 sub-regions, eight-bit w, < 550 gates per table).
+// Exact form (see docs/directions.md, checked by the tests): with X = 2 xf4 + 1, Y = 2 yf4 + 1 and
+// u = Cq - Cp, C = |(X - 32 px) uy - (Y - 32 py) ux| is an integer and d/ROI = C/16 exactly, so a
+// ROM holds at most 17 codes: round(256 / (16 - C)) (saturated at 254) for C < 16, 255 for C >= 16.
+// ROI (Lee & Jen Sec. 2.2): 0.5 axis, sqrt(2)/4 diagonals, 1/(2 sqrt 5) 2x1, i.e. 1/(2 |u|).
+// Blend parameter t of Eq. 3: the axis on which Cp, Cq have coordinates exactly {0, 1} (Cp at 0);
+// x takes precedence for the two centre diagonals.
 //
 // Texel numbering (Eq. 4), x right, y down, C4 at (0,0); the sample point is in [0,1)^2:
 //            C1  C2
