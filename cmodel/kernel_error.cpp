@@ -89,12 +89,6 @@ Axis build_axis(const FilterKernel& h, const KernelErrorSpec& s) {
   return ax;
 }
 
-// Quantized signed code value (in [0,1] domain) of a product of per-axis kernel samples.
-inline double quantized(double product, double scale) {
-  const double q = std::floor(std::abs(product) * scale + 0.5) / scale;
-  return product < 0.0 ? -q : q;
-}
-
 }  // namespace
 
 double kernel_error_scaled(const KernelErrorSpec& spec) {
@@ -102,6 +96,8 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
   const FilterKernel h = FilterKernel::by_name(spec.kernel);
   const Axis ax = build_axis(h, spec);
   const double scale = static_cast<double>(unorm::max_code(spec.bits));
+  // The ROM's own quantization rule (weight_rom.hpp: Eq. 3.4 on sign + magnitude), in [0,1] units.
+  const auto quantized = [&](double w) { return quantize_weight(w, spec.bits).value() / scale; };
   const int T = ax.taps, N = spec.effective_locations(), d = spec.dims;
   const auto sample = [&](int idx) { return idx < 0 ? 0.0 : ax.sample[static_cast<size_t>(idx)]; };
 
@@ -115,10 +111,10 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
 
   // Per-axis reconstructed 1D weights (separable compositions), in the [0,1] domain.
   auto recon1d = [&](const AxisTap& l) {
-    const double q0 = quantized(sample(l.k0), scale);
+    const double q0 = quantized(sample(l.k0));
     if (spec.recon == RomRecon::Nearest || l.a == 0.0) return q0;
-    const double lin = q0 * (1 - l.a) + quantized(sample(l.k1), scale) * l.a;
-    return spec.requantize_linear ? quantized(lin, scale) : lin;
+    const double lin = q0 * (1 - l.a) + quantized(sample(l.k1)) * l.a;
+    return spec.requantize_linear ? quantized(lin) : lin;
   };
   auto fixed_mul = [&](double a, double b) {  // b-bit tile-weight multiplier on codes
     const auto ca = static_cast<int32_t>(std::lround(a * scale)), cb = static_cast<int32_t>(std::lround(b * scale));
@@ -138,9 +134,9 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
         prod *= sample(kz);
       }
       if (spec.recon == RomRecon::Nearest) w = 1.0;
-      if (w != 0.0) rom += w * quantized(prod, scale);
+      if (w != 0.0) rom += w * quantized(prod);
     }
-    return spec.requantize_linear && spec.recon == RomRecon::Linear ? quantized(rom, scale) : rom;
+    return spec.requantize_linear && spec.recon == RomRecon::Linear ? quantized(rom) : rom;
   };
 
   auto work = [&](unsigned tid) {

@@ -10,6 +10,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/kernel_error.hpp"
+#include "sim/tfu/choices.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -25,15 +26,6 @@ struct KernelErrorOptions {
   bool table = false;
   bool with_3d = false;
 };
-
-template <typename E>
-E parse_choice(const std::string& what, const std::string& value, const std::map<std::string, E>& choices) {
-  const auto it = choices.find(value);
-  if (it != choices.end()) return it->second;
-  std::string valid;
-  for (const auto& [k, v] : choices) valid += (valid.empty() ? "" : ", ") + k;
-  throw InputError("unknown " + what + " '" + value + "' (valid: " + valid + ")");
-}
 
 void apply_choices(KernelErrorOptions& o) {
   o.spec.recon = parse_choice<RomRecon>("--recon", o.recon,

@@ -12,6 +12,7 @@
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/rom_dump.hpp"
+#include "sim/tfu/choices.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -78,20 +79,20 @@ int parse_dir(const std::string& s) {
 }
 
 void run(const RomOptions& o) {
-  if (o.kind != "tile" && o.kind != "direction") throw InputError("unknown --kind '" + o.kind + "' (valid: tile, direction)");
-  if (o.format != "csv" && o.format != "hex") throw InputError("unknown --format '" + o.format + "' (valid: csv, hex)");
-  if (o.list && o.kind != "direction") throw InputError("--list needs --kind direction (got --kind " + o.kind + ")");
+  enum class Kind { Tile, Direction };
+  enum class Format { Csv, Hex };
+  const Kind kind = parse_choice<Kind>("--kind", o.kind, {{"tile", Kind::Tile}, {"direction", Kind::Direction}});
+  const Format format = parse_choice<Format>("--format", o.format, {{"csv", Format::Csv}, {"hex", Format::Hex}});
+  if (o.list && kind != Kind::Direction) throw InputError("--list needs --kind direction (got --kind " + o.kind + ")");
   std::unique_ptr<TileWeightRom> tile;
   int dir = -1;
-  if (o.kind == "tile") {
+  if (kind == Kind::Tile) {
     TileRomSpec spec;
     spec.samples = o.samples;
     spec.bits = o.bits;
-    if (o.pos != "centre" && o.pos != "corner") throw InputError("unknown --pos '" + o.pos + "' (valid: centre, corner)");
-    spec.pos = o.pos == "centre" ? SamplePos::Centre : SamplePos::Corner;
-    if (o.rounding != "sum" && o.rounding != "nearest")
-      throw InputError("unknown --rounding '" + o.rounding + "' (valid: sum, nearest)");
-    spec.rounding = o.rounding == "sum" ? RomRounding::SumPreserving : RomRounding::Nearest;
+    spec.pos = parse_choice<SamplePos>("--pos", o.pos, {{"centre", SamplePos::Centre}, {"corner", SamplePos::Corner}});
+    spec.rounding = parse_choice<RomRounding>("--rounding", o.rounding,
+                                              {{"sum", RomRounding::SumPreserving}, {"nearest", RomRounding::Nearest}});
     spec.validate();                                      // R, b out of range -> InputError
     const FilterKernel kernel = FilterKernel::by_name(o.kernel);  // unknown name -> InputError
     tile = std::make_unique<TileWeightRom>(kernel, spec);
@@ -111,9 +112,9 @@ void run(const RomOptions& o) {
   if (o.list) {
     list_directions(*os);
   } else if (tile) {
-    o.format == "csv" ? dump_tile_rom_csv(*tile, *os) : dump_tile_rom_hex(*tile, *os);
+    format == Format::Csv ? dump_tile_rom_csv(*tile, *os) : dump_tile_rom_hex(*tile, *os);
   } else {
-    o.format == "csv" ? dump_direction_rom_csv(dir, *os) : dump_direction_rom_hex(dir, *os);
+    format == Format::Csv ? dump_direction_rom_csv(dir, *os) : dump_direction_rom_hex(dir, *os);
   }
   os->flush();
   if (!*os) throw InputError("write failed for '" + (o.out.empty() ? std::string("stdout") : o.out) + "'");
