@@ -125,11 +125,6 @@ void TileWeightRom::weights_linear(uint32_t f, unsigned fbits, unsigned abits, i
   }
 }
 
-int32_t tile_weight_multiply(int32_t wx, int32_t wy, unsigned bits) {
-  const uint32_t mag = unorm::mul_divfree(static_cast<uint32_t>(std::abs(wx)), static_cast<uint32_t>(std::abs(wy)), bits);
-  const bool neg = (wx < 0) != (wy < 0);
-  return neg ? -static_cast<int32_t>(mag) : static_cast<int32_t>(mag);
-}
 
 // ---------------------------------------------------------------------------------------------
 TileWeightRom2D::TileWeightRom2D(const FilterKernel& kernel, TileRomSpec spec)

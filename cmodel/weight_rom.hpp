@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "cmodel/kernels.hpp"
+#include "cmodel/unorm.hpp"
 
 namespace tfu {
 
@@ -106,7 +107,11 @@ class TileWeightRom {
 // Separable composition through the tile-weight multiplier (Hadwiger 2002 Sec. 2):
 // w(x, y) = wx * wy with magnitudes multiplied by the b-bit normalized multiplier with rounding
 // (unorm::mul_round == the division-free hardware form) and signs XORed. Result is at scale 2^b - 1.
-int32_t tile_weight_multiply(int32_t wx, int32_t wy, unsigned bits);
+inline int32_t tile_weight_multiply(int32_t wx, int32_t wy, unsigned bits) {
+  const uint32_t mag = unorm::mul_divfree(static_cast<uint32_t>(wx < 0 ? -wx : wx), static_cast<uint32_t>(wy < 0 ? -wy : wy), bits);
+  const bool neg = (wx < 0) != (wy < 0);
+  return neg ? -static_cast<int32_t>(mag) : static_cast<int32_t>(mag);
+}
 
 // Non-separable 2D tiles: T x T tiles of R x R words, entry (kx, ky) of tile (tx, ty) holds
 // quantize_weight(h(x) h(y)) (Eq. 3.4 rounding). Symmetric storage keeps only the tiles with

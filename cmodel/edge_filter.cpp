@@ -1,0 +1,214 @@
+#include "cmodel/edge_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace tfu::lee_jen {
+
+namespace {
+
+constexpr bool has(TexelMask m, int n) { return (m >> (n - 1)) & 1u; }
+
+// Eq. 4 inputs of the three-point medians of the eight boundary texels (self first).
+struct Boundary {
+  int self, a, b;
+};
+constexpr std::array<Boundary, 8> kBoundary{{
+    {1, 2, 4}, {2, 1, 5}, {3, 4, 7}, {6, 5, 10}, {7, 3, 8}, {10, 6, 9}, {11, 8, 12}, {12, 9, 11}}};
+
+// Eq. 4 five-point medians of the centre texels: self, two centre neighbours, two outer neighbours;
+// `opposite` is the diagonally opposite centre texel that stands in for a missing outer one (Sec. 3).
+struct Centre {
+  int self, c1, c2, o1, o2, opposite;
+};
+constexpr std::array<Centre, 4> kCentre{{
+    {4, 5, 8, 1, 3, 9}, {5, 4, 9, 2, 6, 8}, {8, 4, 9, 7, 11, 5}, {9, 5, 8, 10, 12, 4}}};
+
+template <typename T>
+struct Keyed {
+  T y;
+  int n;
+};
+template <typename T>
+constexpr bool before(const Keyed<T>& a, const Keyed<T>& b) {
+  return a.y < b.y || (a.y == b.y && a.n < b.n);
+}
+
+// Median of 3 or 5 texels ordered by (Y, texel number): a comparator network in hardware, a sort here.
+template <typename T, size_t N>
+int median_of(std::array<Keyed<T>, N> k) {
+  for (size_t i = 1; i < N; ++i)  // insertion sort of 3 or 5 keys
+    for (size_t j = i; j > 0 && before(k[j], k[j - 1]); --j) std::swap(k[j], k[j - 1]);
+  return k[N / 2].n;
+}
+
+// Low-pass of Eq. 4 with the Sec. 3 adjustments: low[n] = number of the texel whose value is the
+// median for Cn. Reads y[n] only for available texels.
+template <typename T>
+std::array<int, kTexels + 1> low_pass(const std::array<T, kTexels + 1>& y, TexelMask available) {
+  const auto key = [&](int n) { return Keyed<T>{y[static_cast<size_t>(n)], n}; };
+  std::array<int, kTexels + 1> low{};
+  for (const Boundary& b : kBoundary)
+    if (has(available, b.self))
+      low[static_cast<size_t>(b.self)] = median_of<T, 3>({key(b.self), key(b.a), key(b.b)});
+  for (const Centre& k : kCentre) {
+    const bool h1 = has(available, k.o1), h2 = has(available, k.o2);
+    int m;
+    if (h1 && h2) {
+      m = median_of<T, 5>({key(k.self), key(k.c1), key(k.c2), key(k.o1), key(k.o2)});
+    } else if (h1 || h2) {
+      m = median_of<T, 5>({key(k.self), key(k.c1), key(k.c2), key(h1 ? k.o1 : k.o2), key(k.opposite)});
+    } else {
+      m = median_of<T, 3>({key(k.self), key(k.c1), key(k.c2)});
+    }
+    low[static_cast<size_t>(k.self)] = m;
+  }
+  return low;
+}
+
+// Per-direction constants gathered once: endpoints, ROM, and the usable-direction set of every
+// 12-bit availability mask (the hardware decodes the kernel shape into these enables).
+struct DirectionTable {
+  struct Entry {
+    int p, q;
+    const std::array<uint8_t, 256>* rom;
+  };
+  std::array<Entry, kDirections> dir{};
+  std::array<uint32_t, kAllTexels + 1> usable{};
+};
+
+const DirectionTable& direction_table() {
+  static const DirectionTable t = [] {
+    DirectionTable d;
+    for (const Direction& x : directions())
+      d.dir[static_cast<size_t>(x.index)] = {x.p, x.q, &direction_weight_rom(x.index)};
+    for (uint32_t m = 0; m <= kAllTexels; ++m) d.usable[m] = usable_directions(static_cast<TexelMask>(m));
+    return d;
+  }();
+  return t;
+}
+
+}  // namespace
+
+TexelMask cache_block_mask(int x4, int x5, int y4, int y8, int block) {
+  TexelMask m = kAllTexels;
+  const auto drop = [&m](int a, int b) { m = static_cast<TexelMask>(m & ~((1u << (a - 1)) | (1u << (b - 1)))); };
+  const bool same_x = x5 == x4 + 1 && x4 / block == x5 / block;
+  const bool same_y = y8 == y4 + 1 && y4 / block == y8 / block;
+  if (same_y && y4 % block == 0) drop(1, 2);              // top arm in the block above
+  if (same_y && y8 % block == block - 1) drop(11, 12);    // bottom arm in the block below
+  if (same_x && x4 % block == 0) drop(3, 7);              // left arm in the block to the left
+  if (same_x && x5 % block == block - 1) drop(6, 10);     // right arm in the block to the right
+  return m;
+}
+
+Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
+                                   uint32_t yf, TexelFormat fmt, EdgeDecision* decision) {
+  TexelMask read = 0;
+  std::array<int32_t, kTexels + 1> y{};
+  for (int n = 1; n <= kTexels; ++n)
+    if (has(available, n)) {
+      y[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt);
+      read = static_cast<TexelMask>(read | (1u << (n - 1)));
+    }
+  const std::array<int, kTexels + 1> low = low_pass(y, available);
+  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
+
+  // Direction choice (Eq. 1-2): min w_i * dP_i over the usable directions.
+  const DirectionTable& tab = direction_table();
+  const uint32_t usable = tab.usable[available & kAllTexels];
+  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
+  int best = -1;
+  uint32_t best_cost = 0;
+  for (int i = 0; i < kDirections; ++i) {
+    if (!((usable >> i) & 1u)) continue;
+    const DirectionTable::Entry& e = tab.dir[static_cast<size_t>(i)];
+    const uint8_t w = (*e.rom)[addr];
+    if (w == kNeverChoose) continue;
+    const Texel4& p = lowv(e.p);
+    const Texel4& q = lowv(e.q);
+    uint32_t dp;
+    if (fmt == TexelFormat::VS16X2) {
+      dp = static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1])) >> 6;
+    } else {
+      dp = static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]));
+    }
+    const uint32_t cost = w * dp;
+    if (best < 0 || cost < best_cost) {
+      best = i;
+      best_cost = cost;
+    }
+  }
+  if (best < 0) best = 0;  // unreachable: an axis direction through the centre square is always usable
+
+  // Low-frequency part along the chosen direction (Eq. 3).
+  const Direction& d = directions()[static_cast<size_t>(best)];
+  const int32_t t = static_cast<int32_t>(d.axis == BlendAxis::X ? xf : yf);
+  const Texel4& cp = lowv(d.p);
+  const Texel4& cq = lowv(d.q);
+  // High-frequency part, bilinear over H4, H5, H8, H9 (Eq. 5).
+  const int32_t fx = static_cast<int32_t>(xf), fy = static_cast<int32_t>(yf);
+  const std::array<int32_t, 4> bw{(256 - fx) * (256 - fy), fx * (256 - fy), (256 - fx) * fy, fx * fy};
+  constexpr std::array<int, 4> centre{4, 5, 8, 9};
+  const auto [lo, hi] = channel_range(fmt);
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch) {
+    const int32_t clow = ((256 - t) * cp[ch] + t * cq[ch] + 128) >> 8;
+    int64_t hsum = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      const int n = centre[k];
+      const int32_t h = c[static_cast<size_t>(n - 1)][ch] - lowv(n)[ch];
+      hsum += int64_t{h} * bw[k];
+    }
+    const auto chigh = static_cast<int32_t>((hsum + (1 << 15)) >> 16);
+    out[ch] = std::clamp(clow + chigh, lo, hi);  // Eq. 6
+  }
+  if (decision) *decision = {best, best_cost, read};
+  return out;
+}
+
+std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c,
+                                            TexelMask available, double xf, double yf, TexelFormat fmt) {
+  std::array<double, kTexels + 1> y{};
+  for (int n = 1; n <= kTexels; ++n)
+    if (has(available, n)) {
+      const auto& v = c[static_cast<size_t>(n - 1)];
+      y[static_cast<size_t>(n)] = fmt == TexelFormat::VS16X2 ? v[0] + v[1] : 0.3125 * v[0] + 0.5625 * v[1] + 0.125 * v[2];
+    }
+  const std::array<int, kTexels + 1> low = low_pass(y, available);
+  const auto lowv = [&](int n) -> const std::array<double, 4>& {
+    return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)];
+  };
+  const uint32_t usable = usable_directions(available);
+  int best = -1;
+  double best_cost = 0;
+  for (const Direction& d : directions()) {
+    if (!((usable >> d.index) & 1u)) continue;
+    const double w = exact_weight(d.index, xf, yf);
+    if (!std::isfinite(w)) continue;
+    const auto& p = lowv(d.p);
+    const auto& q = lowv(d.q);
+    const double dp = fmt == TexelFormat::VS16X2 ? std::abs(p[0] - q[0]) + std::abs(p[1] - q[1])
+                                                 : std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]);
+    if (best < 0 || w * dp < best_cost) {
+      best = d.index;
+      best_cost = w * dp;
+    }
+  }
+  if (best < 0) best = 0;
+  const Direction& d = directions()[static_cast<size_t>(best)];
+  const double t = d.axis == BlendAxis::X ? xf : yf;
+  const std::array<double, 4> bw{(1 - xf) * (1 - yf), xf * (1 - yf), (1 - xf) * yf, xf * yf};
+  constexpr std::array<int, 4> centre{4, 5, 8, 9};
+  const double lo = fmt == TexelFormat::VS16X2 ? -1.0 : 0.0;
+  std::array<double, 4> out{};
+  for (size_t ch = 0; ch < 4; ++ch) {
+    double v = (1 - t) * lowv(d.p)[ch] + t * lowv(d.q)[ch];
+    for (size_t k = 0; k < 4; ++k) v += bw[k] * (c[static_cast<size_t>(centre[k] - 1)][ch] - lowv(centre[k])[ch]);
+    out[ch] = std::clamp(v, lo, 1.0);
+  }
+  return out;
+}
+
+}  // namespace tfu::lee_jen

@@ -1,0 +1,80 @@
+#include "cmodel/lod.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "cmodel/fixed_coord.hpp"
+
+namespace tfu {
+
+const std::array<uint16_t, 1u << kLog2RomIndexBits>& log2_rom() {
+  // Offline table generation (double precision), the one source of the ROM contents.
+  static const auto rom = [] {
+    std::array<uint16_t, 1u << kLog2RomIndexBits> r{};
+    constexpr double n = 1u << kLog2RomIndexBits;
+    for (size_t k = 0; k < r.size(); ++k)
+      r[k] = static_cast<uint16_t>(std::floor(256.0 * std::log2(1.0 + (static_cast<double>(k) + 0.5) / n) + 0.5));
+    return r;
+  }();
+  return rom;
+}
+
+int32_t log2_q8(uint64_t x) {
+  if (x == 0) return kLodMinusInfinity;
+  const int e = 63 - std::countl_zero(x);  // leading-one detector
+  uint32_t index;
+  if (e >= kLog2RomIndexBits) {
+    index = static_cast<uint32_t>((x >> (e - kLog2RomIndexBits)) & ((1u << kLog2RomIndexBits) - 1));
+  } else {
+    index = static_cast<uint32_t>((x << (kLog2RomIndexBits - e)) & ((1u << kLog2RomIndexBits) - 1));
+  }
+  // Small inputs (e < 9) are exact in the index, so the ROM's +1/2 centring costs at most its own
+  // half-interval error there as well; the bound holds for every x (see the tests).
+  return (e << kLodFracBits) + log2_rom()[index];
+}
+
+namespace {
+constexpr int64_t kDerivClamp = (int64_t{1} << 31) - 1;
+int64_t clamp_deriv(int64_t d) {
+  d = d < 0 ? -d : d;
+  return std::min(d, kDerivClamp);
+}
+}  // namespace
+
+int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_t dvdy) {
+  const auto sq = [](int64_t d) {
+    const uint64_t m = static_cast<uint64_t>(clamp_deriv(d));
+    return m * m;
+  };
+  const uint64_t lx = sq(dudx) + sq(dvdx);
+  const uint64_t ly = sq(dudy) + sq(dvdy);
+  const uint64_t rho2 = std::max(lx, ly);  // Q.32
+  if (rho2 == 0) return kLodMinusInfinity;
+  const int32_t l2 = log2_q8(rho2) - (32 << kLodFracBits);  // log2(rho^2), Q.8
+  return (l2 + 1) >> 1;                                      // halve, round half up
+}
+
+int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
+  const auto u = [&](int k) { return float_to_fixed(s[k], static_cast<uint32_t>(width), 16); };
+  const auto v = [&](int k) { return float_to_fixed(t[k], static_cast<uint32_t>(height), 16); };
+  return lambda_from_derivatives(u(1) - u(0), v(1) - v(0), u(2) - u(0), v(2) - v(0));
+}
+
+int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {
+  const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
+  return lambda_from_derivatives(float_to_fixed(dsdx, w, 16), float_to_fixed(dtdx, h, 16),
+                                 float_to_fixed(dsdy, w, 16), float_to_fixed(dtdy, h, 16));
+}
+
+int32_t lambda_explicit(float lod) {
+  const int64_t v = float_to_fixed_round(lod, 1, kLodFracBits);
+  return static_cast<int32_t>(std::clamp<int64_t>(v, kLodMinusInfinity, -int64_t{kLodMinusInfinity}));
+}
+
+int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
+  const int64_t l = int64_t{lambda_q8} + p.bias_q8;
+  return static_cast<int32_t>(std::clamp<int64_t>(l, p.min_lod_q8, p.max_lod_q8));
+}
+
+}  // namespace tfu

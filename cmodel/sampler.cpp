@@ -1,0 +1,507 @@
+#include "cmodel/sampler.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "cmodel/edge_filter.hpp"
+#include "cmodel/error.hpp"
+#include "cmodel/fixed_coord.hpp"
+#include "cmodel/kernels.hpp"
+#include "cmodel/unorm.hpp"
+
+namespace tfu {
+
+// ---------------------------------------------------------------- names
+namespace {
+const char* base_name(BaseFilter b) {
+  switch (b) {
+    case BaseFilter::Nearest: return "NEAREST";
+    case BaseFilter::Linear: return "LINEAR";
+    case BaseFilter::Cubic: return "CUBIC";
+    case BaseFilter::EdgePreserving: return "EDGE_PRESERVING";
+  }
+  return "?";
+}
+}  // namespace
+
+FilterMode filter_mode_from_name(const std::string& name) {
+  std::string n;
+  for (char ch : name) n += ch == '-' ? '_' : static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  for (const FilterMode& m : all_filter_modes())
+    if (filter_mode_name(m) == n) return m;
+  std::string list;
+  for (const FilterMode& m : all_filter_modes()) list += (list.empty() ? "" : ", ") + filter_mode_name(m);
+  throw InputError(fmt::format("unknown filter '{}' (expected one of {})", name, list));
+}
+
+std::string filter_mode_name(FilterMode m) {
+  std::string s = base_name(m.base);
+  if (m.mip == MipMode::Nearest) s += "_MIPMAP_NEAREST";
+  if (m.mip == MipMode::Linear) s += "_MIPMAP_LINEAR";
+  return s;
+}
+
+const std::vector<FilterMode>& all_filter_modes() {
+  static const std::vector<FilterMode> modes = [] {
+    std::vector<FilterMode> v;
+    for (BaseFilter b : {BaseFilter::Nearest, BaseFilter::Linear, BaseFilter::Cubic, BaseFilter::EdgePreserving})
+      for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear}) v.push_back({b, m});
+    return v;
+  }();
+  return modes;
+}
+
+std::vector<std::string> cubic_kernel_names() {
+  std::vector<std::string> v = FilterKernel::names();
+  v.emplace_back(kBsplineInterp);
+  return v;
+}
+
+// ---------------------------------------------------------------- B-spline prefilter (offline)
+namespace {
+
+// Cubic B-spline interpolation coefficients (Unser's recursive filter, pole z = sqrt(3) - 2) of a
+// periodic sequence; mirror boundaries are handled by the caller as a periodic sequence of length 2N.
+std::vector<double> bspline_coefficients_periodic(const std::vector<double>& x) {
+  const size_t n = x.size();
+  if (n == 1) return x;
+  const double z = std::sqrt(3.0) - 2.0;
+  constexpr int kTerms = 40;  // |z|^40 < 1e-22
+  std::vector<double> cp(n), c(n);
+  double acc = 0, zk = 1;
+  for (int k = 0; k < kTerms; ++k, zk *= z) acc += zk * 6.0 * x[(n - static_cast<size_t>(k) % n) % n];
+  cp[0] = acc;
+  for (size_t i = 1; i < n; ++i) cp[i] = 6.0 * x[i] + z * cp[i - 1];
+  acc = 0;
+  zk = z;
+  for (int k = 0; k < kTerms; ++k, zk *= z) acc -= zk * cp[(n - 1 + static_cast<size_t>(k)) % n];
+  c[n - 1] = acc;
+  for (size_t i = n - 1; i-- > 0;) c[i] = z * (c[i + 1] - cp[i]);
+  return c;
+}
+
+std::vector<double> bspline_coefficients(const std::vector<double>& x, WrapMode wrap) {
+  if (wrap == WrapMode::Repeat) return bspline_coefficients_periodic(x);
+  // Mirror (half-sample symmetric) extension: x0..xN-1 xN-1..x0, exact for mirrored-repeat, the
+  // documented approximation for the clamp modes.
+  std::vector<double> ext(x);
+  ext.insert(ext.end(), x.rbegin(), x.rend());
+  std::vector<double> c = bspline_coefficients_periodic(ext);
+  c.resize(x.size());
+  return c;
+}
+
+// Stored coefficient codes with a per-texture scale and bias (Hadwiger 2004 Sec. 3.2: "we fit them
+// into this range using simple scale and bias operations"). The inverse of the B-spline's (1 4 1)/6
+// amplifies by up to 3 per axis, so coefficients of data in [0, 1] can reach [-4, 5] in 2D; real
+// textures use far less, so the range is fitted to the texture: two registers in Q.12,
+//   S = round((c_max - c_min) 2^12),  B = round(255 c_min 2^12)   (c in units of full scale),
+// codes q = clamp(round((255 c 2^12 - B) / S)), and the datapath decodes the filtered code sum as
+//   out = floor((acc S + B M + M 2^11) / (M 2^12)),  acc = sum w q at weight scale M = 2^b - 1.
+constexpr int kBsplineScaleBits = 12;
+
+inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  const int64_t q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+}  // namespace
+
+struct Sampler::Impl {
+  std::unique_ptr<FilterKernel> kernel;       // CUBIC modes
+  std::unique_ptr<TileWeightRom> rom;         // CUBIC modes
+  bool prefiltered = false;                   // bspline-interp
+  int64_t bspline_scale_q = 0, bspline_bias_q = 0;  // S and B registers (Q.12)
+  std::vector<Image> coeff_levels;            // bspline-interp: stored coefficient codes
+  std::vector<std::vector<std::array<double, 4>>> coeff_ideal;  // bspline-interp: exact coefficients
+  Texel4 border{};
+  double scale = 255.0;  // channel code -> real
+};
+
+// ---------------------------------------------------------------- construction
+Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::move(cfg)), impl_(new Impl) {
+  tex_.validate("texture");
+  impl_->border = decode_texel(cfg_.border, tex_.format);
+  impl_->scale = tex_.format == TexelFormat::VS16X2 ? 32640.0 : 255.0;
+  if (cfg_.edge_cache_block < 4 || cfg_.edge_cache_block > 64 ||
+      (cfg_.edge_cache_block & (cfg_.edge_cache_block - 1)) != 0)
+    throw InputError(fmt::format("edge cache block {} is not a power of two in 4..64", cfg_.edge_cache_block));
+  if (cfg_.lod.min_lod_q8 > cfg_.lod.max_lod_q8) throw InputError("min-lod is above max-lod");
+  if (cfg_.mode.base != BaseFilter::Cubic) return;
+
+  cfg_.cubic_rom.validate();
+  impl_->prefiltered = cfg_.kernel == kBsplineInterp;
+  impl_->kernel = std::make_unique<FilterKernel>(
+      impl_->prefiltered ? FilterKernel::bspline() : FilterKernel::by_name(cfg_.kernel));
+  if (impl_->kernel->width() > 4)
+    throw InputError(fmt::format("kernel '{}' is wider than the 4x4 CUBIC footprint", cfg_.kernel));
+  impl_->rom = std::make_unique<TileWeightRom>(*impl_->kernel, cfg_.cubic_rom);
+  if (!impl_->prefiltered) return;
+  if (tex_.format == TexelFormat::VS16X2)
+    throw InputError("kernel bspline-interp needs an 8-bit texel format (rgba8 or l8), not vs16x2");
+  // Offline prefilter per level (double precision), then quantize with a fitted scale and bias.
+  double cmin = 0.0, cmax = 1.0;
+  for (const Image& lvl : tex_.levels) {
+    const auto w = static_cast<size_t>(lvl.width), h = static_cast<size_t>(lvl.height);
+    std::vector<std::array<double, 4>> c(w * h);
+    for (size_t i = 0; i < c.size(); ++i)
+      c[i] = {lvl.texels[i].r / 255.0, lvl.texels[i].g / 255.0, lvl.texels[i].b / 255.0, lvl.texels[i].a / 255.0};
+    for (size_t ch = 0; ch < 4; ++ch) {
+      std::vector<double> line;
+      for (size_t y = 0; y < h; ++y) {
+        line.resize(w);
+        for (size_t x = 0; x < w; ++x) line[x] = c[y * w + x][ch];
+        line = bspline_coefficients(line, cfg_.wrap_s);
+        for (size_t x = 0; x < w; ++x) c[y * w + x][ch] = line[x];
+      }
+      for (size_t x = 0; x < w; ++x) {
+        line.resize(h);
+        for (size_t y = 0; y < h; ++y) line[y] = c[y * w + x][ch];
+        line = bspline_coefficients(line, cfg_.wrap_t);
+        for (size_t y = 0; y < h; ++y) c[y * w + x][ch] = line[y];
+      }
+    }
+    for (const auto& px : c)
+      for (double v : px) {
+        cmin = std::min(cmin, v);
+        cmax = std::max(cmax, v);
+      }
+    impl_->coeff_ideal.push_back(std::move(c));
+  }
+  constexpr double one = 1 << kBsplineScaleBits;
+  impl_->bspline_scale_q = std::llround(std::ceil((cmax - cmin) * one));
+  impl_->bspline_bias_q = std::llround(std::floor(255.0 * cmin * one));
+  const double S = static_cast<double>(impl_->bspline_scale_q), B = static_cast<double>(impl_->bspline_bias_q);
+  const auto code = [S, B, one](double v) {
+    return static_cast<uint8_t>(std::clamp(std::floor((255.0 * v * one - B) / S + 0.5), 0.0, 255.0));
+  };
+  for (size_t l = 0; l < tex_.levels.size(); ++l) {
+    const auto& c = impl_->coeff_ideal[l];
+    Image q(tex_.levels[l].width, tex_.levels[l].height);
+    for (size_t i = 0; i < c.size(); ++i) q.texels[i] = {code(c[i][0]), code(c[i][1]), code(c[i][2]), code(c[i][3])};
+    impl_->coeff_levels.push_back(std::move(q));
+  }
+}
+
+Sampler::~Sampler() = default;
+
+// ---------------------------------------------------------------- LOD -> levels (GL 4.6 Sec. 8.14)
+LodInfo Sampler::lod_info(int32_t lambda_unclamped) const {
+  LodInfo li;
+  li.lambda_q8 = lambda_bias_clamp(lambda_unclamped, cfg_.lod);
+  const int q = tex_.max_level();
+  li.magnify = li.lambda_q8 <= 0;  // c = 0: the magnification filter is the mode's first word
+  if (!li.magnify) {
+    switch (cfg_.mode.mip) {
+      case MipMode::None: break;
+      case MipMode::Nearest: {
+        // d = lambda <= 1/2 ? 0 : ceil(lambda + 1/2) - 1
+        const int d = li.lambda_q8 <= 128 ? 0 : (li.lambda_q8 + 127) >> kLodFracBits;
+        li.level0 = li.level1 = std::min(d, q);
+        break;
+      }
+      case MipMode::Linear:
+        if (li.lambda_q8 >= (q << kLodFracBits)) {
+          li.level0 = li.level1 = q;
+        } else {
+          li.level0 = li.lambda_q8 >> kLodFracBits;
+          li.level1 = li.level0 + 1;
+          li.blend = li.lambda_q8 & 255;
+        }
+        break;
+    }
+  }
+  const Image& l0 = tex_.levels[static_cast<size_t>(li.level0)];
+  li.level0_width = l0.width;
+  li.level0_height = l0.height;
+  li.kernel_scale = 1 << li.level0;
+  return li;
+}
+
+// ---------------------------------------------------------------- texel fetch (wrap unit)
+Texel4 Sampler::fetch(int level, int x, int y) const {
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const int wx = wrap_index(cfg_.wrap_s, x, img.width);
+  const int wy = wrap_index(cfg_.wrap_t, y, img.height);
+  if (wx < 0 || wy < 0) return impl_->border;
+  return decode_texel(img.at(wx, wy), tex_.format);
+}
+
+namespace {
+
+struct LevelCoord {
+  int64_t i0;   // integer texel index of the tap left of / above the sample point
+  uint32_t f;   // 8-bit fraction (Q.8)
+};
+// u = floor(s W 2^8) - 128: texel centres at integers (Q.8).
+LevelCoord texel_coord(float s, int size) {
+  const int64_t u = float_to_fixed(s, static_cast<uint32_t>(size), 8) - 128;
+  return {u >> 8, static_cast<uint32_t>(u & 255)};
+}
+
+// Wrapped fetch that reads a given level image (the texture or the B-spline coefficients). The
+// wrap unit maps each tap column and row once; a tap outside with clamp-to-border reads `border`.
+struct LevelReader {
+  const Image& img;
+  WrapMode ws, wt;
+  TexelFormat fmt;
+  Texel4 border;
+  int col(int64_t x) const { return wrap_index(ws, x, img.width); }
+  int row(int64_t y) const { return wrap_index(wt, y, img.height); }
+  Texel4 at(int wx, int wy) const {
+    if ((wx | wy) < 0) return border;
+    return decode_texel(img.texels[static_cast<size_t>(wy) * static_cast<size_t>(img.width) + static_cast<size_t>(wx)], fmt);
+  }
+  Texel4 operator()(int64_t x, int64_t y) const { return at(col(x), row(y)); }
+};
+
+Texel4 filter_nearest(const LevelReader& rd, float s, float t) {
+  // GL: i = floor(s W), j = floor(t H)
+  return rd(float_to_fixed(s, static_cast<uint32_t>(rd.img.width), 0),
+            float_to_fixed(t, static_cast<uint32_t>(rd.img.height), 0));
+}
+
+Texel4 filter_linear(const LevelReader& rd, float s, float t) {
+  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
+  const int32_t fu = static_cast<int32_t>(u.f), fv = static_cast<int32_t>(v.f);
+  const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
+  const std::array<Texel4, 4> c{rd.at(x0, y0), rd.at(x1, y0), rd.at(x0, y1), rd.at(x1, y1)};
+  const std::array<int32_t, 4> w{(256 - fu) * (256 - fv), fu * (256 - fv), (256 - fu) * fv, fu * fv};  // Q.16
+  Texel4 out{};
+  if (rd.fmt != TexelFormat::VS16X2) {  // 8-bit channels: 8 + 16 + 2 bits fit 32
+    for (size_t ch = 0; ch < 4; ++ch)
+      out[ch] = (c[0][ch] * w[0] + c[1][ch] * w[1] + c[2][ch] * w[2] + c[3][ch] * w[3] + (1 << 15)) >> 16;
+    return out;
+  }
+  for (size_t ch = 0; ch < 4; ++ch) {
+    const int64_t acc = int64_t{c[0][ch]} * w[0] + int64_t{c[1][ch]} * w[1] + int64_t{c[2][ch]} * w[2] +
+                        int64_t{c[3][ch]} * w[3];
+    out[ch] = static_cast<int32_t>((acc + (1 << 15)) >> 16);
+  }
+  return out;
+}
+
+// Separable tiled-ROM filter over T x T taps (T = 4 for cubics). Returns the accumulated
+// sum c w at scale M = 2^b - 1 per channel.
+std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
+                                        float s, float t) {
+  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
+  const int taps = rom.taps(), m0 = rom.first_tap();
+  const unsigned bits = rom.spec().bits;
+  std::array<int32_t, 8> wx{}, wy{};
+  if (recon == RomRecon::Nearest) {
+    rom.weights_nearest(u.f, 8, wx.data());
+    rom.weights_nearest(v.f, 8, wy.data());
+  } else {
+    rom.weights_linear(u.f, 8, 8, wx.data());
+    rom.weights_linear(v.f, 8, 8, wy.data());
+  }
+  const auto M = static_cast<int32_t>(unorm::max_code(bits));
+  // Tile-weight multipliers for all taps but the centre one (offset (0, 0)), which takes the
+  // complement so that the 2D weights sum to exactly M.
+  std::array<int32_t, 64> w2{};
+  int32_t sum = 0;
+  const int centre = -m0;
+  for (int j = 0; j < taps; ++j)
+    for (int i = 0; i < taps; ++i) {
+      if (i == centre && j == centre) continue;
+      const int32_t w = tile_weight_multiply(wx[static_cast<size_t>(i)], wy[static_cast<size_t>(j)], bits);
+      w2[static_cast<size_t>(j * taps + i)] = w;
+      sum += w;
+    }
+  w2[static_cast<size_t>(centre * taps + centre)] = M - sum;
+  std::array<int, 8> col{}, row{};
+  for (int k = 0; k < taps; ++k) {
+    col[static_cast<size_t>(k)] = rd.col(u.i0 + m0 + k);
+    row[static_cast<size_t>(k)] = rd.row(v.i0 + m0 + k);
+  }
+  std::array<int64_t, 4> acc{};
+  for (int j = 0; j < taps; ++j)
+    for (int i = 0; i < taps; ++i) {
+      const int32_t w = w2[static_cast<size_t>(j * taps + i)];
+      if (w == 0) continue;
+      const Texel4 c = rd.at(col[static_cast<size_t>(i)], row[static_cast<size_t>(j)]);
+      for (size_t ch = 0; ch < 4; ++ch) acc[ch] += int64_t{c[ch]} * w;
+    }
+  return acc;
+}
+
+}  // namespace
+
+Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) const {
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  switch (f) {
+    case BaseFilter::Nearest: return filter_nearest(rd, s, t);
+    case BaseFilter::Linear: return filter_linear(rd, s, t);
+    case BaseFilter::Cubic: {
+      const auto M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
+      Texel4 out{};
+      if (impl_->prefiltered) {
+        const LevelReader cr{impl_->coeff_levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
+                             TexelFormat::RGBA8, {}};
+        const auto acc = filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, s, t);
+        // out = (acc S + B M) / (M 2^12), round half up.
+        const int64_t den = M << kBsplineScaleBits;
+        for (size_t ch = 0; ch < 4; ++ch)
+          out[ch] = static_cast<int32_t>(
+              floor_div(acc[ch] * impl_->bspline_scale_q + impl_->bspline_bias_q * M + den / 2, den));
+      } else {
+        const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, s, t);
+        if (M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
+          for (size_t ch = 0; ch < 4; ++ch) out[ch] = static_cast<int32_t>(floor_div(2 * acc[ch] + 255, 510));
+        } else {
+          for (size_t ch = 0; ch < 4; ++ch) out[ch] = static_cast<int32_t>(floor_div(2 * acc[ch] + M, 2 * M));
+        }
+      }
+      const auto [lo, hi] = channel_range(tex_.format);
+      for (auto& v : out) v = std::clamp(v, lo, hi);
+      return out;
+    }
+    case BaseFilter::EdgePreserving: {
+      const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+      std::array<Texel4, lee_jen::kTexels> c{};
+      lee_jen::TexelMask mask = lee_jen::kAllTexels;
+      if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
+        mask = lee_jen::cache_block_mask(wrap_index(cfg_.wrap_s, u.i0, img.width),
+                                         wrap_index(cfg_.wrap_s, u.i0 + 1, img.width),
+                                         wrap_index(cfg_.wrap_t, v.i0, img.height),
+                                         wrap_index(cfg_.wrap_t, v.i0 + 1, img.height), cfg_.edge_cache_block);
+      // Columns and rows -1..2 around the centre square, wrapped once each.
+      const std::array<int, 4> col{rd.col(u.i0 - 1), rd.col(u.i0), rd.col(u.i0 + 1), rd.col(u.i0 + 2)};
+      const std::array<int, 4> row{rd.row(v.i0 - 1), rd.row(v.i0), rd.row(v.i0 + 1), rd.row(v.i0 + 2)};
+      for (int n = 1; n <= lee_jen::kTexels; ++n) {
+        if (!((mask >> (n - 1)) & 1u)) continue;
+        const lee_jen::TexelPos p = lee_jen::texel_pos(n);
+        c[static_cast<size_t>(n - 1)] = rd.at(col[static_cast<size_t>(p.x + 1)], row[static_cast<size_t>(p.y + 1)]);
+      }
+      return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, tex_.format);
+    }
+  }
+  return {};
+}
+
+Texel4 Sampler::sample_level(int level, float s, float t) const {
+  return sample_level_filter(cfg_.mode.base, level, s, t);
+}
+
+Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
+  const LodInfo li = lod_info(lambda);
+  const Texel4 c0 = sample_level(li.level0, s, t);
+  if (li.blend == 0) return c0;
+  const Texel4 c1 = sample_level(li.level1, s, t);
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch) out[ch] = (c0[ch] * (256 - li.blend) + c1[ch] * li.blend + 128) >> 8;
+  return out;
+}
+
+Rgba8 Sampler::sample(float s, float t, int32_t lambda) const {
+  return encode_texel(sample_channels(s, t, lambda), tex_.format);
+}
+
+// ---------------------------------------------------------------- double-precision ideal
+std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) const {
+  // Same level selection as GL, in real arithmetic.
+  lambda = std::clamp(lambda + cfg_.lod.bias_q8 / 256.0, cfg_.lod.min_lod_q8 / 256.0, cfg_.lod.max_lod_q8 / 256.0);
+  const int q = tex_.max_level();
+  int l0 = 0, l1 = 0;
+  double blend = 0;
+  if (lambda > 0) {
+    if (cfg_.mode.mip == MipMode::Nearest) {
+      l0 = l1 = std::min(lambda <= 0.5 ? 0 : static_cast<int>(std::ceil(lambda + 0.5)) - 1, q);
+    } else if (cfg_.mode.mip == MipMode::Linear) {
+      if (lambda >= q) {
+        l0 = l1 = q;
+      } else {
+        l0 = static_cast<int>(std::floor(lambda));
+        l1 = l0 + 1;
+        blend = lambda - l0;
+      }
+    }
+  }
+  const double sc = impl_->scale;
+  const auto real_texel = [&](int level, int64_t x, int64_t y) {
+    const Texel4 c = fetch(level, static_cast<int>(std::clamp<int64_t>(x, INT32_MIN / 2, INT32_MAX / 2)),
+                           static_cast<int>(std::clamp<int64_t>(y, INT32_MIN / 2, INT32_MAX / 2)));
+    return std::array<double, 4>{c[0] / sc, c[1] / sc, c[2] / sc, c[3] / sc};
+  };
+  const auto level_sample = [&](int level) -> std::array<double, 4> {
+    const Image& img = tex_.levels[static_cast<size_t>(level)];
+    const double u = s * img.width - 0.5, v = t * img.height - 0.5;
+    const double fi = std::floor(u), fj = std::floor(v);
+    const double fu = u - fi, fv = v - fj;
+    const auto i0 = static_cast<int64_t>(std::clamp(fi, -1e15, 1e15));
+    const auto j0 = static_cast<int64_t>(std::clamp(fj, -1e15, 1e15));
+    std::array<double, 4> out{};
+    switch (cfg_.mode.base) {
+      case BaseFilter::Nearest:
+        return real_texel(level, static_cast<int64_t>(std::floor(s * img.width)),
+                          static_cast<int64_t>(std::floor(t * img.height)));
+      case BaseFilter::Linear: {
+        const std::array<double, 4> w{(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
+        const std::array<std::array<double, 4>, 4> c{real_texel(level, i0, j0), real_texel(level, i0 + 1, j0),
+                                                     real_texel(level, i0, j0 + 1), real_texel(level, i0 + 1, j0 + 1)};
+        for (size_t ch = 0; ch < 4; ++ch)
+          for (size_t k = 0; k < 4; ++k) out[ch] += w[k] * c[k][ch];
+        return out;
+      }
+      case BaseFilter::Cubic: {
+        const FilterKernel& h = *impl_->kernel;
+        const int taps = impl_->rom->taps(), m0 = impl_->rom->first_tap();
+        // Without level adaptation the kernel keeps its level-0 footprint: distances in level-L
+        // texels are scaled by 2^L before evaluating h (Hadwiger 2004 Sec. 3.2).
+        const double k = cfg_.cubic_level_adapt ? 1.0 : std::ldexp(1.0, level);
+        double wsum = 0;
+        for (int j = 0; j < taps; ++j)
+          for (int i = 0; i < taps; ++i) {
+            const double w = h(k * (fu - (m0 + i))) * h(k * (fv - (m0 + j)));
+            if (w == 0) continue;
+            wsum += w;
+            std::array<double, 4> c;
+            if (impl_->prefiltered) {
+              const auto& cl = impl_->coeff_ideal[static_cast<size_t>(level)];
+              const int xi = wrap_index(cfg_.wrap_s, i0 + m0 + i, img.width);
+              const int yj = wrap_index(cfg_.wrap_t, j0 + m0 + j, img.height);
+              c = (xi < 0 || yj < 0) ? std::array<double, 4>{}
+                                     : cl[static_cast<size_t>(yj) * static_cast<size_t>(img.width) +
+                                          static_cast<size_t>(xi)];
+            } else {
+              c = real_texel(level, i0 + m0 + i, j0 + m0 + j);
+            }
+            for (size_t ch = 0; ch < 4; ++ch) out[ch] += w * c[ch];
+          }
+        if (!cfg_.cubic_level_adapt && wsum > 0)
+          for (auto& x : out) x /= wsum;  // the unadapted kernel is renormalised (best case for it)
+        const double lo = tex_.format == TexelFormat::VS16X2 ? -1.0 : 0.0;
+        for (auto& x : out) x = std::clamp(x, lo, 1.0);
+        return out;
+      }
+      case BaseFilter::EdgePreserving: {
+        std::array<std::array<double, 4>, lee_jen::kTexels> c{};
+        lee_jen::TexelMask mask = lee_jen::kAllTexels;
+        if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
+          mask = lee_jen::cache_block_mask(wrap_index(cfg_.wrap_s, i0, img.width),
+                                           wrap_index(cfg_.wrap_s, i0 + 1, img.width),
+                                           wrap_index(cfg_.wrap_t, j0, img.height),
+                                           wrap_index(cfg_.wrap_t, j0 + 1, img.height), cfg_.edge_cache_block);
+        for (int n = 1; n <= lee_jen::kTexels; ++n) {
+          const lee_jen::TexelPos p = lee_jen::texel_pos(n);
+          c[static_cast<size_t>(n - 1)] = real_texel(level, i0 + p.x, j0 + p.y);
+        }
+        return lee_jen::edge_preserving_ideal(c, mask, fu, fv, tex_.format);
+      }
+    }
+    return out;
+  };
+  std::array<double, 4> a = level_sample(l0);
+  if (blend > 0) {
+    const std::array<double, 4> b = level_sample(l1);
+    for (size_t ch = 0; ch < 4; ++ch) a[ch] = (1 - blend) * a[ch] + blend * b[ch];
+  }
+  return a;
+}
+
+}  // namespace tfu

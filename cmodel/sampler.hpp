@@ -1,0 +1,112 @@
+// The golden texture sampler: every filter mode, bit-accurate, untimed (no notion of cycles).
+//
+// Interface: sample(s, t, lambda) with s, t as FP32 and lambda from the LOD unit (lod.hpp, Q.8).
+// Datapath widths and rounding, per mode, are listed in docs/filters.md; the short version:
+//   texel coordinate  u = floor(s W_L 2^8) - 128 (Q.8, texel centres at integers): i0 = u >> 8, fu = u & 255
+//   NEAREST           i = floor(s W_L) (GL)
+//   LINEAR            w = (256 - fu | fu) x (256 - fv | fv) (Q.16); c = (sum c w + 2^15) >> 16
+//   *_MIPMAP_LINEAR   c = (c0 (256 - f) + c1 f + 128) >> 8, f = lambda & 255
+//   CUBIC             4x4 taps; 1D weights from TileWeightRom rows (sign + b-bit magnitude, scale
+//                     M = 2^b - 1); w(x,y) = tile_weight_multiply(wx, wy) for 15 taps, the tap at
+//                     offset (0,0) gets M - sum(others) (so a constant texture is exact);
+//                     c = clamp(floor((2 sum c w + M) / (2 M)))
+//   EDGE_PRESERVING   edge_filter.hpp (Lee & Jen 2003)
+// Magnification vs minification (GL): lambda <= 0 -> magnification filter (the mode's first word).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cmodel/direction_rom.hpp"
+#include "cmodel/lod.hpp"
+#include "cmodel/texture.hpp"
+#include "cmodel/weight_rom.hpp"
+
+namespace tfu {
+
+enum class BaseFilter { Nearest, Linear, Cubic, EdgePreserving };
+enum class MipMode { None, Nearest, Linear };
+
+struct FilterMode {
+  BaseFilter base = BaseFilter::Linear;
+  MipMode mip = MipMode::None;
+  friend constexpr bool operator==(const FilterMode&, const FilterMode&) = default;
+};
+// "linear_mipmap_linear", "LINEAR-MIPMAP-LINEAR", "cubic", "edge_preserving_mipmap_linear", ...
+FilterMode filter_mode_from_name(const std::string& name);
+std::string filter_mode_name(FilterMode m);  // canonical upper-case name
+const std::vector<FilterMode>& all_filter_modes();
+
+// Kernel names accepted by CUBIC modes: TFU-A's kernels plus "bspline-interp" (the cubic B-spline
+// applied to prefiltered coefficients so that it interpolates; Hadwiger 2004 Sec. 3.x).
+inline constexpr const char* kBsplineInterp = "bspline-interp";
+std::vector<std::string> cubic_kernel_names();
+
+// Which of Lee & Jen's kernel shapes the edge-preserving filter may use (Sec. 3).
+enum class EdgeShapePolicy {
+  Cross,       // always the 12-texel cross
+  CacheBlock,  // cross / T / L chosen from the centre square's position in BxB cache blocks
+};
+
+struct SamplerConfig {
+  FilterMode mode{};
+  WrapMode wrap_s = WrapMode::Repeat, wrap_t = WrapMode::Repeat;
+  Rgba8 border{0, 0, 0, 0};  // texel word used outside the texture with ClampToBorder
+  LodParams lod{};
+  std::string kernel = "catmull-rom";
+  TileRomSpec cubic_rom{64, 8, SamplePos::Centre, RomRounding::SumPreserving};
+  RomRecon cubic_recon = RomRecon::Nearest;
+  // Hadwiger 2004 Sec. 3.2: fit the kernel to each selected level (true), or keep the level-0
+  // kernel footprint in every level (false, for the quality comparison: the 4-texel-wide kernel then
+  // covers 4 / 2^L texels of level L and degenerates towards nearest).
+  bool cubic_level_adapt = true;
+  EdgeShapePolicy edge_shape = EdgeShapePolicy::Cross;
+  int edge_cache_block = 4;  // B for EdgeShapePolicy::CacheBlock (power of two, 4..64)
+};
+
+// What the LOD unit / meta MIP-map supplies for one pixel (Hadwiger 2004 Sec. 3.2).
+struct LodInfo {
+  int32_t lambda_q8 = 0;  // after bias and clamp
+  bool magnify = false;
+  int level0 = 0, level1 = 0;  // level1 == level0 unless blending
+  int blend = 0;               // weight of level1, 0..255 (Q.8)
+  int level0_width = 0, level0_height = 0;
+  int kernel_scale = 1;  // level-0 texels per texel of level0 (2^level0): the kernel's scale
+};
+
+class Sampler {
+ public:
+  // Validates the configuration (throws InputError); precomputes ROMs and, for bspline-interp,
+  // the prefiltered coefficient levels.
+  Sampler(const Texture& tex, SamplerConfig cfg);
+  ~Sampler();
+  Sampler(const Sampler&) = delete;
+  Sampler& operator=(const Sampler&) = delete;
+
+  const SamplerConfig& config() const { return cfg_; }
+  const Texture& texture() const { return tex_; }
+
+  LodInfo lod_info(int32_t lambda_q8_unclamped) const;  // applies bias and clamp
+  // One filtered colour, as the RGBA8 word of the texture's format.
+  Rgba8 sample(float s, float t, int32_t lambda_q8_unclamped) const;
+  // The same in datapath channels (before encoding).
+  Texel4 sample_channels(float s, float t, int32_t lambda_q8_unclamped) const;
+  // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
+  // exact log2 fraction; same texels): channels in [0, 1] (or [-1, 1] for VS16X2).
+  std::array<double, 4> sample_ideal(double s, double t, double lambda) const;
+
+  // Texel fetch through the wrap unit (level, integer texel coordinates): what the datapath sees.
+  Texel4 fetch(int level, int x, int y) const;
+
+ private:
+  struct Impl;
+  const Texture& tex_;
+  SamplerConfig cfg_;
+  std::unique_ptr<Impl> impl_;
+  Texel4 sample_level(int level, float s, float t) const;
+  Texel4 sample_level_filter(BaseFilter f, int level, float s, float t) const;
+};
+
+}  // namespace tfu

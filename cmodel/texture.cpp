@@ -1,0 +1,168 @@
+#include "cmodel/texture.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+
+namespace tfu {
+
+Image::Image(int w, int h, Rgba8 fill)
+    : width(w), height(h), texels(static_cast<size_t>(w) * static_cast<size_t>(h), fill) {}
+
+int mip_extent(int size0, int level) { return std::max(1, size0 >> level); }
+
+int mip_level_count(int width, int height) {
+  int n = 1;
+  for (int m = std::max(width, height); m > 1; m >>= 1) ++n;
+  return n;
+}
+
+TexelFormat texel_format_from_name(const std::string& name) {
+  if (name == "rgba8") return TexelFormat::RGBA8;
+  if (name == "l8") return TexelFormat::L8;
+  if (name == "vs16x2") return TexelFormat::VS16X2;
+  throw InputError(fmt::format("unknown texel format '{}' (expected rgba8, l8 or vs16x2)", name));
+}
+
+const char* texel_format_name(TexelFormat f) {
+  switch (f) {
+    case TexelFormat::RGBA8: return "rgba8";
+    case TexelFormat::L8: return "l8";
+    case TexelFormat::VS16X2: return "vs16x2";
+  }
+  return "?";
+}
+
+void Texture::validate(const std::string& what) const {
+  if (levels.empty()) throw InputError(fmt::format("{}: texture has no levels", what));
+  const int w = width(), h = height();
+  if (w < 1 || h < 1 || w > kMaxTextureSize || h > kMaxTextureSize)
+    throw InputError(fmt::format("{}: size {}x{} outside 1..{} per side", what, w, h, kMaxTextureSize));
+  if (static_cast<int>(levels.size()) > mip_level_count(w, h))
+    throw InputError(fmt::format("{}: {} levels, a {}x{} chain has at most {}", what, levels.size(), w, h,
+                                 mip_level_count(w, h)));
+  for (int l = 0; l < static_cast<int>(levels.size()); ++l) {
+    const Image& im = levels[static_cast<size_t>(l)];
+    if (im.width != mip_extent(w, l) || im.height != mip_extent(h, l) ||
+        im.texels.size() != static_cast<size_t>(im.width) * static_cast<size_t>(im.height))
+      throw InputError(fmt::format("{}: level {} is {}x{}, the floor rule needs {}x{}", what, l, im.width,
+                                   im.height, mip_extent(w, l), mip_extent(h, l)));
+  }
+}
+
+WrapMode wrap_mode_from_name(const std::string& name) {
+  if (name == "repeat") return WrapMode::Repeat;
+  if (name == "mirrored-repeat") return WrapMode::MirroredRepeat;
+  if (name == "clamp-to-edge") return WrapMode::ClampToEdge;
+  if (name == "clamp-to-border") return WrapMode::ClampToBorder;
+  throw InputError(fmt::format(
+      "unknown wrap mode '{}' (expected repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)", name));
+}
+
+const char* wrap_mode_name(WrapMode m) {
+  switch (m) {
+    case WrapMode::Repeat: return "repeat";
+    case WrapMode::MirroredRepeat: return "mirrored-repeat";
+    case WrapMode::ClampToEdge: return "clamp-to-edge";
+    case WrapMode::ClampToBorder: return "clamp-to-border";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& wrap_mode_names() {
+  static const std::vector<std::string> names{"repeat", "mirrored-repeat", "clamp-to-edge", "clamp-to-border"};
+  return names;
+}
+
+namespace {
+
+// One-line message from OpenImageIO's (possibly multi-line) error text.
+std::string first_line(std::string s) {
+  const auto nl = s.find('\n');
+  if (nl != std::string::npos) s.resize(nl);
+  return s.empty() ? std::string("unknown error") : s;
+}
+
+Image read_level(OIIO::ImageInput& in, int subimage, int miplevel, const std::string& path, bool* is_gray) {
+  if (!in.seek_subimage(subimage, miplevel))
+    throw InputError(fmt::format("{}: cannot read MIP level {}: {}", path, miplevel, first_line(in.geterror())));
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize)
+    throw InputError(fmt::format("{}: image size {}x{} outside 1..{} per side", path, spec.width, spec.height,
+                                 kMaxTextureSize));
+  const int nch = spec.nchannels;
+  if (nch < 1) throw InputError(fmt::format("{}: image has no channels", path));
+  const int use = std::min(nch, 4);
+  std::vector<uint8_t> raw(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
+                           static_cast<size_t>(use));
+  if (!in.read_image(subimage, miplevel, 0, use, OIIO::TypeDesc::UINT8, raw.data()))
+    throw InputError(fmt::format("{}: cannot decode pixels: {}", path, first_line(in.geterror())));
+  Image img(spec.width, spec.height);
+  for (size_t i = 0; i < img.texels.size(); ++i) {
+    const uint8_t* p = &raw[i * static_cast<size_t>(use)];
+    Rgba8& t = img.texels[i];
+    switch (use) {
+      case 1: t = {p[0], p[0], p[0], 255}; break;
+      case 2: t = {p[0], p[0], p[0], p[1]}; break;
+      case 3: t = {p[0], p[1], p[2], 255}; break;
+      default: t = {p[0], p[1], p[2], p[3]}; break;
+    }
+  }
+  if (is_gray) *is_gray = (use == 1);
+  return img;
+}
+
+std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such file", path));
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // filter the stored values, as GL does
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) throw InputError(fmt::format("{}: cannot open image: {}", path, first_line(OIIO::geterror())));
+  return in;
+}
+
+}  // namespace
+
+Texture load_texture(const std::string& path) {
+  auto in = open_input(path);
+  Texture tex;
+  bool gray = false;
+  tex.levels.push_back(read_level(*in, 0, 0, path, &gray));
+  tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
+  const int w = tex.levels[0].width, h = tex.levels[0].height;
+  for (int l = 1; l < mip_level_count(w, h); ++l) {
+    if (!in->seek_subimage(0, l)) break;  // the file holds no more levels
+    tex.levels.push_back(read_level(*in, 0, l, path, nullptr));
+  }
+  in->close();
+  tex.validate(path);
+  return tex;
+}
+
+Image load_image(const std::string& path) {
+  auto in = open_input(path);
+  Image img = read_level(*in, 0, 0, path, nullptr);
+  in->close();
+  return img;
+}
+
+void save_image(const Image& img, const std::string& path, bool overwrite) {
+  if (!overwrite && std::filesystem::exists(path))
+    throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw InputError(fmt::format("{}: no image writer for this file type: {}", path,
+                                         first_line(OIIO::geterror())));
+  OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (!out->open(path, spec)) throw InputError(fmt::format("{}: cannot write: {}", path, first_line(out->geterror())));
+  if (!out->write_image(OIIO::TypeDesc::UINT8, img.texels.data()))
+    throw InputError(fmt::format("{}: cannot write: {}", path, first_line(out->geterror())));
+  out->close();
+}
+
+}  // namespace tfu

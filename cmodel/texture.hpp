@@ -1,0 +1,144 @@
+// Textures as the texture filter unit sees them: texel formats, MIP level chains, wrap modes.
+//
+// Texel formats (what a texel word in memory holds; see docs/textures.md):
+//   RGBA8  4 x unorm8 (1.0 <-> 255), 4 bytes/texel
+//   L8     1 x unorm8 luminance, 1 byte/texel; fetched as (L, L, L, 255) like GL_LUMINANCE
+//   VS16X2 two Strzodka virtual signed 16-bit numbers in one RGBA8 word (4 bytes/texel):
+//          channel 0 = psi(R, G), channel 1 = psi(B, A), psi(h, l) = (256 (h - 128) + l) / 32640
+//          (cmodel/signed_formats.hpp). The unit filters the 16-bit numerators, never the bytes.
+// Every level is stored as RGBA8 words (L8 replicated) so that one fetch path serves all formats;
+// `format` says how many bytes a texel costs in memory and how a word decodes into channels.
+//
+// Size rule (GL): level 0 is W x H with 1 <= W, H <= kMaxTextureSize; level n+1 is
+// max(1, floor(W_n / 2)) x max(1, floor(H_n / 2)); the chain ends at 1 x 1 (1 + floor(log2(max(W, H)))
+// levels). Non-power-of-two sizes follow the same floor rule.
+//
+// Coordinates: texel (i, j) has its centre at s = (i + 0.5) / W, t = (j + 0.5) / H; row j = 0 is
+// the top row of the image file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tfu {
+
+inline constexpr int kMaxTextureSize = 16384;  // per side; 2^14, so texel coordinates fit 15 bits
+
+struct Rgba8 {
+  uint8_t r = 0, g = 0, b = 0, a = 0;
+  friend constexpr bool operator==(const Rgba8&, const Rgba8&) = default;
+};
+
+enum class TexelFormat { RGBA8, L8, VS16X2 };
+TexelFormat texel_format_from_name(const std::string& name);  // "rgba8", "l8", "vs16x2"
+const char* texel_format_name(TexelFormat f);
+constexpr int bytes_per_texel(TexelFormat f) { return f == TexelFormat::L8 ? 1 : 4; }
+
+// One image level: row-major RGBA8 words, row 0 on top.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<Rgba8> texels;
+
+  Image() = default;
+  Image(int w, int h, Rgba8 fill = {});
+  Rgba8& at(int x, int y) { return texels[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)]; }
+  const Rgba8& at(int x, int y) const {
+    return texels[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)];
+  }
+  bool empty() const { return texels.empty(); }
+};
+
+// Four channels as the filter datapath holds them: RGBA8/L8 -> 0..255 each;
+// VS16X2 -> c[0], c[1] the signed 16-bit numerators, c[2] = c[3] = 0.
+using Texel4 = std::array<int32_t, 4>;
+// Channel range of a format: [lo, hi] (0..255, or -32640..32640 for VS16X2: exactly -1..+1).
+constexpr std::pair<int32_t, int32_t> channel_range(TexelFormat f) {
+  return f == TexelFormat::VS16X2 ? std::pair<int32_t, int32_t>{-32640, 32640} : std::pair<int32_t, int32_t>{0, 255};
+}
+// Strzodka psi numerator of the byte pair (h, l): 256 (h - 128) + l.
+constexpr int32_t vs16_numerator(uint8_t h, uint8_t l) { return 256 * (int32_t{h} - 128) + l; }
+constexpr Texel4 decode_texel(Rgba8 w, TexelFormat f) {
+  if (f == TexelFormat::VS16X2) return {vs16_numerator(w.r, w.g), vs16_numerator(w.b, w.a), 0, 0};
+  return {w.r, w.g, w.b, w.a};
+}
+// Clamps every channel to the format's range and packs the word.
+constexpr Rgba8 encode_texel(const Texel4& c, TexelFormat f) {
+  const auto [lo, hi] = channel_range(f);
+  const auto cl = [lo = lo, hi = hi](int32_t v) { return v < lo ? lo : (v > hi ? hi : v); };
+  if (f == TexelFormat::VS16X2) {
+    const int32_t v0 = cl(c[0]) + 32768, v1 = cl(c[1]) + 32768;  // offset binary: h = v >> 8
+    return {static_cast<uint8_t>(v0 >> 8), static_cast<uint8_t>(v0 & 255), static_cast<uint8_t>(v1 >> 8),
+            static_cast<uint8_t>(v1 & 255)};
+  }
+  return {static_cast<uint8_t>(cl(c[0])), static_cast<uint8_t>(cl(c[1])), static_cast<uint8_t>(cl(c[2])),
+          static_cast<uint8_t>(cl(c[3]))};
+}
+
+// Size of level `level` of a W x H texture (GL floor rule).
+int mip_extent(int size0, int level);
+int mip_level_count(int width, int height);
+
+struct Texture {
+  TexelFormat format = TexelFormat::RGBA8;
+  std::vector<Image> levels;  // levels[0] is the base; complete chains end at 1 x 1
+
+  int width() const { return levels.front().width; }
+  int height() const { return levels.front().height; }
+  int max_level() const { return static_cast<int>(levels.size()) - 1; }
+  // Throws InputError (naming `what`) if the size is outside 1..kMaxTextureSize or a stored level
+  // does not follow the floor rule.
+  void validate(const std::string& what) const;
+};
+
+// ---- Wrap modes (one function each; GL 4.6 Sec. 8.14.2) ----
+enum class WrapMode { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
+WrapMode wrap_mode_from_name(const std::string& name);  // repeat, mirrored-repeat, clamp-to-edge, clamp-to-border
+const char* wrap_mode_name(WrapMode m);
+const std::vector<std::string>& wrap_mode_names();
+
+// Map an integer texel index i (any int) onto [0, size) for the wrap modes that address memory;
+// for ClampToBorder the result is -1 when the texel lies outside (the border colour is used).
+// Coordinates are int64 because repeat keeps any integer meaningful (fixed_coord.hpp saturates at
+// 2^46 / 2^F texels).
+constexpr int wrap_repeat(int64_t i, int size) {
+  const auto r = static_cast<int>(i % size);
+  return r < 0 ? r + size : r;
+}
+constexpr int wrap_mirrored_repeat(int64_t i, int size) {
+  // GL mirror: period 2 size, the second half reversed.
+  const int p = wrap_repeat(i, 2 * size);
+  return p < size ? p : 2 * size - 1 - p;
+}
+constexpr int wrap_clamp_to_edge(int64_t i, int size) {
+  return i < 0 ? 0 : (i >= size ? size - 1 : static_cast<int>(i));
+}
+constexpr int wrap_clamp_to_border(int64_t i, int size) {
+  return (i < 0 || i >= size) ? -1 : static_cast<int>(i);
+}
+constexpr int wrap_index(WrapMode m, int64_t i, int size) {
+  if (static_cast<uint64_t>(i) < static_cast<uint64_t>(size)) return static_cast<int>(i);  // inside: every mode agrees
+  switch (m) {
+    case WrapMode::Repeat: return wrap_repeat(i, size);
+    case WrapMode::MirroredRepeat: return wrap_mirrored_repeat(i, size);
+    case WrapMode::ClampToEdge: return wrap_clamp_to_edge(i, size);
+    case WrapMode::ClampToBorder: return wrap_clamp_to_border(i, size);
+  }
+  return 0;
+}
+
+// ---- File I/O through OpenImageIO (unassociated alpha on read and write) ----
+// Loads any format OpenImageIO reads (PNG, JPEG, TIFF, OpenEXR, ...). Stored MIP levels (e.g. a
+// tiled TIFF written by maketx) are kept as they are; otherwise the texture has one level.
+// 1 channel -> L8, 2 channels -> (L, L, L, A) RGBA8, 3 -> RGB with A = 255, 4 -> RGBA8; other
+// pixel types are converted to 8 bits by OpenImageIO (floats clamped to [0, 1] and rounded).
+// Throws InputError naming the file on any failure.
+Texture load_texture(const std::string& path);
+// Writes one level. Refuses to overwrite an existing file unless `overwrite`.
+void save_image(const Image& img, const std::string& path, bool overwrite);
+// Loads one plain image (first level) for comparisons.
+Image load_image(const std::string& path);
+
+}  // namespace tfu

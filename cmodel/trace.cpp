@@ -1,0 +1,131 @@
+#include "cmodel/trace.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <istream>
+#include <ostream>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+
+namespace tfu {
+
+const char* trace_mode_name(TraceMode m) {
+  switch (m) {
+    case TraceMode::Lod: return "lod";
+    case TraceMode::Grad: return "grad";
+    case TraceMode::Quad: return "quad";
+  }
+  return "?";
+}
+
+namespace {
+
+int fields_of(TraceMode m) { return m == TraceMode::Lod ? 3 : (m == TraceMode::Grad ? 6 : 2); }
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+// Header: "# tfu-trace mode=<m>" (other comment lines are ignored).
+bool parse_header(const std::string& line, TraceMode* mode, const std::string& where) {
+  const std::string key = "# tfu-trace";
+  if (line.rfind(key, 0) != 0) return false;
+  const auto p = line.find("mode=");
+  if (p == std::string::npos) return true;
+  const std::string m = trim(line.substr(p + 5));
+  if (m == "lod") *mode = TraceMode::Lod;
+  else if (m == "grad") *mode = TraceMode::Grad;
+  else if (m == "quad") *mode = TraceMode::Quad;
+  else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, m));
+  return true;
+}
+
+}  // namespace
+
+Trace parse_trace(std::istream& in, const std::string& name) {
+  Trace tr;
+  bool mode_known = false;
+  std::string line;
+  size_t lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const std::string where = fmt::format("{}:{}", name, lineno);
+    const std::string s = trim(line);
+    if (s.empty()) continue;
+    if (s[0] == '#') {
+      TraceMode m{};
+      if (parse_header(s, &m, where) && s.find("mode=") != std::string::npos) {
+        if (!tr.requests.empty()) throw InputError(fmt::format("{}: trace header after the first request", where));
+        tr.mode = m;
+        mode_known = true;
+      }
+      continue;
+    }
+    std::vector<float> v;
+    size_t pos = 0;
+    while (true) {
+      const auto comma = s.find(',', pos);
+      const std::string field = trim(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+      if (field.empty()) throw InputError(fmt::format("{}: empty field {}", where, v.size() + 1));
+      char* end = nullptr;
+      errno = 0;
+      const float x = std::strtof(field.c_str(), &end);
+      if (end == field.c_str() || *end != '\0')
+        throw InputError(fmt::format("{}: field {} '{}' is not a number", where, v.size() + 1, field));
+      v.push_back(x);  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
+      if (v.size() > 6) throw InputError(fmt::format("{}: more than 6 fields", where));
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+    if (!mode_known) {
+      if (v.size() == 3) tr.mode = TraceMode::Lod;
+      else if (v.size() == 6) tr.mode = TraceMode::Grad;
+      else if (v.size() == 2) tr.mode = TraceMode::Quad;
+      else throw InputError(fmt::format("{}: {} fields; a request has 2 (quad), 3 (s,t,lod) or 6 (gradients)", where, v.size()));
+      mode_known = true;
+    }
+    if (static_cast<int>(v.size()) != fields_of(tr.mode))
+      throw InputError(fmt::format("{}: {} fields, but this is a {} trace with {} per line", where, v.size(),
+                                   trace_mode_name(tr.mode), fields_of(tr.mode)));
+    if (tr.requests.size() >= kMaxTraceRequests)
+      throw InputError(fmt::format("{}: more than {} requests", where, kMaxTraceRequests));
+    TraceRequest r;
+    r.s = v[0];
+    r.t = v[1];
+    if (tr.mode == TraceMode::Lod) r.lod = v[2];
+    if (tr.mode == TraceMode::Grad) {
+      r.dsdx = v[2];
+      r.dtdx = v[3];
+      r.dsdy = v[4];
+      r.dtdy = v[5];
+    }
+    tr.requests.push_back(r);
+  }
+  if (tr.mode == TraceMode::Quad && tr.requests.size() % 4 != 0)
+    throw InputError(fmt::format("{}: quad trace has {} requests, not a multiple of 4", name, tr.requests.size()));
+  return tr;
+}
+
+Trace load_trace(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw InputError(fmt::format("{}: cannot open trace", path));
+  return parse_trace(f, path);
+}
+
+void write_trace(std::ostream& out, const Trace& trace) {
+  out << "# tfu-trace mode=" << trace_mode_name(trace.mode) << "\n";
+  for (const TraceRequest& r : trace.requests) {
+    out << fmt::format("{:.9g},{:.9g}", r.s, r.t);
+    if (trace.mode == TraceMode::Lod) out << fmt::format(",{:.9g}", r.lod);
+    if (trace.mode == TraceMode::Grad) out << fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", r.dsdx, r.dtdx, r.dsdy, r.dtdy);
+    out << '\n';
+  }
+}
+
+}  // namespace tfu

@@ -1,0 +1,265 @@
+// Golden sampler: hand-derived values per filter mode and wrap mode, and properties that hold for
+// every mode (constant textures, interpolation at texel centres, fixed point vs ideal).
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "cmodel/mipmap.hpp"
+#include "cmodel/sampler.hpp"
+
+namespace tfu {
+namespace {
+
+Texture one_level(int w, int h, const std::vector<Rgba8>& texels, TexelFormat f = TexelFormat::RGBA8) {
+  Texture t;
+  t.format = f;
+  t.levels.emplace_back(w, h);
+  t.levels[0].texels = texels;
+  return t;
+}
+
+SamplerConfig cfg(BaseFilter b, MipMode m = MipMode::None, WrapMode w = WrapMode::Repeat) {
+  SamplerConfig c;
+  c.mode = {b, m};
+  c.wrap_s = c.wrap_t = w;
+  return c;
+}
+
+constexpr int32_t kMag = -256;  // lambda for magnification
+
+TEST(FilterNames, ParseAndPrint) {
+  EXPECT_EQ(filter_mode_from_name("linear-mipmap-linear"), (FilterMode{BaseFilter::Linear, MipMode::Linear}));
+  EXPECT_EQ(filter_mode_from_name("Edge_Preserving_Mipmap_Linear"),
+            (FilterMode{BaseFilter::EdgePreserving, MipMode::Linear}));
+  EXPECT_EQ(filter_mode_name({BaseFilter::Cubic, MipMode::Nearest}), "CUBIC_MIPMAP_NEAREST");
+  EXPECT_THROW(filter_mode_from_name("anisotropic"), std::exception);
+  EXPECT_EQ(all_filter_modes().size(), 12u);
+}
+
+TEST(Wrap, ModesOnIntegerIndices) {
+  EXPECT_EQ(wrap_repeat(-1, 4), 3);
+  EXPECT_EQ(wrap_repeat(9, 4), 1);
+  EXPECT_EQ(wrap_mirrored_repeat(4, 4), 3);
+  EXPECT_EQ(wrap_mirrored_repeat(-1, 4), 0);
+  EXPECT_EQ(wrap_mirrored_repeat(-5, 4), 3);
+  EXPECT_EQ(wrap_mirrored_repeat(8, 4), 0);
+  EXPECT_EQ(wrap_clamp_to_edge(-7, 4), 0);
+  EXPECT_EQ(wrap_clamp_to_edge(99, 4), 3);
+  EXPECT_EQ(wrap_clamp_to_border(4, 4), -1);
+  EXPECT_EQ(wrap_clamp_to_border(-1, 4), -1);
+  EXPECT_EQ(wrap_clamp_to_border(2, 4), 2);
+  EXPECT_EQ(wrap_repeat(int64_t{1} << 40, 3), static_cast<int>((int64_t{1} << 40) % 3));
+}
+
+TEST(Nearest, TexelSelectionAndWrap) {
+  const Texture t = one_level(2, 1, {{10, 0, 0, 255}, {20, 0, 0, 255}});
+  const Sampler rep(t, cfg(BaseFilter::Nearest));
+  EXPECT_EQ(rep.sample(0.25f, 0.5f, kMag).r, 10);
+  EXPECT_EQ(rep.sample(0.75f, 0.5f, kMag).r, 20);
+  EXPECT_EQ(rep.sample(1.25f, 0.5f, kMag).r, 10);
+  EXPECT_EQ(rep.sample(-0.25f, 0.5f, kMag).r, 20);
+  const Sampler mir(t, cfg(BaseFilter::Nearest, MipMode::None, WrapMode::MirroredRepeat));
+  EXPECT_EQ(mir.sample(1.25f, 0.5f, kMag).r, 20);  // u = 2.5 -> i = 2 -> mirrored to 1
+  EXPECT_EQ(mir.sample(1.75f, 0.5f, kMag).r, 10);
+  SamplerConfig b = cfg(BaseFilter::Nearest, MipMode::None, WrapMode::ClampToBorder);
+  b.border = {1, 2, 3, 4};
+  const Sampler bor(t, b);
+  EXPECT_EQ(bor.sample(1.25f, 0.5f, kMag), (Rgba8{1, 2, 3, 4}));
+  const Sampler edg(t, cfg(BaseFilter::Nearest, MipMode::None, WrapMode::ClampToEdge));
+  EXPECT_EQ(edg.sample(-3.0f, 0.5f, kMag).r, 10);
+  // Row 0 of the image is the top: t in [0, 1/H) reads row 0.
+  const Texture v = one_level(1, 2, {{5, 0, 0, 255}, {6, 0, 0, 255}});
+  const Sampler vs(v, cfg(BaseFilter::Nearest));
+  EXPECT_EQ(vs.sample(0.5f, 0.1f, kMag).r, 5);
+  EXPECT_EQ(vs.sample(0.5f, 0.9f, kMag).r, 6);
+}
+
+TEST(Linear, HandDerivedWeights) {
+  const Texture t = one_level(2, 1, {{0, 0, 0, 255}, {255, 0, 0, 255}});
+  const Sampler s(t, cfg(BaseFilter::Linear, MipMode::None, WrapMode::ClampToEdge));
+  EXPECT_EQ(s.sample(0.25f, 0.5f, kMag).r, 0);     // texel centre
+  EXPECT_EQ(s.sample(0.5f, 0.5f, kMag).r, 128);    // 127.5, round half up
+  EXPECT_EQ(s.sample(0.375f, 0.5f, kMag).r, 64);   // fu = 64: 255 * 64 / 256 = 63.75 -> 64
+  EXPECT_EQ(s.sample(0.75f, 0.5f, kMag).r, 255);
+  // 2x2: bilinear of (0, 100, 200, 40) at the centre: (0 + 100 + 200 + 40) / 4 = 85
+  const Texture q = one_level(2, 2, {{0, 0, 0, 0}, {100, 0, 0, 0}, {200, 0, 0, 0}, {40, 0, 0, 0}});
+  const Sampler sq(q, cfg(BaseFilter::Linear, MipMode::None, WrapMode::ClampToEdge));
+  EXPECT_EQ(sq.sample(0.5f, 0.5f, kMag).r, 85);
+}
+
+TEST(Trilinear, BlendsLevels) {
+  Texture t;
+  t.levels.emplace_back(4, 4, Rgba8{0, 0, 0, 0});
+  t.levels.emplace_back(2, 2, Rgba8{200, 0, 0, 0});
+  t.levels.emplace_back(1, 1, Rgba8{100, 0, 0, 0});
+  const Sampler s(t, cfg(BaseFilter::Linear, MipMode::Linear));
+  EXPECT_EQ(s.sample(0.3f, 0.6f, 64).r, 50);    // (0 * 192 + 200 * 64 + 128) >> 8 = 50
+  EXPECT_EQ(s.sample(0.3f, 0.6f, 384).r, 150);  // levels 1, 2 at 1/2: 150
+  EXPECT_EQ(s.sample(0.3f, 0.6f, 9999).r, 100);
+  EXPECT_EQ(s.sample(0.3f, 0.6f, -10).r, 0);    // magnification: level 0
+  const Sampler n(t, cfg(BaseFilter::Nearest, MipMode::Nearest));
+  EXPECT_EQ(n.sample(0.3f, 0.6f, 129).r, 200);
+}
+
+TEST(Cubic, CatmullRomHalfwayBetweenTexels) {
+  // Step 0,0 | 255,255 along x, sampled half-way between the middle texels (f = 1/2). The ROM
+  // (centre sampling, R = 64) answers f = 1/2 with entry 32, which holds the weights at f = 32.5/64:
+  // h(1.5078) = -0.0615, h(0.5078) = 0.5518, h(0.4922) = 0.5732, h(1.4922) = -0.0635 (Catmull-Rom),
+  // so the result is 255 (0.5732 - 0.0635) = 129.98 -> 130 (not the 127.5 of an exact f = 1/2).
+  const Texture t = one_level(4, 1, {{0, 0, 0, 255}, {0, 0, 0, 255}, {255, 0, 0, 255}, {255, 0, 0, 255}});
+  const Sampler s(t, cfg(BaseFilter::Cubic, MipMode::None, WrapMode::ClampToEdge));
+  EXPECT_EQ(s.sample(0.5f, 0.5f, kMag).r, 130);
+  // With corner sampling entry 32 is exactly f = 1/2: 255 (9/16 - 1/16) = 127.5; 8-bit weights
+  // (-16, 143, 143, -15 after the sum-preserving rounding) give 127 or 128.
+  SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::ClampToEdge);
+  c.cubic_rom.pos = SamplePos::Corner;
+  const Sampler sc(t, c);
+  EXPECT_NEAR(sc.sample(0.5f, 0.5f, kMag).r, 127.5, 0.5);
+  // Overshoot of the negative lobes is clamped: a single bright texel has no negative output.
+  const Texture spike = one_level(4, 1, {{0, 0, 0, 255}, {255, 0, 0, 255}, {0, 0, 0, 255}, {0, 0, 0, 255}});
+  const Sampler ss(spike, cfg(BaseFilter::Cubic, MipMode::None, WrapMode::Repeat));
+  for (float x = 0; x < 1; x += 1.0f / 64) EXPECT_LE(ss.sample(x, 0.5f, kMag).r, 255);
+}
+
+Texture random_texture(int w, int h, uint32_t seed, TexelFormat f = TexelFormat::RGBA8) {
+  std::mt19937 rng(seed);
+  Texture t;
+  t.format = f;
+  t.levels.emplace_back(w, h);
+  for (auto& x : t.levels[0].texels)
+    x = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+  return t;
+}
+
+TEST(Properties, ConstantTextureGivesConstantInEveryMode) {
+  for (TexelFormat f : {TexelFormat::RGBA8, TexelFormat::VS16X2}) {
+    Texture t;
+    t.format = f;
+    t.levels.emplace_back(13, 7, Rgba8{37, 201, 99, 180});
+    generate_mipmaps(t, MipMethod::Box);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coord(-3.0f, 3.0f);
+    std::uniform_int_distribution<int32_t> lam(-1024, 5 * 256);
+    for (const FilterMode& m : all_filter_modes())
+      for (const std::string& k : std::vector<std::string>{"catmull-rom", "bspline", "mitchell", "kaiser", "blackman"}) {
+        if (m.base != BaseFilter::Cubic && k != "catmull-rom") continue;
+        for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge}) {
+          SamplerConfig c = cfg(m.base, m.mip, w);
+          c.kernel = k;
+          const Sampler s(t, c);
+          for (int i = 0; i < 300; ++i) {
+            const Rgba8 v = s.sample(coord(rng), coord(rng), lam(rng));
+            ASSERT_EQ(v, (Rgba8{37, 201, 99, 180})) << filter_mode_name(m) << " " << k;
+          }
+        }
+      }
+  }
+}
+
+TEST(Properties, InterpolatingKernelsReproduceTexelsAtCentres) {
+  const Texture t = random_texture(8, 8, 5);
+  for (const char* k : {"catmull-rom", "kaiser", "blackman"}) {
+    SamplerConfig c = cfg(BaseFilter::Cubic);
+    c.kernel = k;
+    c.cubic_rom.pos = SamplePos::Corner;  // entry 0 holds h(0): exact at f = 0
+    const Sampler exact(t, c);
+    c.cubic_rom.pos = SamplePos::Centre;  // entry 0 holds h(1/128): within the quantization bound
+    const Sampler centre(t, c);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const float s = (static_cast<float>(x) + 0.5f) / 8, tt = (static_cast<float>(y) + 0.5f) / 8;
+        EXPECT_EQ(exact.sample(s, tt, kMag), t.levels[0].at(x, y)) << k;
+        const Rgba8 a = centre.sample(s, tt, kMag), b = t.levels[0].at(x, y);
+        EXPECT_LE(std::abs(a.r - b.r), 2) << k;
+      }
+  }
+  // B-spline on prefiltered coefficients interpolates: the error comes only from the 8-bit
+  // coefficient codes, whose step is (fitted range) / 255. On a smooth texture the range stays near
+  // [0, 1] and the error within 1 LSB.
+  Texture smooth;
+  smooth.levels.emplace_back(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const auto v = static_cast<uint8_t>(std::lround(127.5 + 100 * std::sin(0.3 * x) * std::cos(0.2 * y)));
+      smooth.levels[0].at(x, y) = {v, static_cast<uint8_t>(255 - v), 128, 255};
+    }
+  SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::MirroredRepeat);
+  c.kernel = kBsplineInterp;
+  c.cubic_rom.pos = SamplePos::Corner;
+  const Sampler bi(smooth, c);
+  int worst = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const Rgba8 a = bi.sample((static_cast<float>(x) + 0.5f) / 16, (static_cast<float>(y) + 0.5f) / 16, kMag);
+      const Rgba8 b = smooth.levels[0].at(x, y);
+      worst = std::max({worst, std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+    }
+  EXPECT_LE(worst, 1);
+  // Without the prefilter the B-spline approximates: it misses the texel values by far more.
+  c.kernel = "bspline";
+  const Sampler ap(smooth, c);
+  int worst_ap = 0;
+  for (int x = 0; x < 16; ++x) {
+    const Rgba8 a = ap.sample((static_cast<float>(x) + 0.5f) / 16, 0.5f / 16, kMag);
+    worst_ap = std::max(worst_ap, std::abs(a.r - smooth.levels[0].at(x, 0).r));
+  }
+  EXPECT_GE(worst_ap, 5);
+}
+
+TEST(Properties, FixedPointCloseToIdeal) {
+  const Texture base = random_texture(32, 32, 9);
+  Texture t = base;
+  generate_mipmaps(t, MipMethod::Box);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> coord(0.0f, 1.0f);
+  std::uniform_int_distribution<int32_t> lam(-512, 6 * 256);
+  for (const FilterMode& m : all_filter_modes()) {
+    const Sampler s(t, cfg(m.base, m.mip));
+    double worst = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const float x = coord(rng), y = coord(rng);
+      const int32_t l = lam(rng);
+      const Rgba8 a = s.sample(x, y, l);
+      const auto b = s.sample_ideal(x, y, l / 256.0);
+      worst = std::max({worst, std::abs(a.r - 255 * b[0]), std::abs(a.g - 255 * b[1]), std::abs(a.b - 255 * b[2])});
+    }
+    // Bounds: fraction truncation to 8 bits moves a bilinear result by < 1 LSB per level on
+    // random data, weights quantized to 8 bits by up to a few LSB for cubics; the edge-preserving
+    // filter can pick a different direction near a tie (documented), so it is only checked loosely.
+    const double bound = m.base == BaseFilter::Nearest ? (m.mip == MipMode::Linear ? 0.5 + 1e-9 : 0.0)
+                         : m.base == BaseFilter::Linear ? 2.5
+                         : m.base == BaseFilter::Cubic ? 8.0 : 255.0;
+    EXPECT_LE(worst, bound) << filter_mode_name(m);
+  }
+}
+
+TEST(Vs16, FiltersSignedNumerators) {
+  // Two texels -1 and +1 in channel 0: halfway gives 0 exactly (bytes 128, 0).
+  Texture t;
+  t.format = TexelFormat::VS16X2;
+  t.levels.emplace_back(2, 1);
+  t.levels[0].texels = {encode_texel({-32640, 100, 0, 0}, TexelFormat::VS16X2),
+                        encode_texel({32640, 300, 0, 0}, TexelFormat::VS16X2)};
+  const Sampler s(t, cfg(BaseFilter::Linear, MipMode::None, WrapMode::ClampToEdge));
+  const Texel4 v = s.sample_channels(0.5f, 0.5f, kMag);
+  EXPECT_EQ(v[0], 0);
+  EXPECT_EQ(v[1], 200);
+  EXPECT_EQ(decode_texel(s.sample(0.5f, 0.5f, kMag), TexelFormat::VS16X2)[1], 200);
+}
+
+TEST(Config, RejectsBadSettings) {
+  const Texture t = random_texture(4, 4, 1);
+  SamplerConfig c = cfg(BaseFilter::Cubic);
+  c.kernel = "no-such-kernel";
+  EXPECT_THROW(Sampler(t, c), std::exception);
+  c = cfg(BaseFilter::EdgePreserving);
+  c.edge_cache_block = 3;
+  EXPECT_THROW(Sampler(t, c), std::exception);
+  Texture big;
+  big.levels.emplace_back(kMaxTextureSize + 1, 1);
+  EXPECT_THROW(Sampler(big, cfg(BaseFilter::Linear)), std::exception);
+}
+
+}  // namespace
+}  // namespace tfu
