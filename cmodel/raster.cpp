@@ -1,0 +1,448 @@
+#include "cmodel/raster.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cmodel/error.hpp"
+
+namespace tfu {
+namespace {
+
+constexpr int64_t kOne = int64_t{1} << kSubpixelBits;  // one pixel in Q.8
+constexpr int kTruthSamples = kTruthSamplesPerAxis * kTruthSamplesPerAxis;
+
+int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+// ---- Clipping (Sutherland-Hodgman in homogeneous clip space) ----
+struct ClipVertex {
+  glm::dvec4 p;
+  glm::dvec2 uv;
+};
+using Polygon = std::vector<ClipVertex>;
+
+// Half-spaces dot(plane, p) >= 0: near, far, then the guard band.
+constexpr std::array<glm::dvec4, 6> kClipPlanes{glm::dvec4{0, 0, 1, 1},           glm::dvec4{0, 0, -1, 1},
+                                                glm::dvec4{1, 0, 0, kGuardBand},  glm::dvec4{-1, 0, 0, kGuardBand},
+                                                glm::dvec4{0, 1, 0, kGuardBand},  glm::dvec4{0, -1, 0, kGuardBand}};
+
+Polygon clip_against(const Polygon& in, const glm::dvec4& plane) {
+  Polygon out;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const ClipVertex& a = in[i];
+    const ClipVertex& b = in[(i + 1) % in.size()];
+    const double da = glm::dot(plane, a.p), db = glm::dot(plane, b.p);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) {
+      const double t = da / (da - db);
+      out.push_back({a.p + t * (b.p - a.p), a.uv + t * (b.uv - a.uv)});
+    }
+  }
+  return out;
+}
+
+Polygon clip_polygon(Polygon poly) {
+  for (const glm::dvec4& plane : kClipPlanes) {
+    if (poly.empty()) break;
+    const bool all_in =
+        std::all_of(poly.begin(), poly.end(), [&](const ClipVertex& v) { return glm::dot(plane, v.p) >= 0; });
+    if (!all_in) poly = clip_against(poly, plane);
+  }
+  return poly.size() >= 3 ? poly : Polygon{};
+}
+
+ScreenVertex to_screen(const ClipVertex& c, int width, int height) {
+  const double inv_w = 1.0 / c.p.w;
+  ScreenVertex v;
+  v.x = (c.p.x * inv_w + 1.0) * 0.5 * width;
+  v.y = (1.0 - c.p.y * inv_w) * 0.5 * height;
+  v.z = (c.p.z * inv_w + 1.0) * 0.5;
+  v.inv_w = inv_w;
+  v.s_w = c.uv.x * inv_w;
+  v.t_w = c.uv.y * inv_w;
+  return v;
+}
+
+// ---- Per-render shared state ----
+struct Context {
+  const Scene* scene = nullptr;
+  const RenderOptions* opts = nullptr;
+  int width = 0, height = 0;
+  std::vector<std::unique_ptr<Sampler>> samplers;  // one per mesh
+  std::vector<RasterTriangle> triangles;
+  std::vector<std::vector<uint32_t>> band_triangles;  // per band: triangle indices in scene order
+  RenderResult* result = nullptr;
+  std::vector<float> depth;
+};
+
+struct BandOutput {
+  std::vector<TraceRequest> trace;
+  int64_t quads = 0, pixels = 0;
+};
+
+Rgba8 to_rgba8(const std::array<double, 4>& c) {
+  const auto q = [](double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
+  return {q(c[0]), q(c[1]), q(c[2]), q(c[3])};
+}
+
+// Perspective-correct (s, t) at barycentrics b (Heckbert & Moreton: interpolate s/w, t/w and 1/w).
+glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>& b) {
+  double inv_w = 0, s_w = 0, t_w = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    inv_w += b[i] * tri.v[i].inv_w;
+    s_w += b[i] * tri.v[i].s_w;
+    t_w += b[i] * tri.v[i].t_w;
+  }
+  if (!(inv_w > 0)) {
+    // A helper pixel extrapolated beyond the horizon: keep the sign sane, the quad's lambda saturates.
+    inv_w = 1e-6 * std::min({tri.v[0].inv_w, tri.v[1].inv_w, tri.v[2].inv_w});
+  }
+  return {s_w / inv_w, t_w / inv_w};
+}
+
+double interpolate_z(const RasterTriangle& tri, const std::array<double, 3>& b) {
+  return b[0] * tri.v[0].z + b[1] * tri.v[1].z + b[2] * tri.v[2].z;
+}
+
+float to_float_coord(double v) { return static_cast<float>(std::clamp(v, -1e30, 1e30)); }
+
+// Real-valued lambda of the quad (for the ideal path): log2 of the longer texel-space derivative.
+double ideal_lambda(const std::array<glm::dvec2, 4>& st, int w, int h) {
+  const double dudx = (st[1].x - st[0].x) * w, dvdx = (st[1].y - st[0].y) * h;
+  const double dudy = (st[2].x - st[0].x) * w, dvdy = (st[2].y - st[0].y) * h;
+  const double rho2 = std::max(dudx * dudx + dvdx * dvdx, dudy * dudy + dvdy * dvdy);
+  return rho2 > 0 ? 0.5 * std::log2(rho2) : kLodMinusInfinity / 256.0;
+}
+
+// Shades the quads of one triangle that lie in rows [y0, y1).
+// Bands own disjoint rows, so concurrent calls write disjoint parts of the image and depth buffer.
+void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, BandOutput& out) {
+  const Sampler& sampler = *ctx.samplers[static_cast<size_t>(tri.mesh)];
+  const Texture& tex = sampler.texture();
+  RenderResult& res = *ctx.result;
+  const int W = ctx.width, H = ctx.height;
+  const int qy_first = std::max(tri.ymin, y0) & ~1, qy_last = std::min(tri.ymax, y1 - 1);
+  for (int qy = qy_first; qy <= qy_last; qy += 2)
+    for (int qx = tri.xmin & ~1; qx <= tri.xmax; qx += 2) {
+      std::array<std::array<double, 3>, 4> b;
+      std::array<double, 4> z{};
+      unsigned mask = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int px = qx + (k & 1), py = qy + (k >> 1);
+        const auto uk = static_cast<size_t>(k);
+        b[uk] = tri.barycentric(RasterTriangle::centre(px), RasterTriangle::centre(py));
+        if (px >= W || py >= H || !tri.covers_pixel(px, py)) continue;
+        z[uk] = interpolate_z(tri, b[uk]);
+        if (z[uk] < ctx.depth[static_cast<size_t>(py) * static_cast<size_t>(W) + static_cast<size_t>(px)])
+          mask |= 1u << k;
+      }
+      if (mask == 0) continue;
+      std::array<glm::dvec2, 4> st;
+      float s[4], t[4];
+      for (size_t k = 0; k < 4; ++k) {
+        st[k] = interpolate_st(tri, b[k]);
+        s[k] = to_float_coord(st[k].x);
+        t[k] = to_float_coord(st[k].y);
+      }
+      const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
+      const double lambda_ideal = ctx.opts->ideal ? ideal_lambda(st, tex.width(), tex.height()) : 0.0;
+      for (int k = 0; k < 4; ++k) {
+        if (!(mask >> k & 1u)) continue;
+        const auto uk = static_cast<size_t>(k);
+        const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
+        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(sampler.sample_ideal(st[uk].x, st[uk].y, lambda_ideal))
+                                                : sampler.sample(s[k], t[k], lambda);
+        ctx.depth[idx] = static_cast<float>(z[uk]);
+        if (ctx.opts->keep_coords) res.coords[idx] = {s[k], t[k]};
+        ++out.pixels;
+      }
+      ++out.quads;
+      if (ctx.opts->trace)
+        for (size_t k = 0; k < 4; ++k) {
+          TraceRequest r;
+          r.s = s[k];
+          r.t = t[k];
+          out.trace.push_back(r);
+        }
+    }
+}
+
+// ---- Ground truth ----
+
+// Continuous counterpart of the wrap modes; returns false for "outside, use the border colour".
+bool wrap_continuous(WrapMode m, double& c) {
+  switch (m) {
+    case WrapMode::Repeat: return true;
+    case WrapMode::MirroredRepeat: {
+      const double p = c - 2.0 * std::floor(c / 2.0);
+      c = p <= 1.0 ? p : 2.0 - p;
+      return true;
+    }
+    case WrapMode::ClampToEdge: c = std::clamp(c, 0.0, std::nextafter(1.0, 0.0)); return true;
+    case WrapMode::ClampToBorder: return c >= 0.0 && c < 1.0;
+  }
+  return true;
+}
+
+std::array<double, 4> border_colour(const SamplerConfig& cfg) {
+  return {cfg.border.r / 255.0, cfg.border.g / 255.0, cfg.border.b / 255.0, cfg.border.a / 255.0};
+}
+
+// File textures have no analytic function: bilinear reconstruction of level 0 in double precision.
+std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerConfig& cfg, double s, double t) {
+  const Image& im = tex.levels.front();
+  const double x = s * im.width - 0.5, y = t * im.height - 0.5;
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  std::array<double, 4> out{};
+  for (int dy = 0; dy < 2; ++dy)
+    for (int dx = 0; dx < 2; ++dx) {
+      const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
+      const int i = wrap_index(cfg.wrap_s, x0 + dx, im.width), j = wrap_index(cfg.wrap_t, y0 + dy, im.height);
+      const Rgba8 c = (i < 0 || j < 0) ? cfg.border : im.at(i, j);
+      out[0] += w * c.r / 255.0;
+      out[1] += w * c.g / 255.0;
+      out[2] += w * c.b / 255.0;
+      out[3] += w * c.a / 255.0;
+    }
+  return out;
+}
+
+std::array<double, 4> truth_colour(const Mesh& mesh, double s, double t) {
+  const SamplerConfig& cfg = mesh.sampler;
+  if (!wrap_continuous(cfg.wrap_s, s) || !wrap_continuous(cfg.wrap_t, t)) return border_colour(cfg);
+  return mesh.truth ? mesh.truth(s, t) : bilinear_level0(*mesh.texture, cfg, s, t);
+}
+
+struct TruthSample {
+  float depth = std::numeric_limits<float>::infinity();
+  std::array<float, 4> c{};
+};
+
+void truth_band(const Context& ctx, int band, int y0, int y1) {
+  const int W = ctx.width, rows = y1 - y0;
+  const Scene& scene = *ctx.scene;
+  TruthSample bg;
+  for (size_t i = 0; i < 4; ++i) bg.c[i] = static_cast<float>(scene.background[i]);
+  std::vector<TruthSample> buf(static_cast<size_t>(rows) * static_cast<size_t>(W) * kTruthSamples, bg);
+  constexpr int64_t step = kOne / kTruthSamplesPerAxis;  // sample spacing, Q.8
+  for (uint32_t ti : ctx.band_triangles[static_cast<size_t>(band)]) {
+    const RasterTriangle& tri = ctx.triangles[ti];
+    const Mesh& mesh = scene.meshes[static_cast<size_t>(tri.mesh)];
+    for (int py = std::max(tri.ymin, y0); py <= std::min(tri.ymax, y1 - 1); ++py)
+      for (int px = tri.xmin; px <= tri.xmax; ++px)
+        for (int k = 0; k < kTruthSamples; ++k) {
+          const int64_t sx = int64_t{px} * kOne + (k % kTruthSamplesPerAxis) * step + step / 2;
+          const int64_t sy = int64_t{py} * kOne + (k / kTruthSamplesPerAxis) * step + step / 2;
+          if (!tri.covers_point(sx, sy)) continue;
+          const auto b = tri.barycentric(sx, sy);
+          const auto z = static_cast<float>(interpolate_z(tri, b));
+          TruthSample& smp = buf[(static_cast<size_t>(py - y0) * static_cast<size_t>(W) + static_cast<size_t>(px)) *
+                                     kTruthSamples + static_cast<size_t>(k)];
+          if (!(z < smp.depth)) continue;
+          const glm::dvec2 st = interpolate_st(tri, b);
+          const auto c = truth_colour(mesh, st.x, st.y);
+          smp.depth = z;
+          for (size_t i = 0; i < 4; ++i) smp.c[i] = static_cast<float>(c[i]);
+        }
+  }
+  // Resolve: box average of the 64 samples of each pixel.
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < W; ++x) {
+      std::array<double, 4> sum{};
+      for (int k = 0; k < kTruthSamples; ++k) {
+        const TruthSample& smp =
+            buf[(static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x)) * kTruthSamples +
+                static_cast<size_t>(k)];
+        for (size_t i = 0; i < 4; ++i) sum[i] += smp.c[i];
+      }
+      for (double& v : sum) v /= kTruthSamples;
+      ctx.result->truth.at(x, y0 + y) = to_rgba8(sum);
+    }
+}
+
+// ---- Setup: transform, clip, project, snap, bin into bands ----
+void setup_scene(Context& ctx) {
+  const Scene& scene = *ctx.scene;
+  RenderStats& st = ctx.result->stats;
+  const glm::dmat4 mvp = projection_matrix(scene.camera, static_cast<double>(ctx.width) / ctx.height) *
+                         view_matrix(scene.camera);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    for (const auto& tri : mesh.triangles) {
+      ++st.triangles;
+      const Vertex& a = mesh.vertices.at(tri[0]);
+      const Vertex& b = mesh.vertices.at(tri[1]);
+      const Vertex& c = mesh.vertices.at(tri[2]);
+      if (glm::length(glm::cross(b.pos - a.pos, c.pos - a.pos)) == 0.0) {
+        ++st.degenerate;
+        continue;
+      }
+      Polygon poly;
+      for (const Vertex* v : {&a, &b, &c}) poly.push_back({mvp * glm::dvec4(v->pos, 1.0), v->uv});
+      poly = clip_polygon(std::move(poly));
+      if (poly.empty()) {
+        ++st.clipped_away;
+        continue;
+      }
+      // Fan from the first vertex of the clipped polygon.
+      for (size_t i = 1; i + 1 < poly.size(); ++i) {
+        auto rt = setup_triangle({to_screen(poly[0], ctx.width, ctx.height), to_screen(poly[i], ctx.width, ctx.height),
+                                  to_screen(poly[i + 1], ctx.width, ctx.height)},
+                                 ctx.width, ctx.height);
+        if (!rt) {
+          ++st.degenerate;
+          continue;
+        }
+        if (rt->xmin > rt->xmax || rt->ymin > rt->ymax) continue;  // off screen inside the guard band
+        rt->mesh = static_cast<int>(m);
+        ctx.triangles.push_back(*rt);
+      }
+    }
+  }
+  st.rasterized = static_cast<int64_t>(ctx.triangles.size());
+  const int bands = (ctx.height + kBandRows - 1) / kBandRows;
+  ctx.band_triangles.assign(static_cast<size_t>(bands), {});
+  for (size_t i = 0; i < ctx.triangles.size(); ++i) {
+    const RasterTriangle& t = ctx.triangles[i];
+    for (int band = t.ymin / kBandRows; band <= t.ymax / kBandRows; ++band)
+      ctx.band_triangles[static_cast<size_t>(band)].push_back(static_cast<uint32_t>(i));
+  }
+}
+
+void make_samplers(Context& ctx) {
+  for (const Mesh& mesh : ctx.scene->meshes) {
+    SamplerConfig cfg = mesh.sampler;
+    if (ctx.opts->filter) cfg.mode = *ctx.opts->filter;
+    ctx.samplers.push_back(std::make_unique<Sampler>(*mesh.texture, cfg));
+  }
+}
+
+// Runs every band on `threads` workers; bands are independent (disjoint rows).
+void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
+  const int bands = static_cast<int>(ctx.band_triangles.size());
+  std::atomic<int> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  const auto worker = [&] {
+    for (int band = next++; band < bands; band = next++) {
+      try {
+        const int y0 = band * kBandRows, y1 = std::min(ctx.height, y0 + kBandRows);
+        for (uint32_t ti : ctx.band_triangles[static_cast<size_t>(band)])
+          shade_triangle(ctx, ctx.triangles[ti], y0, y1, outputs[static_cast<size_t>(band)]);
+        if (ctx.opts->ground_truth) truth_band(ctx, band, y0, y1);
+      } catch (...) {
+        const std::lock_guard lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace
+
+// ---- RasterTriangle ----
+
+int64_t RasterTriangle::edge(int i, int64_t px, int64_t py) const {
+  const auto a = static_cast<size_t>((i + 1) % 3), b = static_cast<size_t>((i + 2) % 3);
+  return (X[b] - X[a]) * (py - Y[a]) - (Y[b] - Y[a]) * (px - X[a]);
+}
+
+bool RasterTriangle::covers_point(int64_t px, int64_t py) const {
+  for (int i = 0; i < 3; ++i)
+    if (edge(i, px, py) + bias[static_cast<size_t>(i)] < 0) return false;
+  return true;
+}
+
+std::array<double, 3> RasterTriangle::barycentric(int64_t px, int64_t py) const {
+  const auto a = static_cast<double>(area);
+  return {static_cast<double>(edge(0, px, py)) / a, static_cast<double>(edge(1, px, py)) / a,
+          static_cast<double>(edge(2, px, py)) / a};
+}
+
+std::optional<RasterTriangle> setup_triangle(const std::array<ScreenVertex, 3>& v, int width, int height) {
+  RasterTriangle t;
+  t.v = v;
+  for (size_t i = 0; i < 3; ++i) {
+    t.X[i] = std::llround(v[i].x * static_cast<double>(kOne));
+    t.Y[i] = std::llround(v[i].y * static_cast<double>(kOne));
+  }
+  t.area = (t.X[1] - t.X[0]) * (t.Y[2] - t.Y[0]) - (t.Y[1] - t.Y[0]) * (t.X[2] - t.X[0]);
+  if (t.area == 0) return std::nullopt;
+  if (t.area < 0) {  // no culling: flip to the orientation the edge functions expect
+    std::swap(t.v[1], t.v[2]);
+    std::swap(t.X[1], t.X[2]);
+    std::swap(t.Y[1], t.Y[2]);
+    t.area = -t.area;
+  }
+  // Top-left rule (y down): edge a->b is top if horizontal with dx > 0, left if dy < 0.
+  for (size_t i = 0; i < 3; ++i) {
+    const size_t a = (i + 1) % 3, b = (i + 2) % 3;
+    const int64_t dx = t.X[b] - t.X[a], dy = t.Y[b] - t.Y[a];
+    const bool top_left = dy < 0 || (dy == 0 && dx > 0);
+    t.bias[i] = top_left ? 0 : -1;
+  }
+  // Pixel bounding box (conservative: every pixel any sample of which may be covered).
+  const auto [xlo, xhi] = std::minmax({t.X[0], t.X[1], t.X[2]});
+  const auto [ylo, yhi] = std::minmax({t.Y[0], t.Y[1], t.Y[2]});
+  t.xmin = static_cast<int>(std::max<int64_t>(0, floor_div(xlo, kOne)));
+  t.xmax = static_cast<int>(std::min<int64_t>(width - 1, floor_div(xhi, kOne)));
+  t.ymin = static_cast<int>(std::max<int64_t>(0, floor_div(ylo, kOne)));
+  t.ymax = static_cast<int>(std::min<int64_t>(height - 1, floor_div(yhi, kOne)));
+  return t;
+}
+
+glm::dmat4 view_matrix(const Camera& cam) { return glm::lookAt(cam.position, cam.look_at, cam.up); }
+
+glm::dmat4 projection_matrix(const Camera& cam, double aspect) {
+  return glm::perspective(glm::radians(cam.fov_y_deg), aspect, cam.near_plane, cam.far_plane);
+}
+
+RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
+  if (scene.width < 1 || scene.height < 1 || scene.width > kMaxRenderSize || scene.height > kMaxRenderSize)
+    throw InputError("render size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
+                     " outside 1.." + std::to_string(kMaxRenderSize));
+  RenderResult result;
+  Context ctx;
+  ctx.scene = &scene;
+  ctx.opts = &opts;
+  ctx.width = scene.width;
+  ctx.height = scene.height;
+  ctx.result = &result;
+  make_samplers(ctx);
+  setup_scene(ctx);
+
+  const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
+  result.image = Image(scene.width, scene.height, to_rgba8(scene.background));
+  if (opts.ground_truth) result.truth = Image(scene.width, scene.height);
+  if (opts.keep_coords) result.coords.assign(n, {std::nanf(""), std::nanf("")});
+  ctx.depth.assign(n, std::numeric_limits<float>::infinity());
+
+  const int bands = static_cast<int>(ctx.band_triangles.size());
+  int threads = opts.threads > 0 ? opts.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, std::max(1, bands));
+  std::vector<BandOutput> outputs(static_cast<size_t>(bands));
+  run_bands(ctx, threads, outputs);
+
+  result.trace.mode = TraceMode::Quad;
+  for (BandOutput& b : outputs) {
+    result.stats.quads += b.quads;
+    result.stats.pixels += b.pixels;
+    result.trace.requests.insert(result.trace.requests.end(), b.trace.begin(), b.trace.end());
+  }
+  return result;
+}
+
+}  // namespace tfu

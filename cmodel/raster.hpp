@@ -1,0 +1,105 @@
+// A small scan-converting renderer that feeds the texture sampler the way a GPU does: in 2x2 pixel
+// quads, with lambda from the quad's coarse derivatives (Pharr, GPU Gems ch. 25). Conventions (full
+// text in docs/renderer.md):
+//   camera        GL conventions: right-handed view space looking down -z, clip z in [-w, w]
+//   clipping      in clip space against near, far and a guard band |x|, |y| <= 8 w (Sutherland-Hodgman;
+//                 (s, t) and the clip position are interpolated linearly in clip space); the clipped
+//                 polygon is fanned from its first vertex
+//   viewport      pixel (x, y) covers [x, x+1) x [y, y+1), row 0 on top; its sample point is the centre
+//   coverage      integer edge functions on vertices snapped to 1/256 pixel (8 subpixel bits), D3D/GL
+//                 top-left fill rule: a centre on an edge belongs to the triangle only if the edge is a
+//                 top edge (horizontal, interior below) or a left edge (interior to its right)
+//   degenerate    triangles with zero area in world space or after snapping are skipped (counted)
+//   culling       none: both windings are drawn; a depth buffer (z_ndc, less-than) resolves visibility
+//   interpolation z affine in screen space; s, t perspective-correct: (sum b_i s_i / w_i) / (sum b_i / w_i)
+//                 with barycentrics b_i from the snapped edge functions (helper pixels extrapolate)
+//   quads         pixel order (0,0), (1,0), (0,1), (1,1) of a quad at even (x, y); a quad is shaded when
+//                 one of its pixels is covered and passes the depth test; all four (s, t) go to
+//                 lambda_from_quad, the covered pixels are sampled
+//   threads       the image is cut into bands of kBandRows rows; threads take bands in turn; a band
+//                 draws triangles in scene order, so the image and the trace do not depend on the
+//                 number of threads
+//   trace         quad mode, 4 lines per shaded quad, ordered by band, then triangle, then quad (row-major)
+//   ground truth  8 x 8 stratified sample points per pixel at ((i + 1/2) / 8, (j + 1/2) / 8), each with
+//                 its own coverage, depth test and perspective-correct (s, t), colour from the texture's
+//                 analytic function (procedural.hpp; file textures: bilinear on level 0), averaged
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cmodel/sampler.hpp"
+#include "cmodel/scene.hpp"
+#include "cmodel/texture.hpp"
+#include "cmodel/trace.hpp"
+
+namespace tfu {
+
+inline constexpr int kSubpixelBits = 8;       // vertex snapping: 1/256 pixel
+inline constexpr int kBandRows = 16;          // rows per band (a multiple of 2: whole quads)
+inline constexpr int kTruthSamplesPerAxis = 8;
+inline constexpr double kGuardBand = 8.0;     // clip |x|, |y| <= 8 w
+
+// A vertex after the viewport transform: pixel coordinates (y down), depth in [0, 1], 1/w, s/w, t/w.
+struct ScreenVertex {
+  double x = 0, y = 0, z = 0;
+  double inv_w = 1, s_w = 0, t_w = 0;
+};
+
+// A triangle ready for scan conversion (counter-clockwise on screen after setup, area > 0).
+struct RasterTriangle {
+  std::array<ScreenVertex, 3> v{};
+  std::array<int64_t, 3> X{}, Y{};  // snapped vertex positions, Q.8 pixels
+  int64_t area = 0;                 // twice the snapped area, Q.16, > 0
+  std::array<int64_t, 3> bias{};    // 0 for top-left edges, -1 otherwise (edge i is opposite vertex i)
+  int xmin = 0, xmax = -1, ymin = 0, ymax = -1;  // pixel bounding box, clipped to the viewport
+  int mesh = 0;
+
+  // Edge function of edge i (from vertex i+1 to vertex i+2) at a Q.8 point.
+  int64_t edge(int i, int64_t px, int64_t py) const;
+  bool covers_point(int64_t px, int64_t py) const;  // fill rule applied
+  bool covers_pixel(int x, int y) const { return covers_point(centre(x), centre(y)); }
+  std::array<double, 3> barycentric(int64_t px, int64_t py) const;
+  static constexpr int64_t centre(int x) { return (int64_t{x} << kSubpixelBits) + (1 << (kSubpixelBits - 1)); }
+};
+
+// Snaps, orients and sets up a triangle; std::nullopt if its snapped area is zero.
+std::optional<RasterTriangle> setup_triangle(const std::array<ScreenVertex, 3>& v, int width, int height);
+
+// GL camera matrices (gluLookAt, gluPerspective).
+glm::dmat4 view_matrix(const Camera& cam);
+glm::dmat4 projection_matrix(const Camera& cam, double aspect);
+
+struct RenderOptions {
+  std::optional<FilterMode> filter;  // replaces every mesh's filter mode
+  bool trace = false;                // record the quad request trace
+  bool ground_truth = false;         // also render the supersampled analytic reference
+  bool ideal = false;                // Sampler::sample_ideal (double path) instead of sample
+  bool keep_coords = false;          // keep each visible pixel's (s, t) (NaN where nothing is drawn)
+  int threads = 0;                   // 0: std::thread::hardware_concurrency()
+};
+
+struct RenderStats {
+  int64_t triangles = 0;   // in the scene
+  int64_t degenerate = 0;  // skipped: zero area in world space or after snapping
+  int64_t clipped_away = 0;  // entirely outside the view volume
+  int64_t rasterized = 0;  // screen triangles after clipping and setup
+  int64_t quads = 0;       // shaded quads (= trace requests / 4)
+  int64_t pixels = 0;      // sampled pixels (including overdraw)
+};
+
+struct RenderResult {
+  Image image;
+  Image truth;  // empty unless RenderOptions::ground_truth
+  Trace trace;  // empty unless RenderOptions::trace
+  std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
+  RenderStats stats;
+};
+
+RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
+
+}  // namespace tfu

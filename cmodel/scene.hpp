@@ -1,0 +1,78 @@
+// Scene descriptions for the renderer (docs/renderer.md has the full JSON schema and an example).
+//
+// A scene is a JSON object: output size, camera, background colour and a list of meshes. Each mesh
+// is generated from a primitive (quad, plane, cube, sphere, bezier_patch), placed by a transform
+// (world = T R_z R_y R_x S p), and carries a texture (procedural or file) and sampler settings.
+// Every key is checked: an unknown key or a value of the wrong type throws InputError naming the
+// key path ("scene.json: meshes[1].sampler: unknown key 'filtr'"). Malformed JSON throws
+// InputError "FILE: line L, column C: message".
+//
+// The built-in scenes (sim/scenes/*.json) are compiled into the library at build time, so
+// builtin_scene_names() / builtin_scene_json() work without the source tree.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cmodel/procedural.hpp"
+#include "cmodel/sampler.hpp"
+#include "cmodel/texture.hpp"
+
+namespace tfu {
+
+inline constexpr int kMaxRenderSize = 8192;  // per side of the output image
+
+struct Camera {
+  glm::dvec3 position{0, 0, 3}, look_at{0, 0, 0}, up{0, 1, 0};
+  double fov_y_deg = 45.0;
+  double near_plane = 0.1, far_plane = 100.0;
+};
+
+struct Vertex {
+  glm::dvec3 pos{};  // world space (after the mesh transform)
+  glm::dvec2 uv{};   // texture coordinates (s, t)
+};
+
+struct Mesh {
+  std::string primitive;  // "quad", "plane", ...
+  std::vector<Vertex> vertices;
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::string texture_name;                // "procedural:text@1024" or the file path
+  std::shared_ptr<const Texture> texture;  // complete MIP chain (box, Lee & Jen Eq. 8) or the file's
+  ColourFn truth;                          // analytic colour (procedural textures); empty for files
+  SamplerConfig sampler;
+};
+
+struct Scene {
+  std::string name;         // built-in name or file stem
+  std::string description;  // free text (which paper figure the scene models)
+  int width = 256, height = 256;
+  Camera camera;
+  std::array<double, 4> background{0, 0, 0, 1};
+  std::vector<Mesh> meshes;
+};
+
+// Parses a scene. `source` names the input in error messages; relative texture file paths are
+// resolved against `base_dir` (empty: the current directory).
+Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir = {});
+// A built-in name (see builtin_scene_names()) or a path to a JSON file.
+Scene load_scene(const std::string& name_or_path);
+
+const std::vector<std::string>& builtin_scene_names();
+// Throws InputError for an unknown name.
+const std::string& builtin_scene_json(const std::string& name);
+inline constexpr const char* kDefaultScene = "ground_plane";
+
+// Mesh generators (object space, before the transform); exposed for tests.
+Mesh make_quad_mesh(const std::array<glm::dvec3, 4>& corners, const std::array<glm::dvec2, 4>& uv);
+Mesh make_plane_mesh(glm::dvec2 size, glm::dvec2 uv_repeat);           // y = 0 plane, centred
+Mesh make_cube_mesh();                                                  // unit cube, centred
+Mesh make_sphere_mesh(int segments_lon, int segments_lat);              // radius 0.5, lat/long uv
+Mesh make_bezier_patch_mesh(const std::array<glm::dvec3, 16>& control,  // row-major 4x4
+                            int tessellation, glm::dvec2 uv_repeat);
+
+}  // namespace tfu

@@ -1,0 +1,241 @@
+// Rasterizer conventions (cmodel/raster.hpp, docs/renderer.md): top-left fill rule, degenerate
+// triangles, perspective-correct interpolation, thread-count independence, trace and ideal path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "cmodel/raster.hpp"
+#include "cmodel/scene.hpp"
+
+namespace tfu {
+namespace {
+
+ScreenVertex sv(double x, double y) {
+  ScreenVertex v;
+  v.x = x;
+  v.y = y;
+  return v;
+}
+
+// How often each pixel of a w x h grid is covered by the given triangles.
+std::vector<int> coverage(const std::vector<std::array<ScreenVertex, 3>>& tris, int w, int h) {
+  std::vector<int> count(static_cast<size_t>(w * h), 0);
+  for (const auto& t : tris) {
+    const auto rt = setup_triangle(t, w, h);
+    if (!rt) continue;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (rt->covers_pixel(x, y)) ++count[static_cast<size_t>(y * w + x)];
+  }
+  return count;
+}
+
+// A square [a, b)^2 split along a diagonal: every pixel centre inside the half-open square is
+// covered exactly once, every other pixel never (GL / D3D top-left rule).
+void expect_square_covered_once(double a, double b, bool other_diagonal, bool flip_winding) {
+  constexpr int n = 16;
+  const ScreenVertex p00 = sv(a, a), p10 = sv(b, a), p11 = sv(b, b), p01 = sv(a, b);
+  std::vector<std::array<ScreenVertex, 3>> tris =
+      other_diagonal ? std::vector<std::array<ScreenVertex, 3>>{{p10, p11, p01}, {p10, p01, p00}}
+                     : std::vector<std::array<ScreenVertex, 3>>{{p00, p10, p11}, {p00, p11, p01}};
+  if (flip_winding)
+    for (auto& t : tris) std::swap(t[1], t[2]);
+  const auto count = coverage(tris, n, n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double cx = x + 0.5, cy = y + 0.5;
+      const int want = (cx >= a && cx < b && cy >= a && cy < b) ? 1 : 0;
+      EXPECT_EQ(count[static_cast<size_t>(y * n + x)], want) << "pixel " << x << "," << y << " square " << a << ".." << b;
+    }
+}
+
+TEST(Raster, FillRuleSharedDiagonalCoversEachPixelOnce) {
+  for (bool diag : {false, true})
+    for (bool flip : {false, true}) {
+      expect_square_covered_once(2.0, 10.0, diag, flip);   // diagonal through pixel centres
+      expect_square_covered_once(1.5, 9.5, diag, flip);    // every edge through pixel centres
+      expect_square_covered_once(1.3, 11.7, diag, flip);   // no centre on an edge
+    }
+}
+
+TEST(Raster, FillRuleFanAroundCentreCoversEachPixelOnce) {
+  // Four triangles around the centre of [1.5, 9.5]^2: horizontal, vertical and diagonal shared edges.
+  const ScreenVertex c = sv(5.5, 5.5), a = sv(1.5, 1.5), b = sv(9.5, 1.5), d = sv(9.5, 9.5), e = sv(1.5, 9.5);
+  const auto count = coverage({{c, a, b}, {c, b, d}, {c, d, e}, {c, e, a}}, 12, 12);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) {
+      const bool inside = x + 0.5 >= 1.5 && x + 0.5 < 9.5 && y + 0.5 >= 1.5 && y + 0.5 < 9.5;
+      EXPECT_EQ(count[static_cast<size_t>(y * 12 + x)], inside ? 1 : 0) << x << "," << y;
+    }
+}
+
+TEST(Raster, FillRuleTopAndLeftEdgesOnly) {
+  // A single triangle with a horizontal top edge and a vertical left edge through pixel centres.
+  const auto rt = setup_triangle({sv(2.5, 2.5), sv(8.5, 2.5), sv(2.5, 8.5)}, 16, 16);
+  ASSERT_TRUE(rt);
+  EXPECT_TRUE(rt->covers_pixel(2, 2));   // top-left corner: on the top and the left edge
+  EXPECT_TRUE(rt->covers_pixel(5, 2));   // on the top edge
+  EXPECT_TRUE(rt->covers_pixel(2, 5));   // on the left edge
+  EXPECT_FALSE(rt->covers_pixel(5, 5));  // on the hypotenuse (a right edge)
+  EXPECT_TRUE(rt->covers_pixel(4, 5));
+  // The same triangle mirrored (flat bottom, vertical right edge) excludes those edges.
+  const auto mirrored = setup_triangle({sv(8.5, 8.5), sv(2.5, 8.5), sv(8.5, 2.5)}, 16, 16);
+  ASSERT_TRUE(mirrored);
+  EXPECT_FALSE(mirrored->covers_pixel(5, 8));  // bottom edge
+  EXPECT_FALSE(mirrored->covers_pixel(8, 5));  // right edge
+  EXPECT_TRUE(mirrored->covers_pixel(5, 5));   // the hypotenuse is its left edge
+}
+
+TEST(Raster, DegenerateTriangleAfterSnappingIsSkipped) {
+  EXPECT_FALSE(setup_triangle({sv(1, 1), sv(5, 5), sv(9, 9)}, 16, 16));          // collinear
+  EXPECT_FALSE(setup_triangle({sv(1, 1), sv(1.0005, 1), sv(1, 1.001)}, 16, 16));  // snaps to one point
+  EXPECT_TRUE(setup_triangle({sv(1, 1), sv(1 + 1.0 / 256, 1), sv(1, 1 + 1.0 / 256)}, 16, 16));
+}
+
+Scene plane_scene(int w, int h) {
+  Scene s;
+  s.width = w;
+  s.height = h;
+  s.camera.position = {0, 1, 0};
+  s.camera.look_at = {0, 1, -1};
+  s.camera.fov_y_deg = 90;
+  s.camera.near_plane = 0.1;
+  s.camera.far_plane = 100;
+  // Ground quad x in [-1, 1], z in [-2, -6]; s = (x + 1) / 2, t = (-2 - z) / 4.
+  Mesh m = make_quad_mesh({glm::dvec3{-1, 0, -2}, {1, 0, -2}, {1, 0, -6}, {-1, 0, -6}},
+                          {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  Procedural p = make_procedural("checkerboard", 64);
+  m.texture = std::make_shared<const Texture>(std::move(p.texture));
+  m.truth = p.eval;
+  m.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  s.meshes.push_back(std::move(m));
+  return s;
+}
+
+TEST(Raster, PerspectiveCorrectInterpolationMatchesRayPlaneIntersection) {
+  const Scene scene = plane_scene(128, 96);
+  RenderOptions o;
+  o.keep_coords = true;
+  o.threads = 2;
+  const RenderResult r = render_scene(scene, o);
+  const double tan_half = std::tan(scene.camera.fov_y_deg * std::numbers::pi / 360.0), aspect = 128.0 / 96.0;
+  int checked = 0;
+  double max_err = 0, max_affine_gap = 0;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      const auto st = r.coords[static_cast<size_t>(y * scene.width + x)];
+      if (std::isnan(st[0])) continue;
+      // Ray through the pixel centre from (0, 1, 0), looking down -z.
+      const double nx = (x + 0.5) / scene.width * 2 - 1, ny = 1 - (y + 0.5) / scene.height * 2;
+      const glm::dvec3 dir{nx * tan_half * aspect, ny * tan_half, -1};
+      const double k = -1.0 / dir.y;
+      const glm::dvec3 hit = glm::dvec3{0, 1, 0} + k * dir;
+      const double s = (hit.x + 1) / 2, t = (-2 - hit.z) / 4;
+      max_err = std::max({max_err, std::fabs(st[0] - s), std::fabs(st[1] - t)});
+      // Screen-space (affine) t would be linear in y: compare with the linear map through the ends.
+      max_affine_gap = std::max(max_affine_gap, std::fabs(t - (ny - (-0.5)) / (-1.0 / 6 - (-0.5))));
+      ++checked;
+    }
+  EXPECT_GT(checked, 400);
+  EXPECT_LT(max_err, 2e-3);  // vertices snap to 1/256 pixel
+  EXPECT_GT(max_affine_gap, 0.1);  // the test would catch affine interpolation
+}
+
+bool same_image(const Image& a, const Image& b) {
+  return a.width == b.width && a.height == b.height && a.texels == b.texels;
+}
+
+bool same_trace(const Trace& a, const Trace& b) {
+  if (a.requests.size() != b.requests.size()) return false;
+  for (size_t i = 0; i < a.requests.size(); ++i)
+    if (a.requests[i].s != b.requests[i].s || a.requests[i].t != b.requests[i].t) return false;
+  return true;
+}
+
+TEST(Raster, OutputIndependentOfThreadCount) {
+  for (const char* name : {"object", "ground_plane"}) {
+    Scene scene = load_scene(name);
+    scene.width = 160;
+    scene.height = 100;
+    RenderOptions o;
+    o.trace = true;
+    o.ground_truth = true;
+    o.threads = 1;
+    const RenderResult one = render_scene(scene, o);
+    for (int threads : {2, 3, 7}) {
+      o.threads = threads;
+      const RenderResult many = render_scene(scene, o);
+      EXPECT_TRUE(same_image(one.image, many.image)) << name << " threads " << threads;
+      EXPECT_TRUE(same_image(one.truth, many.truth)) << name << " threads " << threads;
+      EXPECT_TRUE(same_trace(one.trace, many.trace)) << name << " threads " << threads;
+      EXPECT_EQ(one.stats.quads, many.stats.quads);
+    }
+  }
+}
+
+TEST(Raster, TraceHasFourLinesPerShadedQuad) {
+  const Scene scene = plane_scene(64, 48);
+  RenderOptions o;
+  o.trace = true;
+  const RenderResult r = render_scene(scene, o);
+  EXPECT_EQ(r.trace.mode, TraceMode::Quad);
+  EXPECT_GT(r.stats.quads, 0);
+  EXPECT_EQ(static_cast<int64_t>(r.trace.requests.size()), 4 * r.stats.quads);
+  EXPECT_LE(r.stats.pixels, 4 * r.stats.quads);
+  // Pixel order (0,0), (1,0), (0,1), (1,1): s grows to the right; the lower pixels are nearer the
+  // camera, where the ground quad's t is smaller (t = 0 at z = -2, the bottom of the screen).
+  for (size_t q = 0; q < r.trace.requests.size(); q += 4) {
+    EXPECT_GT(r.trace.requests[q + 1].s, r.trace.requests[q].s);
+    EXPECT_LT(r.trace.requests[q + 2].t, r.trace.requests[q].t);
+  }
+}
+
+TEST(Raster, DegenerateTrianglesInASceneAreSkipped) {
+  Scene scene = plane_scene(32, 32);
+  // A quad whose corners are collinear in world space: both triangles have zero area.
+  Mesh flat = make_quad_mesh({glm::dvec3{-1, 0.5, -3}, {0, 0.5, -3}, {1, 0.5, -3}, {2, 0.5, -3}},
+                             {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  flat.texture = scene.meshes[0].texture;
+  flat.sampler = scene.meshes[0].sampler;
+  scene.meshes = {flat};
+  const RenderResult r = render_scene(scene, RenderOptions{});
+  EXPECT_EQ(r.stats.triangles, 2);
+  EXPECT_EQ(r.stats.degenerate, 2);
+  EXPECT_EQ(r.stats.pixels, 0);
+  for (const Rgba8& c : r.image.texels) EXPECT_EQ(c, (Rgba8{0, 0, 0, 255}));
+}
+
+TEST(Raster, NearPlaneClippingKeepsGeometryBehindTheCamera) {
+  // The ground plane extends behind the camera: it must be clipped, not wrapped around.
+  Scene scene = load_scene("ground_plane");
+  scene.width = 96;
+  scene.height = 72;
+  const RenderResult r = render_scene(scene, RenderOptions{});
+  // The sky (top row) stays background, the bottom row is ground.
+  const Rgba8 sky{static_cast<uint8_t>(std::lround(scene.background[0] * 255)),
+                  static_cast<uint8_t>(std::lround(scene.background[1] * 255)),
+                  static_cast<uint8_t>(std::lround(scene.background[2] * 255)), 255};
+  for (int x = 0; x < scene.width; ++x) {
+    EXPECT_EQ(r.image.at(x, 0), sky);
+    EXPECT_NE(r.image.at(x, scene.height - 1), sky);
+  }
+}
+
+TEST(Raster, IdealPathCloseToFixedPoint) {
+  Scene scene = load_scene("ground_plane");
+  scene.width = 128;
+  scene.height = 96;
+  RenderOptions o;
+  const RenderResult fixed = render_scene(scene, o);
+  o.ideal = true;
+  const RenderResult ideal = render_scene(scene, o);
+  double sum = 0;
+  for (size_t i = 0; i < fixed.image.texels.size(); ++i)
+    sum += std::abs(fixed.image.texels[i].g - ideal.image.texels[i].g);
+  EXPECT_LT(sum / static_cast<double>(fixed.image.texels.size()), 2.0);  // mean |difference| in 8-bit steps
+}
+
+}  // namespace
+}  // namespace tfu
