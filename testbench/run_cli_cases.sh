@@ -4,9 +4,10 @@
 #   EXIT | REGEX | ARGS...
 # EXIT is the expected exit code; REGEX an extended regular expression that the combined
 # stdout+stderr must match ('-' for none); ARGS are passed to tfu as words ({WORK} expands to a
-# scratch directory). A case with EXIT 2 must also print exactly one line on stderr.
+# scratch directory, {DATA} to testbench/data). A case with EXIT 2 must also print exactly one line on stderr.
 set -u
 tfu=$1 cases=$2 work=$3
+data=$(cd "$(dirname "$cases")" && pwd)/data
 rm -rf "$work" && mkdir -p "$work"
 n=0 failed=0
 while IFS= read -r line; do
@@ -14,6 +15,7 @@ while IFS= read -r line; do
   IFS='|' read -r want regex args <<<"$line"
   want=${want// /}; regex=$(sed -e 's/^ *//' -e 's/ *$//' <<<"$regex")
   args=${args//\{WORK\}/$work}
+  args=${args//\{DATA\}/$data}
   n=$((n + 1))
   # shellcheck disable=SC2086
   timeout 120 "$tfu" $args >"$work/out.txt" 2>"$work/err.txt"

@@ -9,5 +9,9 @@ namespace tfu::cli {
 void register_kernel_error(CLI::App& app);  // cmd_kernel_error.cpp: Hadwiger Table 3.5
 void register_rom(CLI::App& app);           // cmd_rom.cpp: dump tile / direction ROMs as CSV or hex
 void register_formats(CLI::App& app);       // cmd_formats.cpp: number-format error bounds
+void register_sample(CLI::App& app);        // cmd_sample.cpp: golden sampler on a request trace
+void register_mipmap(CLI::App& app);        // cmd_mipmap.cpp: MIP chain generation
+void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR, SSIM, heat map) and `montage`
+void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
 
 }  // namespace tfu::cli

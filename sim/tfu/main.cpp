@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
   tfu::cli::register_kernel_error(app);
   tfu::cli::register_rom(app);
   tfu::cli::register_formats(app);
+  tfu::cli::register_sample(app);
+  tfu::cli::register_mipmap(app);
+  tfu::cli::register_compare(app);
+  tfu::cli::register_render(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,150 @@
+// tfu compare: image quality metrics (PSNR, SSIM, max/mean absolute difference) and a diff heat map.
+// tfu montage: tile images side by side with labels, for looking at filter outputs together.
+// Definitions in docs/metrics.md.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cmodel/error.hpp"
+#include "cmodel/metrics.hpp"
+#include "cmodel/montage.hpp"
+#include "cmodel/texture.hpp"
+#include "sim/tfu/commands.hpp"
+
+namespace tfu::cli {
+namespace {
+
+struct CompareOptions {
+  std::string a, b;
+  std::string diff;
+  int scale = 16;
+  std::string json;
+  bool force = false;
+};
+
+struct MontageOptions {
+  std::vector<std::string> inputs;
+  std::string out;
+  int columns = 4;
+  bool force = false;
+};
+
+// Refuses an existing output (unless --force) or one in a missing directory, before any work.
+void check_output(const std::string& option, const std::string& path, bool force) {
+  if (path.empty()) return;
+  if (std::filesystem::exists(path) && !force)
+    throw InputError(fmt::format("{} '{}' already exists (use --force to overwrite)", option, path));
+  const auto dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw InputError(fmt::format("cannot write {} '{}': no such directory", option, path));
+}
+
+void print_metrics(const ImageMetrics& m) {
+  fmt::print("psnr_db: {}\n", format_metric(m.psnr_db));
+  fmt::print("ssim: {}\n", format_metric(m.ssim, 6));
+  fmt::print("mse: {}\n", format_metric(m.mse, 6));
+  fmt::print("max_abs_diff: {}\n", m.diff.max_abs);
+  const auto& c = m.diff.max_abs_channel;
+  fmt::print("max_abs_diff_rgba: {} {} {} {}\n", c[0], c[1], c[2], c[3]);
+  fmt::print("mean_abs_diff: {}\n", format_metric(m.diff.mean_abs, 6));
+}
+
+void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m) {
+  nlohmann::json j = {{"a", o.a},
+                      {"b", o.b},
+                      {"width", a.width},
+                      {"height", a.height},
+                      {"identical_rgb", m.mse == 0},
+                      {"mse", m.mse},
+                      {"ssim", m.ssim},
+                      {"max_abs_diff", m.diff.max_abs},
+                      {"max_abs_diff_rgba", m.diff.max_abs_channel},
+                      {"mean_abs_diff", m.diff.mean_abs}};
+  // JSON has no infinity: identical images give the string "inf".
+  if (std::isinf(m.psnr_db))
+    j["psnr_db"] = "inf";
+  else
+    j["psnr_db"] = m.psnr_db;
+  std::ofstream f(o.json);
+  f << j.dump(2) << '\n';
+  f.close();
+  if (!f) throw InputError(fmt::format("cannot write --json '{}'", o.json));
+  fmt::print(stderr, "tfu compare: wrote {}\n", o.json);
+}
+
+void run_compare(const CompareOptions& o) {
+  if (o.scale < 1) throw InputError(fmt::format("--scale must be >= 1, got {}", o.scale));
+  check_output("--diff", o.diff, o.force);
+  check_output("--json", o.json, o.force);
+  const Image a = load_image(o.a), b = load_image(o.b);  // InputError naming the file
+  if (a.width != b.width || a.height != b.height)
+    throw InputError(fmt::format("image sizes differ: {} is {}x{}, {} is {}x{}", o.a, a.width, a.height, o.b, b.width,
+                                 b.height));
+  const ImageMetrics m = compare_images(a, b);
+  print_metrics(m);
+  if (!o.diff.empty()) {
+    save_image(diff_heatmap(a, b, o.scale), o.diff, o.force);
+    fmt::print(stderr, "tfu compare: wrote {}\n", o.diff);
+  }
+  if (!o.json.empty()) write_json(o, a, m);
+}
+
+// IMG[=LABEL]: an argument that names an existing file is taken whole; otherwise it splits at the
+// first '='. Without a label the file name (no directory) is used.
+std::pair<std::string, std::string> split_input(const std::string& arg) {
+  const auto eq = arg.find('=');
+  if (std::filesystem::exists(arg) || eq == std::string::npos)
+    return {arg, std::filesystem::path(arg).filename().string()};
+  return {arg.substr(0, eq), arg.substr(eq + 1)};
+}
+
+void run_montage(const MontageOptions& o) {
+  if (o.columns < 1) throw InputError(fmt::format("--columns must be >= 1, got {}", o.columns));
+  check_output("--out", o.out, o.force);
+  std::vector<Image> images;
+  std::vector<std::string> labels;
+  for (const std::string& arg : o.inputs) {
+    auto [path, label] = split_input(arg);
+    images.push_back(load_image(path));  // InputError naming the file
+    labels.push_back(std::move(label));
+  }
+  bool drawn = false;
+  const Image m = montage(images, labels, o.columns, &drawn);
+  save_image(m, o.out, o.force);
+  if (!drawn) fmt::print(stderr, "tfu montage: warning: font {} not available, labels omitted\n", kMontageFont);
+  fmt::print(stderr, "tfu montage: wrote {} ({}x{})\n", o.out, m.width, m.height);
+}
+
+void register_montage(CLI::App& app) {
+  auto o = std::make_shared<MontageOptions>();
+  auto* cmd = app.add_subcommand("montage", "Tile images side by side with a label above each");
+  cmd->add_option("images", o->inputs, "Input images as IMG or IMG=LABEL")->required();
+  cmd->add_option("--out", o->out, "Output image (PNG, ...)")->required();
+  cmd->add_option("--columns", o->columns, "Images per row")->capture_default_str();
+  cmd->add_flag("--force", o->force, "Overwrite --out if it exists");
+  cmd->callback([o] { run_montage(*o); });
+}
+
+}  // namespace
+
+// Registers both `compare` and `montage` (they share the image-comparison tooling).
+void register_compare(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  auto* cmd = app.add_subcommand("compare", "Image quality metrics of B against A: PSNR, SSIM, max/mean abs difference");
+  cmd->add_option("a", o->a, "Reference image")->required();
+  cmd->add_option("b", o->b, "Image to compare")->required();
+  cmd->add_option("--diff", o->diff, "Write a heat map of |A - B| (max over RGB) to this image");
+  cmd->add_option("--scale", o->scale, "Heat map: difference in levels that saturates to white")->capture_default_str();
+  cmd->add_option("--json", o->json, "Also write the metrics as JSON");
+  cmd->add_flag("--force", o->force, "Overwrite --diff / --json if they exist");
+  cmd->callback([o] { run_compare(*o); });
+  register_montage(app);
+}
+
+}  // namespace tfu::cli
