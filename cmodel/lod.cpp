@@ -72,9 +72,4 @@ int32_t lambda_explicit(float lod) {
   return static_cast<int32_t>(std::clamp<int64_t>(v, kLodMinusInfinity, -int64_t{kLodMinusInfinity}));
 }
 
-int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
-  const int64_t l = int64_t{lambda_q8} + p.bias_q8;
-  return static_cast<int32_t>(std::clamp<int64_t>(l, p.min_lod_q8, p.max_lod_q8));
-}
-
 }  // namespace tfu

@@ -46,6 +46,9 @@ int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, in
 // textureLod: explicit lambda (nearest Q.8 value).
 int32_t lambda_explicit(float lod);
 // lambda' = clamp(lambda + bias, min_lod, max_lod) (GL Eq. 8.6 order: bias, then clamp).
-int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p);
+inline int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
+  const int64_t l = int64_t{lambda_q8} + p.bias_q8;
+  return static_cast<int32_t>(l < p.min_lod_q8 ? p.min_lod_q8 : (l > p.max_lod_q8 ? p.max_lod_q8 : l));
+}
 
 }  // namespace tfu

@@ -110,6 +110,45 @@ inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 
 }  // namespace
 
+namespace {
+
+// The 2D weights of the separable tiled-ROM filter (T x T taps, T <= 4): tile-weight multipliers
+// for all taps but the centre one (offset (0, 0)), which takes the complement so that the weights
+// sum to exactly M = 2^b - 1.
+void tile_weights_2d(const TileWeightRom& rom, RomRecon recon, uint32_t fu, uint32_t fv, std::array<int32_t, 16>& w2) {
+  const int taps = rom.taps(), m0 = rom.first_tap();
+  const unsigned bits = rom.spec().bits;
+  std::array<int32_t, 8> wx{}, wy{};
+  if (recon == RomRecon::Nearest) {
+    rom.weights_nearest(fu, 8, wx.data());
+    rom.weights_nearest(fv, 8, wy.data());
+  } else {
+    rom.weights_linear(fu, 8, 8, wx.data());
+    rom.weights_linear(fv, 8, 8, wy.data());
+  }
+  const auto M = static_cast<int32_t>(unorm::max_code(bits));
+  int32_t sum = 0;
+  const int centre = -m0;
+  for (int j = 0; j < taps; ++j)
+    for (int i = 0; i < taps; ++i) {
+      if (i == centre && j == centre) continue;
+      const int32_t w = tile_weight_multiply(wx[static_cast<size_t>(i)], wy[static_cast<size_t>(j)], bits);
+      w2[static_cast<size_t>(j * taps + i)] = w;
+      sum += w;
+    }
+  w2[static_cast<size_t>(centre * taps + centre)] = M - sum;
+}
+
+// Memo of tile_weights_2d for nearest reconstruction: the weights depend only on the two ROM
+// addresses, so the software model evaluates the multipliers once per address pair (a pure
+// function: bit-identical to computing them per sample, which the tests check).
+struct WeightMemo {
+  int entries = 0;
+  std::vector<std::array<int32_t, 16>> w;  // [addr_y * entries + addr_x]
+};
+
+}  // namespace
+
 struct Sampler::Impl {
   std::unique_ptr<FilterKernel> kernel;       // CUBIC modes
   std::unique_ptr<TileWeightRom> rom;         // CUBIC modes
@@ -117,6 +156,7 @@ struct Sampler::Impl {
   int64_t bspline_scale_q = 0, bspline_bias_q = 0;  // S and B registers (Q.12)
   std::vector<Image> coeff_levels;            // bspline-interp: stored coefficient codes
   std::vector<std::vector<std::array<double, 4>>> coeff_ideal;  // bspline-interp: exact coefficients
+  std::unique_ptr<WeightMemo> memo;           // CUBIC with nearest reconstruction and R <= 128
   Texel4 border{};
   double scale = 255.0;  // channel code -> real
 };
@@ -139,6 +179,24 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
   if (impl_->kernel->width() > 4)
     throw InputError(fmt::format("kernel '{}' is wider than the 4x4 CUBIC footprint", cfg_.kernel));
   impl_->rom = std::make_unique<TileWeightRom>(*impl_->kernel, cfg_.cubic_rom);
+  if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {
+    auto memo = std::make_unique<WeightMemo>();
+    memo->entries = impl_->rom->entries();
+    memo->w.resize(static_cast<size_t>(memo->entries) * static_cast<size_t>(memo->entries));
+    // One representative fraction per address: the smallest 8-bit f that maps to it.
+    std::vector<int> rep(static_cast<size_t>(memo->entries), -1);
+    for (uint32_t f = 0; f < 256; ++f) {
+      const int a = impl_->rom->nearest_address(f, 8);
+      if (rep[static_cast<size_t>(a)] < 0) rep[static_cast<size_t>(a)] = static_cast<int>(f);
+    }
+    for (int ay = 0; ay < memo->entries; ++ay)
+      for (int ax = 0; ax < memo->entries; ++ax)
+        if (rep[static_cast<size_t>(ax)] >= 0 && rep[static_cast<size_t>(ay)] >= 0)
+          tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[static_cast<size_t>(ax)]),
+                          static_cast<uint32_t>(rep[static_cast<size_t>(ay)]),
+                          memo->w[static_cast<size_t>(ay * memo->entries + ax)]);
+    impl_->memo = std::move(memo);
+  }
   if (!impl_->prefiltered) return;
   if (tex_.format == TexelFormat::VS16X2)
     throw InputError("kernel bspline-interp needs an 8-bit texel format (rgba8 or l8), not vs16x2");
@@ -264,6 +322,22 @@ Texel4 filter_nearest(const LevelReader& rd, float s, float t) {
             float_to_fixed(t, static_cast<uint32_t>(rd.img.height), 0));
 }
 
+// LINEAR for 8-bit formats: reads the texel words directly, 32-bit accumulation.
+Texel4 filter_linear8(const LevelReader& rd, float s, float t) {
+  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
+  const int32_t fu = static_cast<int32_t>(u.f), fv = static_cast<int32_t>(v.f);
+  const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
+  const Rgba8 border = encode_texel(rd.border, rd.fmt);
+  const auto word = [&](int x, int y) -> Rgba8 {
+    if ((x | y) < 0) return border;
+    return rd.img.texels[static_cast<size_t>(y) * static_cast<size_t>(rd.img.width) + static_cast<size_t>(x)];
+  };
+  const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
+  const int32_t w0 = (256 - fu) * (256 - fv), w1 = fu * (256 - fv), w2 = (256 - fu) * fv, w3 = fu * fv;  // Q.16
+  const auto mix = [&](int32_t p, int32_t q, int32_t r, int32_t z) { return (p * w0 + q * w1 + r * w2 + z * w3 + (1 << 15)) >> 16; };
+  return {mix(a.r, b.r, c.r, d.r), mix(a.g, b.g, c.g, d.g), mix(a.b, b.b, c.b, d.b), mix(a.a, b.a, c.a, d.a)};
+}
+
 Texel4 filter_linear(const LevelReader& rd, float s, float t) {
   const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
   const int32_t fu = static_cast<int32_t>(u.f), fv = static_cast<int32_t>(v.f);
@@ -284,39 +358,41 @@ Texel4 filter_linear(const LevelReader& rd, float s, float t) {
   return out;
 }
 
-// Separable tiled-ROM filter over T x T taps (T = 4 for cubics). Returns the accumulated
-// sum c w at scale M = 2^b - 1 per channel.
+// Accumulated sum c w per channel at weight scale M.
 std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                        float s, float t) {
+                                        const WeightMemo* memo, float s, float t) {
   const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
   const int taps = rom.taps(), m0 = rom.first_tap();
-  const unsigned bits = rom.spec().bits;
-  std::array<int32_t, 8> wx{}, wy{};
-  if (recon == RomRecon::Nearest) {
-    rom.weights_nearest(u.f, 8, wx.data());
-    rom.weights_nearest(v.f, 8, wy.data());
+  std::array<int32_t, 16> w2;
+  if (memo) {
+    w2 = memo->w[static_cast<size_t>(rom.nearest_address(v.f, 8) * memo->entries + rom.nearest_address(u.f, 8))];
   } else {
-    rom.weights_linear(u.f, 8, 8, wx.data());
-    rom.weights_linear(v.f, 8, 8, wy.data());
+    tile_weights_2d(rom, recon, u.f, v.f, w2);
   }
-  const auto M = static_cast<int32_t>(unorm::max_code(bits));
-  // Tile-weight multipliers for all taps but the centre one (offset (0, 0)), which takes the
-  // complement so that the 2D weights sum to exactly M.
-  std::array<int32_t, 64> w2{};
-  int32_t sum = 0;
-  const int centre = -m0;
-  for (int j = 0; j < taps; ++j)
-    for (int i = 0; i < taps; ++i) {
-      if (i == centre && j == centre) continue;
-      const int32_t w = tile_weight_multiply(wx[static_cast<size_t>(i)], wy[static_cast<size_t>(j)], bits);
-      w2[static_cast<size_t>(j * taps + i)] = w;
-      sum += w;
-    }
-  w2[static_cast<size_t>(centre * taps + centre)] = M - sum;
-  std::array<int, 8> col{}, row{};
+  std::array<int, 4> col, row;
   for (int k = 0; k < taps; ++k) {
     col[static_cast<size_t>(k)] = rd.col(u.i0 + m0 + k);
     row[static_cast<size_t>(k)] = rd.row(v.i0 + m0 + k);
+  }
+  if (rd.fmt != TexelFormat::VS16X2) {
+    // 8-bit channels: |sum c w| <= 255 M (sum |h|)^2 < 2^31 for b <= 16, so 32 bits suffice.
+    const Rgba8 border = encode_texel(rd.border, rd.fmt);
+    std::array<int32_t, 4> a32{0, 0, 0, 0};
+    for (int j = 0; j < taps; ++j) {
+      const int y = row[static_cast<size_t>(j)];
+      for (int i = 0; i < taps; ++i) {
+        const int32_t w = w2[static_cast<size_t>(j * taps + i)];
+        const int x = col[static_cast<size_t>(i)];
+        const Rgba8 c = (x | y) < 0 ? border
+                                    : rd.img.texels[static_cast<size_t>(y) * static_cast<size_t>(rd.img.width) +
+                                                    static_cast<size_t>(x)];
+        a32[0] += c.r * w;
+        a32[1] += c.g * w;
+        a32[2] += c.b * w;
+        a32[3] += c.a * w;
+      }
+    }
+    return {a32[0], a32[1], a32[2], a32[3]};
   }
   std::array<int64_t, 4> acc{};
   for (int j = 0; j < taps; ++j)
@@ -336,21 +412,21 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
   switch (f) {
     case BaseFilter::Nearest: return filter_nearest(rd, s, t);
-    case BaseFilter::Linear: return filter_linear(rd, s, t);
+    case BaseFilter::Linear: return tex_.format == TexelFormat::VS16X2 ? filter_linear(rd, s, t) : filter_linear8(rd, s, t);
     case BaseFilter::Cubic: {
       const auto M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
       Texel4 out{};
       if (impl_->prefiltered) {
         const LevelReader cr{impl_->coeff_levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
                              TexelFormat::RGBA8, {}};
-        const auto acc = filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, s, t);
+        const auto acc = filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
         // out = (acc S + B M) / (M 2^12), round half up.
         const int64_t den = M << kBsplineScaleBits;
         for (size_t ch = 0; ch < 4; ++ch)
           out[ch] = static_cast<int32_t>(
               floor_div(acc[ch] * impl_->bspline_scale_q + impl_->bspline_bias_q * M + den / 2, den));
       } else {
-        const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, s, t);
+        const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
         if (M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
           for (size_t ch = 0; ch < 4; ++ch) out[ch] = static_cast<int32_t>(floor_div(2 * acc[ch] + 255, 510));
         } else {
@@ -398,7 +474,45 @@ Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
   return out;
 }
 
+namespace {
+
+// LINEAR on one level of an 8-bit format, straight from the texel words: the same arithmetic as
+// filter_linear (one rounding of the Q.16 sum), written as two exact lerps so that the compiler
+// keeps everything in registers. The result of 8-bit inputs is always within 0..255.
+inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border, float s, float t) {
+  const int w = img.width, h = img.height;
+  const int64_t u = float_to_fixed(s, static_cast<uint32_t>(w), 8) - 128;
+  const int64_t v = float_to_fixed(t, static_cast<uint32_t>(h), 8) - 128;
+  const int32_t fu = static_cast<int32_t>(u & 255), fv = static_cast<int32_t>(v & 255);
+  const int x0 = wrap_index(ws, u >> 8, w), x1 = wrap_index(ws, (u >> 8) + 1, w);
+  const int y0 = wrap_index(wt, v >> 8, h), y1 = wrap_index(wt, (v >> 8) + 1, h);
+  const Rgba8* base = img.texels.data();
+  const auto word = [&](int x, int y) {
+    return (x | y) < 0 ? border : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
+  };
+  const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
+  const int32_t gu = 256 - fu, gv = 256 - fv;
+  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu): exact.
+  const auto mix = [&](int32_t p, int32_t q, int32_t r, int32_t z) {
+    return static_cast<uint8_t>((gv * (p * gu + q * fu) + fv * (r * gu + z * fu) + (1 << 15)) >> 16);
+  };
+  return {mix(a.r, b.r, c.r, d.r), mix(a.g, b.g, c.g, d.g), mix(a.b, b.b, c.b, d.b), mix(a.a, b.a, c.a, d.a)};
+}
+
+}  // namespace
+
 Rgba8 Sampler::sample(float s, float t, int32_t lambda) const {
+  if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
+    // Fast path for LINEAR / LINEAR_MIPMAP_*: bit-identical to the generic path (tested).
+    const LodInfo li = lod_info(lambda);
+    const Rgba8 border = cfg_.border;
+    const Rgba8 a = bilinear8(tex_.levels[static_cast<size_t>(li.level0)], cfg_.wrap_s, cfg_.wrap_t, border, s, t);
+    if (li.blend == 0) return a;
+    const Rgba8 b = bilinear8(tex_.levels[static_cast<size_t>(li.level1)], cfg_.wrap_s, cfg_.wrap_t, border, s, t);
+    const int32_t f = li.blend, g = 256 - f;
+    const auto mix = [f, g](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * g + q * f + 128) >> 8); };
+    return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
+  }
   return encode_texel(sample_channels(s, t, lambda), tex_.format);
 }
 

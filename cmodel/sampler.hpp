@@ -62,6 +62,9 @@ struct SamplerConfig {
   // kernel footprint in every level (false, for the quality comparison: the 4-texel-wide kernel then
   // covers 4 / 2^L texels of level L and degenerates towards nearest).
   bool cubic_level_adapt = true;
+  // Software speed only (no effect on results): evaluate the CUBIC tile-weight multipliers once per
+  // ROM address pair instead of per sample (nearest reconstruction, R <= 128).
+  bool memoize_cubic_weights = true;
   EdgeShapePolicy edge_shape = EdgeShapePolicy::Cross;
   int edge_cache_block = 4;  // B for EdgeShapePolicy::CacheBlock (power of two, 4..64)
 };

@@ -234,6 +234,50 @@ TEST(Properties, FixedPointCloseToIdeal) {
   }
 }
 
+// The LINEAR fast path of Sampler::sample and the generic datapath (sample_channels) agree bit for bit.
+TEST(Properties, LinearFastPathEqualsGenericPath) {
+  Texture t = random_texture(37, 21, 3);
+  generate_mipmaps(t, MipMethod::Box);
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> coord(-2.0f, 2.0f);
+  std::uniform_int_distribution<int32_t> lam(-512, 7 * 256);
+  for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
+    for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
+      SamplerConfig c = cfg(BaseFilter::Linear, m, w);
+      c.border = {9, 99, 199, 49};
+      const Sampler s(t, c);
+      for (int i = 0; i < 5000; ++i) {
+        const float x = coord(rng), y = coord(rng);
+        const int32_t l = lam(rng);
+        ASSERT_EQ(s.sample(x, y, l), encode_texel(s.sample_channels(x, y, l), t.format));
+      }
+    }
+}
+
+// The memoized CUBIC weights are the tile-weight multipliers' results, bit for bit.
+TEST(Properties, CubicWeightMemoChangesNothing) {
+  Texture t = random_texture(19, 23, 8);
+  generate_mipmaps(t, MipMethod::Box);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> coord(-1.5f, 1.5f);
+  std::uniform_int_distribution<int32_t> lam(-512, 6 * 256);
+  for (const char* k : {"catmull-rom", "bspline", "blackman", "bspline-interp"})
+    for (SamplePos pos : {SamplePos::Centre, SamplePos::Corner}) {
+      SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::Linear, WrapMode::MirroredRepeat);
+      c.kernel = k;
+      c.cubic_rom.pos = pos;
+      c.cubic_rom.samples = 32;
+      const Sampler memo(t, c);
+      c.memoize_cubic_weights = false;
+      const Sampler direct(t, c);
+      for (int i = 0; i < 3000; ++i) {
+        const float x = coord(rng), y = coord(rng);
+        const int32_t l = lam(rng);
+        ASSERT_EQ(memo.sample(x, y, l), direct.sample(x, y, l)) << k;
+      }
+    }
+}
+
 TEST(Vs16, FiltersSignedNumerators) {
   // Two texels -1 and +1 in channel 0: halfway gives 0 exactly (bytes 128, 0).
   Texture t;
