@@ -10,6 +10,7 @@ void register_kernel_error(CLI::App& app);  // cmd_kernel_error.cpp: Hadwiger Ta
 void register_rom(CLI::App& app);           // cmd_rom.cpp: dump tile / direction ROMs as CSV or hex
 void register_formats(CLI::App& app);       // cmd_formats.cpp: number-format error bounds
 void register_sample(CLI::App& app);        // cmd_sample.cpp: golden sampler on a request trace
+void register_report(CLI::App& app);        // cmd_report.cpp: every scene x mode, montages, results.md
 void register_mipmap(CLI::App& app);        // cmd_mipmap.cpp: MIP chain generation
 void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR, SSIM, heat map) and `montage`
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)

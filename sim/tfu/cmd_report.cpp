@@ -1,0 +1,264 @@
+// tfu report: render every built-in scene in every filter mode (fixed point and ideal), write the
+// images and a labelled montage per scene, measure each against the supersampled ground truth, and
+// test the papers' claims with numbers. Writes results.json and, if asked, docs/results.md.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cmodel/error.hpp"
+#include "cmodel/metrics.hpp"
+#include "cmodel/mipmap.hpp"
+#include "cmodel/montage.hpp"
+#include "cmodel/raster.hpp"
+#include "cmodel/scene.hpp"
+#include "sim/tfu/commands.hpp"
+
+namespace tfu::cli {
+namespace {
+
+struct ReportOptions {
+  std::string out_dir = "out/report";
+  std::string markdown;  // empty: no Markdown
+  std::vector<std::string> scenes;  // empty: all built-in
+  bool force = false;
+  bool quick = false;  // half-size renders (for smoke tests)
+};
+
+struct ModeResult {
+  std::string mode;
+  double psnr = 0, ssim = 0;           // fixed point vs ground truth
+  double psnr_ideal = 0, ssim_ideal = 0;  // ideal vs ground truth
+  int max_fixed_vs_ideal = 0;
+  double mean_fixed_vs_ideal = 0;
+  double sharpness = 0;  // mean luma gradient magnitude relative to the truth's
+};
+
+// Mean |dY/dx| + |dY/dy| over the image (luma 0.299/0.587/0.114): a simple sharpness measure.
+double gradient_energy(const Image& im) {
+  const auto y = [&](int x, int yy) {
+    const Rgba8 c = im.at(x, yy);
+    return 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
+  };
+  double sum = 0;
+  for (int yy = 0; yy + 1 < im.height; ++yy)
+    for (int x = 0; x + 1 < im.width; ++x) sum += std::abs(y(x + 1, yy) - y(x, yy)) + std::abs(y(x, yy + 1) - y(x, yy));
+  return sum / std::max(1, (im.width - 1) * (im.height - 1));
+}
+
+Scene scene_for(const std::string& name, bool quick) {
+  Scene s = load_scene(name);
+  if (quick) {
+    s.width = std::max(16, s.width / 4);
+    s.height = std::max(16, s.height / 4);
+  }
+  return s;
+}
+
+RenderResult render(const Scene& s, std::optional<FilterMode> mode, bool ideal, bool truth) {
+  RenderOptions o;
+  o.filter = mode;
+  o.ideal = ideal;
+  o.ground_truth = truth;
+  return render_scene(s, o);
+}
+
+// A copy of the scene whose textures use another MIP chain / sampler tweak.
+Scene with_mip_method(Scene s, MipMethod m, double alpha) {
+  for (Mesh& mesh : s.meshes) {
+    auto t = std::make_shared<Texture>(*mesh.texture);
+    generate_mipmaps(*t, m, alpha);
+    mesh.texture = t;
+  }
+  return s;
+}
+Scene without_cubic_adaptation(Scene s) {
+  for (Mesh& mesh : s.meshes) mesh.sampler.cubic_level_adapt = false;
+  return s;
+}
+
+struct Claim {
+  std::string text, scene, evidence;
+  bool confirmed = false;
+};
+
+void save(const Image& img, const std::filesystem::path& p) { save_image(img, p.string(), true); }
+
+void run(const ReportOptions& o) {
+  namespace fs = std::filesystem;
+  const std::vector<std::string> names = o.scenes.empty() ? builtin_scene_names() : o.scenes;
+  for (const auto& n : names) (void)builtin_scene_json(n);  // unknown name -> InputError before any work
+  if (!o.markdown.empty() && fs::exists(o.markdown) && !o.force)
+    throw InputError(fmt::format("--markdown '{}' already exists (use --force to overwrite)", o.markdown));
+  if (fs::exists(o.out_dir) && !fs::is_empty(o.out_dir) && !o.force)
+    throw InputError(fmt::format("--out-dir '{}' is not empty (use --force to overwrite its files)", o.out_dir));
+  fs::create_directories(o.out_dir);
+  const auto t0 = std::chrono::steady_clock::now();
+
+  nlohmann::json js;
+  std::ostringstream md;
+  std::vector<Claim> claims;
+  std::map<std::string, std::map<std::string, ModeResult>> table;
+  for (const std::string& name : names) {
+    const Scene scene = scene_for(name, o.quick);
+    const fs::path dir = fs::path(o.out_dir) / name;
+    fs::create_directories(dir);
+    const RenderResult base = render(scene, std::nullopt, false, true);
+    save(base.truth, dir / "truth.png");
+    const double truth_energy = gradient_energy(base.truth);
+    std::vector<Image> tiles{base.truth};
+    std::vector<std::string> labels{"ground truth"};
+    for (const FilterMode& m : all_filter_modes()) {
+      const std::string mn = filter_mode_name(m);
+      std::cerr << fmt::format("tfu report: {} {} ...\n", name, mn);
+      const Image fx = render(scene, m, false, false).image;
+      const Image id = render(scene, m, true, false).image;
+      save(fx, dir / (mn + ".png"));
+      ModeResult r;
+      r.mode = mn;
+      r.psnr = psnr_db(fx, base.truth);
+      r.ssim = ssim_luma(fx, base.truth);
+      r.psnr_ideal = psnr_db(id, base.truth);
+      r.ssim_ideal = ssim_luma(id, base.truth);
+      const DiffStats d = diff_stats(fx, id);
+      r.max_fixed_vs_ideal = d.max_abs;
+      r.mean_fixed_vs_ideal = d.mean_abs;
+      r.sharpness = truth_energy > 0 ? gradient_energy(fx) / truth_energy : 0;
+      table[name][mn] = r;
+      js["scenes"][name][mn] = {{"psnr_db", r.psnr},           {"ssim", r.ssim},
+                                {"psnr_ideal_db", r.psnr_ideal}, {"ssim_ideal", r.ssim_ideal},
+                                {"max_abs_fixed_vs_ideal", r.max_fixed_vs_ideal},
+                                {"mean_abs_fixed_vs_ideal", r.mean_fixed_vs_ideal},
+                                {"sharpness_vs_truth", r.sharpness}};
+      tiles.push_back(fx);
+      labels.push_back(mn);
+    }
+    save(montage(tiles, labels, 4), fs::path(o.out_dir) / (name + "_montage.png"));
+  }
+
+  // ---- The papers' claims, each decided by the numbers above (or extra renders) ----
+  const auto has = [&](const std::string& s) { return table.count(s) != 0; };
+  for (const std::string& s : {std::string("magnified"), std::string("text_quad")}) {
+    if (!has(s)) continue;
+    const ModeResult& ep = table[s]["EDGE_PRESERVING"];
+    const ModeResult& bl = table[s]["LINEAR"];
+    claims.push_back({"Edge-preserving is sharper than bilinear under magnification (Lee & Jen Sec. 5.1)", s,
+                      fmt::format("sharpness (gradient energy / truth's) {:.3f} vs {:.3f}", ep.sharpness, bl.sharpness),
+                      ep.sharpness > bl.sharpness});
+    claims.push_back({"... and therefore closer to the ground truth than bilinear (not claimed by the paper, which "
+                      "judges visually)",
+                      s,
+                      fmt::format("PSNR {:.2f} vs {:.2f} dB; SSIM {:.4f} vs {:.4f}", ep.psnr, bl.psnr, ep.ssim, bl.ssim),
+                      ep.psnr > bl.psnr && ep.ssim > bl.ssim});
+    const ModeResult& cu = table[s]["CUBIC"];
+    claims.push_back({"Cubic (Catmull-Rom) is better than bilinear (Hadwiger 2002 Sec. 1)", s,
+                      fmt::format("PSNR {:.2f} vs {:.2f} dB; SSIM {:.4f} vs {:.4f}", cu.psnr, bl.psnr, cu.ssim, bl.ssim),
+                      cu.psnr > bl.psnr && cu.ssim >= bl.ssim});
+  }
+  for (const std::string& s : {std::string("text_patch"), std::string("ground_plane")}) {
+    if (!has(s)) continue;
+    const Scene scene = scene_for(s, o.quick);
+    const FilterMode cml{BaseFilter::Cubic, MipMode::Linear};
+    const Image truth = render(scene, std::nullopt, false, true).truth;
+    const Image adapted = render(scene, cml, true, false).image;
+    const Image plain = render(without_cubic_adaptation(scene), cml, true, false).image;
+    const double pa = psnr_db(adapted, truth), pn = psnr_db(plain, truth);
+    const double sa = ssim_luma(adapted, truth), sn = ssim_luma(plain, truth);
+    claims.push_back({"Cubic MIP-mapping with per-level kernel adaptation beats no adaptation (Hadwiger 2004 Sec. 3.2)", s,
+                      fmt::format("CUBIC_MIPMAP_LINEAR (ideal path) adapted vs level-0 footprint: PSNR {:.2f} vs {:.2f} dB; "
+                                  "SSIM {:.4f} vs {:.4f}",
+                                  pa, pn, sa, sn),
+                      pa > pn && sa > sn});
+    js["claims_extra"][s]["cubic_adaptation"] = {{"psnr_adapted", pa}, {"psnr_plain", pn}, {"ssim_adapted", sa}, {"ssim_plain", sn}};
+  }
+  if (has("text_patch")) {
+    const Scene scene = scene_for("text_patch", o.quick);
+    const Image truth = render(scene, std::nullopt, false, true).truth;
+    const FilterMode tri{BaseFilter::Linear, MipMode::Linear}, epm{BaseFilter::EdgePreserving, MipMode::Linear};
+    const Scene box = with_mip_method(scene, MipMethod::Box, 0), edge = with_mip_method(scene, MipMethod::Edge, 0.5);
+    const Image tri_box = render(box, tri, false, false).image, tri_edge = render(edge, tri, false, false).image;
+    const Image ep_edge = render(edge, epm, false, false).image;
+    const double p1 = psnr_db(tri_box, truth), p2 = psnr_db(tri_edge, truth), p3 = psnr_db(ep_edge, truth);
+    const double s1 = ssim_luma(tri_box, truth), s2 = ssim_luma(tri_edge, truth), s3 = ssim_luma(ep_edge, truth);
+    const double g0 = gradient_energy(truth);
+    const double g1 = gradient_energy(tri_box) / g0, g3 = gradient_energy(ep_edge) / g0;
+    save(tri_box, fs::path(o.out_dir) / "text_patch" / "trilinear_box_mips.png");
+    save(ep_edge, fs::path(o.out_dir) / "text_patch" / "edge_preserving_edge_mips.png");
+    claims.push_back({"Edge-preserving MIP-maps (Eq. 7, alpha 0.5) beat box MIP-maps under trilinear (Lee & Jen Sec. 4)",
+                      "text_patch",
+                      fmt::format("PSNR {:.2f} vs {:.2f} dB; SSIM {:.4f} vs {:.4f}", p2, p1, s2, s1), p2 > p1 && s2 > s1});
+    claims.push_back({"Edge-preserving filtering on edge-preserving MIP-maps is sharper than trilinear on box MIP-maps "
+                      "(Lee & Jen Fig. 8)",
+                      "text_patch",
+                      fmt::format("sharpness {:.3f} vs {:.3f}; PSNR {:.2f} vs {:.2f} dB; SSIM {:.4f} vs {:.4f}", g3, g1, p3,
+                                  p1, s3, s1),
+                      g3 > g1});
+  }
+  for (const Claim& c : claims)
+    js["claims"].push_back({{"claim", c.text}, {"scene", c.scene}, {"evidence", c.evidence}, {"confirmed", c.confirmed}});
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  js["seconds"] = secs;
+  {
+    std::ofstream f(fs::path(o.out_dir) / "results.json");
+    f << js.dump(2) << '\n';
+  }
+
+  // ---- Markdown ----
+  md << "# Measured results\n\n"
+     << "Generated by `scripts/results` (`tfu report`); do not edit by hand. Every number compares a render "
+        "with the scene's 8x8-supersampled analytic ground truth (docs/renderer.md) using the metrics of "
+        "docs/metrics.md. *Fixed* is the bit-accurate datapath, *ideal* the double-precision path of the same "
+        "mode (rounded to 8 bits per channel); *fixed vs ideal* is the largest and mean absolute difference in "
+        "8-bit levels over RGB. *Sharpness* is the mean luma gradient magnitude relative to the ground truth's "
+        "(1.0 = as sharp as the truth; above 1 means aliasing or ringing). Large *fixed vs ideal* maxima in "
+        "MIPMAP_NEAREST modes come from pixels whose lambda lies on a level boundary: the Q.8 fixed-point lambda and "
+        "the real lambda select different levels there.\n\n";
+  md << "## Claims of the papers\n\n| claim | scene | evidence | verdict |\n|---|---|---|---|\n";
+  for (const Claim& c : claims)
+    md << fmt::format("| {} | {} | {} | {} |\n", c.text, c.scene, c.evidence, c.confirmed ? "confirmed" : "**refuted**");
+  for (const auto& [scene, modes] : table) {
+    md << fmt::format("\n## Scene `{}`\n\nMontage: `{}/{}_montage.png`.\n\n", scene, o.out_dir, scene);
+    md << "| mode | PSNR fixed (dB) | SSIM fixed | PSNR ideal (dB) | SSIM ideal | fixed vs ideal max | mean | sharpness |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const FilterMode& m : all_filter_modes()) {
+      const ModeResult& r = modes.at(filter_mode_name(m));
+      md << fmt::format("| {} | {} | {:.4f} | {} | {:.4f} | {} | {:.3f} | {:.3f} |\n", r.mode, format_metric(r.psnr, 2),
+                        r.ssim, format_metric(r.psnr_ideal, 2), r.ssim_ideal, r.max_fixed_vs_ideal,
+                        r.mean_fixed_vs_ideal, r.sharpness);
+    }
+  }
+  md << fmt::format("\nGenerated in {:.0f} s{}.\n", secs, o.quick ? " (quick mode: quarter-size renders)" : "");
+  if (!o.markdown.empty()) {
+    std::ofstream f(o.markdown);
+    f << md.str();
+    if (!f) throw InputError(fmt::format("--markdown '{}' cannot be written", o.markdown));
+  }
+  std::cout << fmt::format("tfu report: {} scenes x {} modes in {:.0f} s -> {}/ (montages *_montage.png, results.json){}\n",
+                           names.size(), all_filter_modes().size(), secs, o.out_dir,
+                           o.markdown.empty() ? "" : fmt::format(", {}", o.markdown));
+  for (const Claim& c : claims)
+    std::cout << fmt::format("  [{}] {} ({})\n", c.confirmed ? "confirmed" : "refuted", c.text, c.scene);
+}
+
+}  // namespace
+
+void register_report(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  CLI::App* cmd = app.add_subcommand("report", "Render every scene in every filter mode, montage them, measure quality, check the papers' claims");
+  cmd->add_option("--out-dir", o->out_dir, "Directory for the images, montages and results.json");
+  cmd->add_option("--markdown", o->markdown, "Also write the Markdown report here (e.g. docs/results.md)");
+  cmd->add_option("--scene", o->scenes, "Only these built-in scenes (repeatable)");
+  cmd->add_flag("--quick", o->quick, "Quarter-size renders (smoke test)");
+  cmd->add_flag("--force", o->force, "Overwrite existing outputs");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace tfu::cli
