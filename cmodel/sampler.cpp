@@ -370,10 +370,8 @@ std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightR
     tile_weights_2d(rom, recon, u.f, v.f, w2);
   }
   std::array<int, 4> col, row;
-  for (int k = 0; k < taps; ++k) {
-    col[static_cast<size_t>(k)] = rd.col(u.i0 + m0 + k);
-    row[static_cast<size_t>(k)] = rd.row(v.i0 + m0 + k);
-  }
+  wrap_run(rd.ws, u.i0 + m0, taps, rd.img.width, col.data());
+  wrap_run(rd.wt, v.i0 + m0, taps, rd.img.height, row.data());
   if (rd.fmt != TexelFormat::VS16X2) {
     // 8-bit channels: |sum c w| <= 255 M (sum |h|)^2 < 2^31 for b <= 16, so 32 bits suffice.
     const Rgba8 border = encode_texel(rd.border, rd.fmt);
@@ -439,20 +437,25 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     }
     case BaseFilter::EdgePreserving: {
       const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
-      std::array<Texel4, lee_jen::kTexels> c{};
+      // Columns and rows -1..2 around the centre square, wrapped once each.
+      std::array<int, 4> col, row;
+      wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, col.data());
+      wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, row.data());
       lee_jen::TexelMask mask = lee_jen::kAllTexels;
       if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
-        mask = lee_jen::cache_block_mask(wrap_index(cfg_.wrap_s, u.i0, img.width),
-                                         wrap_index(cfg_.wrap_s, u.i0 + 1, img.width),
-                                         wrap_index(cfg_.wrap_t, v.i0, img.height),
-                                         wrap_index(cfg_.wrap_t, v.i0 + 1, img.height), cfg_.edge_cache_block);
-      // Columns and rows -1..2 around the centre square, wrapped once each.
-      const std::array<int, 4> col{rd.col(u.i0 - 1), rd.col(u.i0), rd.col(u.i0 + 1), rd.col(u.i0 + 2)};
-      const std::array<int, 4> row{rd.row(v.i0 - 1), rd.row(v.i0), rd.row(v.i0 + 1), rd.row(v.i0 + 2)};
-      for (int n = 1; n <= lee_jen::kTexels; ++n) {
-        if (!((mask >> (n - 1)) & 1u)) continue;
-        const lee_jen::TexelPos p = lee_jen::texel_pos(n);
-        c[static_cast<size_t>(n - 1)] = rd.at(col[static_cast<size_t>(p.x + 1)], row[static_cast<size_t>(p.y + 1)]);
+        mask = lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], cfg_.edge_cache_block);
+      static const auto kPos = [] {
+        std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
+        for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
+        return p;
+      }();
+      std::array<Texel4, lee_jen::kTexels> c;
+      for (size_t k = 0; k < c.size(); ++k) {
+        if (!((mask >> k) & 1u)) {
+          c[k] = {0, 0, 0, 0};
+          continue;
+        }
+        c[k] = rd.at(col[static_cast<size_t>(kPos[k].x + 1)], row[static_cast<size_t>(kPos[k].y + 1)]);
       }
       return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, tex_.format);
     }
@@ -484,8 +487,10 @@ inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border,
   const int64_t u = float_to_fixed(s, static_cast<uint32_t>(w), 8) - 128;
   const int64_t v = float_to_fixed(t, static_cast<uint32_t>(h), 8) - 128;
   const int32_t fu = static_cast<int32_t>(u & 255), fv = static_cast<int32_t>(v & 255);
-  const int x0 = wrap_index(ws, u >> 8, w), x1 = wrap_index(ws, (u >> 8) + 1, w);
-  const int y0 = wrap_index(wt, v >> 8, h), y1 = wrap_index(wt, (v >> 8) + 1, h);
+  int xs[2], ys[2];
+  wrap_run(ws, u >> 8, 2, w, xs);
+  wrap_run(wt, v >> 8, 2, h, ys);
+  const int x0 = xs[0], x1 = xs[1], y0 = ys[0], y1 = ys[1];
   const Rgba8* base = img.texels.data();
   const auto word = [&](int x, int y) {
     return (x | y) < 0 ? border : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];

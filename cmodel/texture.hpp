@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <climits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,7 +105,13 @@ const std::vector<std::string>& wrap_mode_names();
 // Coordinates are int64 because repeat keeps any integer meaningful (fixed_coord.hpp saturates at
 // 2^46 / 2^F texels).
 constexpr int wrap_repeat(int64_t i, int size) {
-  const auto r = static_cast<int>(i % size);
+  if ((size & (size - 1)) == 0) return static_cast<int>(i & (size - 1));  // power of two: the low bits
+  int r;
+  if (i >= INT32_MIN && i <= INT32_MAX) {
+    r = static_cast<int32_t>(i) % size;  // 32-bit divide when it fits (most coordinates)
+  } else {
+    r = static_cast<int>(i % size);
+  }
   return r < 0 ? r + size : r;
 }
 constexpr int wrap_mirrored_repeat(int64_t i, int size) {
@@ -127,6 +134,19 @@ constexpr int wrap_index(WrapMode m, int64_t i, int size) {
     case WrapMode::ClampToBorder: return wrap_clamp_to_border(i, size);
   }
   return 0;
+}
+
+// Wrap n consecutive texel indices start, start + 1, ... (the taps of one filter row or column):
+// the first through wrap_index, the rest by stepping for repeat (no divider per tap).
+inline void wrap_run(WrapMode m, int64_t start, int n, int size, int* out) {
+  out[0] = wrap_index(m, start, size);
+  for (int k = 1; k < n; ++k) {
+    if (m == WrapMode::Repeat) {
+      out[k] = out[k - 1] + 1 == size ? 0 : out[k - 1] + 1;
+    } else {
+      out[k] = wrap_index(m, start + k, size);
+    }
+  }
 }
 
 // ---- File I/O through OpenImageIO (unassociated alpha on read and write) ----

@@ -7,6 +7,7 @@
 // LOD unit computes it).
 // Targets (issue TFU-B item 8): bilinear >= 50 M samples/s, trilinear >= 20 M, cubic >= 10 M,
 // edge-preserving >= 3 M, ours >= 3x TextureSystem, 1080p trilinear frame < 0.5 s.
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -39,7 +40,8 @@ struct Request {
 
 struct Workload {
   Texture texture;
-  std::vector<Request> requests;
+  std::vector<Request> requests;                  // both scenes, concatenated
+  std::array<std::vector<Request>, 2> per_scene;  // 0: magnified, 1: ground_plane
 };
 
 // Scene traces with lambda computed for a 1024^2 texture.
@@ -48,6 +50,7 @@ const Workload& workload() {
     Workload out;
     out.texture = make_procedural("noise", 1024).texture;
     generate_mipmaps(out.texture, MipMethod::Box);
+    int scene_index = 0;
     for (const char* name : {"magnified", "ground_plane"}) {
       // Rendered at 1024 pixels wide so that the 1024^2 texture is seen at about one texel per
       // pixel on the magnified quad (scene 1) and from 1:1 to far minified on the plane (scene 2).
@@ -62,8 +65,12 @@ const Workload& workload() {
         const float s[4] = {q[i].s, q[i + 1].s, q[i + 2].s, q[i + 3].s};
         const float t[4] = {q[i].t, q[i + 1].t, q[i + 2].t, q[i + 3].t};
         const int32_t lam = lambda_from_quad(s, t, 1024, 1024);
-        for (size_t k = 0; k < 4; ++k) out.requests.push_back({s[k], t[k], lam});
+        for (size_t k = 0; k < 4; ++k) {
+          out.requests.push_back({s[k], t[k], lam});
+          out.per_scene[static_cast<size_t>(scene_index)].push_back({s[k], t[k], lam});
+        }
       }
+      ++scene_index;
     }
     return out;
   }();
@@ -77,16 +84,25 @@ SamplerConfig config(const char* filter, const char* kernel = "catmull-rom") {
   return c;
 }
 
+// state.range(0): 0 = scene 1 (magnified) requests, 1 = scene 2 (ground plane), 2 = both.
+const std::vector<Request>& requests_of(const benchmark::State& state) {
+  const Workload& w = workload();
+  const auto r = state.range(0);
+  return r == 2 ? w.requests : w.per_scene[static_cast<size_t>(r)];
+}
+
 void run_mode(benchmark::State& state, const char* filter, const char* kernel) {
   const Workload& w = workload();
+  const std::vector<Request>& reqs = requests_of(state);
+  state.SetLabel(state.range(0) == 0 ? "scene 1 magnified" : state.range(0) == 1 ? "scene 2 ground plane" : "both");
   const Sampler smp(w.texture, config(filter, kernel));
   uint32_t sink = 0;
   size_t i = 0;
   for (auto _ : state) {
-    const Request& r = w.requests[i];
+    const Request& r = reqs[i];
     const Rgba8 c = smp.sample(r.s, r.t, r.lambda);
     sink += c.r;
-    if (++i == w.requests.size()) i = 0;
+    if (++i == reqs.size()) i = 0;
   }
   benchmark::DoNotOptimize(sink);
   state.SetItemsProcessed(state.iterations());
@@ -99,13 +115,13 @@ void BM_CubicBspline(benchmark::State& s) { run_mode(s, "CUBIC", "bspline"); }
 void BM_CubicMipmapLinear(benchmark::State& s) { run_mode(s, "CUBIC_MIPMAP_LINEAR", "catmull-rom"); }
 void BM_EdgePreserving(benchmark::State& s) { run_mode(s, "EDGE_PRESERVING", "catmull-rom"); }
 void BM_EdgePreservingMipmapLinear(benchmark::State& s) { run_mode(s, "EDGE_PRESERVING_MIPMAP_LINEAR", "catmull-rom"); }
-BENCHMARK(BM_Bilinear);
-BENCHMARK(BM_Trilinear);
-BENCHMARK(BM_CubicCatmullRom);
-BENCHMARK(BM_CubicBspline);
-BENCHMARK(BM_CubicMipmapLinear);
-BENCHMARK(BM_EdgePreserving);
-BENCHMARK(BM_EdgePreservingMipmapLinear);
+BENCHMARK(BM_Bilinear)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_Trilinear)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_CubicCatmullRom)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_CubicBspline)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_CubicMipmapLinear)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_EdgePreserving)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_EdgePreservingMipmapLinear)->Arg(0)->Arg(1)->Arg(2);
 
 // ---- OpenImageIO TextureSystem on the same level-0 texture and coordinates ----
 struct OiioSetup {
@@ -136,7 +152,8 @@ OIIO::TextureOpt oiio_opt(OIIO::TextureOpt::InterpMode interp) {
 }
 
 void run_oiio(benchmark::State& state, OIIO::TextureOpt::InterpMode interp) {
-  const Workload& w = workload();
+  const std::vector<Request>& reqs = requests_of(state);
+  state.SetLabel(state.range(0) == 0 ? "scene 1 magnified" : state.range(0) == 1 ? "scene 2 ground plane" : "both");
   const OiioSetup& o = oiio();
   OIIO::TextureOpt opt = oiio_opt(interp);
   OIIO::TextureSystem::Perthread* pt = o.ts->get_perthread_info();
@@ -144,18 +161,18 @@ void run_oiio(benchmark::State& state, OIIO::TextureOpt::InterpMode interp) {
   float sink = 0;
   size_t i = 0;
   for (auto _ : state) {
-    const Request& r = w.requests[i];
+    const Request& r = reqs[i];
     o.ts->texture(o.handle, pt, opt, r.s, r.t, 0, 0, 0, 0, 4, res);
     sink += res[0];
-    if (++i == w.requests.size()) i = 0;
+    if (++i == reqs.size()) i = 0;
   }
   benchmark::DoNotOptimize(sink);
   state.SetItemsProcessed(state.iterations());
 }
 void BM_OiioBilinear(benchmark::State& s) { run_oiio(s, OIIO::TextureOpt::InterpBilinear); }
 void BM_OiioBicubic(benchmark::State& s) { run_oiio(s, OIIO::TextureOpt::InterpBicubic); }
-BENCHMARK(BM_OiioBilinear);
-BENCHMARK(BM_OiioBicubic);
+BENCHMARK(BM_OiioBilinear)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_OiioBicubic)->Arg(0)->Arg(1)->Arg(2);
 
 // ---- Renderer: scene 2 at 1920x1080 with trilinear, all cores ----
 void BM_RenderGroundPlane1080pTrilinear(benchmark::State& state) {
