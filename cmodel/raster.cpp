@@ -152,12 +152,16 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         t[k] = to_float_coord(st[k].y);
       }
       const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
-      const double lambda_ideal = ctx.opts->ideal ? ideal_lambda(st, tex.width(), tex.height()) : 0.0;
+      // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
+      // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
+      std::array<glm::dvec2, 4> st_if;
+      for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
+      const double lambda_ideal = ctx.opts->ideal ? ideal_lambda(st_if, tex.width(), tex.height()) : 0.0;
       for (int k = 0; k < 4; ++k) {
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(sampler.sample_ideal(st[uk].x, st[uk].y, lambda_ideal))
+        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(sampler.sample_ideal(s[k], t[k], lambda_ideal))
                                                 : sampler.sample(s[k], t[k], lambda);
         ctx.depth[idx] = static_cast<float>(z[uk]);
         if (ctx.opts->keep_coords) res.coords[idx] = {s[k], t[k]};
