@@ -482,7 +482,8 @@ namespace {
 // LINEAR on one level of an 8-bit format, straight from the texel words: the same arithmetic as
 // filter_linear (one rounding of the Q.16 sum), written as two exact lerps so that the compiler
 // keeps everything in registers. The result of 8-bit inputs is always within 0..255.
-inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border, float s, float t) {
+[[gnu::always_inline]] inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border, float s,
+                                                 float t) {
   const int w = img.width, h = img.height;
   const int64_t u = float_to_fixed(s, static_cast<uint32_t>(w), 8) - 128;
   const int64_t v = float_to_fixed(t, static_cast<uint32_t>(h), 8) - 128;
@@ -509,6 +510,8 @@ inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border,
 Rgba8 Sampler::sample(float s, float t, int32_t lambda) const {
   if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
     // Fast path for LINEAR / LINEAR_MIPMAP_*: bit-identical to the generic path (tested).
+    if (cfg_.mode.mip == MipMode::None)  // GL: no MIP-mapping -> level 0 for magnification and minification
+      return bilinear8(tex_.levels.front(), cfg_.wrap_s, cfg_.wrap_t, cfg_.border, s, t);
     const LodInfo li = lod_info(lambda);
     const Rgba8 border = cfg_.border;
     const Rgba8 a = bilinear8(tex_.levels[static_cast<size_t>(li.level0)], cfg_.wrap_s, cfg_.wrap_t, border, s, t);
