@@ -32,23 +32,14 @@ constexpr int64_t float_to_fixed(float x, uint32_t scale, int frac_bits) {
   const int e = (exp == 0 ? -149 : exp - 150) + frac_bits;
   const uint64_t prod = sig * scale;  // < 2^39
   if (prod == 0) return 0;
-  int64_t mag;  // floor of |x| scale 2^F for positive; for negative we need ceil of magnitude
-  bool inexact = false;
+  const int64_t v = neg ? -static_cast<int64_t>(prod) : static_cast<int64_t>(prod);
   if (e >= 0) {
     if (e > 46 || (prod << e) >> e != prod || (prod << e) > static_cast<uint64_t>(kFixedLimit))
       return neg ? -kFixedLimit : kFixedLimit;
-    mag = static_cast<int64_t>(prod << e);
-  } else if (e <= -64) {
-    mag = 0;
-    inexact = true;
-  } else {
-    const int sh = -e;
-    mag = static_cast<int64_t>(prod >> sh);
-    inexact = (prod & ((uint64_t{1} << sh) - 1)) != 0;
+    return v * (int64_t{1} << e);
   }
-  if (mag > kFixedLimit) mag = kFixedLimit;
-  if (!neg) return mag;
-  return -(mag + (inexact ? 1 : 0));  // floor of a negative value
+  if (e <= -63) return neg ? -1 : 0;  // |value| < 1: floor is -1 or 0
+  return v >> -e;  // arithmetic shift = floor for both signs (C++20)
 }
 
 // Nearest fixed-point value, ties toward +infinity: floor(x * scale * 2^F + 1/2).

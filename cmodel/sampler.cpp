@@ -497,12 +497,18 @@ namespace {
     return (x | y) < 0 ? border : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
   };
   const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
-  const int32_t gu = 256 - fu, gv = 256 - fv;
-  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu): exact.
-  const auto mix = [&](int32_t p, int32_t q, int32_t r, int32_t z) {
-    return static_cast<uint8_t>((gv * (p * gu + q * fu) + fv * (r * gu + z * fu) + (1 << 15)) >> 16);
-  };
-  return {mix(a.r, b.r, c.r, d.r), mix(a.g, b.g, c.g, d.g), mix(a.b, b.b, c.b, d.b), mix(a.a, b.a, c.a, d.a)};
+  const uint64_t gu = static_cast<uint64_t>(256 - fu), gv = static_cast<uint64_t>(256 - fv);
+  const auto ufu = static_cast<uint64_t>(fu), ufv = static_cast<uint64_t>(fv);
+  // Two channels per 64-bit word (32-bit lanes): (R, B) and (G, A). Exact: a horizontal lerp is at
+  // most 255 * 256 < 2^16 per lane, the vertical one below 2^24, so lanes never carry into each other.
+  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu).
+  const auto rb = [](Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); };
+  const auto ga = [](Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); };
+  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
+  const uint64_t srb = gv * (rb(a) * gu + rb(b) * ufu) + ufv * (rb(c) * gu + rb(d) * ufu) + kHalf;
+  const uint64_t sga = gv * (ga(a) * gu + ga(b) * ufu) + ufv * (ga(c) * gu + ga(d) * ufu) + kHalf;
+  return {static_cast<uint8_t>(srb >> 16), static_cast<uint8_t>(sga >> 16), static_cast<uint8_t>(srb >> 48),
+          static_cast<uint8_t>(sga >> 48)};
 }
 
 }  // namespace
