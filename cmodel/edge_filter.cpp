@@ -25,44 +25,50 @@ struct Centre {
 constexpr std::array<Centre, 4> kCentre{{
     {4, 5, 8, 1, 3, 9}, {5, 4, 9, 2, 6, 8}, {8, 4, 9, 7, 11, 5}, {9, 5, 8, 10, 12, 4}}};
 
-template <typename T>
-struct Keyed {
-  T y;
+// Sort keys of the median network. The fixed-point datapath uses the integer key Y * 16 + n, which
+// is unique, so one comparator decides; the ideal path pairs a real Y with the texel number.
+struct RealKey {
+  double y;
   int n;
 };
-template <typename T>
-constexpr bool before(const Keyed<T>& a, const Keyed<T>& b) {
-  return a.y < b.y || (a.y == b.y && a.n < b.n);
-}
+constexpr bool before(int32_t a, int32_t b) { return a < b; }
+constexpr bool before(const RealKey& a, const RealKey& b) { return a.y < b.y || (a.y == b.y && a.n < b.n); }
+constexpr int texel_of(int32_t k) { return k & 15; }
+constexpr int texel_of(const RealKey& k) { return k.n; }
 
-// Median of 3 or 5 texels ordered by (Y, texel number): a comparator network in hardware, a sort here.
-template <typename T, size_t N>
-int median_of(std::array<Keyed<T>, N> k) {
-  for (size_t i = 1; i < N; ++i)  // insertion sort of 3 or 5 keys
-    for (size_t j = i; j > 0 && before(k[j], k[j - 1]); --j) std::swap(k[j], k[j - 1]);
-  return k[N / 2].n;
+// Compare cells (Lee & Jen Fig. 10): each outputs the smaller and the larger of its inputs.
+template <typename K>
+constexpr K cell_min(const K& a, const K& b) { return before(b, a) ? b : a; }
+template <typename K>
+constexpr K cell_max(const K& a, const K& b) { return before(b, a) ? a : b; }
+// Three-point median: three cells. Five-point median: the four cells that drop the extremes of
+// (a, b) and (c, d), then a three-point median with e.
+template <typename K>
+constexpr K median3(const K& a, const K& b, const K& c) { return cell_max(cell_min(a, b), cell_min(cell_max(a, b), c)); }
+template <typename K>
+constexpr K median5(const K& a, const K& b, const K& c, const K& d, const K& e) {
+  return median3(e, cell_max(cell_min(a, b), cell_min(c, d)), cell_min(cell_max(a, b), cell_max(c, d)));
 }
 
 // Low-pass of Eq. 4 with the Sec. 3 adjustments: low[n] = number of the texel whose value is the
-// median for Cn. Reads y[n] only for available texels.
-template <typename T>
-std::array<int, kTexels + 1> low_pass(const std::array<T, kTexels + 1>& y, TexelMask available) {
-  const auto key = [&](int n) { return Keyed<T>{y[static_cast<size_t>(n)], n}; };
+// median for Cn. Reads key[n] only for available texels.
+template <typename K>
+std::array<int, kTexels + 1> low_pass(const std::array<K, kTexels + 1>& key, TexelMask available) {
+  const auto k = [&](int n) -> const K& { return key[static_cast<size_t>(n)]; };
   std::array<int, kTexels + 1> low{};
   for (const Boundary& b : kBoundary)
-    if (has(available, b.self))
-      low[static_cast<size_t>(b.self)] = median_of<T, 3>({key(b.self), key(b.a), key(b.b)});
-  for (const Centre& k : kCentre) {
-    const bool h1 = has(available, k.o1), h2 = has(available, k.o2);
-    int m;
+    if (has(available, b.self)) low[static_cast<size_t>(b.self)] = texel_of(median3(k(b.self), k(b.a), k(b.b)));
+  for (const Centre& c : kCentre) {
+    const bool h1 = has(available, c.o1), h2 = has(available, c.o2);
+    K m;
     if (h1 && h2) {
-      m = median_of<T, 5>({key(k.self), key(k.c1), key(k.c2), key(k.o1), key(k.o2)});
+      m = median5(k(c.self), k(c.c1), k(c.c2), k(c.o1), k(c.o2));
     } else if (h1 || h2) {
-      m = median_of<T, 5>({key(k.self), key(k.c1), key(k.c2), key(h1 ? k.o1 : k.o2), key(k.opposite)});
+      m = median5(k(c.self), k(c.c1), k(c.c2), k(h1 ? c.o1 : c.o2), k(c.opposite));
     } else {
-      m = median_of<T, 3>({key(k.self), key(k.c1), key(k.c2)});
+      m = median3(k(c.self), k(c.c1), k(c.c2));
     }
-    low[static_cast<size_t>(k.self)] = m;
+    low[static_cast<size_t>(c.self)] = texel_of(m);
   }
   return low;
 }
@@ -109,7 +115,8 @@ Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMa
   std::array<int32_t, kTexels + 1> y{};
   for (int n = 1; n <= kTexels; ++n)
     if (has(available, n)) {
-      y[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt);
+      // Key Y * 16 + n: unique, so the comparators order by (Y, texel number) with one compare.
+      y[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt) * 16 + n;
       read = static_cast<TexelMask>(read | (1u << (n - 1)));
     }
   const std::array<int, kTexels + 1> low = low_pass(y, available);
@@ -170,11 +177,11 @@ Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMa
 
 std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c,
                                             TexelMask available, double xf, double yf, TexelFormat fmt) {
-  std::array<double, kTexels + 1> y{};
+  std::array<RealKey, kTexels + 1> y{};
   for (int n = 1; n <= kTexels; ++n)
     if (has(available, n)) {
       const auto& v = c[static_cast<size_t>(n - 1)];
-      y[static_cast<size_t>(n)] = fmt == TexelFormat::VS16X2 ? v[0] + v[1] : 0.3125 * v[0] + 0.5625 * v[1] + 0.125 * v[2];
+      y[static_cast<size_t>(n)] = {fmt == TexelFormat::VS16X2 ? v[0] + v[1] : 0.3125 * v[0] + 0.5625 * v[1] + 0.125 * v[2], n};
     }
   const std::array<int, kTexels + 1> low = low_pass(y, available);
   const auto lowv = [&](int n) -> const std::array<double, 4>& {
