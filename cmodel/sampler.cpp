@@ -358,16 +358,19 @@ Texel4 filter_linear(const LevelReader& rd, float s, float t) {
   return out;
 }
 
-// Accumulated sum c w per channel at weight scale M.
-std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                        const WeightMemo* memo, float s, float t) {
+// Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
+template <int taps>
+std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
+                                          const WeightMemo* memo, float s, float t) {
   const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
-  const int taps = rom.taps(), m0 = rom.first_tap();
-  std::array<int32_t, 16> w2;
+  const int m0 = rom.first_tap();
+  std::array<int32_t, 16> w2_local;
+  const int32_t* w2;
   if (memo) {
-    w2 = memo->w[static_cast<size_t>(rom.nearest_address(v.f, 8) * memo->entries + rom.nearest_address(u.f, 8))];
+    w2 = memo->w[static_cast<size_t>(rom.nearest_address(v.f, 8) * memo->entries + rom.nearest_address(u.f, 8))].data();
   } else {
-    tile_weights_2d(rom, recon, u.f, v.f, w2);
+    tile_weights_2d(rom, recon, u.f, v.f, w2_local);
+    w2 = w2_local.data();
   }
   std::array<int, 4> col, row;
   wrap_run(rd.ws, u.i0 + m0, taps, rd.img.width, col.data());
@@ -375,32 +378,46 @@ std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightR
   if (rd.fmt != TexelFormat::VS16X2) {
     // 8-bit channels: |sum c w| <= 255 M (sum |h|)^2 < 2^31 for b <= 16, so 32 bits suffice.
     const Rgba8 border = encode_texel(rd.border, rd.fmt);
-    std::array<int32_t, 4> a32{0, 0, 0, 0};
+    // Two channels per 64-bit word, (R, B) and (G, A), in signed 32-bit lanes: modular arithmetic
+    // keeps x = low + high 2^32 exactly, and each lane's true sum is below 2^31 in magnitude, so
+    // both lanes are recovered exactly afterwards.
+    uint64_t arb = 0, aga = 0;
     for (int j = 0; j < taps; ++j) {
       const int y = row[static_cast<size_t>(j)];
       for (int i = 0; i < taps; ++i) {
-        const int32_t w = w2[static_cast<size_t>(j * taps + i)];
+        const auto w = static_cast<uint64_t>(static_cast<int64_t>(w2[j * taps + i]));
         const int x = col[static_cast<size_t>(i)];
         const Rgba8 c = (x | y) < 0 ? border
                                     : rd.img.texels[static_cast<size_t>(y) * static_cast<size_t>(rd.img.width) +
                                                     static_cast<size_t>(x)];
-        a32[0] += c.r * w;
-        a32[1] += c.g * w;
-        a32[2] += c.b * w;
-        a32[3] += c.a * w;
+        arb += (uint64_t{c.r} | (uint64_t{c.b} << 32)) * w;
+        aga += (uint64_t{c.g} | (uint64_t{c.a} << 32)) * w;
       }
     }
-    return {a32[0], a32[1], a32[2], a32[3]};
+    const auto lanes = [](uint64_t x) {
+      const auto lo = static_cast<int32_t>(static_cast<uint32_t>(x));
+      const auto hi = static_cast<int32_t>(static_cast<uint32_t>((x - static_cast<uint64_t>(static_cast<int64_t>(lo))) >> 32));
+      return std::pair<int64_t, int64_t>{lo, hi};
+    };
+    const auto [r, b] = lanes(arb);
+    const auto [g, a] = lanes(aga);
+    return {r, g, b, a};
   }
   std::array<int64_t, 4> acc{};
   for (int j = 0; j < taps; ++j)
     for (int i = 0; i < taps; ++i) {
-      const int32_t w = w2[static_cast<size_t>(j * taps + i)];
+      const int32_t w = w2[j * taps + i];
       if (w == 0) continue;
       const Texel4 c = rd.at(col[static_cast<size_t>(i)], row[static_cast<size_t>(j)]);
       for (size_t ch = 0; ch < 4; ++ch) acc[ch] += int64_t{c[ch]} * w;
     }
   return acc;
+}
+
+std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
+                                        const WeightMemo* memo, float s, float t) {
+  return rom.taps() == 4 ? filter_tiled_acc_n<4>(rd, rom, recon, memo, s, t)
+                         : filter_tiled_acc_n<2>(rd, rom, recon, memo, s, t);
 }
 
 }  // namespace
@@ -413,27 +430,29 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     case BaseFilter::Linear: return tex_.format == TexelFormat::VS16X2 ? filter_linear(rd, s, t) : filter_linear8(rd, s, t);
     case BaseFilter::Cubic: {
       const auto M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
-      Texel4 out{};
+      const auto [lo, hi] = channel_range(tex_.format);
+      // Normalize and clamp channel by channel (scalar: no vector reload of freshly stored lanes).
+      const auto clamp_ch = [lo = lo, hi = hi](int64_t v) {
+        return static_cast<int32_t>(v < lo ? lo : (v > hi ? hi : v));
+      };
       if (impl_->prefiltered) {
         const LevelReader cr{impl_->coeff_levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
                              TexelFormat::RGBA8, {}};
         const auto acc = filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
         // out = (acc S + B M) / (M 2^12), round half up.
         const int64_t den = M << kBsplineScaleBits;
-        for (size_t ch = 0; ch < 4; ++ch)
-          out[ch] = static_cast<int32_t>(
-              floor_div(acc[ch] * impl_->bspline_scale_q + impl_->bspline_bias_q * M + den / 2, den));
-      } else {
-        const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
-        if (M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
-          for (size_t ch = 0; ch < 4; ++ch) out[ch] = static_cast<int32_t>(floor_div(2 * acc[ch] + 255, 510));
-        } else {
-          for (size_t ch = 0; ch < 4; ++ch) out[ch] = static_cast<int32_t>(floor_div(2 * acc[ch] + M, 2 * M));
-        }
+        const auto dec = [&](int64_t a) {
+          return clamp_ch(floor_div(a * impl_->bspline_scale_q + impl_->bspline_bias_q * M + den / 2, den));
+        };
+        return {dec(acc[0]), dec(acc[1]), dec(acc[2]), dec(acc[3])};
       }
-      const auto [lo, hi] = channel_range(tex_.format);
-      for (auto& v : out) v = std::clamp(v, lo, hi);
-      return out;
+      const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
+      if (M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
+        const auto n8 = [&](int64_t a) { return clamp_ch(floor_div(2 * a + 255, 510)); };
+        return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
+      }
+      const auto nb = [&](int64_t a) { return clamp_ch(floor_div(2 * a + M, 2 * M)); };
+      return {nb(acc[0]), nb(acc[1]), nb(acc[2]), nb(acc[3])};
     }
     case BaseFilter::EdgePreserving: {
       const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
