@@ -149,7 +149,11 @@ struct WeightMemo {
 
 }  // namespace
 
+using Linear8Fn = Rgba8 (*)(const Image&, Rgba8, float, float);
+Linear8Fn bilinear8_pick(WrapMode ws, WrapMode wt);  // below: LINEAR fast path per wrap-mode pair
+
 struct Sampler::Impl {
+  Linear8Fn linear8 = nullptr;
   std::unique_ptr<FilterKernel> kernel;       // CUBIC modes
   std::unique_ptr<TileWeightRom> rom;         // CUBIC modes
   bool prefiltered = false;                   // bspline-interp
@@ -165,6 +169,7 @@ struct Sampler::Impl {
 Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::move(cfg)), impl_(new Impl) {
   tex_.validate("texture");
   impl_->border = decode_texel(cfg_.border, tex_.format);
+  impl_->linear8 = bilinear8_pick(cfg_.wrap_s, cfg_.wrap_t);
   impl_->scale = tex_.format == TexelFormat::VS16X2 ? 32640.0 : 255.0;
   if (cfg_.edge_cache_block < 4 || cfg_.edge_cache_block > 64 ||
       (cfg_.edge_cache_block & (cfg_.edge_cache_block - 1)) != 0)
@@ -512,8 +517,10 @@ namespace {
   wrap_run(wt, v >> 8, 2, h, ys);
   const int x0 = xs[0], x1 = xs[1], y0 = ys[0], y1 = ys[1];
   const Rgba8* base = img.texels.data();
+  const bool may_border = ws == WrapMode::ClampToBorder || wt == WrapMode::ClampToBorder;
   const auto word = [&](int x, int y) {
-    return (x | y) < 0 ? border : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
+    return may_border && (x | y) < 0 ? border
+                                     : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
   };
   const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
   const uint64_t gu = static_cast<uint64_t>(256 - fu), gv = static_cast<uint64_t>(256 - fv);
@@ -530,18 +537,44 @@ namespace {
           static_cast<uint8_t>(sga >> 48)};
 }
 
+// One instantiation per pair of wrap modes, so the wrap unit and the border select fold away.
+template <WrapMode kWs, WrapMode kWt>
+Rgba8 bilinear8_for(const Image& img, Rgba8 border, float s, float t) {
+  return bilinear8(img, kWs, kWt, border, s, t);
+}
+template <WrapMode kWs>
+Linear8Fn bilinear8_pick_t(WrapMode wt) {
+  switch (wt) {
+    case WrapMode::Repeat: return &bilinear8_for<kWs, WrapMode::Repeat>;
+    case WrapMode::MirroredRepeat: return &bilinear8_for<kWs, WrapMode::MirroredRepeat>;
+    case WrapMode::ClampToEdge: return &bilinear8_for<kWs, WrapMode::ClampToEdge>;
+    case WrapMode::ClampToBorder: return &bilinear8_for<kWs, WrapMode::ClampToBorder>;
+  }
+  return nullptr;
+}
+
 }  // namespace
+
+Linear8Fn bilinear8_pick(WrapMode ws, WrapMode wt) {
+  switch (ws) {
+    case WrapMode::Repeat: return bilinear8_pick_t<WrapMode::Repeat>(wt);
+    case WrapMode::MirroredRepeat: return bilinear8_pick_t<WrapMode::MirroredRepeat>(wt);
+    case WrapMode::ClampToEdge: return bilinear8_pick_t<WrapMode::ClampToEdge>(wt);
+    case WrapMode::ClampToBorder: return bilinear8_pick_t<WrapMode::ClampToBorder>(wt);
+  }
+  return nullptr;
+}
 
 Rgba8 Sampler::sample(float s, float t, int32_t lambda) const {
   if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
     // Fast path for LINEAR / LINEAR_MIPMAP_*: bit-identical to the generic path (tested).
+    const Linear8Fn lin = impl_->linear8;
     if (cfg_.mode.mip == MipMode::None)  // GL: no MIP-mapping -> level 0 for magnification and minification
-      return bilinear8(tex_.levels.front(), cfg_.wrap_s, cfg_.wrap_t, cfg_.border, s, t);
+      return lin(tex_.levels.front(), cfg_.border, s, t);
     const LodInfo li = lod_info(lambda);
-    const Rgba8 border = cfg_.border;
-    const Rgba8 a = bilinear8(tex_.levels[static_cast<size_t>(li.level0)], cfg_.wrap_s, cfg_.wrap_t, border, s, t);
+    const Rgba8 a = lin(tex_.levels[static_cast<size_t>(li.level0)], cfg_.border, s, t);
     if (li.blend == 0) return a;
-    const Rgba8 b = bilinear8(tex_.levels[static_cast<size_t>(li.level1)], cfg_.wrap_s, cfg_.wrap_t, border, s, t);
+    const Rgba8 b = lin(tex_.levels[static_cast<size_t>(li.level1)], cfg_.border, s, t);
     const int32_t f = li.blend, g = 256 - f;
     const auto mix = [f, g](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * g + q * f + 128) >> 8); };
     return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
