@@ -149,11 +149,7 @@ struct WeightMemo {
 
 }  // namespace
 
-using Linear8Fn = Rgba8 (*)(const Image&, Rgba8, float, float);
-Linear8Fn bilinear8_pick(WrapMode ws, WrapMode wt);  // below: LINEAR fast path per wrap-mode pair
-
 struct Sampler::Impl {
-  Linear8Fn linear8 = nullptr;
   std::unique_ptr<FilterKernel> kernel;       // CUBIC modes
   std::unique_ptr<TileWeightRom> rom;         // CUBIC modes
   bool prefiltered = false;                   // bspline-interp
@@ -169,7 +165,15 @@ struct Sampler::Impl {
 Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::move(cfg)), impl_(new Impl) {
   tex_.validate("texture");
   impl_->border = decode_texel(cfg_.border, tex_.format);
-  impl_->linear8 = bilinear8_pick(cfg_.wrap_s, cfg_.wrap_t);
+  sample_fn_ = &sample_generic;
+  if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
+    switch (cfg_.wrap_s) {
+      case WrapMode::Repeat: sample_fn_ = pick_linear8<WrapMode::Repeat>(cfg_.wrap_t); break;
+      case WrapMode::MirroredRepeat: sample_fn_ = pick_linear8<WrapMode::MirroredRepeat>(cfg_.wrap_t); break;
+      case WrapMode::ClampToEdge: sample_fn_ = pick_linear8<WrapMode::ClampToEdge>(cfg_.wrap_t); break;
+      case WrapMode::ClampToBorder: sample_fn_ = pick_linear8<WrapMode::ClampToBorder>(cfg_.wrap_t); break;
+    }
+  }
   impl_->scale = tex_.format == TexelFormat::VS16X2 ? 32640.0 : 255.0;
   if (cfg_.edge_cache_block < 4 || cfg_.edge_cache_block > 64 ||
       (cfg_.edge_cache_block & (cfg_.edge_cache_block - 1)) != 0)
@@ -537,49 +541,37 @@ namespace {
           static_cast<uint8_t>(sga >> 48)};
 }
 
-// One instantiation per pair of wrap modes, so the wrap unit and the border select fold away.
-template <WrapMode kWs, WrapMode kWt>
-Rgba8 bilinear8_for(const Image& img, Rgba8 border, float s, float t) {
-  return bilinear8(img, kWs, kWt, border, s, t);
-}
-template <WrapMode kWs>
-Linear8Fn bilinear8_pick_t(WrapMode wt) {
-  switch (wt) {
-    case WrapMode::Repeat: return &bilinear8_for<kWs, WrapMode::Repeat>;
-    case WrapMode::MirroredRepeat: return &bilinear8_for<kWs, WrapMode::MirroredRepeat>;
-    case WrapMode::ClampToEdge: return &bilinear8_for<kWs, WrapMode::ClampToEdge>;
-    case WrapMode::ClampToBorder: return &bilinear8_for<kWs, WrapMode::ClampToBorder>;
-  }
-  return nullptr;
-}
-
 }  // namespace
 
-Linear8Fn bilinear8_pick(WrapMode ws, WrapMode wt) {
-  switch (ws) {
-    case WrapMode::Repeat: return bilinear8_pick_t<WrapMode::Repeat>(wt);
-    case WrapMode::MirroredRepeat: return bilinear8_pick_t<WrapMode::MirroredRepeat>(wt);
-    case WrapMode::ClampToEdge: return bilinear8_pick_t<WrapMode::ClampToEdge>(wt);
-    case WrapMode::ClampToBorder: return bilinear8_pick_t<WrapMode::ClampToBorder>(wt);
-  }
-  return nullptr;
+Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambda) {
+  return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
 }
 
-Rgba8 Sampler::sample(float s, float t, int32_t lambda) const {
-  if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
-    // Fast path for LINEAR / LINEAR_MIPMAP_*: bit-identical to the generic path (tested).
-    const Linear8Fn lin = impl_->linear8;
-    if (cfg_.mode.mip == MipMode::None)  // GL: no MIP-mapping -> level 0 for magnification and minification
-      return lin(tex_.levels.front(), cfg_.border, s, t);
-    const LodInfo li = lod_info(lambda);
-    const Rgba8 a = lin(tex_.levels[static_cast<size_t>(li.level0)], cfg_.border, s, t);
-    if (li.blend == 0) return a;
-    const Rgba8 b = lin(tex_.levels[static_cast<size_t>(li.level1)], cfg_.border, s, t);
-    const int32_t f = li.blend, g = 256 - f;
-    const auto mix = [f, g](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * g + q * f + 128) >> 8); };
-    return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
+// LINEAR / LINEAR_MIPMAP_* for 8-bit formats, one instantiation per pair of wrap modes so that the
+// wrap unit and the border select fold away. Bit-identical to the generic path (tested).
+template <WrapMode kWs, WrapMode kWt>
+Rgba8 Sampler::sample_linear8(const Sampler& sm, float s, float t, int32_t lambda) {
+  const Rgba8 border = sm.cfg_.border;
+  if (sm.cfg_.mode.mip == MipMode::None)  // GL: no MIP-mapping -> level 0 for magnification and minification
+    return bilinear8(sm.tex_.levels.front(), kWs, kWt, border, s, t);
+  const LodInfo li = sm.lod_info(lambda);
+  const Rgba8 a = bilinear8(sm.tex_.levels[static_cast<size_t>(li.level0)], kWs, kWt, border, s, t);
+  if (li.blend == 0) return a;
+  const Rgba8 b = bilinear8(sm.tex_.levels[static_cast<size_t>(li.level1)], kWs, kWt, border, s, t);
+  const int32_t f = li.blend, g = 256 - f;
+  const auto mix = [f, g](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * g + q * f + 128) >> 8); };
+  return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
+}
+
+template <WrapMode kWs>
+Sampler::SampleFn Sampler::pick_linear8(WrapMode wt) {
+  switch (wt) {
+    case WrapMode::Repeat: return &sample_linear8<kWs, WrapMode::Repeat>;
+    case WrapMode::MirroredRepeat: return &sample_linear8<kWs, WrapMode::MirroredRepeat>;
+    case WrapMode::ClampToEdge: return &sample_linear8<kWs, WrapMode::ClampToEdge>;
+    case WrapMode::ClampToBorder: return &sample_linear8<kWs, WrapMode::ClampToBorder>;
   }
-  return encode_texel(sample_channels(s, t, lambda), tex_.format);
+  return &sample_generic;
 }
 
 // ---------------------------------------------------------------- double-precision ideal

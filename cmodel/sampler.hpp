@@ -93,7 +93,7 @@ class Sampler {
 
   LodInfo lod_info(int32_t lambda_q8_unclamped) const;  // applies bias and clamp
   // One filtered colour, as the RGBA8 word of the texture's format.
-  Rgba8 sample(float s, float t, int32_t lambda_q8_unclamped) const;
+  Rgba8 sample(float s, float t, int32_t lambda_q8_unclamped) const { return sample_fn_(*this, s, t, lambda_q8_unclamped); }
   // The same in datapath channels (before encoding).
   Texel4 sample_channels(float s, float t, int32_t lambda_q8_unclamped) const;
   // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
@@ -110,6 +110,15 @@ class Sampler {
   std::unique_ptr<Impl> impl_;
   Texel4 sample_level(int level, float s, float t) const;
   Texel4 sample_level_filter(BaseFilter f, int level, float s, float t) const;
+  // sample() dispatches once, at construction, to the generic datapath or to a LINEAR fast path
+  // specialized for the wrap modes (bit-identical; software speed only).
+  using SampleFn = Rgba8 (*)(const Sampler&, float, float, int32_t);
+  SampleFn sample_fn_ = nullptr;
+  static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
+  template <WrapMode kWs, WrapMode kWt>
+  static Rgba8 sample_linear8(const Sampler& sm, float s, float t, int32_t lambda);
+  template <WrapMode kWs>
+  static SampleFn pick_linear8(WrapMode wt);
 };
 
 }  // namespace tfu
