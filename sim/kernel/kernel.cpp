@@ -1,0 +1,150 @@
+#include "sim/kernel/kernel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+namespace tfu::sim {
+
+void Stats::write_json(std::ostream& os) const {
+  nlohmann::json j;
+  for (const auto& [k, v] : counters_) j["counters"][k] = v;
+  for (const auto& [k, v] : values_) j["values"][k] = v;
+  for (const auto& [k, v] : histograms_) j["histograms"][k] = v;
+  os << j.dump(2) << '\n';
+}
+
+Module::Module(Simulator& sim, std::string name, Module* parent) : sim_(sim), name_(std::move(name)), parent_(parent) {
+  sim_.add_module(this);
+}
+
+namespace {
+// VCD identifier codes: printable ASCII 33..126, base 94.
+std::string vcd_id(size_t n) {
+  std::string s;
+  do {
+    s += static_cast<char>(33 + n % 94);
+    n /= 94;
+  } while (n);
+  return s;
+}
+std::string binary(uint64_t v, int width) {
+  std::string s(static_cast<size_t>(width), '0');
+  for (int i = 0; i < width; ++i)
+    if ((v >> i) & 1u) s[static_cast<size_t>(width - 1 - i)] = '1';
+  return s;
+}
+}  // namespace
+
+void VcdWriter::add(const std::string& path, int width, std::function<uint64_t()> value) {
+  if (header_done_) throw CheckFailed("VCD signals must be added before the first sample");
+  if (width < 1 || width > 64) throw InputError(fmt::format("VCD signal {}: width {} outside 1..64", path, width));
+  signals_.push_back({path, width, std::move(value), vcd_id(signals_.size()), 0, false});
+}
+
+void VcdWriter::header() {
+  out_ << "$timescale " << timescale_ << " $end\n";
+  // Scopes from the dotted paths, in order of first appearance (signals sorted by path).
+  std::vector<size_t> order(signals_.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return signals_[a].path < signals_[b].path; });
+  std::vector<std::string> open;
+  for (size_t i : order) {
+    const Signal& s = signals_[i];
+    std::vector<std::string> parts;
+    size_t p = 0;
+    for (size_t dot; (dot = s.path.find('.', p)) != std::string::npos; p = dot + 1) parts.push_back(s.path.substr(p, dot - p));
+    const std::string leaf = s.path.substr(p);
+    size_t common = 0;
+    while (common < open.size() && common < parts.size() && open[common] == parts[common]) ++common;
+    while (open.size() > common) {
+      out_ << "$upscope $end\n";
+      open.pop_back();
+    }
+    for (size_t k = common; k < parts.size(); ++k) {
+      out_ << "$scope module " << parts[k] << " $end\n";
+      open.push_back(parts[k]);
+    }
+    out_ << "$var wire " << s.width << ' ' << s.id << ' ' << leaf << " $end\n";
+  }
+  while (!open.empty()) {
+    out_ << "$upscope $end\n";
+    open.pop_back();
+  }
+  out_ << "$enddefinitions $end\n";
+  header_done_ = true;
+}
+
+void VcdWriter::sample(uint64_t cycle) {
+  if (!header_done_) header();
+  bool stamped = false;
+  for (Signal& s : signals_) {
+    const uint64_t v = s.value();
+    if (s.dumped && v == s.last) continue;
+    if (!stamped) {
+      out_ << '#' << cycle << '\n';
+      stamped = true;
+    }
+    if (s.width == 1) {
+      out_ << (v & 1u) << s.id << '\n';
+    } else {
+      out_ << 'b' << binary(v, s.width) << ' ' << s.id << '\n';
+    }
+    s.last = v;
+    s.dumped = true;
+  }
+}
+
+void Simulator::reset() {
+  for (Clocked* c : clocked_) c->reset();
+  cycle_ = last_progress_ = 0;
+}
+
+void Simulator::step() {
+  if (order_ == Order::Forward) {
+    for (Module* m : modules_) m->evaluate();
+  } else {
+    for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
+  }
+  for (Clocked* c : clocked_) c->commit();
+  ++cycle_;
+  if (vcd_) vcd_->sample(cycle_);
+}
+
+std::string Simulator::dump() const {
+  std::string s = fmt::format("cycle {}, last progress at cycle {}:", cycle_, last_progress_);
+  for (const Module* m : modules_) {
+    const std::string st = m->state();
+    if (!st.empty()) s += fmt::format(" [{}: {}]", m->path(), st);
+  }
+  return s;
+}
+
+void Simulator::run(const std::function<bool()>& done, uint64_t max_cycles, const std::function<uint64_t()>& work_done,
+                    uint64_t work_total) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last_print = t0;
+  bool printed = false;
+  const uint64_t start = cycle_;
+  last_progress_ = cycle_;
+  while (!done()) {
+    if (cycle_ - start >= max_cycles) throw CheckFailed(fmt::format("simulation exceeded {} cycles; {}", max_cycles, dump()));
+    if (cycle_ - last_progress_ > watchdog_)
+      throw CheckFailed(fmt::format("deadlock: no progress for {} cycles; {}", watchdog_, dump()));
+    step();
+    if (work_total > 0 && work_done && (cycle_ & 0xFFF) == 0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - t0 > std::chrono::seconds(2) && now - last_print > std::chrono::milliseconds(500)) {
+        std::fprintf(stderr, "\r  simulating: %5.1f %% (cycle %llu)", 100.0 * static_cast<double>(work_done()) / static_cast<double>(work_total),
+                     static_cast<unsigned long long>(cycle_));
+        last_print = now;
+        printed = true;
+      }
+    }
+  }
+  if (printed) std::fprintf(stderr, "\r  simulating: 100.0 %% (cycle %llu)\n", static_cast<unsigned long long>(cycle_));
+}
+
+}  // namespace tfu::sim
