@@ -1,0 +1,99 @@
+#include "rtl/texel_cache.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+
+namespace tfu::rtl {
+
+void TexelCacheConfig::validate() const {
+  if (block != 4 && block != 8) throw InputError(fmt::format("cache block {} must be 4 or 8 texels", block));
+  if (bytes_per_texel != 1 && bytes_per_texel != 4)
+    throw InputError(fmt::format("cache bytes_per_texel {} must be 1 or 4", bytes_per_texel));
+  if (ways < 1) throw InputError(fmt::format("cache ways {} must be at least 1", ways));
+  if (banks != 1 && banks != 4) throw InputError(fmt::format("cache banks {} must be 1 or 4", banks));
+  if (capacity_bytes < line_bytes() * ways)
+    throw InputError(fmt::format("cache capacity {} bytes is below one set ({} ways x {}-byte lines)", capacity_bytes, ways,
+                                 line_bytes()));
+  if (capacity_bytes % (line_bytes() * ways) != 0)
+    throw InputError(fmt::format("cache capacity {} bytes is not a whole number of {}-way sets of {}-byte lines",
+                                 capacity_bytes, ways, line_bytes()));
+}
+
+TexelCache::TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights)
+    : cfg_(cfg) {
+  cfg_.validate();
+  if (level_widths.size() != level_heights.size() || level_widths.empty())
+    throw InputError("texel cache: level sizes missing");
+  uint64_t base = 0;
+  for (size_t l = 0; l < level_widths.size(); ++l) {
+    const int bx = (level_widths[l] + cfg_.block - 1) / cfg_.block;
+    const int by = (level_heights[l] + cfg_.block - 1) / cfg_.block;
+    blocks_per_row_.push_back(bx);
+    level_base_.push_back(base);
+    base += static_cast<uint64_t>(bx) * static_cast<uint64_t>(by);
+  }
+  ways_.resize(static_cast<size_t>(cfg_.sets()) * static_cast<size_t>(cfg_.ways));
+  hits_.assign(level_widths.size(), 0);
+  misses_.assign(level_widths.size(), 0);
+}
+
+uint64_t TexelCache::line_of(int level, int x, int y) const {
+  const auto l = static_cast<size_t>(level);
+  return level_base_[l] + static_cast<uint64_t>(y / cfg_.block) * static_cast<uint64_t>(blocks_per_row_[l]) +
+         static_cast<uint64_t>(x / cfg_.block);
+}
+
+bool TexelCache::lookup(uint64_t line) {
+  ++tick_;
+  const auto set = static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+  Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
+  Way* victim = w;
+  for (int i = 0; i < cfg_.ways; ++i) {
+    if (w[i].tag == line) {
+      w[i].last_use = tick_;
+      return true;
+    }
+    if (w[i].last_use < victim->last_use) victim = &w[i];
+  }
+  victim->tag = line;  // least recently used (an empty way has last_use 0)
+  victim->last_use = tick_;
+  return false;
+}
+
+FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
+  FootprintResult r;
+  std::vector<uint64_t> lines;
+  std::array<std::vector<std::pair<int, int>>, 4> per_bank;
+  for (const TexelTap& t : taps) {
+    const uint64_t line = line_of(level, t.x, t.y);
+    if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+    const size_t bank = cfg_.banks == 4 ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0;
+    auto& b = per_bank[bank];
+    if (std::find(b.begin(), b.end(), std::pair<int, int>{t.x, t.y}) == b.end()) b.emplace_back(t.x, t.y);
+  }
+  for (uint64_t line : lines) {
+    if (lookup(line)) {
+      ++r.hits;
+    } else {
+      ++r.misses;
+      r.missed_lines.push_back(line);
+    }
+  }
+  r.cycles = 1;
+  for (const auto& b : per_bank) r.cycles = std::max(r.cycles, static_cast<int>(b.size()));
+  hits_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
+  misses_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+  return r;
+}
+
+void TexelCache::reset() {
+  std::fill(ways_.begin(), ways_.end(), Way{});
+  std::fill(hits_.begin(), hits_.end(), 0);
+  std::fill(misses_.begin(), misses_.end(), 0);
+  tick_ = 0;
+}
+
+}  // namespace tfu::rtl

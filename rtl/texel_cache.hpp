@@ -1,0 +1,80 @@
+// texel_cache: blocked, set-associative, banked texel cache of the texture filter unit (TFU-C).
+//
+// Ports (per cycle, one footprint request):
+//   in  level   [3:0]   MIP level
+//   in  taps    N x {x[13:0], y[13:0]}  wrapped texel coordinates of the filter footprint (N <= 16)
+//   out hits    [4:0]   distinct cache lines of the footprint found in the cache
+//   out misses  [4:0]   distinct lines missing (their addresses go to the memory model)
+//   out cycles  [4:0]   cycles the footprint occupies the banks (>= 1; bank conflicts add cycles)
+//
+// Organisation (docs/texel-cache.md):
+//   * Memory layout: each level is stored in BxB blocks (B = 4 or 8), one block per cache line, so
+//     a line is B*B*bytes_per_texel bytes. Lines of a level are numbered row-major by block.
+//   * Sets: line index modulo the number of sets; `ways` lines per set; LRU replacement.
+//   * Banks: a texel lives in bank (x & 1) + 2 (y & 1) when banks = 4 (texel parity), so any 2x2
+//     bilinear footprint reads one texel from each bank in one cycle. With banks = 1 every tap is
+//     a separate read. A footprint needs max over banks of (distinct texels in that bank) cycles.
+//   * Misses are counted per level; the memory model (memory_model.hpp) supplies missing lines.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tfu::rtl {
+
+struct TexelCacheConfig {
+  int block = 4;               // B: block side in texels (power of two, 4 or 8)
+  int bytes_per_texel = 4;     // 1 (L8) or 4
+  int capacity_bytes = 16384;  // total data capacity
+  int ways = 4;                // associativity
+  int banks = 4;               // 1 or 4 (texel-parity banking)
+  int line_bytes() const { return block * block * bytes_per_texel; }
+  int lines() const { return capacity_bytes / line_bytes(); }
+  int sets() const { return lines() / ways; }
+  // Throws InputError with one line naming the bad field (capacity below one set, B not a power
+  // of two, zero ways or banks, ...).
+  void validate() const;
+};
+
+struct TexelTap {
+  int x, y;  // wrapped coordinates inside the level
+};
+
+struct FootprintResult {
+  int hits = 0, misses = 0;
+  int cycles = 1;                      // bank occupancy
+  std::vector<uint64_t> missed_lines;  // distinct line addresses fetched from memory
+};
+
+class TexelCache {
+ public:
+  // level_widths[l] = width of level l in texels (line numbering needs the blocks per row).
+  TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights);
+  const TexelCacheConfig& config() const { return cfg_; }
+  // Looks up every tap of one footprint (allocating missed lines, LRU update) and reports hits,
+  // misses and the bank cycles. Taps that share a line count one access to that line.
+  FootprintResult access(int level, std::span<const TexelTap> taps);
+  // Line address (unique over all levels) of the block that holds texel (x, y) of `level`.
+  uint64_t line_of(int level, int x, int y) const;
+  uint64_t hits(int level) const { return hits_.at(static_cast<size_t>(level)); }
+  uint64_t misses(int level) const { return misses_.at(static_cast<size_t>(level)); }
+  void reset();
+
+ private:
+  TexelCacheConfig cfg_;
+  std::vector<int> blocks_per_row_;
+  std::vector<uint64_t> level_base_;  // first line address of each level
+  struct Way {
+    uint64_t tag = ~uint64_t{0};
+    uint64_t last_use = 0;
+  };
+  std::vector<Way> ways_;  // sets * ways
+  uint64_t tick_ = 0;
+  std::vector<uint64_t> hits_, misses_;
+  bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
+};
+
+}  // namespace tfu::rtl
