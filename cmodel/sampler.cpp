@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/edge_filter.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/fixed_coord.hpp"
@@ -110,12 +111,8 @@ inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 
 }  // namespace
 
-namespace {
-
-// The 2D weights of the separable tiled-ROM filter (T x T taps, T <= 4): tile-weight multipliers
-// for all taps but the centre one (offset (0, 0)), which takes the complement so that the weights
-// sum to exactly M = 2^b - 1.
-void tile_weights_2d(const TileWeightRom& rom, RomRecon recon, uint32_t fu, uint32_t fv, std::array<int32_t, 16>& w2) {
+// dp::tile_weights_2d (declared in datapath.hpp).
+void dp::tile_weights_2d(const TileWeightRom& rom, RomRecon recon, uint32_t fu, uint32_t fv, std::array<int32_t, 16>& w2) {
   const int taps = rom.taps(), m0 = rom.first_tap();
   const unsigned bits = rom.spec().bits;
   std::array<int32_t, 8> wx{}, wy{};
@@ -138,6 +135,8 @@ void tile_weights_2d(const TileWeightRom& rom, RomRecon recon, uint32_t fu, uint
     }
   w2[static_cast<size_t>(centre * taps + centre)] = M - sum;
 }
+
+namespace {
 
 // Memo of tile_weights_2d for nearest reconstruction: the weights depend only on the two ROM
 // addresses, so the software model evaluates the multipliers once per address pair (a pure
@@ -201,7 +200,7 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
     for (int ay = 0; ay < memo->entries; ++ay)
       for (int ax = 0; ax < memo->entries; ++ax)
         if (rep[static_cast<size_t>(ax)] >= 0 && rep[static_cast<size_t>(ay)] >= 0)
-          tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[static_cast<size_t>(ax)]),
+          dp::tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[static_cast<size_t>(ax)]),
                           static_cast<uint32_t>(rep[static_cast<size_t>(ay)]),
                           memo->w[static_cast<size_t>(ay * memo->entries + ax)]);
     impl_->memo = std::move(memo);
@@ -299,15 +298,8 @@ Texel4 Sampler::fetch(int level, int x, int y) const {
 
 namespace {
 
-struct LevelCoord {
-  int64_t i0;   // integer texel index of the tap left of / above the sample point
-  uint32_t f;   // 8-bit fraction (Q.8)
-};
-// u = floor(s W 2^8) - 128: texel centres at integers (Q.8).
-LevelCoord texel_coord(float s, int size) {
-  const int64_t u = float_to_fixed(s, static_cast<uint32_t>(size), 8) - 128;
-  return {u >> 8, static_cast<uint32_t>(u & 255)};
-}
+using dp::LevelCoord;
+using dp::texel_coord;
 
 // Wrapped fetch that reads a given level image (the texture or the B-spline coefficients). The
 // wrap unit maps each tap column and row once; a tap outside with clamp-to-border reads `border`.
@@ -331,40 +323,10 @@ Texel4 filter_nearest(const LevelReader& rd, float s, float t) {
             float_to_fixed(t, static_cast<uint32_t>(rd.img.height), 0));
 }
 
-// LINEAR for 8-bit formats: reads the texel words directly, 32-bit accumulation.
-Texel4 filter_linear8(const LevelReader& rd, float s, float t) {
-  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
-  const int32_t fu = static_cast<int32_t>(u.f), fv = static_cast<int32_t>(v.f);
-  const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
-  const Rgba8 border = encode_texel(rd.border, rd.fmt);
-  const auto word = [&](int x, int y) -> Rgba8 {
-    if ((x | y) < 0) return border;
-    return rd.img.texels[static_cast<size_t>(y) * static_cast<size_t>(rd.img.width) + static_cast<size_t>(x)];
-  };
-  const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
-  const int32_t w0 = (256 - fu) * (256 - fv), w1 = fu * (256 - fv), w2 = (256 - fu) * fv, w3 = fu * fv;  // Q.16
-  const auto mix = [&](int32_t p, int32_t q, int32_t r, int32_t z) { return (p * w0 + q * w1 + r * w2 + z * w3 + (1 << 15)) >> 16; };
-  return {mix(a.r, b.r, c.r, d.r), mix(a.g, b.g, c.g, d.g), mix(a.b, b.b, c.b, d.b), mix(a.a, b.a, c.a, d.a)};
-}
-
 Texel4 filter_linear(const LevelReader& rd, float s, float t) {
   const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
-  const int32_t fu = static_cast<int32_t>(u.f), fv = static_cast<int32_t>(v.f);
   const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
-  const std::array<Texel4, 4> c{rd.at(x0, y0), rd.at(x1, y0), rd.at(x0, y1), rd.at(x1, y1)};
-  const std::array<int32_t, 4> w{(256 - fu) * (256 - fv), fu * (256 - fv), (256 - fu) * fv, fu * fv};  // Q.16
-  Texel4 out{};
-  if (rd.fmt != TexelFormat::VS16X2) {  // 8-bit channels: 8 + 16 + 2 bits fit 32
-    for (size_t ch = 0; ch < 4; ++ch)
-      out[ch] = (c[0][ch] * w[0] + c[1][ch] * w[1] + c[2][ch] * w[2] + c[3][ch] * w[3] + (1 << 15)) >> 16;
-    return out;
-  }
-  for (size_t ch = 0; ch < 4; ++ch) {
-    const int64_t acc = int64_t{c[0][ch]} * w[0] + int64_t{c[1][ch]} * w[1] + int64_t{c[2][ch]} * w[2] +
-                        int64_t{c[3][ch]} * w[3];
-    out[ch] = static_cast<int32_t>((acc + (1 << 15)) >> 16);
-  }
-  return out;
+  return dp::bilinear_lerp({rd.at(x0, y0), rd.at(x1, y0), rd.at(x0, y1), rd.at(x1, y1)}, u.f, v.f, rd.fmt);
 }
 
 // Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
@@ -378,7 +340,7 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
   if (memo) {
     w2 = memo->w[static_cast<size_t>(rom.nearest_address(v.f, 8) * memo->entries + rom.nearest_address(u.f, 8))].data();
   } else {
-    tile_weights_2d(rom, recon, u.f, v.f, w2_local);
+    dp::tile_weights_2d(rom, recon, u.f, v.f, w2_local);
     w2 = w2_local.data();
   }
   std::array<int, 4> col, row;
@@ -436,7 +398,7 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
   switch (f) {
     case BaseFilter::Nearest: return filter_nearest(rd, s, t);
-    case BaseFilter::Linear: return tex_.format == TexelFormat::VS16X2 ? filter_linear(rd, s, t) : filter_linear8(rd, s, t);
+    case BaseFilter::Linear: return filter_linear(rd, s, t);
     case BaseFilter::Cubic: {
       const auto M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
       const auto [lo, hi] = channel_range(tex_.format);
@@ -500,9 +462,7 @@ Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
   const Texel4 c0 = sample_level(li.level0, s, t);
   if (li.blend == 0) return c0;
   const Texel4 c1 = sample_level(li.level1, s, t);
-  Texel4 out{};
-  for (size_t ch = 0; ch < 4; ++ch) out[ch] = (c0[ch] * (256 - li.blend) + c1[ch] * li.blend + 128) >> 8;
-  return out;
+  return dp::level_blend(c0, c1, li.blend);
 }
 
 namespace {
