@@ -13,6 +13,7 @@ void register_sample(CLI::App& app);        // cmd_sample.cpp: golden sampler on
 void register_report(CLI::App& app);        // cmd_report.cpp: every scene x mode, montages, results.md
 void register_mipmap(CLI::App& app);        // cmd_mipmap.cpp: MIP chain generation
 void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR, SSIM, heat map) and `montage`
+void register_sim(CLI::App& app);           // cmd_sim.cpp: cycle model vs golden, statistics
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
 
 }  // namespace tfu::cli
