@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/lod.hpp"
 
 namespace tfu {
 
@@ -126,6 +127,27 @@ void write_trace(std::ostream& out, const Trace& trace) {
     if (trace.mode == TraceMode::Grad) out << fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", r.dsdx, r.dtdx, r.dsdy, r.dtdy);
     out << '\n';
   }
+}
+
+std::vector<int32_t> trace_lambdas(const Trace& tr, int width, int height) {
+  std::vector<int32_t> lam(tr.requests.size());
+  for (size_t i = 0; i < tr.requests.size(); ++i) {
+    const TraceRequest& r = tr.requests[i];
+    switch (tr.mode) {
+      case TraceMode::Lod: lam[i] = lambda_explicit(r.lod); break;
+      case TraceMode::Grad: lam[i] = lambda_from_gradients(r.dsdx, r.dtdx, r.dsdy, r.dtdy, width, height); break;
+      case TraceMode::Quad:
+        if (i % 4 == 0) {
+          const float s[4] = {r.s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
+          const float t[4] = {r.t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
+          lam[i] = lambda_from_quad(s, t, width, height);
+        } else {
+          lam[i] = lam[i - i % 4];  // one lambda per quad
+        }
+        break;
+    }
+  }
+  return lam;
 }
 
 }  // namespace tfu

@@ -41,6 +41,12 @@ Trace load_trace(const std::string& path);
 // they read back to the same binary32 value.
 void write_trace(std::ostream& out, const Trace& trace);
 
+// lambda (before bias and clamp) of every request, in order, for a texture whose level 0 is
+// width x height: lod mode -> the explicit LOD, grad mode -> the gradients, quad mode -> one lambda
+// per quad from its coarse derivatives (lod.hpp). The LOD unit of both the golden model and the
+// cycle model computes exactly this.
+std::vector<int32_t> trace_lambdas(const Trace& trace, int width, int height);
+
 // Largest trace accepted (requests), so that a bad file cannot exhaust memory.
 inline constexpr size_t kMaxTraceRequests = size_t{1} << 26;
 

@@ -63,14 +63,10 @@ const Workload& workload() {
       o.trace = true;
       const RenderResult r = render_scene(scene, o);
       const auto& q = r.trace.requests;
-      for (size_t i = 0; i + 3 < q.size(); i += 4) {
-        const float s[4] = {q[i].s, q[i + 1].s, q[i + 2].s, q[i + 3].s};
-        const float t[4] = {q[i].t, q[i + 1].t, q[i + 2].t, q[i + 3].t};
-        const int32_t lam = lambda_from_quad(s, t, 1024, 1024);
-        for (size_t k = 0; k < 4; ++k) {
-          out.requests.push_back({s[k], t[k], lam});
-          out.per_scene[static_cast<size_t>(scene_index)].push_back({s[k], t[k], lam});
-        }
+      const std::vector<int32_t> lam = trace_lambdas(r.trace, 1024, 1024);
+      for (size_t k = 0; k < q.size(); ++k) {
+        out.requests.push_back({q[k].s, q[k].t, lam[k]});
+        out.per_scene[static_cast<size_t>(scene_index)].push_back({q[k].s, q[k].t, lam[k]});
       }
       ++scene_index;
     }

@@ -26,13 +26,9 @@ SceneTrace scene_trace(const char* name, int w, int h) {
 
 std::vector<Rgba8> golden(const Texture& tex, const SamplerConfig& cfg, const Trace& tr) {
   const Sampler smp(tex, cfg);
+  const std::vector<int32_t> lam = trace_lambdas(tr, tex.width(), tex.height());
   std::vector<Rgba8> out;
-  for (size_t i = 0; i < tr.requests.size(); i += 4) {
-    const float s[4] = {tr.requests[i].s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
-    const float t[4] = {tr.requests[i].t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
-    const int32_t lam = lambda_from_quad(s, t, tex.width(), tex.height());
-    for (size_t k = 0; k < 4; ++k) out.push_back(smp.sample(s[k], t[k], lam));
-  }
+  for (size_t i = 0; i < tr.requests.size(); ++i) out.push_back(smp.sample(tr.requests[i].s, tr.requests[i].t, lam[i]));
   return out;
 }
 

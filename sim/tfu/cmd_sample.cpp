@@ -27,28 +27,6 @@ struct SampleOptions {
   bool ideal = false;
 };
 
-// lambda (before bias and clamp) for every request of the trace, in order.
-std::vector<int32_t> trace_lambdas(const Trace& tr, int width, int height) {
-  std::vector<int32_t> lam(tr.requests.size());
-  for (size_t i = 0; i < tr.requests.size(); ++i) {
-    const TraceRequest& r = tr.requests[i];
-    switch (tr.mode) {
-      case TraceMode::Lod: lam[i] = lambda_explicit(r.lod); break;
-      case TraceMode::Grad: lam[i] = lambda_from_gradients(r.dsdx, r.dtdx, r.dsdy, r.dtdy, width, height); break;
-      case TraceMode::Quad:
-        if (i % 4 == 0) {
-          const float s[4] = {r.s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
-          const float t[4] = {r.t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
-          lam[i] = lambda_from_quad(s, t, width, height);
-        } else {
-          lam[i] = lam[i - i % 4];  // one lambda per quad
-        }
-        break;
-    }
-  }
-  return lam;
-}
-
 void run(const SampleOptions& o) {
   if (o.out != "-" && std::filesystem::exists(o.out) && !o.force)
     throw InputError(fmt::format("--out '{}' already exists (use --force to overwrite)", o.out));

@@ -65,18 +65,13 @@ void run(SimOptions& o, CLI::App& cmd) {
   const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit);
   // Golden reference on the same requests.
   const Sampler smp(texture, cfg);
-  size_t mismatches = 0;
-  for (size_t i = 0; i < trace.requests.size(); i += 4) {
-    const float s[4] = {trace.requests[i].s, trace.requests[i + 1].s, trace.requests[i + 2].s, trace.requests[i + 3].s};
-    const float t[4] = {trace.requests[i].t, trace.requests[i + 1].t, trace.requests[i + 2].t, trace.requests[i + 3].t};
-    const int32_t lam = lambda_from_quad(s, t, texture.width(), texture.height());
-    for (size_t k = 0; k < 4; ++k) {
-      const Rgba8 want = smp.sample(s[k], t[k], lam), have = got.pixels[i + k];
-      if (want == have) continue;
-      if (mismatches++ == 0)
-        throw CheckFailed(fmt::format("request {} (s={:.9g}, t={:.9g}): cycle model {},{},{},{} vs golden {},{},{},{}", i + k,
-                                      s[k], t[k], have.r, have.g, have.b, have.a, want.r, want.g, want.b, want.a));
-    }
+  const std::vector<int32_t> lam = trace_lambdas(trace, texture.width(), texture.height());
+  for (size_t i = 0; i < trace.requests.size(); ++i) {
+    const TraceRequest& r = trace.requests[i];
+    const Rgba8 want = smp.sample(r.s, r.t, lam[i]), have = got.pixels[i];
+    if (want != have)
+      throw CheckFailed(fmt::format("request {} (s={:.9g}, t={:.9g}): cycle model {},{},{},{} vs golden {},{},{},{}", i, r.s,
+                                    r.t, have.r, have.g, have.b, have.a, want.r, want.g, want.b, want.a));
   }
   const auto n = static_cast<double>(trace.requests.size());
   const uint64_t hits = got.stats.counter("cache_line_hits"), misses = got.stats.counter("cache_line_misses");
