@@ -288,14 +288,6 @@ LodInfo Sampler::lod_info(int32_t lambda_unclamped) const {
 }
 
 // ---------------------------------------------------------------- texel fetch (wrap unit)
-Texel4 Sampler::fetch(int level, int x, int y) const {
-  const Image& img = tex_.levels[static_cast<size_t>(level)];
-  const int wx = wrap_index(cfg_.wrap_s, x, img.width);
-  const int wy = wrap_index(cfg_.wrap_t, y, img.height);
-  if (wx < 0 || wy < 0) return impl_->border;
-  return decode_texel(img.at(wx, wy), tex_.format);
-}
-
 namespace {
 
 using dp::LevelCoord;
@@ -316,6 +308,15 @@ struct LevelReader {
   }
   Texel4 operator()(int64_t x, int64_t y) const { return at(col(x), row(y)); }
 };
+
+}  // namespace
+
+Texel4 Sampler::fetch(int level, int x, int y) const {
+  const LevelReader rd{tex_.levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  return rd(x, y);
+}
+
+namespace {
 
 Texel4 filter_nearest(const LevelReader& rd, float s, float t) {
   // GL: i = floor(s W), j = floor(t H)

@@ -16,15 +16,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/mipmap.hpp"
 
-// Generated at build time from sim/scenes/*.json (cmake/TfuEmbedScenes.cmake).
-namespace tfu::detail {
-struct EmbeddedScene {
-  const char* name;
-  const char* json;
-};
-extern const EmbeddedScene kEmbeddedScenes[];
-extern const size_t kEmbeddedSceneCount;
-}  // namespace tfu::detail
+#include "cmodel/embedded_scenes.hpp"
 
 namespace tfu {
 namespace {
