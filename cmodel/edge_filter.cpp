@@ -109,19 +109,23 @@ TexelMask cache_block_mask(int x4, int x5, int y4, int y8, int block) {
   return m;
 }
 
-Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
-                                   uint32_t yf, TexelFormat fmt, EdgeDecision* decision) {
-  TexelMask read = 0;
-  std::array<int32_t, kTexels + 1> y{};
+LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, TexelFormat fmt) {
+  LumaKeys key{};
   for (int n = 1; n <= kTexels; ++n)
-    if (has(available, n)) {
-      // Key Y * 16 + n: unique, so the comparators order by (Y, texel number) with one compare.
-      y[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt) * 16 + n;
-      read = static_cast<TexelMask>(read | (1u << (n - 1)));
-    }
-  const std::array<int, kTexels + 1> low = low_pass(y, available);
-  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
+    if (has(available, n)) key[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt) * 16 + n;
+  return key;
+}
 
+LowIndex median_low_pass(const LumaKeys& key, TexelMask available) { return low_pass(key, available); }
+
+uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelFormat fmt) {
+  if (fmt == TexelFormat::VS16X2) return static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1])) >> 6;
+  return static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]));
+}
+
+EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
+                              uint32_t xf, uint32_t yf, TexelFormat fmt) {
+  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Direction choice (Eq. 1-2): min w_i * dP_i over the usable directions.
   const DirectionTable& tab = direction_table();
   const uint32_t usable = tab.usable[available & kAllTexels];
@@ -133,24 +137,21 @@ Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMa
     const DirectionTable::Entry& e = tab.dir[static_cast<size_t>(i)];
     const uint8_t w = (*e.rom)[addr];
     if (w == kNeverChoose) continue;
-    const Texel4& p = lowv(e.p);
-    const Texel4& q = lowv(e.q);
-    uint32_t dp;
-    if (fmt == TexelFormat::VS16X2) {
-      dp = static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1])) >> 6;
-    } else {
-      dp = static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]));
-    }
-    const uint32_t cost = w * dp;
+    const uint32_t cost = w * direction_difference(lowv(e.p), lowv(e.q), fmt);
     if (best < 0 || cost < best_cost) {
       best = i;
       best_cost = cost;
     }
   }
   if (best < 0) best = 0;  // unreachable: an axis direction through the centre square is always usable
+  return {best, best_cost, 0};
+}
 
+Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
+                  TexelFormat fmt) {
+  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Low-frequency part along the chosen direction (Eq. 3).
-  const Direction& d = directions()[static_cast<size_t>(best)];
+  const Direction& d = directions()[static_cast<size_t>(direction)];
   const int32_t t = static_cast<int32_t>(d.axis == BlendAxis::X ? xf : yf);
   const Texel4& cp = lowv(d.p);
   const Texel4& cq = lowv(d.q);
@@ -171,8 +172,16 @@ Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMa
     const auto chigh = static_cast<int32_t>((hsum + (1 << 15)) >> 16);
     out[ch] = std::clamp(clow + chigh, lo, hi);  // Eq. 6
   }
-  if (decision) *decision = {best, best_cost, read};
   return out;
+}
+
+Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
+                                   uint32_t yf, TexelFormat fmt, EdgeDecision* decision) {
+  const LowIndex low = low_pass(luma_keys(c, available, fmt), available);
+  EdgeDecision d = select_direction(c, low, available, xf, yf, fmt);
+  d.read = static_cast<TexelMask>(available & kAllTexels);
+  if (decision) *decision = d;
+  return edge_merge(c, low, d.direction, xf, yf, fmt);
 }
 
 std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c,

@@ -47,7 +47,26 @@ constexpr int32_t edge_luma(const Texel4& c, TexelFormat f) {
   return 5 * c[0] + 9 * c[1] + 2 * c[2];
 }
 
-// c[n - 1] is texel Cn. Only texels in `available` are read.
+// ---- The datapath stages, in pipeline order (each a block of the cycle model and of the SV) ----
+// Stage 1, RGB->Y: key[n] = edge_luma(Cn) * 16 + n for available texels (0 otherwise; key[0] unused).
+// The key is unique, so one comparator orders by (Y, texel number).
+using LumaKeys = std::array<int32_t, kTexels + 1>;
+LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, TexelFormat fmt);
+// Stage 2, Eq. 4 medians with the Sec. 3 adjustments (behavioural reference of the compare-cell
+// network in rtl/median_network): low[n] = number of the texel whose value is Cn's median; only
+// entries of available texels are defined.
+using LowIndex = std::array<int, kTexels + 1>;
+LowIndex median_low_pass(const LumaKeys& key, TexelMask available);
+// dP between two low-pass endpoints (Eq. 1): |dR| + |dG| + |dB| (VS16X2: (|d0| + |d1|) >> 6).
+uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelFormat fmt);
+// Stage 3, Eq. 1-2: argmin over usable directions of w_i * dP_i (ties -> lowest index); `read` is 0.
+EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
+                              uint32_t xf, uint32_t yf, TexelFormat fmt);
+// Stage 4, Eq. 3, 5, 6: directional lerp of the low-pass endpoints + bilinear high frequency, clamp.
+Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
+                  TexelFormat fmt);
+
+// The four stages chained. c[n - 1] is texel Cn. Only texels in `available` are read.
 Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
                                    uint32_t yf, TexelFormat fmt, EdgeDecision* decision = nullptr);
 

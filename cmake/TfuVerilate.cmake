@@ -1,0 +1,90 @@
+# Verilator helpers for the synthesizable SystemVerilog of rtl/sv/ (TFU-D; docs/sv.md).
+#
+# Why not Verilator's own verilate(): it runs verilator at *configure* time, but part of our SV is
+# generated at *build* time by tfu_svgen (ROM tables from the cmodel/ generators). So each model is
+# verilated and compiled by a build-time custom command instead, and the Verilator runtime is
+# compiled once, as the static library tfu_verilated, for all models and test executables.
+#
+# Provided (include this file once; rtl/sv/CMakeLists.txt does):
+#
+#   tfu_verilated            static library: Verilator runtime (verilated.cpp, verilated_threads.cpp)
+#                            plus its include directories (SYSTEM) and VM_* definitions. Link it into
+#                            every executable that uses a model (tfu_sv_model does).
+#
+#   tfu_sv_model(<exe>
+#                PREFIX <Vname>           C++ class name of the model (header <Vname>.h)
+#                TOP <module>             top module
+#                SOURCES <file>...        absolute paths, packages first; generated files allowed
+#                [DEPENDS <target>...]    targets that produce generated SOURCES (e.g. tfu_sv_gen)
+#                [VERILATOR_ARGS <arg>...])
+#       Verilates TOP at build time (verilator --cc --build, -O2) into
+#       <build>/rtl/sv/obj/<Vname>/, links <Vname>__ALL.a and tfu_verilated into <exe> and adds the
+#       model directory to <exe>'s include path (SYSTEM, so -Werror never sees generated code).
+#       Several models (different PREFIX) go into one executable: only the small model library is
+#       compiled per model, the runtime once.
+#
+#   tfu_sv_lint(NAME <test> TOP <module> SOURCES <file>... [DEPENDS <target>...])
+#       Adds the ctest <test> (label "sv") running `verilator --lint-only -Wall` on SOURCES with top
+#       TOP; any warning fails it. DEPENDS only documents the generator target: ctest runs after the
+#       build, so generated files exist by then.
+#
+#   TFU_SV_GEN_DIR           ${CMAKE_BINARY_DIR}/rtl/sv/gen: where tfu_svgen writes gen/*.sv
+#
+# Example (a helper's rtl/sv/edge/CMakeLists.txt):
+#   add_executable(tfu_sv_edge_tests test_edge_equiv.cpp)
+#   target_link_libraries(tfu_sv_edge_tests PRIVATE tfu_cmodel GTest::gtest GTest::gtest_main tfu_warnings)
+#   tfu_sv_model(tfu_sv_edge_tests PREFIX Vtfu_median3 TOP tfu_median3
+#                SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/tfu_median3.sv)
+#   tfu_sv_lint(NAME sv_lint_tfu_median3 TOP tfu_median3 SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/tfu_median3.sv)
+#   gtest_discover_tests(tfu_sv_edge_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS sv TIMEOUT 300)
+include_guard(GLOBAL)
+
+find_package(verilator REQUIRED)  # Debian's verilator ships verilator-config.cmake (scripts/bootstrap)
+
+set(TFU_SV_GEN_DIR ${CMAKE_BINARY_DIR}/rtl/sv/gen)
+set(TFU_SV_OBJ_DIR ${CMAKE_BINARY_DIR}/rtl/sv/obj)
+
+# Same definitions as Verilator's own makefiles use for a model without tracing/coverage/SystemC.
+set(TFU_VERILATED_DEFS VM_COVERAGE=0 VM_SC=0 VM_TRACE=0 VM_TRACE_FST=0 VM_TRACE_VCD=0)
+
+if(NOT TARGET tfu_verilated)
+  add_library(tfu_verilated STATIC ${VERILATOR_ROOT}/include/verilated.cpp
+                                   ${VERILATOR_ROOT}/include/verilated_threads.cpp)
+  target_include_directories(tfu_verilated SYSTEM PUBLIC ${VERILATOR_ROOT}/include ${VERILATOR_ROOT}/include/vltstd)
+  target_compile_definitions(tfu_verilated PUBLIC ${TFU_VERILATED_DEFS})
+  # Third-party code: no project warnings, never -Werror.
+  target_compile_options(tfu_verilated PRIVATE -w -faligned-new)
+  target_link_libraries(tfu_verilated PUBLIC Threads::Threads)
+endif()
+
+function(tfu_sv_model exe)
+  cmake_parse_arguments(M "" "PREFIX;TOP" "SOURCES;DEPENDS;VERILATOR_ARGS" ${ARGN})
+  if(NOT M_PREFIX OR NOT M_TOP OR NOT M_SOURCES)
+    message(FATAL_ERROR "tfu_sv_model(${exe}): PREFIX, TOP and SOURCES are required")
+  endif()
+  set(mdir ${TFU_SV_OBJ_DIR}/${M_PREFIX})
+  file(MAKE_DIRECTORY ${mdir})
+  set(lib ${mdir}/${M_PREFIX}__ALL.a)
+  add_custom_command(
+    OUTPUT ${lib} ${mdir}/${M_PREFIX}.h
+    COMMAND ${VERILATOR_BIN} --cc --build -j 1 --Mdir ${mdir} --prefix ${M_PREFIX} --top-module ${M_TOP}
+            -MAKEFLAGS "CXX=${CMAKE_CXX_COMPILER} OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2" ${M_VERILATOR_ARGS}
+            ${M_SOURCES}
+    DEPENDS ${M_SOURCES} ${M_DEPENDS}
+    WORKING_DIRECTORY ${mdir}
+    COMMENT "Verilating ${M_TOP} (${M_PREFIX})"
+    VERBATIM)
+  add_custom_target(${M_PREFIX}_model DEPENDS ${lib})
+  add_dependencies(${exe} ${M_PREFIX}_model)
+  target_include_directories(${exe} SYSTEM PRIVATE ${mdir})
+  target_link_libraries(${exe} PRIVATE ${lib} tfu_verilated)
+endfunction()
+
+function(tfu_sv_lint)
+  cmake_parse_arguments(L "" "NAME;TOP" "SOURCES;DEPENDS" ${ARGN})
+  if(NOT L_NAME OR NOT L_TOP OR NOT L_SOURCES)
+    message(FATAL_ERROR "tfu_sv_lint: NAME, TOP and SOURCES are required")
+  endif()
+  add_test(NAME ${L_NAME} COMMAND ${VERILATOR_BIN} --lint-only -Wall --top-module ${L_TOP} ${L_SOURCES})
+  set_tests_properties(${L_NAME} PROPERTIES LABELS sv TIMEOUT 120)
+endfunction()

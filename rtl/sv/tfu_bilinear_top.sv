@@ -1,0 +1,81 @@
+// Pipelined bilinear filter, 8-bit RGBA (the gate-count baseline of docs/gates.md): the bilinear
+// lerp unit (GL 4.6 Sec. 8.14.2; tfu::dp::bilinear_lerp) between registers. Bit-exact with
+// dp::bilinear_lerp; one result per clock, no backpressure (en = 0 freezes every register).
+//
+// Ports:
+//   clk, rst_n        rising-edge clock, synchronous active-low reset (clears the valid bits only)
+//   en                clock enable of all stages (stall)
+//   in_valid          a request on c00..c11, fu, fv
+//   c00, c10, c01, c11 [31:0], fu, fv [7:0]   as tfu_bilinear_lerp
+//   out_valid, c [31:0]                       result, registered
+//
+// Pipeline (latency 3 clocks: a request sampled at rising edge n, with en = 1 at n, n+1, n+2, is on
+// out_valid / c after edge n + 2):
+//   S1  input registers (texels, fractions)
+//   S2  horizontal lerps h0, h1 per channel (tfu_lerp_h, exact 16 bits) and fv
+//   S3  vertical lerp with rounding (tfu_lerp_v_round) -> output register
+module tfu_bilinear_top (
+  input  logic        clk,
+  input  logic        rst_n,
+  input  logic        en,
+  input  logic        in_valid,
+  input  logic [31:0] c00,
+  input  logic [31:0] c10,
+  input  logic [31:0] c01,
+  input  logic [31:0] c11,
+  input  logic [7:0]  fu,
+  input  logic [7:0]  fv,
+  output logic        out_valid,
+  output logic [31:0] c
+);
+  // S1
+  logic        v1;
+  logic [31:0] c00_1, c10_1, c01_1, c11_1;
+  logic [7:0]  fu_1, fv_1;
+  always_ff @(posedge clk) begin
+    if (!rst_n) v1 <= 1'b0;
+    else if (en) v1 <= in_valid;
+    if (en) begin
+      c00_1 <= c00;
+      c10_1 <= c10;
+      c01_1 <= c01;
+      c11_1 <= c11;
+      fu_1  <= fu;
+      fv_1  <= fv;
+    end
+  end
+
+  // S2
+  logic        v2;
+  logic [7:0]  fv_2;
+  logic [15:0] h0_2 [4];
+  logic [15:0] h1_2 [4];
+  logic [15:0] h0 [4];
+  logic [15:0] h1 [4];
+  for (genvar ch = 0; ch < 4; ch++) begin : g_h
+    tfu_lerp_h u_h0 (.a(c00_1[8*ch +: 8]), .b(c10_1[8*ch +: 8]), .f(fu_1), .h(h0[ch]));
+    tfu_lerp_h u_h1 (.a(c01_1[8*ch +: 8]), .b(c11_1[8*ch +: 8]), .f(fu_1), .h(h1[ch]));
+  end
+  always_ff @(posedge clk) begin
+    if (!rst_n) v2 <= 1'b0;
+    else if (en) v2 <= v1;
+    if (en) begin
+      fv_2 <= fv_1;
+      for (int ch = 0; ch < 4; ch++) begin
+        h0_2[ch] <= h0[ch];
+        h1_2[ch] <= h1[ch];
+      end
+    end
+  end
+
+  // S3
+  logic [31:0] cv;
+  for (genvar ch = 0; ch < 4; ch++) begin : g_v
+    tfu_lerp_v_round u_v (.a(h0_2[ch]), .b(h1_2[ch]), .f(fv_2), .c(cv[8*ch +: 8]));
+  end
+  always_ff @(posedge clk) begin
+    if (!rst_n) out_valid <= 1'b0;
+    else if (en) out_valid <= v2;
+    if (en) c <= cv;
+  end
+endmodule
