@@ -28,7 +28,17 @@
 #       TOP; any warning fails it. DEPENDS only documents the generator target: ctest runs after the
 #       build, so generated files exist by then.
 #
-#   TFU_SV_GEN_DIR           ${CMAKE_BINARY_DIR}/rtl/sv/gen: where tfu_svgen writes gen/*.sv
+#   tfu_sv_read_manifest(<blocks.json>)
+#       Reads a gate-count manifest (the format of rtl/sv/blocks.json, read by scripts/gate_count:
+#       JSON array of {"block", "top", "sources": [repo-relative paths or "gen/<file>"],
+#       "compare_cells"}) and sets in the caller's scope TFU_SV_BLOCKS (the block names) and, per
+#       block B, TFU_SV_TOP_<B> (top module) and TFU_SV_SRC_<B> (absolute source paths; "gen/<file>"
+#       becomes ${TFU_SV_GEN_DIR}/<file>). So the manifest is the one list of sources per block for
+#       Verilator, lint and Yosys. Re-configures when the manifest changes.
+#
+#   TFU_SV_GEN_DIR           ${CMAKE_BINARY_DIR}/rtl/sv/gen: where tfu_svgen writes gen/*.sv (a
+#                            generator of rtl/sv/edge/ writes its gen/ files there too, so that
+#                            manifests can name them "gen/<file>")
 #
 # Example (a helper's rtl/sv/edge/CMakeLists.txt):
 #   add_executable(tfu_sv_edge_tests test_edge_equiv.cpp)
@@ -67,7 +77,9 @@ function(tfu_sv_model exe)
   set(lib ${mdir}/${M_PREFIX}__ALL.a)
   add_custom_command(
     OUTPUT ${lib} ${mdir}/${M_PREFIX}.h
-    COMMAND ${VERILATOR_BIN} --cc --build -j 1 --Mdir ${mdir} --prefix ${M_PREFIX} --top-module ${M_TOP}
+    # MAKEFLAGS unset: verilator --build runs its own make, outside our jobserver.
+    COMMAND ${CMAKE_COMMAND} -E env --unset=MAKEFLAGS --unset=MAKELEVEL
+            ${VERILATOR_BIN} --cc --build -j 1 --Mdir ${mdir} --prefix ${M_PREFIX} --top-module ${M_TOP}
             -MAKEFLAGS "CXX=${CMAKE_CXX_COMPILER} OPT_FAST=-O2 OPT_SLOW=-O1 OPT_GLOBAL=-O2" ${M_VERILATOR_ARGS}
             ${M_SOURCES}
     DEPENDS ${M_SOURCES} ${M_DEPENDS}
@@ -87,4 +99,34 @@ function(tfu_sv_lint)
   endif()
   add_test(NAME ${L_NAME} COMMAND ${VERILATOR_BIN} --lint-only -Wall --top-module ${L_TOP} ${L_SOURCES})
   set_tests_properties(${L_NAME} PROPERTIES LABELS sv TIMEOUT 120)
+endfunction()
+
+function(tfu_sv_read_manifest manifest)
+  file(READ ${manifest} json)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${manifest})
+  string(JSON n ERROR_VARIABLE err LENGTH "${json}")
+  if(err)
+    message(FATAL_ERROR "${manifest}: ${err}")
+  endif()
+  set(blocks)
+  math(EXPR last "${n} - 1")
+  foreach(i RANGE ${last})
+    string(JSON block GET "${json}" ${i} block)
+    string(JSON top GET "${json}" ${i} top)
+    string(JSON ns LENGTH "${json}" ${i} sources)
+    set(srcs)
+    math(EXPR slast "${ns} - 1")
+    foreach(k RANGE ${slast})
+      string(JSON src GET "${json}" ${i} sources ${k})
+      if(src MATCHES "^gen/(.*)$")
+        list(APPEND srcs ${TFU_SV_GEN_DIR}/${CMAKE_MATCH_1})
+      else()
+        list(APPEND srcs ${PROJECT_SOURCE_DIR}/${src})
+      endif()
+    endforeach()
+    list(APPEND blocks ${block})
+    set(TFU_SV_TOP_${block} ${top} PARENT_SCOPE)
+    set(TFU_SV_SRC_${block} ${srcs} PARENT_SCOPE)
+  endforeach()
+  set(TFU_SV_BLOCKS ${blocks} PARENT_SCOPE)
 endfunction()

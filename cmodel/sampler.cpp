@@ -427,31 +427,36 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
       return {nb(acc[0]), nb(acc[1]), nb(acc[2]), nb(acc[3])};
     }
     case BaseFilter::EdgePreserving: {
-      const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
-      // Columns and rows -1..2 around the centre square, wrapped once each.
-      std::array<int, 4> col, row;
-      wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, col.data());
-      wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, row.data());
-      lee_jen::TexelMask mask = lee_jen::kAllTexels;
-      if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
-        mask = lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], cfg_.edge_cache_block);
-      static const auto kPos = [] {
-        std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
-        for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
-        return p;
-      }();
-      std::array<Texel4, lee_jen::kTexels> c;
-      for (size_t k = 0; k < c.size(); ++k) {
-        if (!((mask >> k) & 1u)) {
-          c[k] = {0, 0, 0, 0};
-          continue;
-        }
-        c[k] = rd.at(col[static_cast<size_t>(kPos[k].x + 1)], row[static_cast<size_t>(kPos[k].y + 1)]);
-      }
-      return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, tex_.format);
+      const EdgeFootprint fp = edge_footprint(level, s, t);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
     }
   }
   return {};
+}
+
+EdgeFootprint Sampler::edge_footprint(int level, float s, float t) const {
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+  EdgeFootprint fp;
+  fp.xf = u.f;
+  fp.yf = v.f;
+  // Columns and rows -1..2 around the centre square, wrapped once each.
+  wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, fp.col.data());
+  wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, fp.row.data());
+  fp.mask = lee_jen::kAllTexels;
+  if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
+    fp.mask = lee_jen::cache_block_mask(fp.col[1], fp.col[2], fp.row[1], fp.row[2], cfg_.edge_cache_block);
+  static const auto kPos = [] {
+    std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
+    for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
+    return p;
+  }();
+  for (size_t k = 0; k < fp.texels.size(); ++k)
+    fp.texels[k] = ((fp.mask >> k) & 1u)
+                       ? rd.at(fp.col[static_cast<size_t>(kPos[k].x + 1)], fp.row[static_cast<size_t>(kPos[k].y + 1)])
+                       : Texel4{0, 0, 0, 0};
+  return fp;
 }
 
 Texel4 Sampler::sample_level(int level, float s, float t) const {

@@ -79,6 +79,16 @@ struct LodInfo {
   int kernel_scale = 1;  // level-0 texels per texel of level0 (2^level0): the kernel's scale
 };
 
+// What the edge-preserving datapath receives for one level (Lee & Jen Sec. 2-3): the 12 cross
+// texels C1..C12 (zero where the shape has no texel), the shape mask (cross / T / L), the 8-bit
+// fractions inside the centre square, and the wrapped columns/rows -1..2 around it.
+struct EdgeFootprint {
+  std::array<Texel4, lee_jen::kTexels> texels{};
+  lee_jen::TexelMask mask = lee_jen::kAllTexels;
+  uint32_t xf = 0, yf = 0;
+  std::array<int, 4> col{}, row{};  // -1 = border (clamp-to-border outside the texture)
+};
+
 class Sampler {
  public:
   // Validates the configuration (throws InputError); precomputes ROMs and, for bspline-interp,
@@ -99,6 +109,9 @@ class Sampler {
   // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
   // exact log2 fraction; same texels): channels in [0, 1] (or [-1, 1] for VS16X2).
   std::array<double, 4> sample_ideal(double s, double t, double lambda) const;
+
+  // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and shape policy.
+  EdgeFootprint edge_footprint(int level, float s, float t) const;
 
   // Texel fetch through the wrap unit (level, integer texel coordinates): what the datapath sees.
   Texel4 fetch(int level, int x, int y) const;
