@@ -54,4 +54,44 @@ inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
 // complement so that the weights sum to exactly M = 2^b - 1.
 void tile_weights_2d(const TileWeightRom& rom, RomRecon recon, uint32_t fu, uint32_t fv, std::array<int32_t, 16>& w2);
 
+// Cubic adder tree: acc = sum over the n = T x T taps of c w, per channel (exact: 8-bit channels
+// and b <= 16 bit weights stay below 2^31; VS16X2 below 2^40).
+inline std::array<int64_t, 4> cubic_accumulate(const Texel4* c, const int32_t* w, int n) {
+  std::array<int64_t, 4> acc{};
+  for (int k = 0; k < n; ++k)
+    for (size_t ch = 0; ch < 4; ++ch) acc[ch] += int64_t{c[k][ch]} * w[k];
+  return acc;
+}
+
+inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  const int64_t q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+// Cubic normalise-and-clamp stage (docs/sampler.md): weights at scale M = 2^b - 1.
+//   plain kernels   : out = clamp(floor((2 acc + M) / (2 M)))
+//   bspline-interp  : out = clamp(floor((acc S + B M + M 2^11) / (M 2^12))), S and B the texture's
+//                     scale/bias registers (Q.12) of the stored coefficient codes
+struct CubicNormalize {
+  int64_t M = 255;
+  bool prefiltered = false;
+  int64_t scale_q = 0, bias_q = 0;
+  int32_t lo = 0, hi = 255;  // channel range of the format
+};
+inline constexpr int kBsplineScaleBits = 12;
+inline Texel4 cubic_normalize(const std::array<int64_t, 4>& acc, const CubicNormalize& n) {
+  const auto clamp_ch = [lo = n.lo, hi = n.hi](int64_t v) { return static_cast<int32_t>(v < lo ? lo : (v > hi ? hi : v)); };
+  if (n.prefiltered) {
+    const int64_t den = n.M << kBsplineScaleBits;
+    const auto dec = [&](int64_t a) { return clamp_ch(floor_div(a * n.scale_q + n.bias_q * n.M + den / 2, den)); };
+    return {dec(acc[0]), dec(acc[1]), dec(acc[2]), dec(acc[3])};
+  }
+  if (n.M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
+    const auto n8 = [&](int64_t a) { return clamp_ch(floor_div(2 * a + 255, 510)); };
+    return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
+  }
+  const auto nb = [&](int64_t a) { return clamp_ch(floor_div(2 * a + n.M, 2 * n.M)); };
+  return {nb(acc[0]), nb(acc[1]), nb(acc[2]), nb(acc[3])};
+}
+
 }  // namespace tfu::dp

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -102,12 +103,8 @@ std::vector<double> bspline_coefficients(const std::vector<double>& x, WrapMode 
 //   S = round((c_max - c_min) 2^12),  B = round(255 c_min 2^12)   (c in units of full scale),
 // codes q = clamp(round((255 c 2^12 - B) / S)), and the datapath decodes the filtered code sum as
 //   out = floor((acc S + B M + M 2^11) / (M 2^12)),  acc = sum w q at weight scale M = 2^b - 1.
-constexpr int kBsplineScaleBits = 12;
-
-inline int64_t floor_div(int64_t a, int64_t b) {  // b > 0
-  const int64_t q = a / b;
-  return (a % b != 0 && a < 0) ? q - 1 : q;
-}
+using dp::floor_div;
+using dp::kBsplineScaleBits;
 
 }  // namespace
 
@@ -156,6 +153,7 @@ struct Sampler::Impl {
   std::vector<Image> coeff_levels;            // bspline-interp: stored coefficient codes
   std::vector<std::vector<std::array<double, 4>>> coeff_ideal;  // bspline-interp: exact coefficients
   std::unique_ptr<WeightMemo> memo;           // CUBIC with nearest reconstruction and R <= 128
+  dp::CubicNormalize norm;                    // CUBIC normalise-and-clamp registers
   Texel4 border{};
   double scale = 255.0;  // channel code -> real
 };
@@ -187,6 +185,8 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
   if (impl_->kernel->width() > 4)
     throw InputError(fmt::format("kernel '{}' is wider than the 4x4 CUBIC footprint", cfg_.kernel));
   impl_->rom = std::make_unique<TileWeightRom>(*impl_->kernel, cfg_.cubic_rom);
+  impl_->norm.M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
+  std::tie(impl_->norm.lo, impl_->norm.hi) = channel_range(tex_.format);
   if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {
     auto memo = std::make_unique<WeightMemo>();
     memo->entries = impl_->rom->entries();
@@ -240,6 +240,9 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
   constexpr double one = 1 << kBsplineScaleBits;
   impl_->bspline_scale_q = std::llround(std::ceil((cmax - cmin) * one));
   impl_->bspline_bias_q = std::llround(std::floor(255.0 * cmin * one));
+  impl_->norm.prefiltered = true;
+  impl_->norm.scale_q = impl_->bspline_scale_q;
+  impl_->norm.bias_q = impl_->bspline_bias_q;
   const double S = static_cast<double>(impl_->bspline_scale_q), B = static_cast<double>(impl_->bspline_bias_q);
   const auto code = [S, B, one](double v) {
     return static_cast<uint8_t>(std::clamp(std::floor((255.0 * v * one - B) / S + 0.5), 0.0, 255.0));
@@ -401,30 +404,12 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     case BaseFilter::Nearest: return filter_nearest(rd, s, t);
     case BaseFilter::Linear: return filter_linear(rd, s, t);
     case BaseFilter::Cubic: {
-      const auto M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
-      const auto [lo, hi] = channel_range(tex_.format);
-      // Normalize and clamp channel by channel (scalar: no vector reload of freshly stored lanes).
-      const auto clamp_ch = [lo = lo, hi = hi](int64_t v) {
-        return static_cast<int32_t>(v < lo ? lo : (v > hi ? hi : v));
-      };
       if (impl_->prefiltered) {
         const LevelReader cr{impl_->coeff_levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
                              TexelFormat::RGBA8, {}};
-        const auto acc = filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
-        // out = (acc S + B M) / (M 2^12), round half up.
-        const int64_t den = M << kBsplineScaleBits;
-        const auto dec = [&](int64_t a) {
-          return clamp_ch(floor_div(a * impl_->bspline_scale_q + impl_->bspline_bias_q * M + den / 2, den));
-        };
-        return {dec(acc[0]), dec(acc[1]), dec(acc[2]), dec(acc[3])};
+        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t), impl_->norm);
       }
-      const auto acc = filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t);
-      if (M == 255) {  // the default 8-bit ROM: a constant divisor (the compiler multiplies)
-        const auto n8 = [&](int64_t a) { return clamp_ch(floor_div(2 * a + 255, 510)); };
-        return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
-      }
-      const auto nb = [&](int64_t a) { return clamp_ch(floor_div(2 * a + M, 2 * M)); };
-      return {nb(acc[0]), nb(acc[1]), nb(acc[2]), nb(acc[3])};
+      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t), impl_->norm);
     }
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint(level, s, t);
@@ -432,6 +417,12 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     }
   }
   return {};
+}
+
+const TileWeightRom* Sampler::cubic_rom() const { return impl_->rom.get(); }
+const dp::CubicNormalize& Sampler::cubic_normalize() const { return impl_->norm; }
+const Image& Sampler::filtered_level(int level) const {
+  return impl_->prefiltered ? impl_->coeff_levels.at(static_cast<size_t>(level)) : tex_.levels.at(static_cast<size_t>(level));
 }
 
 EdgeFootprint Sampler::edge_footprint(int level, float s, float t) const {

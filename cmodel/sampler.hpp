@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/texture.hpp"
@@ -109,6 +110,13 @@ class Sampler {
   // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
   // exact log2 fraction; same texels): channels in [0, 1] (or [-1, 1] for VS16X2).
   std::array<double, 4> sample_ideal(double s, double t, double lambda) const;
+
+  // CUBIC modes: the tile-weight ROM (nullptr otherwise), the normalise stage's registers, and the
+  // image the cubic datapath reads for a level (the stored B-spline coefficients for
+  // bspline-interp, the texture level otherwise).
+  const TileWeightRom* cubic_rom() const;
+  const dp::CubicNormalize& cubic_normalize() const;
+  const Image& filtered_level(int level) const;
 
   // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and shape policy.
   EdgeFootprint edge_footprint(int level, float s, float t) const;
