@@ -84,6 +84,7 @@ struct Context {
 
 struct BandOutput {
   std::vector<TraceRequest> trace;
+  std::vector<QuadTarget> targets;
   int64_t quads = 0, pixels = 0;
 };
 
@@ -168,6 +169,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         ++out.pixels;
       }
       ++out.quads;
+      if (ctx.opts->trace) out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask)});
       if (ctx.opts->trace)
         for (size_t k = 0; k < 4; ++k) {
           TraceRequest r;
@@ -445,6 +447,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.stats.quads += b.quads;
     result.stats.pixels += b.pixels;
     result.trace.requests.insert(result.trace.requests.end(), b.trace.begin(), b.trace.end());
+    result.quad_targets.insert(result.quad_targets.end(), b.targets.begin(), b.targets.end());
   }
   return result;
 }

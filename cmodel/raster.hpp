@@ -92,10 +92,20 @@ struct RenderStats {
   int64_t pixels = 0;      // sampled pixels (including overdraw)
 };
 
+// Where a traced quad's results go (RenderOptions::trace): the mesh it samples, its top-left pixel
+// and the covered pixels that passed the depth test (bit k = pixel k of the quad). Writing the
+// quads' outputs in trace order reproduces the image.
+struct QuadTarget {
+  int mesh = 0;
+  int x = 0, y = 0;
+  uint8_t mask = 0;
+};
+
 struct RenderResult {
   Image image;
   Image truth;  // empty unless RenderOptions::ground_truth
   Trace trace;  // empty unless RenderOptions::trace
+  std::vector<QuadTarget> quad_targets;  // one per traced quad
   std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
   RenderStats stats;
 };

@@ -425,7 +425,7 @@ const Image& Sampler::filtered_level(int level) const {
   return impl_->prefiltered ? impl_->coeff_levels.at(static_cast<size_t>(level)) : tex_.levels.at(static_cast<size_t>(level));
 }
 
-EdgeFootprint Sampler::edge_footprint(int level, float s, float t) const {
+EdgeFootprint Sampler::edge_footprint(int level, float s, float t, int mask_override) const {
   const Image& img = tex_.levels[static_cast<size_t>(level)];
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
   const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
@@ -436,7 +436,9 @@ EdgeFootprint Sampler::edge_footprint(int level, float s, float t) const {
   wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, fp.col.data());
   wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, fp.row.data());
   fp.mask = lee_jen::kAllTexels;
-  if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
+  if (mask_override >= 0)
+    fp.mask = static_cast<lee_jen::TexelMask>(mask_override & lee_jen::kAllTexels);
+  else if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
     fp.mask = lee_jen::cache_block_mask(fp.col[1], fp.col[2], fp.row[1], fp.row[2], cfg_.edge_cache_block);
   static const auto kPos = [] {
     std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
@@ -448,6 +450,18 @@ EdgeFootprint Sampler::edge_footprint(int level, float s, float t) const {
                        ? rd.at(fp.col[static_cast<size_t>(kPos[k].x + 1)], fp.row[static_cast<size_t>(kPos[k].y + 1)])
                        : Texel4{0, 0, 0, 0};
   return fp;
+}
+
+Rgba8 Sampler::sample_edge_masks(float s, float t, int32_t lambda, std::array<lee_jen::TexelMask, 2> masks) const {
+  if (cfg_.mode.base != BaseFilter::EdgePreserving) throw InputError("sample_edge_masks needs an EDGE_PRESERVING mode");
+  const LodInfo li = lod_info(lambda);
+  const auto level = [&](int l, lee_jen::TexelMask m) {
+    const EdgeFootprint fp = edge_footprint(l, s, t, m);
+    return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+  };
+  Texel4 c = level(li.level0, masks[0]);
+  if (li.blend != 0) c = dp::level_blend(c, level(li.level1, masks[1]), li.blend);
+  return encode_texel(c, tex_.format);
 }
 
 Texel4 Sampler::sample_level(int level, float s, float t) const {

@@ -118,8 +118,12 @@ class Sampler {
   const dp::CubicNormalize& cubic_normalize() const;
   const Image& filtered_level(int level) const;
 
-  // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and shape policy.
-  EdgeFootprint edge_footprint(int level, float s, float t) const;
+  // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and shape
+  // policy, or with the shape `mask_override` (0..0xFFF) when it is >= 0.
+  EdgeFootprint edge_footprint(int level, float s, float t, int mask_override = -1) const;
+  // EDGE_PRESERVING modes with the kernel shape of each level given (the cycle model's cache-aware
+  // policy chooses shapes from the cache contents, which the untimed model cannot know).
+  Rgba8 sample_edge_masks(float s, float t, int32_t lambda, std::array<lee_jen::TexelMask, 2> masks) const;
 
   // Texel fetch through the wrap unit (level, integer texel coordinates): what the datapath sees.
   Texel4 fetch(int level, int x, int y) const;

@@ -46,6 +46,15 @@ uint64_t TexelCache::line_of(int level, int x, int y) const {
          static_cast<uint64_t>(x / cfg_.block);
 }
 
+bool TexelCache::resident(int level, int x, int y) const {
+  const uint64_t line = line_of(level, x, y);
+  const auto set = static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+  const Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
+  for (int i = 0; i < cfg_.ways; ++i)
+    if (w[i].tag == line) return true;
+  return false;
+}
+
 bool TexelCache::lookup(uint64_t line) {
   ++tick_;
   const auto set = static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
@@ -65,25 +74,40 @@ bool TexelCache::lookup(uint64_t line) {
 
 FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
   FootprintResult r;
-  std::vector<uint64_t> lines;
-  std::array<std::vector<std::pair<int, int>>, 4> per_bank;
+  std::array<uint64_t, 16> lines{};
+  size_t nlines = 0;
+  // Distinct reads per bank: texels (texel parity) or lines (block parity).
+  std::array<std::array<uint64_t, 16>, 4> per_bank{};
+  std::array<size_t, 4> nbank{};
+  const auto add = [](auto& list, size_t& n, uint64_t v) {
+    for (size_t i = 0; i < n; ++i)
+      if (list[i] == v) return;
+    list[n++] = v;
+  };
   for (const TexelTap& t : taps) {
     const uint64_t line = line_of(level, t.x, t.y);
-    if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
-    const size_t bank = cfg_.banks == 4 ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0;
-    auto& b = per_bank[bank];
-    if (std::find(b.begin(), b.end(), std::pair<int, int>{t.x, t.y}) == b.end()) b.emplace_back(t.x, t.y);
+    add(lines, nlines, line);
+    size_t bank = 0;
+    uint64_t item = 0;
+    if (cfg_.bank_mapping == BankMapping::TexelParity) {
+      bank = cfg_.banks == 4 ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0;
+      item = (static_cast<uint64_t>(static_cast<uint32_t>(t.y)) << 32) | static_cast<uint32_t>(t.x);
+    } else {
+      bank = cfg_.banks == 4 ? static_cast<size_t>(((t.x / cfg_.block) & 1) + 2 * ((t.y / cfg_.block) & 1)) : 0;
+      item = line;
+    }
+    add(per_bank[bank], nbank[bank], item);
   }
-  for (uint64_t line : lines) {
-    if (lookup(line)) {
+  for (size_t i = 0; i < nlines; ++i) {
+    if (lookup(lines[i])) {
       ++r.hits;
     } else {
       ++r.misses;
-      r.missed_lines.push_back(line);
+      r.missed_lines.push_back(lines[i]);
     }
   }
   r.cycles = 1;
-  for (const auto& b : per_bank) r.cycles = std::max(r.cycles, static_cast<int>(b.size()));
+  for (size_t n : nbank) r.cycles = std::max(r.cycles, static_cast<int>(n));
   hits_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
   misses_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
   return r;

@@ -11,9 +11,16 @@
 //   * Memory layout: each level is stored in BxB blocks (B = 4 or 8), one block per cache line, so
 //     a line is B*B*bytes_per_texel bytes. Lines of a level are numbered row-major by block.
 //   * Sets: line index modulo the number of sets; `ways` lines per set; LRU replacement.
-//   * Banks: a texel lives in bank (x & 1) + 2 (y & 1) when banks = 4 (texel parity), so any 2x2
-//     bilinear footprint reads one texel from each bank in one cycle. With banks = 1 every tap is
-//     a separate read. A footprint needs max over banks of (distinct texels in that bank) cycles.
+//   * Banks, two mappings (docs/texel-cache.md):
+//       texel parity : texel (x, y) lives in bank (x & 1) + 2 (y & 1), one texel per bank and cycle;
+//                      any 2x2 bilinear footprint reads in one cycle, a 4x4 cubic one in four, the
+//                      12-texel edge cross in three.
+//       block parity : line (bx, by) lives in bank (bx & 1) + 2 (by & 1) and a bank reads a whole
+//                      line per cycle (Lee & Jen Sec. 3: the filter takes its texels from the
+//                      blocks); the up to 2x2 blocks of any bilinear, cubic or cross footprint read
+//                      in one cycle.
+//     With banks = 1 every texel (texel parity) or line (block parity) is a separate read. A
+//     footprint needs max over banks of (distinct texels or lines in that bank) cycles.
 //   * Misses are counted per level; the memory model (memory_model.hpp) supplies missing lines.
 #pragma once
 
@@ -25,12 +32,15 @@
 
 namespace tfu::rtl {
 
+enum class BankMapping { TexelParity, BlockParity };
+
 struct TexelCacheConfig {
   int block = 4;               // B: block side in texels (power of two, 4 or 8)
   int bytes_per_texel = 4;     // 1 (L8) or 4
   int capacity_bytes = 16384;  // total data capacity
   int ways = 4;                // associativity
-  int banks = 4;               // 1 or 4 (texel-parity banking)
+  int banks = 4;               // 1 or 4
+  BankMapping bank_mapping = BankMapping::BlockParity;
   int line_bytes() const { return block * block * bytes_per_texel; }
   int lines() const { return capacity_bytes / line_bytes(); }
   int sets() const { return lines() / ways; }
@@ -59,6 +69,8 @@ class TexelCache {
   FootprintResult access(int level, std::span<const TexelTap> taps);
   // Line address (unique over all levels) of the block that holds texel (x, y) of `level`.
   uint64_t line_of(int level, int x, int y) const;
+  // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
+  bool resident(int level, int x, int y) const;
   uint64_t hits(int level) const { return hits_.at(static_cast<size_t>(level)); }
   uint64_t misses(int level) const { return misses_.at(static_cast<size_t>(level)); }
   void reset();

@@ -11,8 +11,10 @@
 namespace tfu::rtl {
 namespace {
 
-TexelCacheConfig small(int block, int capacity, int ways, int banks = 4) {
+TexelCacheConfig small(int block, int capacity, int ways, int banks = 4,
+                       BankMapping mapping = BankMapping::TexelParity) {
   TexelCacheConfig c;
+  c.bank_mapping = mapping;
   c.block = block;
   c.capacity_bytes = capacity;
   c.ways = ways;
@@ -61,6 +63,32 @@ TEST(TexelCache, BilinearFootprintOneCycleCubicFour) {
   const std::vector<TexelTap> corner{{3, 3}, {4, 3}, {3, 4}, {4, 4}};
   const FootprintResult rc = c.access(0, corner);
   EXPECT_EQ(rc.misses + rc.hits, 4);
+}
+
+TEST(TexelCache, BlockParityBanksReadWholeLines) {
+  TexelCache c(small(4, 4096, 4, 4, BankMapping::BlockParity), {16}, {16});
+  std::vector<TexelTap> cubic, cross;
+  for (int y = 2; y < 6; ++y)
+    for (int x = 2; x < 6; ++x) cubic.push_back({x, y});  // 4x4 over the corner of 4 blocks
+  EXPECT_EQ(c.access(0, cubic).cycles, 1);             // one line from each bank
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{5, 4}, {6, 4}, {4, 5}, {5, 5}, {6, 5}, {7, 5},
+                                                             {4, 6}, {5, 6}, {6, 6}, {7, 6}, {5, 7}, {6, 7}})
+    cross.push_back({x, y});  // the 12-texel cross inside block (1, 1)
+  EXPECT_EQ(c.access(0, cross).cycles, 1);
+  // Blocks (0, 0) and (2, 0) share bank 0: two cycles.
+  EXPECT_EQ(c.access(0, std::vector<TexelTap>{{0, 0}, {8, 0}}).cycles, 2);
+  TexelCache one(small(4, 4096, 4, 1, BankMapping::BlockParity), {16}, {16});
+  EXPECT_EQ(one.access(0, cubic).cycles, 4);  // four lines through one port
+  EXPECT_EQ(one.access(0, cross).cycles, 1);
+}
+
+TEST(TexelCache, ResidencyProbeDoesNotAllocate) {
+  TexelCache c(small(4, 4096, 2), {16}, {16});
+  EXPECT_FALSE(c.resident(0, 5, 5));
+  EXPECT_FALSE(c.resident(0, 5, 5));  // a probe does not allocate
+  c.access(0, std::vector<TexelTap>{{5, 5}});
+  EXPECT_TRUE(c.resident(0, 4, 7));   // same block
+  EXPECT_FALSE(c.resident(0, 8, 5));
 }
 
 TEST(TexelCache, LruEvictsTheLeastRecentlyUsedWay) {

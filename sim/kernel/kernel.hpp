@@ -102,6 +102,15 @@ class Stats {
     if (h.size() <= bucket) h.resize(bucket + 1);
     ++h[bucket];
   }
+  void set_histogram(const std::string& name, std::vector<uint64_t> buckets) { histograms_[name] = std::move(buckets); }
+  const std::vector<uint64_t>* histogram(const std::string& name) const {
+    const auto it = histograms_.find(name);
+    return it == histograms_.end() ? nullptr : &it->second;
+  }
+  double value(const std::string& name) const {
+    const auto it = values_.find(name);
+    return it == values_.end() ? 0.0 : it->second;
+  }
   uint64_t counter(const std::string& name) const {
     const auto it = counters_.find(name);
     return it == counters_.end() ? 0 : it->second;

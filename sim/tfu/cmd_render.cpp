@@ -35,16 +35,6 @@ void list_scenes(std::ostream& os) {
   }
 }
 
-// Refuses existing files (unless --force) and creates missing parent directories.
-void prepare_output(const std::string& option, const std::string& path, bool force) {
-  if (path.empty()) return;
-  if (!force && std::filesystem::exists(path)) throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  if (ec) throw InputError(fmt::format("{} '{}': cannot create directory '{}': {}", option, path, parent.string(), ec.message()));
-}
-
 void write_trace_file(const Trace& trace, const std::string& path) {
   std::ofstream file(path);
   if (!file) throw InputError(fmt::format("cannot write --trace-out '{}'", path));

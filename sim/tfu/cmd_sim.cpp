@@ -1,10 +1,11 @@
-// tfu sim: run requests through the cycle model (rtl/tfu_unit) and the golden sampler, compare
-// every output bit for bit, and report cycles, cache and memory statistics.
-// First slice: NEAREST and LINEAR families (docs/cycle-model.md).
-#include <filesystem>
+// tfu sim: run requests through the cycle model (rtl/) and the golden sampler, compare every output
+// bit for bit (exit 1 on the first mismatch, naming the request, both values and the cycle), and
+// report cycles, cache, memory, shape and latency statistics (docs/cycle-model.md).
+#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,7 @@
 #include "cmodel/lod.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
@@ -24,28 +26,81 @@ struct SimOptions {
   std::string requests;
   TextureOptions tex;
   SamplerOptions smp;
-  bool filter_given = false;
   int width = 128, height = 96;  // scene render size for the trace
+  std::string config;
   rtl::UnitConfig unit;
-  std::string stats;
-  bool force = false;
+  std::string shape_policy;
+  int units = 1;
+  std::string stats, out, vcd;
+  bool force = false, bench = false;
 };
 
+std::string read_file(const std::string& path, const char* option) {
+  std::ifstream f(path);
+  if (!f) throw InputError(fmt::format("{} '{}': cannot open", option, path));
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
+  const uint64_t hits = st.counter("cache_line_hits"), misses = st.counter("cache_line_misses");
+  const auto dn = static_cast<double>(n);
+  std::cout << head;
+  std::cout << fmt::format("  cycles {}  pixels/clock {:.3f}  cache line hit rate {:.4f}  memory bytes/pixel {:.3f}\n",
+                           cycles, cycles ? dn / static_cast<double>(cycles) : 0.0,
+                           hits + misses ? static_cast<double>(hits) / static_cast<double>(hits + misses) : 1.0,
+                           n ? static_cast<double>(st.counter("memory_bytes")) / dn : 0.0);
+  std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", st.counter("stall_cache_miss"),
+                           st.counter("stall_bank_conflict"), st.counter("stall_backpressure"));
+  if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
+    std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", st.counter("shape_cross"), st.counter("shape_T"),
+                             st.counter("shape_L"));
+}
+
 void run(SimOptions& o, CLI::App& cmd) {
-  if (!o.stats.empty() && std::filesystem::exists(o.stats) && !o.force)
-    throw InputError(fmt::format("--stats '{}' already exists (use --force to overwrite)", o.stats));
-  o.unit.cache.validate();
-  o.unit.memory.validate();
-  Texture texture;
-  SamplerConfig cfg;
-  Trace trace;
-  std::string what;
+  prepare_output("--stats", o.stats, o.force);
+  prepare_output("--out", o.out, o.force);
+  prepare_output("--vcd", o.vcd, o.force);
+  if (!o.config.empty()) o.unit = rtl::unit_config_from_json(read_file(o.config, "--config"), o.config);
+  // Command-line flags override the config file.
+  if (cmd.count("--block")) o.unit.cache.block = static_cast<int>(cmd.get_option("--block")->as<int>());
+  if (cmd.count("--cache-bytes")) o.unit.cache.capacity_bytes = cmd.get_option("--cache-bytes")->as<int>();
+  if (cmd.count("--ways")) o.unit.cache.ways = cmd.get_option("--ways")->as<int>();
+  if (cmd.count("--banks")) o.unit.cache.banks = cmd.get_option("--banks")->as<int>();
+  if (cmd.count("--latency")) o.unit.memory.latency = cmd.get_option("--latency")->as<int>();
+  if (cmd.count("--bandwidth")) o.unit.memory.bytes_per_cycle = cmd.get_option("--bandwidth")->as<int>();
+  if (cmd.count("--lanes")) o.unit.filter_lanes = cmd.get_option("--lanes")->as<int>();
+  if (!o.shape_policy.empty()) o.unit.shape_policy = rtl::shape_policy_from_name(o.shape_policy);
+  o.unit.validate();
+  std::unique_ptr<std::ofstream> vcd;
+  if (!o.vcd.empty()) {
+    vcd = std::make_unique<std::ofstream>(o.vcd);
+    if (!*vcd) throw InputError(fmt::format("--vcd '{}' cannot be written", o.vcd));
+  }
+  sim::Stats stats;
   if (!o.requests.empty()) {
     if (o.tex.texture.empty()) throw InputError("--requests needs --texture");
-    texture = load_texture_from_options(o.tex);
-    cfg = sampler_config_from_options(o.smp);
-    trace = load_trace(o.requests);
-    what = o.requests;
+    if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
+    if (o.units != 1) throw InputError("--units needs a scene (screen tiles)");
+    const Texture texture = load_texture_from_options(o.tex);
+    const SamplerConfig cfg = sampler_config_from_options(o.smp);
+    const Trace trace = load_trace(o.requests);
+    const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit, vcd.get());
+    const Sampler golden(texture, rtl::golden_sampler_config(cfg, o.unit));
+    const std::vector<int32_t> lam = trace_lambdas(trace, texture.width(), texture.height());
+    for (size_t i = 0; i < trace.requests.size(); ++i) {
+      const TraceRequest& r = trace.requests[i];
+      const Rgba8 want = rtl::golden_pixel(golden, o.unit, got, r, lam[i], i), have = got.pixels[i];
+      if (want != have)
+        throw CheckFailed(fmt::format("request {} (s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
+                                      i, r.s, r.t, got.response_cycle[i], have.r, have.g, have.b, have.a, want.r, want.g,
+                                      want.b, want.a));
+    }
+    print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", filter_mode_name(cfg.mode),
+                              trace.requests.size(), o.requests, trace.requests.size()),
+                  trace.requests.size(), got.cycles, got.stats);
+    stats = got.stats;
   } else {
     const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
     Scene scene = load_scene(name);
@@ -55,41 +110,35 @@ void run(SimOptions& o, CLI::App& cmd) {
     scene.height = o.height;
     RenderOptions ro;
     ro.trace = true;
-    trace = render_scene(scene, ro).trace;
-    const Mesh& mesh = scene.meshes.front();
-    texture = *mesh.texture;
-    cfg = mesh.sampler;
-    if (cmd.count("--filter")) cfg.mode = filter_mode_from_name(o.smp.filter);
-    what = fmt::format("scene {} at {}x{}", name, o.width, o.height);
+    rtl::SceneSimOptions so;
+    if (cmd.count("--filter")) ro.filter = so.filter = filter_mode_from_name(o.smp.filter);
+    so.units = o.units;
+    so.vcd = vcd.get();
+    const RenderResult render = render_scene(scene, ro);
+    const auto t0 = std::chrono::steady_clock::now();
+    const rtl::SceneSimResult res = rtl::simulate_scene(scene, render, o.unit, so);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!res.mismatch.empty()) throw CheckFailed(res.mismatch);
+    const std::string mode = so.filter ? filter_mode_name(*so.filter) : std::string("scene filters");
+    print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
+                              res.requests, name, o.width, o.height, o.units, o.units == 1 ? "" : "s", res.requests),
+                  res.requests, res.cycles, res.stats);
+    if (o.bench)
+      std::cout << fmt::format("  simulation: {:.3f} s, {:.2f} M simulated pixels/s (cycle model + golden compare)\n", secs,
+                               static_cast<double>(res.requests) / secs / 1e6);
+    if (!o.out.empty()) {
+      save_image(res.image, o.out, true);
+      std::cout << "  image -> " << o.out << '\n';
+    }
+    stats = res.stats;
   }
-  const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit);
-  // Golden reference on the same requests.
-  const Sampler smp(texture, cfg);
-  const std::vector<int32_t> lam = trace_lambdas(trace, texture.width(), texture.height());
-  for (size_t i = 0; i < trace.requests.size(); ++i) {
-    const TraceRequest& r = trace.requests[i];
-    const Rgba8 want = smp.sample(r.s, r.t, lam[i]), have = got.pixels[i];
-    if (want != have)
-      throw CheckFailed(fmt::format("request {} (s={:.9g}, t={:.9g}): cycle model {},{},{},{} vs golden {},{},{},{}", i, r.s,
-                                    r.t, have.r, have.g, have.b, have.a, want.r, want.g, want.b, want.a));
-  }
-  const auto n = static_cast<double>(trace.requests.size());
-  const uint64_t hits = got.stats.counter("cache_line_hits"), misses = got.stats.counter("cache_line_misses");
-  std::cout << fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", filter_mode_name(cfg.mode),
-                           trace.requests.size(), what, trace.requests.size());
-  std::cout << fmt::format("  cycles {}  pixels/clock {:.3f}  cache line hit rate {:.4f}  memory bytes/pixel {:.3f}\n",
-                           got.cycles, n / static_cast<double>(got.cycles),
-                           hits + misses ? static_cast<double>(hits) / static_cast<double>(hits + misses) : 1.0,
-                           static_cast<double>(got.stats.counter("memory_bytes")) / n);
-  std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n",
-                           got.stats.counter("stall_cache_miss"), got.stats.counter("stall_bank_conflict"),
-                           got.stats.counter("stall_backpressure"));
   if (!o.stats.empty()) {
     std::ofstream f(o.stats);
-    got.stats.write_json(f);
+    stats.write_json(f);
     if (!f) throw InputError(fmt::format("--stats '{}' cannot be written", o.stats));
     std::cout << "  stats -> " << o.stats << '\n';
   }
+  if (vcd) std::cout << "  vcd -> " << o.vcd << '\n';
 }
 
 }  // namespace
@@ -100,18 +149,26 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--scene", o->scene, "Built-in scene or scene JSON (default: the default scene) whose trace is simulated");
   cmd->add_option("--width", o->width, "Scene render width for the trace");
   cmd->add_option("--height", o->height, "Scene render height for the trace");
-  cmd->add_option("--requests", o->requests, "A quad-mode request trace instead of a scene (needs --texture)");
+  cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (needs --texture)");
   cmd->add_option("--texture", o->tex.texture, "Texture file or proc:NAME[:SIZE] (with --requests)");
   cmd->add_option("--mipmaps", o->tex.mipmaps, "MIP levels (with --requests): auto, stored, none, box, gaussian, edge");
   add_sampler_options(*cmd, o->smp);
-  cmd->add_option("--block", o->unit.cache.block, "Cache block side B in texels (4 or 8)");
-  cmd->add_option("--cache-bytes", o->unit.cache.capacity_bytes, "Cache capacity in bytes");
-  cmd->add_option("--ways", o->unit.cache.ways, "Cache associativity");
-  cmd->add_option("--banks", o->unit.cache.banks, "Cache banks (1 or 4)");
-  cmd->add_option("--latency", o->unit.memory.latency, "Memory latency in cycles");
-  cmd->add_option("--bandwidth", o->unit.memory.bytes_per_cycle, "Memory bandwidth in bytes per cycle");
+  cmd->add_option("--config", o->config, "Unit configuration JSON (docs/cycle-model.md); flags below override it");
+  int dummy = 0;
+  cmd->add_option("--block", dummy, "Cache block side B in texels (4 or 8)");
+  cmd->add_option("--cache-bytes", dummy, "Cache capacity in bytes");
+  cmd->add_option("--ways", dummy, "Cache associativity");
+  cmd->add_option("--banks", dummy, "Cache banks (1 or 4)");
+  cmd->add_option("--latency", dummy, "Memory latency in cycles");
+  cmd->add_option("--bandwidth", dummy, "Memory bandwidth in bytes per cycle");
+  cmd->add_option("--lanes", dummy, "Filter lanes (1, 2 or 4)");
+  cmd->add_option("--shape-policy", o->shape_policy, "Edge kernel shapes: static, cache-aware or full-cross");
+  cmd->add_option("--units", o->units, "Texture filter units, each taking 32x32 screen tiles round-robin (threads)");
+  cmd->add_option("--out", o->out, "Write the cycle model's image (scenes) as PNG");
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");
-  cmd->add_flag("--force", o->force, "Overwrite --stats if it exists");
+  cmd->add_option("--vcd", o->vcd, "Write a value-change dump (GTKWave) of the first unit's channels and stages");
+  cmd->add_flag("--bench", o->bench, "Print the simulation speed");
+  cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 

@@ -2,6 +2,8 @@
 // itself to the CLI11 application; main.cpp only wires them together and maps errors to exit codes.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace tfu::cli {
@@ -15,5 +17,9 @@ void register_mipmap(CLI::App& app);        // cmd_mipmap.cpp: MIP chain generat
 void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR, SSIM, heat map) and `montage`
 void register_sim(CLI::App& app);           // cmd_sim.cpp: cycle model vs golden, statistics
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
+
+// Output files: refuses an existing `path` unless `force` (InputError naming `option`) and creates
+// missing parent directories. An empty path is a no-op.
+void prepare_output(const std::string& option, const std::string& path, bool force);
 
 }  // namespace tfu::cli

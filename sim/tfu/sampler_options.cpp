@@ -1,6 +1,7 @@
 #include "sim/tfu/sampler_options.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "cmodel/mipmap.hpp"
 #include "cmodel/procedural.hpp"
 #include "sim/tfu/choices.hpp"
+#include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
 
@@ -136,6 +138,15 @@ SamplerConfig sampler_config_from_options(const SamplerOptions& o) {
                                                {{"cross", EdgeShapePolicy::Cross}, {"cache-block", EdgeShapePolicy::CacheBlock}});
   c.edge_cache_block = o.cache_block;
   return c;
+}
+
+void prepare_output(const std::string& option, const std::string& path, bool force) {
+  if (path.empty()) return;
+  if (!force && std::filesystem::exists(path)) throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec) throw InputError(fmt::format("{} '{}': cannot create directory '{}': {}", option, path, parent.string(), ec.message()));
 }
 
 }  // namespace tfu::cli

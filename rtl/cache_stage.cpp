@@ -1,0 +1,142 @@
+#include "rtl/cache_stage.hpp"
+
+#include <algorithm>
+
+namespace tfu::rtl {
+namespace {
+
+// The four arms of the cross (Lee & Jen Fig. 4): top C1 C2, bottom C11 C12, left C3 C7, right C6 C10.
+constexpr std::array<std::array<int, 2>, 4> kArms{{{1, 2}, {11, 12}, {3, 7}, {6, 10}}};
+constexpr lee_jen::TexelMask arm_bits(const std::array<int, 2>& a) {
+  return static_cast<lee_jen::TexelMask>((1u << (a[0] - 1)) | (1u << (a[1] - 1)));
+}
+
+}  // namespace
+
+CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& o,
+                       std::vector<const Image*> levels, Rgba8 border, bool edge, TexelCache& c, MemoryModel& m,
+                       int miss_fifo_depth)
+    : Module(s, "texel_cache"),
+      in_(i),
+      out_(o),
+      levels_(std::move(levels)),
+      border_(border),
+      edge_(edge),
+      cache_(c),
+      mem_(m),
+      fifo_depth_(static_cast<size_t>(miss_fifo_depth)) {
+  hits_per_level_.assign(levels_.size(), 0);
+  misses_per_level_.assign(levels_.size(), 0);
+}
+
+void CacheStage::accept(uint64_t now) {
+  FootprintReq cur = in_.front();
+  in_.pop();
+  if (edge_ && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
+    for (const auto& arm : kArms) {
+      const lee_jen::TexelMask bits = arm_bits(arm);
+      if ((cur.optional & bits) != bits) continue;
+      bool resident = true;
+      for (int n : arm) {
+        const Tap& t = cur.taps[static_cast<size_t>(n - 1)];
+        if (!t.border && !cache_.resident(cur.level, t.x, t.y)) resident = false;
+      }
+      if (resident) cur.shape = static_cast<lee_jen::TexelMask>(cur.shape | bits);
+    }
+  }
+  std::array<TexelTap, 16> taps{};
+  size_t n = 0;
+  for (int k = 0; k < cur.ntaps; ++k) {
+    const Tap& t = cur.taps[static_cast<size_t>(k)];
+    if (t.border || (edge_ && !((cur.shape >> k) & 1u))) continue;
+    taps[n++] = {t.x, t.y};
+  }
+  const FootprintResult r = cache_.access(cur.level, std::span<const TexelTap>(taps.data(), n));
+  port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
+  uint64_t ready = port_free_ - 1;
+  for (size_t m = 0; m < r.missed_lines.size(); ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes()));
+  const auto l = static_cast<size_t>(cur.level);
+  hits_per_level_[l] += static_cast<uint64_t>(r.hits);
+  misses_per_level_[l] += static_cast<uint64_t>(r.misses);
+  if (edge_) {
+    int missing_arms = 0;
+    for (const auto& arm : kArms) missing_arms += (cur.shape & arm_bits(arm)) == 0;
+    ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
+    if (shapes.size() <= cur.id) shapes.resize(cur.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
+    shapes[cur.id][cur.second ? 1 : 0] = cur.shape;
+  }
+  fifo_.push_back({cur, ready});
+}
+
+void CacheStage::evaluate() {
+  const uint64_t now = sim_.cycle();
+  // Output side: the FIFO head leaves when its lines are in (one footprint per cycle).
+  if (!fifo_.empty()) {
+    if (now < fifo_.front().ready) {
+      ++stall_miss_;
+    } else if (!out_.can_push()) {
+      ++stall_back_;
+    } else {
+      emit();
+    }
+  }
+  // Input side: one tag lookup per cycle while the port is free and the FIFO has room.
+  if (in_.can_pop()) {
+    if (now < port_free_) {
+      ++stall_bank_;
+    } else if (fifo_.size() < fifo_depth_) {
+      accept(now);
+      sim_.progress();
+    }
+  }
+}
+
+void CacheStage::emit() {
+  const FootprintReq& cur = fifo_.front().f;
+  FilterReq f;
+  f.id = cur.id;
+  f.ntaps = cur.ntaps;
+  const Image& img = *levels_[static_cast<size_t>(cur.level)];
+  for (int k = 0; k < cur.ntaps; ++k) {
+    const Tap& tp = cur.taps[static_cast<size_t>(k)];
+    if (edge_ && !((cur.shape >> k) & 1u)) continue;  // not read: stays zero
+    f.texels[static_cast<size_t>(k)] = tp.border ? border_ : img.at(tp.x, tp.y);
+  }
+  f.fu = cur.fu;
+  f.fv = cur.fv;
+  f.blend = cur.blend;
+  f.two = cur.two;
+  f.second = cur.second;
+  f.shape = cur.shape;
+  out_.push(f);
+  fifo_.pop_front();
+  sim_.progress();
+}
+
+std::string CacheStage::state() const {
+  return fmt::format("{}, {}, miss fifo {}/{}{}", in_.state(), out_.state(), fifo_.size(), fifo_depth_,
+                     fifo_.empty() ? std::string() : fmt::format(", head ready at {}", fifo_.front().ready));
+}
+
+void CacheStage::publish(sim::Stats& st) const {
+  uint64_t hits = 0, misses = 0;
+  for (size_t l = 0; l < hits_per_level_.size(); ++l) {
+    hits += hits_per_level_[l];
+    misses += misses_per_level_[l];
+    if (hits_per_level_[l] + misses_per_level_[l] == 0) continue;
+    st.add(fmt::format("cache_line_hits_level{}", l), hits_per_level_[l]);
+    st.add(fmt::format("cache_line_misses_level{}", l), misses_per_level_[l]);
+  }
+  st.add("cache_line_hits", hits);
+  st.add("cache_line_misses", misses);
+  st.add("stall_cache_miss", stall_miss_);
+  st.add("stall_bank_conflict", stall_bank_);
+  st.add("stall_backpressure", stall_back_);
+  if (edge_) {
+    st.add("shape_cross", shape_count_[0]);
+    st.add("shape_T", shape_count_[1]);
+    st.add("shape_L", shape_count_[2]);
+  }
+}
+
+}  // namespace tfu::rtl

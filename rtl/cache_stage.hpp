@@ -1,0 +1,64 @@
+// texel_cache stage: looks up one footprint per cycle in the texel cache's tags (rtl/texel_cache.hpp),
+// resolves the cache-aware kernel shape by a tag probe, sends the missing lines to the memory model
+// (rtl/memory_model.hpp) at once, and queues the footprint in an in-order miss FIFO (the prefetching
+// texture cache of Igehy, Eldridge & Proudfoot 1998): several misses are outstanding, and hits
+// behind a miss wait in order. The FIFO head leaves, with its texel words, when its lines have
+// arrived. The banks serve one footprint per cycle; a bank conflict holds the tag port for the
+// extra cycles. Simplification: a line is not evicted while a queued footprint still needs it
+// (the paper's reference counters); texel data comes from the level images.
+//
+// Ports:
+//   in  footprint  FootprintReq (taps, shape, optional arms)         valid/ready
+//   out texels     FilterReq: up to 16 texel words [31:0], shape[11:0]
+//   mem            line read requests (MemoryModel::read), bytes counted there
+// Border taps (clamp-to-border outside the texture) take the border word and no cache access.
+#pragma once
+
+#include <deque>
+#include <vector>
+
+#include "rtl/memory_model.hpp"
+#include "rtl/texel_cache.hpp"
+#include "rtl/unit_ports.hpp"
+#include "sim/kernel/kernel.hpp"
+
+namespace tfu::rtl {
+
+class CacheStage : public sim::Module {
+ public:
+  // `levels[l]` is the image the datapath reads for level l (texture or stored coefficients).
+  CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& o,
+             std::vector<const Image*> levels, Rgba8 border, bool edge, TexelCache& c, MemoryModel& m,
+             int miss_fifo_depth);
+  void evaluate() override;
+  std::string state() const override;
+  void publish(sim::Stats& st) const;
+  bool busy() const { return !fifo_.empty(); }
+  uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.id; }
+  // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
+  std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
+
+ private:
+  sim::Channel<FootprintReq>& in_;
+  sim::Channel<FilterReq>& out_;
+  std::vector<const Image*> levels_;
+  Rgba8 border_;
+  bool edge_;
+  TexelCache& cache_;
+  MemoryModel& mem_;
+  struct Entry {
+    FootprintReq f;
+    uint64_t ready;  // cycle the footprint's lines are all in the cache
+  };
+  std::deque<Entry> fifo_;  // the miss FIFO
+  size_t fifo_depth_;
+  uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
+  // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
+  uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
+  std::vector<uint64_t> hits_per_level_, misses_per_level_;
+  std::array<uint64_t, 3> shape_count_{};  // cross, T, L
+  void accept(uint64_t now);
+  void emit();
+};
+
+}  // namespace tfu::rtl

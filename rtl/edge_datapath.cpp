@@ -1,0 +1,86 @@
+#include "rtl/edge_datapath.hpp"
+
+#include "cmodel/datapath.hpp"
+#include "rtl/median_network.hpp"
+
+namespace tfu::rtl {
+
+lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
+                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt) {
+  struct Candidate {
+    bool valid;
+    uint32_t cost;  // [17:0]
+    int dir;        // [4:0]
+  };
+  static const auto kDirs = lee_jen::directions();
+  const uint32_t usable = lee_jen::usable_directions(shape);
+  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
+  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
+  // Leaves: one ROM and one weighted-difference multiplier per direction.
+  std::array<Candidate, 32> level{};
+  for (int i = 0; i < lee_jen::kDirections; ++i) {
+    const lee_jen::Direction& d = kDirs[static_cast<size_t>(i)];
+    const uint8_t w = lee_jen::direction_weight_rom(i)[addr];
+    const bool valid = ((usable >> i) & 1u) && w != lee_jen::kNeverChoose;
+    level[static_cast<size_t>(i)] = {valid, valid ? w * lee_jen::direction_difference(lowv(d.p), lowv(d.q), fmt) : 0, i};
+  }
+  // Min tree: each node keeps its left input unless the right one is valid and strictly cheaper,
+  // so ties go to the lower direction index.
+  size_t n = lee_jen::kDirections;
+  while (n > 1) {
+    for (size_t k = 0; k < n / 2; ++k) {
+      const Candidate& a = level[2 * k];
+      const Candidate& b = level[2 * k + 1];
+      level[k] = (b.valid && (!a.valid || b.cost < a.cost)) ? b : a;
+    }
+    if (n % 2) level[n / 2] = level[n - 1];
+    n = (n + 1) / 2;
+  }
+  return {level[0].valid ? level[0].dir : 0, level[0].cost, 0};
+}
+
+void EdgeMedian::evaluate() {
+  if (!in_.can_pop() || !out_.can_push()) return;
+  const FilterReq& r = in_.front();
+  EdgeS1 s;
+  s.id = r.id;
+  for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt_);
+  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.shape, fmt_), r.shape);
+  s.shape = r.shape;
+  s.fu = r.fu;
+  s.fv = r.fv;
+  s.blend = r.blend;
+  s.two = r.two;
+  s.second = r.second;
+  in_.pop();
+  out_.push(s);
+  sim_.progress();
+}
+
+void EdgeDirection::evaluate() {
+  if (!in_.can_pop() || !out_.can_push()) return;
+  const EdgeS1& s = in_.front();
+  EdgeS2 o{s, direction_select(s.c, s.low, s.shape, s.fu, s.fv, fmt_).direction};
+  ++chosen[static_cast<size_t>(o.direction)];
+  in_.pop();
+  out_.push(o);
+  sim_.progress();
+}
+
+void EdgeMerge::evaluate() {
+  if (!in_.can_pop()) return;
+  const EdgeS2& s = in_.front();
+  const bool emits = !s.s1.two || s.s1.second;
+  if (emits && !out_.can_push()) return;
+  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, s.s1.fu, s.s1.fv, fmt_);
+  if (s.s1.two && !s.s1.second) {
+    first_ = c;
+  } else {
+    if (s.s1.two) c = dp::level_blend(first_, c, s.s1.blend);
+    out_.push({s.s1.id, encode_texel(c, fmt_)});
+  }
+  in_.pop();
+  sim_.progress();
+}
+
+}  // namespace tfu::rtl

@@ -1,0 +1,86 @@
+// The edge-preserving filter datapath (Lee & Jen 2003), fully pipelined: one pixel per clock,
+// three registered stages.
+//
+//   edge_median    texel unpack; RGB->Y (5R + 9G + 2B, shift-and-add); keys Y*16+n; the median
+//                  network of compare cells (rtl/median_network.hpp) -> low[n], the texel number of
+//                  each Eq. 4 median
+//   edge_direction 22 direction-weight ROMs (address (yf>>4)<<4 | xf>>4), weighted differences
+//                  w_i * dP_i (Eq. 1-2: 8-bit code x 10-bit dP = 18 bits), usable-direction mask of
+//                  the kernel shape, min tree (5 levels, ties to the lower direction index)
+//   edge_merge     directional lerp of the low-pass endpoints (Eq. 3), high-frequency bilinear
+//                  (Eq. 5), merge and clamp (Eq. 6), trilinear blend, encode
+//
+// Ports (between stages, valid/ready channels of depth 2):
+//   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], fu fv, blend, two, second
+//   s1  EdgeS1: 12 texels (datapath channels), low[12] x [3:0], shape, fractions
+//   s2  EdgeS2: s1 + direction[4:0]
+//   out Response: id, rgba[31:0]
+#pragma once
+
+#include "cmodel/edge_filter.hpp"
+#include "rtl/unit_ports.hpp"
+#include "sim/kernel/kernel.hpp"
+
+namespace tfu::rtl {
+
+struct EdgeS1 {
+  uint32_t id = 0;
+  std::array<Texel4, lee_jen::kTexels> c{};
+  lee_jen::LowIndex low{};
+  lee_jen::TexelMask shape = lee_jen::kAllTexels;
+  uint32_t fu = 0, fv = 0;
+  int blend = 0;
+  bool two = false, second = false;
+};
+struct EdgeS2 {
+  EdgeS1 s1;
+  int direction = 0;
+};
+
+// The direction-select block as a structure: ROM reads, weighted differences, masked min tree.
+// Same result as lee_jen::select_direction (tested exhaustively over shapes and randomly over texels).
+lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
+                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt);
+
+class EdgeMedian : public sim::Module {
+ public:
+  EdgeMedian(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<EdgeS1>& o, TexelFormat f)
+      : Module(s, "edge_median"), in_(i), out_(o), fmt_(f) {}
+  void evaluate() override;
+  std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+
+ private:
+  sim::Channel<FilterReq>& in_;
+  sim::Channel<EdgeS1>& out_;
+  TexelFormat fmt_;
+};
+
+class EdgeDirection : public sim::Module {
+ public:
+  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeS1>& i, sim::Channel<EdgeS2>& o, TexelFormat f)
+      : Module(s, "edge_direction"), in_(i), out_(o), fmt_(f) {}
+  void evaluate() override;
+  std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+  std::array<uint64_t, lee_jen::kDirections> chosen{};  // histogram of chosen directions
+
+ private:
+  sim::Channel<EdgeS1>& in_;
+  sim::Channel<EdgeS2>& out_;
+  TexelFormat fmt_;
+};
+
+class EdgeMerge : public sim::Module {
+ public:
+  EdgeMerge(sim::Simulator& s, sim::Channel<EdgeS2>& i, sim::Channel<Response>& o, TexelFormat f)
+      : Module(s, "edge_merge"), in_(i), out_(o), fmt_(f) {}
+  void evaluate() override;
+  std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+
+ private:
+  sim::Channel<EdgeS2>& in_;
+  sim::Channel<Response>& out_;
+  TexelFormat fmt_;
+  Texel4 first_{};  // level0 result of a blending pixel (register)
+};
+
+}  // namespace tfu::rtl

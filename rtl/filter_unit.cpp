@@ -1,0 +1,62 @@
+#include "rtl/filter_unit.hpp"
+
+#include "cmodel/datapath.hpp"
+
+namespace tfu::rtl {
+
+FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<Response>& o, const Sampler& smp,
+                       int lanes)
+    : Module(s, "filter"),
+      in_(i),
+      out_(o),
+      smp_(smp),
+      base_(smp.config().mode.base),
+      fmt_(smp.texture().format),
+      // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
+      unpack_fmt_(smp.cubic_rom() && smp.cubic_normalize().prefiltered ? TexelFormat::RGBA8 : smp.texture().format),
+      lanes_(lanes) {}
+
+Texel4 FilterUnit::filter_level(const FilterReq& r) const {
+  const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack_fmt_); };
+  switch (base_) {
+    case BaseFilter::Nearest: return texel(0);
+    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.fu, r.fv, fmt_);
+    case BaseFilter::Cubic: {
+      std::array<int32_t, 16> w{};
+      dp::tile_weights_2d(*smp_.cubic_rom(), smp_.config().cubic_recon, r.fu, r.fv, w);
+      std::array<Texel4, 16> c{};
+      for (int k = 0; k < r.ntaps; ++k) c[static_cast<size_t>(k)] = texel(k);
+      return dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps), smp_.cubic_normalize());
+    }
+    case BaseFilter::EdgePreserving: break;  // its own pipeline (edge_datapath.hpp)
+  }
+  return {};
+}
+
+void FilterUnit::evaluate() {
+  if (!in_.can_pop()) return;
+  const FilterReq& r = in_.front();
+  if (remaining_ < 0) remaining_ = (r.ntaps + 4 * lanes_ - 1) / (4 * lanes_) - 1;
+  if (remaining_ > 0) {  // the lanes are still working on this footprint
+    --remaining_;
+    ++busy_cycles_;
+    sim_.progress();
+    return;
+  }
+  const bool emits = !r.two || r.second;
+  if (emits && !out_.can_push()) return;
+  Texel4 c = filter_level(r);
+  if (r.two && !r.second) {
+    first_ = c;
+  } else {
+    if (r.two) c = dp::level_blend(first_, c, r.blend);
+    out_.push({r.id, encode_texel(c, fmt_)});
+  }
+  in_.pop();
+  remaining_ = -1;
+  sim_.progress();
+}
+
+std::string FilterUnit::state() const { return fmt::format("{}, {}, lanes busy {}", in_.state(), out_.state(), remaining_); }
+
+}  // namespace tfu::rtl

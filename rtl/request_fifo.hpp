@@ -1,0 +1,51 @@
+// request_fifo: the unit's input. Accepts one request per cycle from the trace: a 2x2 quad (quad
+// traces) or one pixel (lod / grad traces), and stamps each pixel's accept cycle (for the latency
+// histogram).
+//
+// Ports:
+//   out quad  QuadReq (unit_ports.hpp)   valid/ready
+#pragma once
+
+#include <vector>
+
+#include "cmodel/trace.hpp"
+#include "rtl/unit_ports.hpp"
+#include "sim/kernel/kernel.hpp"
+
+namespace tfu::rtl {
+
+class RequestFifo : public sim::Module {
+ public:
+  RequestFifo(sim::Simulator& s, const Trace& tr, sim::Channel<QuadReq>& o, std::vector<uint64_t>& accept_cycle)
+      : Module(s, "request_fifo"), trace_(tr), out_(o), accept_(accept_cycle) {}
+  void evaluate() override {
+    if (next_ >= trace_.requests.size() || !out_.can_push()) return;
+    QuadReq q;
+    q.id = static_cast<uint32_t>(next_);
+    q.npix = trace_.mode == TraceMode::Quad ? 4 : 1;
+    for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) {
+      const TraceRequest& r = trace_.requests[next_ + k];
+      q.s[k] = r.s;
+      q.t[k] = r.t;
+      accept_[next_ + k] = sim_.cycle();
+    }
+    const TraceRequest& r = trace_.requests[next_];
+    q.lod = r.lod;
+    q.dsdx = r.dsdx;
+    q.dtdx = r.dtdx;
+    q.dsdy = r.dsdy;
+    q.dtdy = r.dtdy;
+    out_.push(q);
+    next_ += static_cast<size_t>(q.npix);
+    sim_.progress();
+  }
+  std::string state() const override { return out_.state(); }
+
+ private:
+  const Trace& trace_;
+  sim::Channel<QuadReq>& out_;
+  std::vector<uint64_t>& accept_;
+  size_t next_ = 0;
+};
+
+}  // namespace tfu::rtl

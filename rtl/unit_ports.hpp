@@ -1,0 +1,69 @@
+// Port payloads of the texture filter unit's pipeline (rtl/tfu_unit.hpp has the block diagram).
+// Field widths are those of the hardware; C++ types are chosen wide enough.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "cmodel/direction_rom.hpp"
+#include "cmodel/texture.hpp"
+
+namespace tfu::rtl {
+
+// request_fifo -> lod_unit: one 2x2 quad (quad traces) or one pixel (lod / grad traces).
+//   id[31:0], npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32
+struct QuadReq {
+  uint32_t id = 0;  // index of the first pixel in the trace
+  int npix = 4;
+  std::array<float, 4> s{}, t{};
+  float lod = 0, dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;
+};
+
+// lod_unit -> address_gen: one pixel per cycle.  id, s t FP32, lambda[15:0] (Q.8, before bias/clamp)
+struct PixelReq {
+  uint32_t id = 0;
+  float s = 0, t = 0;
+  int32_t lambda = 0;
+};
+
+// A texel address: x[13:0] y[13:0] inside the level; border = outside the texture under
+// clamp-to-border (the border word, no cache access).
+struct Tap {
+  int x = 0, y = 0;
+  bool border = false;
+};
+
+// address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
+//   id, level[3:0], ntaps[4:0] (1, 4, T*T <= 16, or 12 for the edge cross: tap k = texel C(k+1)),
+//   fu[7:0] fv[7:0], blend[8:0], two/second (a blending MIPMAP_LINEAR pixel's first/second level),
+//   shape[11:0] (edge cross: texels the kernel may use), optional[11:0] (cache-aware: arms to add
+//   when their lines are resident)
+struct FootprintReq {
+  uint32_t id = 0;
+  int level = 0, ntaps = 0;
+  std::array<Tap, 16> taps{};
+  uint32_t fu = 0, fv = 0;
+  int blend = 0;
+  bool two = false, second = false;
+  lee_jen::TexelMask shape = lee_jen::kAllTexels;
+  lee_jen::TexelMask optional = 0;
+};
+
+// texel_cache -> filter: the footprint's texel words (unread taps are zero).
+struct FilterReq {
+  uint32_t id = 0;
+  int ntaps = 0;
+  std::array<Rgba8, 16> texels{};
+  uint32_t fu = 0, fv = 0;
+  int blend = 0;
+  bool two = false, second = false;
+  lee_jen::TexelMask shape = lee_jen::kAllTexels;
+};
+
+// filter -> response: id[31:0], rgba[31:0]
+struct Response {
+  uint32_t id = 0;
+  Rgba8 rgba{};
+};
+
+}  // namespace tfu::rtl
