@@ -13,7 +13,7 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
   FootprintReq f;
   f.id = id;
   f.level = level;
-  const auto tap = [](int x, int y) { return Tap{x, y, x < 0 || y < 0}; };
+  const auto tap = [](int x, int y) { return Tap{static_cast<int16_t>(x), static_cast<int16_t>(y), x < 0 || y < 0}; };
   const auto wrapped = [&](int64_t x, int64_t y) {
     return tap(wrap_index(c.wrap_s, x, img.width), wrap_index(c.wrap_t, y, img.height));
   };

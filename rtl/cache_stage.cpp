@@ -24,7 +24,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       edge_(edge),
       cache_(c),
       mem_(m),
-      fifo_depth_(static_cast<size_t>(miss_fifo_depth)) {
+      fifo_(static_cast<size_t>(miss_fifo_depth)) {
   hits_per_level_.assign(levels_.size(), 0);
   misses_per_level_.assign(levels_.size(), 0);
 }
@@ -54,7 +54,7 @@ void CacheStage::accept(uint64_t now) {
   const FootprintResult r = cache_.access(cur.level, std::span<const TexelTap>(taps.data(), n));
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
   uint64_t ready = port_free_ - 1;
-  for (size_t m = 0; m < r.missed_lines.size(); ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes()));
+  for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes()));
   const auto l = static_cast<size_t>(cur.level);
   hits_per_level_[l] += static_cast<uint64_t>(r.hits);
   misses_per_level_[l] += static_cast<uint64_t>(r.misses);
@@ -65,7 +65,7 @@ void CacheStage::accept(uint64_t now) {
     if (shapes.size() <= cur.id) shapes.resize(cur.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
     shapes[cur.id][cur.second ? 1 : 0] = cur.shape;
   }
-  fifo_.push_back({cur, ready});
+  fifo_.push_back() = {cur, ready};
 }
 
 void CacheStage::evaluate() {
@@ -84,7 +84,7 @@ void CacheStage::evaluate() {
   if (in_.can_pop()) {
     if (now < port_free_) {
       ++stall_bank_;
-    } else if (fifo_.size() < fifo_depth_) {
+    } else if (!fifo_.full()) {
       accept(now);
       sim_.progress();
     }
@@ -114,7 +114,7 @@ void CacheStage::emit() {
 }
 
 std::string CacheStage::state() const {
-  return fmt::format("{}, {}, miss fifo {}/{}{}", in_.state(), out_.state(), fifo_.size(), fifo_depth_,
+  return fmt::format("{}, {}, miss fifo {}/{}{}", in_.state(), out_.state(), fifo_.size(), fifo_.depth(),
                      fifo_.empty() ? std::string() : fmt::format(", head ready at {}", fifo_.front().ready));
 }
 

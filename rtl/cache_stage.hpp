@@ -50,8 +50,7 @@ class CacheStage : public sim::Module {
     FootprintReq f;
     uint64_t ready;  // cycle the footprint's lines are all in the cache
   };
-  std::deque<Entry> fifo_;  // the miss FIFO
-  size_t fifo_depth_;
+  sim::Fifo<Entry> fifo_;  // the miss FIFO
   uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;

@@ -12,17 +12,31 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
     uint32_t cost;  // [17:0]
     int dir;        // [4:0]
   };
-  static const auto kDirs = lee_jen::directions();
-  const uint32_t usable = lee_jen::usable_directions(shape);
+  // The ROMs' contents and the shape decoder (usable directions per 12-bit shape), read once.
+  struct Tables {
+    std::array<const std::array<uint8_t, 256>*, lee_jen::kDirections> rom{};
+    std::array<std::array<int, 2>, lee_jen::kDirections> ends{};
+    std::array<uint32_t, lee_jen::kAllTexels + 1> usable{};
+  };
+  static const Tables kTab = [] {
+    Tables t;
+    for (const lee_jen::Direction& d : lee_jen::directions()) {
+      t.rom[static_cast<size_t>(d.index)] = &lee_jen::direction_weight_rom(d.index);
+      t.ends[static_cast<size_t>(d.index)] = {d.p, d.q};
+    }
+    for (uint32_t m = 0; m <= lee_jen::kAllTexels; ++m) t.usable[m] = lee_jen::usable_directions(static_cast<lee_jen::TexelMask>(m));
+    return t;
+  }();
+  const uint32_t usable = kTab.usable[shape & lee_jen::kAllTexels];
   const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
   const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Leaves: one ROM and one weighted-difference multiplier per direction.
   std::array<Candidate, 32> level{};
   for (int i = 0; i < lee_jen::kDirections; ++i) {
-    const lee_jen::Direction& d = kDirs[static_cast<size_t>(i)];
-    const uint8_t w = lee_jen::direction_weight_rom(i)[addr];
+    const auto& ends = kTab.ends[static_cast<size_t>(i)];
+    const uint8_t w = (*kTab.rom[static_cast<size_t>(i)])[addr];
     const bool valid = ((usable >> i) & 1u) && w != lee_jen::kNeverChoose;
-    level[static_cast<size_t>(i)] = {valid, valid ? w * lee_jen::direction_difference(lowv(d.p), lowv(d.q), fmt) : 0, i};
+    level[static_cast<size_t>(i)] = {valid, valid ? w * lee_jen::direction_difference(lowv(ends[0]), lowv(ends[1]), fmt) : 0, i};
   }
   // Min tree: each node keeps its left input unless the right one is valid and strictly cheaper,
   // so ties go to the lower direction index.

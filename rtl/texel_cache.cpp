@@ -25,6 +25,7 @@ void TexelCacheConfig::validate() const {
 TexelCache::TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights)
     : cfg_(cfg) {
   cfg_.validate();
+  while ((1 << block_shift_) < cfg_.block) ++block_shift_;
   if (level_widths.size() != level_heights.size() || level_widths.empty())
     throw InputError("texel cache: level sizes missing");
   uint64_t base = 0;
@@ -42,8 +43,8 @@ TexelCache::TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std:
 
 uint64_t TexelCache::line_of(int level, int x, int y) const {
   const auto l = static_cast<size_t>(level);
-  return level_base_[l] + static_cast<uint64_t>(y / cfg_.block) * static_cast<uint64_t>(blocks_per_row_[l]) +
-         static_cast<uint64_t>(x / cfg_.block);
+  return level_base_[l] + static_cast<uint64_t>(y >> block_shift_) * static_cast<uint64_t>(blocks_per_row_[l]) +
+         static_cast<uint64_t>(x >> block_shift_);
 }
 
 bool TexelCache::resident(int level, int x, int y) const {
@@ -93,7 +94,7 @@ FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
       bank = cfg_.banks == 4 ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0;
       item = (static_cast<uint64_t>(static_cast<uint32_t>(t.y)) << 32) | static_cast<uint32_t>(t.x);
     } else {
-      bank = cfg_.banks == 4 ? static_cast<size_t>(((t.x / cfg_.block) & 1) + 2 * ((t.y / cfg_.block) & 1)) : 0;
+      bank = cfg_.banks == 4 ? static_cast<size_t>(((t.x >> block_shift_) & 1) + 2 * ((t.y >> block_shift_) & 1)) : 0;
       item = line;
     }
     add(per_bank[bank], nbank[bank], item);
@@ -102,8 +103,7 @@ FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
     if (lookup(lines[i])) {
       ++r.hits;
     } else {
-      ++r.misses;
-      r.missed_lines.push_back(lines[i]);
+      r.missed_lines[static_cast<size_t>(r.misses++)] = lines[i];
     }
   }
   r.cycles = 1;

@@ -55,8 +55,8 @@ struct TexelTap {
 
 struct FootprintResult {
   int hits = 0, misses = 0;
-  int cycles = 1;                      // bank occupancy
-  std::vector<uint64_t> missed_lines;  // distinct line addresses fetched from memory
+  int cycles = 1;                           // bank occupancy
+  std::array<uint64_t, 16> missed_lines{};  // distinct line addresses fetched from memory: [0, misses)
 };
 
 class TexelCache {
@@ -78,6 +78,7 @@ class TexelCache {
  private:
   TexelCacheConfig cfg_;
   std::vector<int> blocks_per_row_;
+  int block_shift_ = 2;  // log2(B)
   std::vector<uint64_t> level_base_;  // first line address of each level
   struct Way {
     uint64_t tag = ~uint64_t{0};

@@ -29,7 +29,7 @@ struct PixelReq {
 // A texel address: x[13:0] y[13:0] inside the level; border = outside the texture under
 // clamp-to-border (the border word, no cache access).
 struct Tap {
-  int x = 0, y = 0;
+  int16_t x = 0, y = 0;  // levels are at most 16384 texels wide: 15 bits, -1 with border
   bool border = false;
 };
 

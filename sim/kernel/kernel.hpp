@@ -50,46 +50,78 @@ class Reg : public Clocked {
 };
 
 // Valid/ready channel with a FIFO of `depth` entries (skid buffer), one producer and one consumer.
+// Storage is a preallocated ring: push() writes the tail slot, which becomes visible at commit().
 template <typename T>
 class Channel : public Clocked {
  public:
   Channel(std::string name, size_t depth) : name_(std::move(name)), depth_(depth) {
     if (depth_ == 0) throw InputError(fmt::format("channel {}: depth must be at least 1", name_));
+    ring_.resize(depth_ + 1);  // one spare slot: a push into a full-at-commit ring never overwrites
   }
   const std::string& name() const { return name_; }
   size_t depth() const { return depth_; }
-  size_t size() const { return q_.size(); }
+  size_t size() const { return count_; }
   // Producer side (ready = can_push, registered).
-  bool can_push() const { return q_.size() < depth_; }
+  bool can_push() const { return count_ < depth_; }
   void push(const T& v) {
     if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
     pushed_ = true;
-    incoming_ = v;
+    ring_[(head_ + count_) % ring_.size()] = v;
   }
   // Consumer side (valid = can_pop).
-  bool can_pop() const { return !q_.empty(); }
-  const T& front() const { return q_.front(); }
+  bool can_pop() const { return count_ != 0; }
+  const T& front() const { return ring_[head_]; }
   void pop() {
     if (!can_pop() || popped_) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
     popped_ = true;
   }
   void commit() override {
-    if (popped_) q_.pop_front();
-    if (pushed_) q_.push_back(incoming_);
+    if (popped_) {
+      head_ = (head_ + 1) % ring_.size();
+      --count_;
+    }
+    if (pushed_) ++count_;
     pushed_ = popped_ = false;
   }
   void reset() override {
-    q_.clear();
+    head_ = count_ = 0;
     pushed_ = popped_ = false;
   }
-  std::string state() const { return fmt::format("{} {}/{}{}", name_, q_.size(), depth_, can_push() ? "" : " full"); }
+  std::string state() const { return fmt::format("{} {}/{}{}", name_, count_, depth_, can_push() ? "" : " full"); }
 
  private:
   std::string name_;
   size_t depth_;
-  std::deque<T> q_;
-  T incoming_{};
+  std::vector<T> ring_;
+  size_t head_ = 0, count_ = 0;
   bool pushed_ = false, popped_ = false;
+};
+
+// A block-internal FIFO (no clocking of its own: the owning block's evaluate() is its only user),
+// preallocated ring of `depth` entries.
+template <typename T>
+class Fifo {
+ public:
+  explicit Fifo(size_t depth) : ring_(depth) {}
+  bool empty() const { return count_ == 0; }
+  bool full() const { return count_ == ring_.size(); }
+  size_t size() const { return count_; }
+  size_t depth() const { return ring_.size(); }
+  T& front() { return ring_[head_]; }
+  const T& front() const { return ring_[head_]; }
+  T& push_back() {  // the new tail slot, to be filled by the caller
+    T& slot = ring_[(head_ + count_) % ring_.size()];
+    ++count_;
+    return slot;
+  }
+  void pop_front() {
+    head_ = (head_ + 1) % ring_.size();
+    --count_;
+  }
+
+ private:
+  std::vector<T> ring_;
+  size_t head_ = 0, count_ = 0;
 };
 
 // Named counters and histograms, written as JSON.
