@@ -19,6 +19,7 @@
 #include "cmodel/scene.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
+#include "rtl/tfu_unit.hpp"
 
 #include "Vtfu_edge_interp_top.h"
 #include "verilated.h"
@@ -109,6 +110,21 @@ int main(int argc, char** argv) {
     fmt::print("  C++ lee_jen::edge_preserving_interpolate   {:10.3f} M samples/s\n", static_cast<double>(n) / t_cpp * 1e-6);
     fmt::print("  Verilated tfu_edge_interp_top (1/clock)    {:10.3f} M samples/s\n", static_cast<double>(n) / t_sv * 1e-6);
     fmt::print("  ratio C++ / Verilator                      {:10.2f}\n", t_sv / t_cpp);
+    {
+      // The whole C++ cycle model (rtl/, static 4x4 shapes) on the same scene trace, for scale: it
+      // adds the LOD unit, address generation, kernel selection, the cache and the pipeline.
+      tfu::SamplerConfig cfg = mesh.sampler;
+      cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
+      tfu::Trace big;
+      big.mode = trace.mode;
+      while (big.requests.size() < n)
+        big.requests.insert(big.requests.end(), trace.requests.begin(), trace.requests.end());
+      const auto t1 = std::chrono::steady_clock::now();
+      const tfu::rtl::UnitOutput u = tfu::rtl::run_unit(*mesh.texture, cfg, big, tfu::rtl::UnitConfig{});
+      const double t_unit = seconds_since(t1);
+      fmt::print("  C++ cycle model rtl::run_unit (whole unit) {:10.3f} M samples/s ({} pixels, {} cycles)\n",
+                 static_cast<double>(big.requests.size()) / t_unit * 1e-6, u.pixels.size(), u.cycles);
+    }
     fmt::print("  results {} of {}, mismatches {}\n", got, n, mismatches);
     return (got == n && mismatches == 0) ? 0 : 1;
   } catch (const std::exception& e) {

@@ -26,6 +26,7 @@
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/median_network.hpp"
+#include "rtl/tfu_unit.hpp"
 
 #include "Vtfu_edge_dir_roms.h"
 #include "Vtfu_edge_dir_select.h"
@@ -591,7 +592,7 @@ TEST(SvEdgeTop, CornersEveryShape) {
 // The EDGE_PRESERVING (no MIP: level 0) request trace of the scene "text_quad" through the
 // pipelined top gives the golden sampler's pixels, for the cross kernel and for the T/L kernels of
 // 4x4 and 8x8 cache blocks.
-TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSampler) {
+TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
   tfu::Scene scene = tfu::load_scene("text_quad");
   scene.width = 128;
   scene.height = 96;
@@ -620,6 +621,17 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSampler) {
       tb.push(&r, 0xA5A5A5A5u, smp.sample(q.s, q.t, lambdas[i]));
     }
     tb.drain();
+    // The C++ cycle model on the same trace and kernel-shape policy: its pixels equal the golden
+    // sampler's, which the Verilated top's equal, so the three models agree request by request.
+    tfu::rtl::UnitConfig ucfg;
+    ucfg.cache.block = block ? block : 4;
+    ucfg.shape_policy = block ? tfu::rtl::ShapePolicy::Static : tfu::rtl::ShapePolicy::FullCross;
+    const tfu::rtl::UnitOutput unit = tfu::rtl::run_unit(tex, cfg, trace, ucfg);
+    ASSERT_EQ(unit.pixels.size(), trace.requests.size());
+    size_t unit_bad = 0;
+    for (size_t i = 0; i < trace.requests.size(); ++i)
+      unit_bad += unit.pixels[i] != smp.sample(trace.requests[i].s, trace.requests[i].t, lambdas[i]);
+    EXPECT_EQ(unit_bad, 0u) << "cycle model vs golden, block " << block;
     fmt::print("text_quad 128x96, {}: {} requests, {} kernel shapes\n", block ? fmt::format("cache block {}", block) : "cross",
                trace.requests.size(), shapes.size());
     EXPECT_EQ(tb.results, trace.requests.size()) << "block " << block;
