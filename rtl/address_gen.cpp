@@ -79,6 +79,7 @@ void AddressGen::evaluate() {
     }
     holding_ = true;
     sent_ = 0;
+    sim_.progress();
   }
   if (holding_ && out_.can_push()) {
     out_.push(pending_[static_cast<size_t>(sent_)]);

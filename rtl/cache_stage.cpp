@@ -91,6 +91,21 @@ void CacheStage::evaluate() {
   }
 }
 
+uint64_t CacheStage::wake_cycle(uint64_t now) const {
+  uint64_t wake = kNever;
+  if (!fifo_.empty() && fifo_.front().ready > now) wake = fifo_.front().ready;
+  if (in_.can_pop() && port_free_ > now) wake = std::min(wake, port_free_);
+  return wake;
+}
+
+void CacheStage::skip_cycles(uint64_t n) {
+  // The skipped cycles all lie before wake_cycle(): the same stalls evaluate() would count.
+  const uint64_t now = sim_.cycle();
+  if (!fifo_.empty() && now < fifo_.front().ready) stall_miss_ += n;
+  else if (!fifo_.empty() && !out_.can_push()) stall_back_ += n;
+  if (in_.can_pop() && now < port_free_) stall_bank_ += n;
+}
+
 void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
   FilterReq f;

@@ -33,6 +33,8 @@ class CacheStage : public sim::Module {
   void evaluate() override;
   std::string state() const override;
   void publish(sim::Stats& st) const;
+  uint64_t wake_cycle(uint64_t now) const override;
+  void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
   uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.id; }
   // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).

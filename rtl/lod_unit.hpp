@@ -31,6 +31,7 @@ class LodUnit : public sim::Module {
       }
       holding_ = true;
       k_ = 0;
+      sim_.progress();
     }
     if (holding_ && out_.can_push()) {
       const auto k = static_cast<size_t>(k_);

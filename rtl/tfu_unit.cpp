@@ -232,6 +232,7 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
     sim.set_vcd(vcd.get());
   }
 
+  sim.set_idle_skip(ucfg.idle_skip);
   sim.run([&] { return out.pixels.size() == n; }, static_cast<uint64_t>(n) * 4096 + 1000000,
           [&] { return static_cast<uint64_t>(out.pixels.size()); }, n);
   out.cycles = sim.cycle();

@@ -36,6 +36,9 @@ struct UnitConfig {
   int miss_fifo_depth = 128;  // footprints queued in the texel cache behind outstanding misses
   int filter_lanes = 1;   // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)
   ShapePolicy shape_policy = ShapePolicy::Static;
+  // Simulation option, not architecture (not in the JSON): jump over cycles in which no block can
+  // act (sim::Simulator::set_idle_skip). Results and statistics are the same either way.
+  bool idle_skip = true;
   void validate() const;  // throws InputError naming the field
 };
 // Parses a config JSON object; unknown keys and bad values are InputErrors naming them.

@@ -298,6 +298,30 @@ TEST(TfuUnit, LatencyPerMode) {
   EXPECT_EQ(latency("CUBIC", 4), lin);
 }
 
+// Idle-cycle skipping is a simulation speed-up only: every output, cycle and statistic is the same.
+TEST(TfuUnit, IdleSkippingChangesNothing) {
+  const SceneTrace st = scene_trace("text_patch", 48, 32);
+  const Mesh& mesh = st.scene.meshes.front();
+  for (const char* mode : {"LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
+    SamplerConfig cfg = mesh.sampler;
+    cfg.mode = filter_mode_from_name(mode);
+    UnitConfig u = small_cache(4);
+    u.memory.latency = 300;  // memory-bound: long idle stretches
+    u.memory.bytes_per_cycle = 4;
+    u.miss_fifo_depth = 8;
+    u.idle_skip = false;
+    const UnitOutput slow = run_unit(*mesh.texture, cfg, st.trace, u);
+    u.idle_skip = true;
+    const UnitOutput fast = run_unit(*mesh.texture, cfg, st.trace, u);
+    EXPECT_EQ(fast.pixels, slow.pixels) << mode;
+    EXPECT_EQ(fast.response_cycle, slow.response_cycle) << mode;
+    EXPECT_EQ(fast.cycles, slow.cycles) << mode;
+    EXPECT_EQ(fast.stats.counters(), slow.stats.counters()) << mode;
+    EXPECT_EQ(*fast.stats.histogram("latency"), *slow.stats.histogram("latency")) << mode;
+    EXPECT_GT(fast.stats.counter("stall_cache_miss"), fast.cycles / 4) << mode;  // really memory-bound
+  }
+}
+
 TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
   std::mt19937 rng(21);
   for (int it = 0; it < 20000; ++it) {

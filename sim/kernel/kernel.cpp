@@ -109,8 +109,20 @@ void Simulator::step() {
     for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
   }
   for (Clocked* c : clocked_) c->commit();
+  const bool progressed = last_progress_ == cycle_;
   ++cycle_;
-  if (vcd_) vcd_->sample(cycle_);
+  if (vcd_) {
+    vcd_->sample(cycle_);
+  } else if (idle_skip_ && !progressed) {
+    uint64_t wake = Module::kNever;
+    for (const Module* m : modules_) wake = std::min(wake, m->wake_cycle(cycle_));
+    if (wake != Module::kNever && wake > cycle_) {
+      const uint64_t n = wake - cycle_;
+      for (Module* m : modules_) m->skip_cycles(n);
+      cycle_ = wake;
+      skipped_ += n;
+    }
+  }
 }
 
 std::string Simulator::dump() const {
