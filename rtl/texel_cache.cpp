@@ -75,10 +75,11 @@ bool TexelCache::lookup(uint64_t line) {
 
 FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
   FootprintResult r;
-  std::array<uint64_t, 16> lines{};
+  // Scratch lists (only the first n entries of each are ever read, so no initialisation).
+  std::array<uint64_t, 16> lines;
   size_t nlines = 0;
   // Distinct reads per bank: texels (texel parity) or lines (block parity).
-  std::array<std::array<uint64_t, 16>, 4> per_bank{};
+  std::array<std::array<uint64_t, 16>, 4> per_bank;
   std::array<size_t, 4> nbank{};
   const auto add = [](auto& list, size_t& n, uint64_t v) {
     for (size_t i = 0; i < n; ++i)

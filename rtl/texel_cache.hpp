@@ -56,7 +56,7 @@ struct TexelTap {
 struct FootprintResult {
   int hits = 0, misses = 0;
   int cycles = 1;                           // bank occupancy
-  std::array<uint64_t, 16> missed_lines{};  // distinct line addresses fetched from memory: [0, misses)
+  std::array<uint64_t, 16> missed_lines;  // distinct line addresses fetched from memory: [0, misses)
 };
 
 class TexelCache {
