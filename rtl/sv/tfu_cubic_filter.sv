@@ -9,8 +9,8 @@
 //   fu, fv [7:0]    subtexel fractions (Q.8)
 //   c      [31:0]   filtered colour
 //
-// tfu_cubic_weights (2 ROM reads, 15 tile-weight multipliers, complement tap) -> per channel 16
-// signed multipliers 8 x W2_BITS and an adder tree of ACC_BITS -> tfu_cubic_norm. W2_BITS (9) and
+// tfu_cubic_weights (2 ROM reads, 15 tile-weight multipliers, complement tap) -> per channel
+// tfu_cubic_mac (16 signed multipliers 8 x W2_BITS, adder tree of ACC_BITS) -> tfu_cubic_norm. W2_BITS (9) and
 // ACC_BITS (18) come from gen/tfu_cubic_pkg.sv: tfu_svgen computes the exact ranges of the weights
 // and of sum c w over every ROM address pair, tighter than the generic 8 + 9 + 4 bits of
 // docs/sampler.md, and still exact for every input.
@@ -26,12 +26,12 @@ module tfu_cubic_filter (
   tfu_cubic_weights u_w (.fu(fu), .fv(fv), .w(w));
 
   for (genvar ch = 0; ch < 4; ch++) begin : g_ch
-    logic signed [ACC_BITS-1:0] acc;
-    always_comb begin
-      acc = '0;
-      for (int k = 0; k < 16; k++)
-        acc = acc + ACC_BITS'($signed({1'b0, texels[32*k + 8*ch +: 8]}) * $signed(w[W2_BITS*k +: W2_BITS]));
+    logic [127:0] cc;
+    logic [ACC_BITS-1:0] acc;
+    for (genvar k = 0; k < 16; k++) begin : g_tap
+      assign cc[8*k +: 8] = texels[32*k + 8*ch +: 8];
     end
+    tfu_cubic_mac #(.W2_BITS(W2_BITS), .ACC_BITS(ACC_BITS)) u_mac (.c(cc), .w(w), .acc(acc));
     tfu_cubic_norm #(.A(ACC_BITS)) u_n (.acc(acc), .c(c[8*ch +: 8]));
   end
 endmodule
