@@ -44,7 +44,7 @@ void CacheStage::accept(uint64_t now) {
       if (resident) cur.shape = static_cast<lee_jen::TexelMask>(cur.shape | bits);
     }
   }
-  std::array<TexelTap, 16> taps{};
+  std::array<TexelTap, 16> taps;  // [0, n) written and read
   size_t n = 0;
   for (int k = 0; k < cur.ntaps; ++k) {
     const Tap& t = cur.taps[static_cast<size_t>(k)];
@@ -114,8 +114,9 @@ void CacheStage::emit() {
   const Image& img = *levels_[static_cast<size_t>(cur.level)];
   for (int k = 0; k < cur.ntaps; ++k) {
     const Tap& tp = cur.taps[static_cast<size_t>(k)];
-    if (edge_ && !((cur.shape >> k) & 1u)) continue;  // not read: stays zero
-    f.texels[static_cast<size_t>(k)] = tp.border ? border_ : img.at(tp.x, tp.y);
+    f.texels[static_cast<size_t>(k)] = (edge_ && !((cur.shape >> k) & 1u)) ? Rgba8{0, 0, 0, 0}  // not read
+                                       : tp.border                           ? border_
+                                                                             : img.at(tp.x, tp.y);
   }
   f.fu = cur.fu;
   f.fv = cur.fv;

@@ -26,6 +26,9 @@ TexelCache::TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std:
     : cfg_(cfg) {
   cfg_.validate();
   while ((1 << block_shift_) < cfg_.block) ++block_shift_;
+  const auto sets = static_cast<uint64_t>(cfg_.sets());
+  set_mask_ = (sets & (sets - 1)) == 0 ? sets - 1 : 0;  // power of two: a mask instead of a division
+  if (sets == 1) set_mask_ = 0;
   if (level_widths.size() != level_heights.size() || level_widths.empty())
     throw InputError("texel cache: level sizes missing");
   uint64_t base = 0;
@@ -49,16 +52,20 @@ uint64_t TexelCache::line_of(int level, int x, int y) const {
 
 bool TexelCache::resident(int level, int x, int y) const {
   const uint64_t line = line_of(level, x, y);
-  const auto set = static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+  const size_t set = set_of(line);
   const Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
   for (int i = 0; i < cfg_.ways; ++i)
     if (w[i].tag == line) return true;
   return false;
 }
 
+size_t TexelCache::set_of(uint64_t line) const {
+  return set_mask_ ? static_cast<size_t>(line & set_mask_) : static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+}
+
 bool TexelCache::lookup(uint64_t line) {
   ++tick_;
-  const auto set = static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+  const size_t set = set_of(line);
   Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
   Way* victim = w;
   for (int i = 0; i < cfg_.ways; ++i) {

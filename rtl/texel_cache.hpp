@@ -79,6 +79,8 @@ class TexelCache {
   TexelCacheConfig cfg_;
   std::vector<int> blocks_per_row_;
   int block_shift_ = 2;  // log2(B)
+  uint64_t set_mask_ = 0;  // sets - 1 when sets is a power of two (> 1), else 0 (use %)
+  size_t set_of(uint64_t line) const;
   std::vector<uint64_t> level_base_;  // first line address of each level
   struct Way {
     uint64_t tag = ~uint64_t{0};

@@ -28,9 +28,9 @@ struct PixelReq {
 
 // A texel address: x[13:0] y[13:0] inside the level; border = outside the texture under
 // clamp-to-border (the border word, no cache access).
-struct Tap {
-  int16_t x = 0, y = 0;  // levels are at most 16384 texels wide: 15 bits, -1 with border
-  bool border = false;
+struct Tap {  // trivial (no initialisers): only the first ntaps of a footprint are written and read
+  int16_t x, y;  // levels are at most 16384 texels wide: 15 bits, -1 with border
+  bool border;
 };
 
 // address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
@@ -41,7 +41,7 @@ struct Tap {
 struct FootprintReq {
   uint32_t id = 0;
   int level = 0, ntaps = 0;
-  std::array<Tap, 16> taps{};
+  std::array<Tap, 16> taps;  // [0, ntaps) valid
   uint32_t fu = 0, fv = 0;
   int blend = 0;
   bool two = false, second = false;
@@ -49,11 +49,11 @@ struct FootprintReq {
   lee_jen::TexelMask optional = 0;
 };
 
-// texel_cache -> filter: the footprint's texel words (unread taps are zero).
+// texel_cache -> filter: the footprint's texel words.
 struct FilterReq {
   uint32_t id = 0;
   int ntaps = 0;
-  std::array<Rgba8, 16> texels{};
+  std::array<Rgba8, 16> texels;  // [0, ntaps) valid; zero where an edge shape has no texel
   uint32_t fu = 0, fv = 0;
   int blend = 0;
   bool two = false, second = false;

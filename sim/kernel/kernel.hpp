@@ -66,7 +66,7 @@ class Channel : public Clocked {
   void push(const T& v) {
     if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
     pushed_ = true;
-    ring_[(head_ + count_) % ring_.size()] = v;
+    ring_[wrap(head_ + count_)] = v;
   }
   // Consumer side (valid = can_pop).
   bool can_pop() const { return count_ != 0; }
@@ -77,7 +77,7 @@ class Channel : public Clocked {
   }
   void commit() override {
     if (popped_) {
-      head_ = (head_ + 1) % ring_.size();
+      head_ = wrap(head_ + 1);
       --count_;
     }
     if (pushed_) ++count_;
@@ -95,6 +95,7 @@ class Channel : public Clocked {
   std::vector<T> ring_;
   size_t head_ = 0, count_ = 0;
   bool pushed_ = false, popped_ = false;
+  size_t wrap(size_t i) const { return i >= ring_.size() ? i - ring_.size() : i; }  // i < 2 size: no division
 };
 
 // A block-internal FIFO (no clocking of its own: the owning block's evaluate() is its only user),
@@ -110,12 +111,13 @@ class Fifo {
   T& front() { return ring_[head_]; }
   const T& front() const { return ring_[head_]; }
   T& push_back() {  // the new tail slot, to be filled by the caller
-    T& slot = ring_[(head_ + count_) % ring_.size()];
+    const size_t i = head_ + count_;
+    T& slot = ring_[i >= ring_.size() ? i - ring_.size() : i];
     ++count_;
     return slot;
   }
   void pop_front() {
-    head_ = (head_ + 1) % ring_.size();
+    head_ = head_ + 1 == ring_.size() ? 0 : head_ + 1;
     --count_;
   }
 
