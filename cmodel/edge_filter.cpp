@@ -118,10 +118,6 @@ LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, Te
 
 LowIndex median_low_pass(const LumaKeys& key, TexelMask available) { return low_pass(key, available); }
 
-uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelFormat fmt) {
-  if (fmt == TexelFormat::VS16X2) return static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1])) >> 6;
-  return static_cast<uint32_t>(std::abs(p[0] - q[0]) + std::abs(p[1] - q[1]) + std::abs(p[2] - q[2]));
-}
 
 EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
                               uint32_t xf, uint32_t yf, TexelFormat fmt) {

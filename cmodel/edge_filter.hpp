@@ -58,7 +58,11 @@ LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, Te
 using LowIndex = std::array<int, kTexels + 1>;
 LowIndex median_low_pass(const LumaKeys& key, TexelMask available);
 // dP between two low-pass endpoints (Eq. 1): |dR| + |dG| + |dB| (VS16X2: (|d0| + |d1|) >> 6).
-uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelFormat fmt);
+inline uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelFormat fmt) {
+  const auto d = [](int32_t a, int32_t b) { return a > b ? a - b : b - a; };
+  if (fmt == TexelFormat::VS16X2) return static_cast<uint32_t>(d(p[0], q[0]) + d(p[1], q[1])) >> 6;
+  return static_cast<uint32_t>(d(p[0], q[0]) + d(p[1], q[1]) + d(p[2], q[2]));
+}
 // Stage 3, Eq. 1-2: argmin over usable directions of w_i * dP_i (ties -> lowest index); `read` is 0.
 EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
                               uint32_t xf, uint32_t yf, TexelFormat fmt);

@@ -30,7 +30,9 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
 }
 
 void CacheStage::accept(uint64_t now) {
-  FootprintReq cur = in_.front();
+  Entry& entry = fifo_.push_back();  // the footprint goes straight into the miss FIFO
+  entry.f = in_.front();
+  FootprintReq& cur = entry.f;
   in_.pop();
   if (edge_ && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
     for (const auto& arm : kArms) {
@@ -65,7 +67,7 @@ void CacheStage::accept(uint64_t now) {
     if (shapes.size() <= cur.id) shapes.resize(cur.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
     shapes[cur.id][cur.second ? 1 : 0] = cur.shape;
   }
-  fifo_.push_back() = {cur, ready};
+  entry.ready = ready;
 }
 
 void CacheStage::evaluate() {
@@ -108,7 +110,7 @@ void CacheStage::skip_cycles(uint64_t n) {
 
 void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
-  FilterReq f;
+  FilterReq& f = out_.push_slot();
   f.id = cur.id;
   f.ntaps = cur.ntaps;
   const Image& img = *levels_[static_cast<size_t>(cur.level)];
@@ -124,7 +126,6 @@ void CacheStage::emit() {
   f.two = cur.two;
   f.second = cur.second;
   f.shape = cur.shape;
-  out_.push(f);
   fifo_.pop_front();
   sim_.progress();
 }

@@ -31,7 +31,7 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
   const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
   const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Leaves: one ROM and one weighted-difference multiplier per direction.
-  std::array<Candidate, 32> level{};
+  std::array<Candidate, lee_jen::kDirections> level;  // every entry written below
   for (int i = 0; i < lee_jen::kDirections; ++i) {
     const auto& ends = kTab.ends[static_cast<size_t>(i)];
     const uint8_t w = (*kTab.rom[static_cast<size_t>(i)])[addr];
@@ -56,7 +56,7 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
 void EdgeMedian::evaluate() {
   if (!in_.can_pop() || !out_.can_push()) return;
   const FilterReq& r = in_.front();
-  EdgeS1 s;
+  EdgeS1& s = out_.push_slot();
   s.id = r.id;
   for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt_);
   s.low = median_network_eval(lee_jen::luma_keys(s.c, r.shape, fmt_), r.shape);
@@ -67,17 +67,17 @@ void EdgeMedian::evaluate() {
   s.two = r.two;
   s.second = r.second;
   in_.pop();
-  out_.push(s);
   sim_.progress();
 }
 
 void EdgeDirection::evaluate() {
   if (!in_.can_pop() || !out_.can_push()) return;
   const EdgeS1& s = in_.front();
-  EdgeS2 o{s, direction_select(s.c, s.low, s.shape, s.fu, s.fv, fmt_).direction};
+  EdgeS2& o = out_.push_slot();
+  o.s1 = s;
+  o.direction = direction_select(s.c, s.low, s.shape, s.fu, s.fv, fmt_).direction;
   ++chosen[static_cast<size_t>(o.direction)];
   in_.pop();
-  out_.push(o);
   sim_.progress();
 }
 

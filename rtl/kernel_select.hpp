@@ -40,10 +40,10 @@ class KernelSelect : public sim::Module {
   }
   void evaluate() override {
     if (!in_.can_pop() || !out_.can_push()) return;
-    FootprintReq f = in_.front();
+    FootprintReq& f = out_.push_slot();
+    f = in_.front();
     in_.pop();
     if (edge_) select(f, policy_, block_);
-    out_.push(f);
     sim_.progress();
   }
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }

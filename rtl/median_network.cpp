@@ -108,7 +108,7 @@ std::array<int32_t, kTexels> median_input_select(const lee_jen::LumaKeys& key, l
 
 lee_jen::LowIndex median_network_eval(const lee_jen::LumaKeys& key, lee_jen::TexelMask shape) {
   const MedianNetlist& net = median_netlist();
-  std::array<int32_t, kMaxWires> w{};  // wires (12 inputs + 2 per cell)
+  std::array<int32_t, kMaxWires> w;  // wires (12 inputs + 2 per cell), each written before it is read
   const std::array<int32_t, kTexels> in = median_input_select(key, shape);
   std::copy(in.begin(), in.end(), w.begin());
   for (const CompareCell& c : net.cells) {

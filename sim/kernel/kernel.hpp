@@ -68,6 +68,12 @@ class Channel : public Clocked {
     pushed_ = true;
     ring_[wrap(head_ + count_)] = v;
   }
+  // push() without the copy: the producer fills the returned slot during this evaluate().
+  T& push_slot() {
+    if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
+    pushed_ = true;
+    return ring_[wrap(head_ + count_)];
+  }
   // Consumer side (valid = can_pop).
   bool can_pop() const { return count_ != 0; }
   const T& front() const { return ring_[head_]; }
