@@ -65,24 +65,24 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
 
 void AddressGen::evaluate() {
   if (!holding_ && in_.can_pop()) {
-    const PixelReq p = in_.front();
+    const PixelReq& p = in_.front();
+    pixel_ = p;
+    lod_ = smp_.lod_info(p.lambda);
+    count_ = lod_.blend != 0 ? 2 : 1;
     in_.pop();
-    const LodInfo li = smp_.lod_info(p.lambda);
-    pending_[0] = footprint(p.id, li.level0, p.s, p.t);
-    count_ = 1;
-    if (li.blend != 0) {
-      pending_[1] = footprint(p.id, li.level1, p.s, p.t);
-      pending_[0].two = pending_[1].two = true;
-      pending_[1].second = true;
-      pending_[0].blend = pending_[1].blend = li.blend;
-      count_ = 2;
-    }
     holding_ = true;
     sent_ = 0;
     sim_.progress();
   }
   if (holding_ && out_.can_push()) {
-    out_.push(pending_[static_cast<size_t>(sent_)]);
+    // The footprint is formed straight in the output register (no copy).
+    FootprintReq& f = out_.push_slot();
+    f = footprint(pixel_.id, sent_ == 0 ? lod_.level0 : lod_.level1, pixel_.s, pixel_.t);
+    if (count_ == 2) {
+      f.two = true;
+      f.second = sent_ == 1;
+      f.blend = lod_.blend;
+    }
     if (++sent_ == count_) holding_ = false;
     sim_.progress();
   }

@@ -34,8 +34,9 @@ class AddressGen : public sim::Module {
   sim::Channel<FootprintReq>& out_;
   const Sampler& smp_;
   bool holding_ = false;
-  std::array<FootprintReq, 2> pending_{};
-  int count_ = 0, sent_ = 0;
+  PixelReq pixel_{};
+  LodInfo lod_{};
+  int count_ = 0, sent_ = 0;  // footprints of the held pixel (1, or 2 when blending), sent so far
 };
 
 }  // namespace tfu::rtl
