@@ -21,8 +21,10 @@ struct MemoryConfig {
   int latency = 100;         // cycles from issue to data
   int bytes_per_cycle = 16;  // interface bandwidth
   void validate() const {
-    if (latency < 0) throw InputError(fmt::format("memory latency {} must be >= 0", latency));
-    if (bytes_per_cycle < 1) throw InputError(fmt::format("memory bytes_per_cycle {} must be >= 1", bytes_per_cycle));
+    if (latency < 0 || latency > 1000000)
+      throw InputError(fmt::format("memory latency {} must be in 0..1000000 cycles", latency));
+    if (bytes_per_cycle < 1 || bytes_per_cycle > 65536)
+      throw InputError(fmt::format("memory bytes_per_cycle {} must be in 1..65536", bytes_per_cycle));
   }
 };
 

@@ -74,6 +74,24 @@ void run(SimOptions& o, CLI::App& cmd) {
   if (cmd.count("--lanes")) o.unit.filter_lanes = cmd.get_option("--lanes")->as<int>();
   if (!o.shape_policy.empty()) o.unit.shape_policy = rtl::shape_policy_from_name(o.shape_policy);
   o.unit.validate();
+  // Options that do not apply to this kind of run are errors, not silently ignored.
+  const auto given = [&cmd](const char* name) {
+    const CLI::Option* opt = cmd.get_option_no_throw(name);
+    return opt != nullptr && opt->count() > 0;
+  };
+  for (const char* opt : {"--edge-shape", "--cache-block"})
+    if (given(opt))
+      throw InputError(fmt::format("{} does not apply to tfu sim: the unit's kernel-shape selector decides (--shape-policy, --block)", opt));
+  if (!o.requests.empty()) {
+    for (const char* opt : {"--scene", "--width", "--height", "--units"})
+      if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
+  } else {
+    for (const char* opt : {"--texture", "--format", "--mipmaps", "--alpha", "--kernel", "--wrap", "--wrap-s", "--wrap-t",
+                            "--border", "--lod-bias", "--min-lod", "--max-lod", "--rom-samples", "--rom-bits", "--rom-recon"})
+      if (given(opt))
+        throw InputError(fmt::format("{} applies to --requests runs; a scene's meshes carry their own textures and samplers "
+                                     "(only --filter overrides them)", opt));
+  }
   std::unique_ptr<std::ofstream> vcd;
   if (!o.vcd.empty()) {
     vcd = std::make_unique<std::ofstream>(o.vcd);
@@ -83,7 +101,6 @@ void run(SimOptions& o, CLI::App& cmd) {
   if (!o.requests.empty()) {
     if (o.tex.texture.empty()) throw InputError("--requests needs --texture");
     if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
-    if (o.units != 1) throw InputError("--units needs a scene (screen tiles)");
     const Texture texture = load_texture_from_options(o.tex);
     const SamplerConfig cfg = sampler_config_from_options(o.smp);
     const Trace trace = load_trace(o.requests);
