@@ -9,29 +9,14 @@
 #include <set>
 
 #include "rtl/median_network.hpp"
+#include "testbench/median_inputs.hpp"
 
 namespace tfu::rtl {
 namespace {
 
 using lee_jen::kTexels;
 
-std::vector<int> inputs_of(int n) {  // Eq. 4 input set of Cn's median (cross shape)
-  switch (n) {
-    case 1: return {1, 2, 4};
-    case 2: return {1, 2, 5};
-    case 3: return {3, 4, 7};
-    case 6: return {5, 6, 10};
-    case 7: return {3, 7, 8};
-    case 10: return {6, 9, 10};
-    case 11: return {8, 11, 12};
-    case 12: return {9, 11, 12};
-    case 4: return {1, 3, 4, 5, 8};
-    case 5: return {2, 4, 5, 6, 9};
-    case 8: return {4, 7, 8, 9, 11};
-    case 9: return {5, 8, 9, 10, 12};
-  }
-  return {};
-}
+using tfu::testing::median_inputs;
 
 lee_jen::LumaKeys keys_from_y(const std::array<int32_t, kTexels + 1>& y) {
   lee_jen::LumaKeys k{};
@@ -62,7 +47,7 @@ TEST(MedianNetwork, EveryInputOrderingOfEveryMedianInEveryShape) {
   for (const lee_jen::KernelShape& shape : lee_jen::kernel_shapes())
     for (int n = 1; n <= kTexels; ++n) {
       if (!((shape.mask >> (n - 1)) & 1u)) continue;
-      std::vector<int> in = inputs_of(n);
+      std::vector<int> in = median_inputs(n);
       std::vector<int> rank(in.size());
       std::iota(rank.begin(), rank.end(), 0);
       do {

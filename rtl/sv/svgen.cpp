@@ -35,23 +35,13 @@
 #include "cmodel/rom_dump.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/weight_rom.hpp"
+#include "rtl/sv/svgen_common.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-void write_if_changed(const fs::path& path, const std::string& text) {
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (old == text) return;
-    }
-  }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-}
+using tfu::svgen::write_if_changed;
 
 // Smallest two's-complement width that holds every value in [lo, hi].
 int signed_bits(int64_t lo, int64_t hi) {

@@ -20,6 +20,7 @@
 #include "cmodel/texture.hpp"
 #include "cmodel/unorm.hpp"
 #include "cmodel/weight_rom.hpp"
+#include "rtl/sv/tests/sv_texel.hpp"
 #include "tfu_sv_params.hpp"  // generated: W2_BITS, ACC_BITS of gen/tfu_cubic_pkg.sv
 
 #include "Vtfu_bilinear_lerp.h"
@@ -71,16 +72,10 @@ uint32_t field(const VlWide<N>& w, int lsb, int width) {
   return static_cast<uint32_t>((v >> (lsb % 32)) & ((uint64_t{1} << width) - 1));
 }
 
-uint32_t pack(const Texel4& c) {
-  return static_cast<uint32_t>(c[0]) | static_cast<uint32_t>(c[1]) << 8 | static_cast<uint32_t>(c[2]) << 16 |
-         static_cast<uint32_t>(c[3]) << 24;
-}
-Texel4 unpack(uint32_t w) {
-  return {static_cast<int32_t>(w & 255), static_cast<int32_t>((w >> 8) & 255), static_cast<int32_t>((w >> 16) & 255),
-          static_cast<int32_t>(w >> 24)};
-}
+using tfu::svtest::pack;
+using tfu::svtest::str;
+using tfu::svtest::unpack;
 Texel4 random_texel(std::mt19937_64& rng) { return unpack(static_cast<uint32_t>(rng())); }
-std::string str(const Texel4& c) { return fmt::format("({},{},{},{})", c[0], c[1], c[2], c[3]); }
 
 // ------------------------------------------------------------------ ROMs (every address)
 TEST(SvRom, TileRomEveryAddressMatchesTileWeightRom) {

@@ -26,7 +26,9 @@
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/median_network.hpp"
+#include "testbench/median_inputs.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/sv/tests/sv_texel.hpp"
 
 #include "Vtfu_edge_dir_roms.h"
 #include "Vtfu_edge_dir_select.h"
@@ -55,15 +57,9 @@ struct Mismatches {
   }
 };
 
-uint32_t pack(const Texel4& c) {
-  return static_cast<uint32_t>(c[0]) | static_cast<uint32_t>(c[1]) << 8 | static_cast<uint32_t>(c[2]) << 16 |
-         static_cast<uint32_t>(c[3]) << 24;
-}
-Texel4 unpack(uint32_t w) {
-  return {static_cast<int32_t>(w & 255), static_cast<int32_t>((w >> 8) & 255), static_cast<int32_t>((w >> 16) & 255),
-          static_cast<int32_t>(w >> 24)};
-}
-std::string str(const Texel4& c) { return fmt::format("({},{},{},{})", c[0], c[1], c[2], c[3]); }
+using tfu::svtest::pack;
+using tfu::svtest::str;
+using tfu::svtest::unpack;
 std::string str(const Texels& c) {
   std::string s;
   for (const Texel4& t : c) s += str(t);
@@ -175,23 +171,7 @@ TEST(SvEdgeLuma, RgbToYEveryRgbTriple) {
 }
 
 // ------------------------------------------------------------------ median network
-std::vector<int> inputs_of(int n) {  // Eq. 4 input set of Cn's median (cross shape)
-  switch (n) {
-    case 1: return {1, 2, 4};
-    case 2: return {1, 2, 5};
-    case 3: return {3, 4, 7};
-    case 6: return {5, 6, 10};
-    case 7: return {3, 7, 8};
-    case 10: return {6, 9, 10};
-    case 11: return {8, 11, 12};
-    case 12: return {9, 11, 12};
-    case 4: return {1, 3, 4, 5, 8};
-    case 5: return {2, 4, 5, 6, 9};
-    case 8: return {4, 7, 8, 9, 11};
-    case 9: return {5, 8, 9, 10, 12};
-  }
-  return {};
-}
+using tfu::testing::median_inputs;
 
 // Runs the SV network on keys (luma_keys layout) and checks every available texel's median against
 // the behavioural model (lee_jen::median_low_pass) and the C++ netlist (rtl::median_network_eval).
@@ -231,7 +211,7 @@ TEST(SvEdgeMedian, EveryInputOrderingOfEveryMedianInEveryShape) {
   for (const lj::KernelShape& shape : lj::kernel_shapes())
     for (int n = 1; n <= lj::kTexels; ++n) {
       if (!has(shape.mask, n)) continue;
-      const std::vector<int> in = inputs_of(n);
+      const std::vector<int> in = median_inputs(n);
       std::vector<int> rank(in.size());
       std::iota(rank.begin(), rank.end(), 0);
       do {
