@@ -11,7 +11,7 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
   const Image& img = smp_.texture().levels[static_cast<size_t>(level)];
   const SamplerConfig& c = smp_.config();
   FootprintReq f;
-  f.id = id;
+  f.tag.id = id;
   f.level = level;
   const auto tap = [](int x, int y) { return Tap{static_cast<int16_t>(x), static_cast<int16_t>(y), x < 0 || y < 0}; };
   const auto wrapped = [&](int64_t x, int64_t y) {
@@ -27,8 +27,8 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
       const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
       f.ntaps = 4;
       f.taps = {wrapped(u.i0, v.i0), wrapped(u.i0 + 1, v.i0), wrapped(u.i0, v.i0 + 1), wrapped(u.i0 + 1, v.i0 + 1)};
-      f.fu = u.f;
-      f.fv = v.f;
+      f.tag.fu = u.f;
+      f.tag.fv = v.f;
       return f;
     }
     case BaseFilter::Cubic: {
@@ -41,8 +41,8 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
       f.ntaps = taps * taps;
       for (int j = 0; j < taps; ++j)
         for (int i = 0; i < taps; ++i) f.taps[static_cast<size_t>(j * taps + i)] = tap(col[static_cast<size_t>(i)], row[static_cast<size_t>(j)]);
-      f.fu = u.f;
-      f.fv = v.f;
+      f.tag.fu = u.f;
+      f.tag.fv = v.f;
       return f;
     }
     case BaseFilter::EdgePreserving: {
@@ -55,8 +55,8 @@ FootprintReq AddressGen::footprint(uint32_t id, int level, float s, float t) con
         const lee_jen::TexelPos p = lee_jen::texel_pos(n);
         f.taps[static_cast<size_t>(n - 1)] = tap(col[static_cast<size_t>(p.x + 1)], row[static_cast<size_t>(p.y + 1)]);
       }
-      f.fu = u.f;
-      f.fv = v.f;
+      f.tag.fu = u.f;
+      f.tag.fv = v.f;
       return f;
     }
   }
@@ -79,9 +79,9 @@ void AddressGen::evaluate() {
     FootprintReq& f = out_.push_slot();
     f = footprint(pixel_.id, sent_ == 0 ? lod_.level0 : lod_.level1, pixel_.s, pixel_.t);
     if (count_ == 2) {
-      f.two = true;
-      f.second = sent_ == 1;
-      f.blend = lod_.blend;
+      f.tag.two = true;
+      f.tag.second = sent_ == 1;
+      f.tag.blend = lod_.blend;
     }
     if (++sent_ == count_) holding_ = false;
     sim_.progress();

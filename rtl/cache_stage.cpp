@@ -43,14 +43,14 @@ void CacheStage::accept(uint64_t now) {
         const Tap& t = cur.taps[static_cast<size_t>(n - 1)];
         if (!t.border && !cache_.resident(cur.level, t.x, t.y)) resident = false;
       }
-      if (resident) cur.shape = static_cast<lee_jen::TexelMask>(cur.shape | bits);
+      if (resident) cur.tag.shape = static_cast<lee_jen::TexelMask>(cur.tag.shape | bits);
     }
   }
   std::array<TexelTap, 16> taps;  // [0, n) written and read
   size_t n = 0;
   for (int k = 0; k < cur.ntaps; ++k) {
     const Tap& t = cur.taps[static_cast<size_t>(k)];
-    if (t.border || (edge_ && !((cur.shape >> k) & 1u))) continue;
+    if (t.border || (edge_ && !((cur.tag.shape >> k) & 1u))) continue;
     taps[n++] = {t.x, t.y};
   }
   const FootprintResult r = cache_.access(cur.level, std::span<const TexelTap>(taps.data(), n));
@@ -62,10 +62,10 @@ void CacheStage::accept(uint64_t now) {
   misses_per_level_[l] += static_cast<uint64_t>(r.misses);
   if (edge_) {
     int missing_arms = 0;
-    for (const auto& arm : kArms) missing_arms += (cur.shape & arm_bits(arm)) == 0;
+    for (const auto& arm : kArms) missing_arms += (cur.tag.shape & arm_bits(arm)) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
-    if (shapes.size() <= cur.id) shapes.resize(cur.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
-    shapes[cur.id][cur.second ? 1 : 0] = cur.shape;
+    if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
+    shapes[cur.tag.id][cur.tag.second ? 1 : 0] = cur.tag.shape;
   }
   entry.ready = ready;
 }
@@ -111,21 +111,15 @@ void CacheStage::skip_cycles(uint64_t n) {
 void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
   FilterReq& f = out_.push_slot();
-  f.id = cur.id;
+  f.tag = cur.tag;
   f.ntaps = cur.ntaps;
   const Image& img = *levels_[static_cast<size_t>(cur.level)];
   for (int k = 0; k < cur.ntaps; ++k) {
     const Tap& tp = cur.taps[static_cast<size_t>(k)];
-    f.texels[static_cast<size_t>(k)] = (edge_ && !((cur.shape >> k) & 1u)) ? Rgba8{0, 0, 0, 0}  // not read
+    f.texels[static_cast<size_t>(k)] = (edge_ && !((cur.tag.shape >> k) & 1u)) ? Rgba8{0, 0, 0, 0}  // not read
                                        : tp.border                           ? border_
                                                                              : img.at(tp.x, tp.y);
   }
-  f.fu = cur.fu;
-  f.fv = cur.fv;
-  f.blend = cur.blend;
-  f.two = cur.two;
-  f.second = cur.second;
-  f.shape = cur.shape;
   fifo_.pop_front();
   sim_.progress();
 }

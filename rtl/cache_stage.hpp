@@ -36,7 +36,7 @@ class CacheStage : public sim::Module {
   uint64_t wake_cycle(uint64_t now) const override;
   void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
-  uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.id; }
+  uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.tag.id; }
   // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
   std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
 

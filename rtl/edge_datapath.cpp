@@ -57,15 +57,9 @@ void EdgeMedian::evaluate() {
   if (!in_.can_pop() || !out_.can_push()) return;
   const FilterReq& r = in_.front();
   EdgeS1& s = out_.push_slot();
-  s.id = r.id;
+  s.tag = r.tag;
   for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt_);
-  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.shape, fmt_), r.shape);
-  s.shape = r.shape;
-  s.fu = r.fu;
-  s.fv = r.fv;
-  s.blend = r.blend;
-  s.two = r.two;
-  s.second = r.second;
+  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.tag.shape, fmt_), r.tag.shape);
   in_.pop();
   sim_.progress();
 }
@@ -75,7 +69,7 @@ void EdgeDirection::evaluate() {
   const EdgeS1& s = in_.front();
   EdgeS2& o = out_.push_slot();
   o.s1 = s;
-  o.direction = direction_select(s.c, s.low, s.shape, s.fu, s.fv, fmt_).direction;
+  o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, fmt_).direction;
   ++chosen[static_cast<size_t>(o.direction)];
   in_.pop();
   sim_.progress();
@@ -84,14 +78,14 @@ void EdgeDirection::evaluate() {
 void EdgeMerge::evaluate() {
   if (!in_.can_pop()) return;
   const EdgeS2& s = in_.front();
-  const bool emits = !s.s1.two || s.s1.second;
-  if (emits && !out_.can_push()) return;
-  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, s.s1.fu, s.s1.fv, fmt_);
-  if (s.s1.two && !s.s1.second) {
+  const LevelTag& tag = s.s1.tag;
+  if (tag.emits() && !out_.can_push()) return;
+  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, tag.fu, tag.fv, fmt_);
+  if (tag.holds()) {
     first_ = c;
   } else {
-    if (s.s1.two) c = dp::level_blend(first_, c, s.s1.blend);
-    out_.push({s.s1.id, encode_texel(c, fmt_)});
+    if (tag.two) c = dp::level_blend(first_, c, tag.blend);
+    out_.push({tag.id, encode_texel(c, fmt_)});
   }
   in_.pop();
   sim_.progress();

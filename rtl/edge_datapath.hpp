@@ -12,7 +12,7 @@
 //
 // Ports (between stages, valid/ready channels of depth 2):
 //   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], fu fv, blend, two, second
-//   s1  EdgeS1: 12 texels (datapath channels), low[12] x [3:0], shape, fractions
+//   s1  EdgeS1: tag, 12 texels (datapath channels), low[12] x [3:0]
 //   s2  EdgeS2: s1 + direction[4:0]
 //   out Response: id, rgba[31:0]
 #pragma once
@@ -24,13 +24,9 @@
 namespace tfu::rtl {
 
 struct EdgeS1 {
-  uint32_t id = 0;
+  LevelTag tag;
   std::array<Texel4, lee_jen::kTexels> c{};
   lee_jen::LowIndex low{};
-  lee_jen::TexelMask shape = lee_jen::kAllTexels;
-  uint32_t fu = 0, fv = 0;
-  int blend = 0;
-  bool two = false, second = false;
 };
 struct EdgeS2 {
   EdgeS1 s1;

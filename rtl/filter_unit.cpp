@@ -20,10 +20,10 @@ Texel4 FilterUnit::filter_level(const FilterReq& r) const {
   const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack_fmt_); };
   switch (base_) {
     case BaseFilter::Nearest: return texel(0);
-    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.fu, r.fv, fmt_);
+    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.tag.fu, r.tag.fv, fmt_);
     case BaseFilter::Cubic: {
       std::array<int32_t, 16> w{};
-      dp::tile_weights_2d(*smp_.cubic_rom(), smp_.config().cubic_recon, r.fu, r.fv, w);
+      dp::tile_weights_2d(*smp_.cubic_rom(), smp_.config().cubic_recon, r.tag.fu, r.tag.fv, w);
       std::array<Texel4, 16> c{};
       for (int k = 0; k < r.ntaps; ++k) c[static_cast<size_t>(k)] = texel(k);
       return dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps), smp_.cubic_normalize());
@@ -43,14 +43,13 @@ void FilterUnit::evaluate() {
     sim_.progress();
     return;
   }
-  const bool emits = !r.two || r.second;
-  if (emits && !out_.can_push()) return;
+  if (r.tag.emits() && !out_.can_push()) return;
   Texel4 c = filter_level(r);
-  if (r.two && !r.second) {
+  if (r.tag.holds()) {
     first_ = c;
   } else {
-    if (r.two) c = dp::level_blend(first_, c, r.blend);
-    out_.push({r.id, encode_texel(c, fmt_)});
+    if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
+    out_.push({r.tag.id, encode_texel(c, fmt_)});
   }
   in_.pop();
   remaining_ = -1;

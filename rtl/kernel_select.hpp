@@ -30,13 +30,13 @@ class KernelSelect : public sim::Module {
       : Module(s, "kernel_select"), in_(i), out_(o), edge_(edge), policy_(p), block_(block) {}
   // Combinational part: the shape (and optional arms) of an edge cross footprint.
   static void select(FootprintReq& f, ShapePolicy policy, int block) {
-    f.shape = lee_jen::kAllTexels;
+    f.tag.shape = lee_jen::kAllTexels;
     f.optional = 0;
     if (policy == ShapePolicy::FullCross) return;
     // Centre square C4 (tap 3), C5 (tap 4), C8 (tap 7): its wrapped columns and rows.
     const Tap &c4 = f.taps[3], &c5 = f.taps[4], &c8 = f.taps[7];
-    f.shape = lee_jen::cache_block_mask(c4.x, c5.x, c4.y, c8.y, block);
-    if (policy == ShapePolicy::CacheAware) f.optional = static_cast<lee_jen::TexelMask>(lee_jen::kAllTexels & ~f.shape);
+    f.tag.shape = lee_jen::cache_block_mask(c4.x, c5.x, c4.y, c8.y, block);
+    if (policy == ShapePolicy::CacheAware) f.optional = static_cast<lee_jen::TexelMask>(lee_jen::kAllTexels & ~f.tag.shape);
   }
   void evaluate() override {
     if (!in_.can_pop() || !out_.can_push()) return;

@@ -33,31 +33,36 @@ struct Tap {  // trivial (no initialisers): only the first ntaps of a footprint 
   bool border;
 };
 
-// address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
-//   id, level[3:0], ntaps[4:0] (1, 4, T*T <= 16, or 12 for the edge cross: tap k = texel C(k+1)),
-//   fu[7:0] fv[7:0], blend[8:0], two/second (a blending MIPMAP_LINEAR pixel's first/second level),
-//   shape[11:0] (edge cross: texels the kernel may use), optional[11:0] (cache-aware: arms to add
-//   when their lines are resident)
-struct FootprintReq {
+// What travels with one level footprint from address_gen to the filter's output, unchanged except
+// for the shape (set by kernel_select, widened by the cache-aware probe):
+//   id[31:0], fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1),
+//   two/second (a blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross:
+//   texels the kernel may use)
+struct LevelTag {
   uint32_t id = 0;
-  int level = 0, ntaps = 0;
-  std::array<Tap, 16> taps;  // [0, ntaps) valid
   uint32_t fu = 0, fv = 0;
   int blend = 0;
   bool two = false, second = false;
   lee_jen::TexelMask shape = lee_jen::kAllTexels;
+  bool emits() const { return !two || second; }    // the filter outputs a pixel for this footprint
+  bool holds() const { return two && !second; }    // level0 of a blending pair: kept for the blend
+};
+
+// address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
+//   tag, level[3:0], ntaps[4:0] (1, 4, T*T <= 16, or 12 for the edge cross: tap k = texel C(k+1)),
+//   optional[11:0] (cache-aware: arms to add when their lines are resident)
+struct FootprintReq {
+  LevelTag tag;
+  int level = 0, ntaps = 0;
+  std::array<Tap, 16> taps;  // [0, ntaps) valid
   lee_jen::TexelMask optional = 0;
 };
 
 // texel_cache -> filter: the footprint's texel words.
 struct FilterReq {
-  uint32_t id = 0;
+  LevelTag tag;
   int ntaps = 0;
   std::array<Rgba8, 16> texels;  // [0, ntaps) valid; zero where an edge shape has no texel
-  uint32_t fu = 0, fv = 0;
-  int blend = 0;
-  bool two = false, second = false;
-  lee_jen::TexelMask shape = lee_jen::kAllTexels;
 };
 
 // filter -> response: id[31:0], rgba[31:0]
