@@ -31,10 +31,13 @@ struct SceneSimResult {
   uint64_t cycles = 0;     // slowest unit
   sim::Stats stats;        // summed
   std::string mismatch;    // empty when every output equals the golden model's
-  // Thread-seconds spent in the cycle model and in the golden model (LOD + sampler) on the same
-  // requests, summed over units and meshes.
+  // Thread CPU seconds spent in the cycle model and in the golden model (LOD + sampler) on the
+  // same requests, summed over units and meshes.
   double cycle_seconds = 0, golden_seconds = 0;
 };
+
+// CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID).
+double thread_cpu_seconds();
 
 SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, const UnitConfig& u,
                               const SceneSimOptions& opt);
