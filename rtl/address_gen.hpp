@@ -26,8 +26,8 @@ class AddressGen : public sim::Module {
   void evaluate() override;
   std::string state() const override;
   bool busy() const { return holding_; }
-  // The footprint of (s, t) on `level` (the combinational part of the block).
-  FootprintReq footprint(uint32_t id, int level, float s, float t) const;
+  // The footprint of (s, t) on `level` (the combinational part of the block), formed in `f`.
+  void footprint(FootprintReq& f, uint32_t id, int level, float s, float t) const;
 
  private:
   sim::Channel<PixelReq>& in_;

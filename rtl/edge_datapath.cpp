@@ -1,56 +1,84 @@
 #include "rtl/edge_datapath.hpp"
 
+#include <algorithm>
+
 #include "cmodel/datapath.hpp"
 #include "rtl/median_network.hpp"
 
 namespace tfu::rtl {
 
-lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
-                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt) {
-  struct Candidate {
-    bool valid;
-    uint32_t cost;  // [17:0]
-    int dir;        // [4:0]
-  };
-  // The ROMs' contents and the shape decoder (usable directions per 12-bit shape), read once.
-  struct Tables {
-    std::array<const std::array<uint8_t, 256>*, lee_jen::kDirections> rom{};
-    std::array<std::array<int, 2>, lee_jen::kDirections> ends{};
-    std::array<uint32_t, lee_jen::kAllTexels + 1> usable{};
-  };
-  static const Tables kTab = [] {
-    Tables t;
+namespace {
+
+// The ROMs' contents and the shape decoder (usable directions per 12-bit shape), read once.
+struct DirectionTables {
+  std::array<const std::array<uint8_t, 256>*, lee_jen::kDirections> rom{};
+  std::array<std::array<uint8_t, 2>, lee_jen::kDirections> ends{};  // low-pass endpoints p, q
+  std::array<uint32_t, lee_jen::kAllTexels + 1> usable{};
+};
+const DirectionTables& direction_tables() {
+  static const DirectionTables kTab = [] {
+    DirectionTables t;
     for (const lee_jen::Direction& d : lee_jen::directions()) {
       t.rom[static_cast<size_t>(d.index)] = &lee_jen::direction_weight_rom(d.index);
-      t.ends[static_cast<size_t>(d.index)] = {d.p, d.q};
+      t.ends[static_cast<size_t>(d.index)] = {static_cast<uint8_t>(d.p), static_cast<uint8_t>(d.q)};
     }
     for (uint32_t m = 0; m <= lee_jen::kAllTexels; ++m) t.usable[m] = lee_jen::usable_directions(static_cast<lee_jen::TexelMask>(m));
     return t;
   }();
-  const uint32_t usable = kTab.usable[shape & lee_jen::kAllTexels];
-  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
-  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
-  // Leaves: one ROM and one weighted-difference multiplier per direction.
-  std::array<Candidate, lee_jen::kDirections> level;  // every entry written below
-  for (int i = 0; i < lee_jen::kDirections; ++i) {
-    const auto& ends = kTab.ends[static_cast<size_t>(i)];
-    const uint8_t w = (*kTab.rom[static_cast<size_t>(i)])[addr];
+  return kTab;
+}
+
+// A min-tree operand as the comparator sees it: {cost[17:0], dir[4:0]} with an invalid operand
+// all ones. The right operand of every node has the higher direction indices, so "keep the left
+// unless the right is valid and strictly cheaper" (ties -> lower index) is the unsigned minimum.
+constexpr uint32_t kInvalidCandidate = UINT32_MAX;
+constexpr uint32_t candidate(uint32_t cost, int dir) { return (cost << 5) | static_cast<uint32_t>(dir); }
+
+template <bool kVs16>
+void weighted_differences(const DirectionTables& tab, const std::array<Texel4, lee_jen::kTexels>& c,
+                          const lee_jen::LowIndex& low, uint32_t usable, size_t addr,
+                          std::array<uint32_t, lee_jen::kDirections>& leaf) {
+  const TexelFormat fmt = kVs16 ? TexelFormat::VS16X2 : TexelFormat::RGBA8;
+  std::array<uint8_t, lee_jen::kTexels + 1> src{};  // texel read for each low-pass value (0 where undefined)
+  for (size_t n = 1; n <= lee_jen::kTexels; ++n) src[n] = static_cast<uint8_t>(low[n] > 0 ? low[n] - 1 : 0);
+  for (size_t i = 0; i < lee_jen::kDirections; ++i) {
+    const uint8_t w = (*tab.rom[i])[addr];
     const bool valid = ((usable >> i) & 1u) && w != lee_jen::kNeverChoose;
-    level[static_cast<size_t>(i)] = {valid, valid ? w * lee_jen::direction_difference(lowv(ends[0]), lowv(ends[1]), fmt) : 0, i};
+    const Texel4& p = c[src[tab.ends[i][0]]];
+    const Texel4& q = c[src[tab.ends[i][1]]];
+    leaf[i] = valid ? candidate(w * lee_jen::direction_difference(p, q, fmt), static_cast<int>(i)) : kInvalidCandidate;
   }
-  // Min tree: each node keeps its left input unless the right one is valid and strictly cheaper,
-  // so ties go to the lower direction index.
-  size_t n = lee_jen::kDirections;
-  while (n > 1) {
-    for (size_t k = 0; k < n / 2; ++k) {
-      const Candidate& a = level[2 * k];
-      const Candidate& b = level[2 * k + 1];
-      level[k] = (b.valid && (!a.valid || b.cost < a.cost)) ? b : a;
-    }
-    if (n % 2) level[n / 2] = level[n - 1];
-    n = (n + 1) / 2;
+}
+
+// Min tree (the comparators of kInvalidCandidate's comment) over the first N entries, level by
+// level: 22 -> 11 -> 6 -> 3 -> 2 -> 1; an odd entry out passes to the next level unchanged.
+template <size_t N>
+void min_tree(std::array<uint32_t, lee_jen::kDirections>& level) {
+  if constexpr (N > 1) {
+    for (size_t k = 0; k < N / 2; ++k) level[k] = std::min(level[2 * k], level[2 * k + 1]);
+    if constexpr (N % 2 == 1) level[N / 2] = level[N - 1];
+    min_tree<(N + 1) / 2>(level);
   }
-  return {level[0].valid ? level[0].dir : 0, level[0].cost, 0};
+}
+
+}  // namespace
+
+lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
+                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt) {
+  const DirectionTables& tab = direction_tables();
+  const uint32_t usable = tab.usable[shape & lee_jen::kAllTexels];
+  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
+  // Leaves: one ROM and one weighted-difference multiplier per direction. Every entry is written.
+  // Entries of endpoints outside the shape are read but never chosen (their direction is not usable).
+  std::array<uint32_t, lee_jen::kDirections> level;
+  if (fmt == TexelFormat::VS16X2) {
+    weighted_differences<true>(tab, c, low, usable, addr, level);
+  } else {
+    weighted_differences<false>(tab, c, low, usable, addr, level);
+  }
+  min_tree<lee_jen::kDirections>(level);
+  if (level[0] == kInvalidCandidate) return {0, 0, 0};
+  return {static_cast<int>(level[0] & 31u), level[0] >> 5, 0};
 }
 
 void EdgeMedian::evaluate() {

@@ -1,7 +1,6 @@
 #include "rtl/median_network.hpp"
 
 #include <algorithm>
-#include <map>
 #include <utility>
 
 #include "cmodel/error.hpp"
@@ -31,60 +30,89 @@ struct CentreOuter {
 };
 constexpr std::array<CentreOuter, 4> kCentreOuter{{{4, 1, 3, 9}, {5, 2, 6, 8}, {8, 7, 11, 5}, {9, 10, 12, 4}}};
 
+constexpr int kMaxWires = 128;
+constexpr int kMaxCells = (kMaxWires - kTexels) / 2;
+
+// The netlist in fixed-size arrays, built at compile time so that the evaluator below is
+// straight-line code with constant wire numbers.
+struct NetlistArrays {
+  std::array<CompareCell, kMaxCells> cells{};
+  int ncells = 0;
+  int wires = kTexels;
+  std::array<int, kTexels + 1> out{};
+  int depth = 0;
+  std::array<int, kMaxWires> depth_of{};  // inputs 0
+};
+
 class Builder {
  public:
-  MedianNetlist net;
-  std::vector<int> depth_of;
-  Builder() {
-    net.wires = kTexels;
-    depth_of.assign(kTexels, 0);
-  }
+  NetlistArrays net;
   // Returns (lo, hi) wires of the cell on (a, b), creating it unless a cell on the same two wires
   // exists (shared inputs -> one merged cell).
-  std::pair<int, int> cell(int a, int b) {
+  constexpr std::pair<int, int> cell(int a, int b) {
     const auto key = std::minmax(a, b);
-    const auto it = cells_.find(key);
-    if (it != cells_.end()) return it->second;
+    for (int i = 0; i < net.ncells; ++i) {
+      const CompareCell& c = net.cells[static_cast<size_t>(i)];
+      if (std::minmax(c.in_a, c.in_b) == key) return {c.lo, c.hi};
+    }
+    if (net.ncells == kMaxCells) throw CheckFailed("median network: more cells than the evaluator holds");
     const int lo = net.wires++, hi = net.wires++;
-    net.cells.push_back({a, b, lo, hi});
-    const int d = std::max(depth_of[static_cast<size_t>(a)], depth_of[static_cast<size_t>(b)]) + 1;
-    depth_of.push_back(d);
-    depth_of.push_back(d);
+    net.cells[static_cast<size_t>(net.ncells++)] = {a, b, lo, hi};
+    const int d = std::max(net.depth_of[static_cast<size_t>(a)], net.depth_of[static_cast<size_t>(b)]) + 1;
+    net.depth_of[static_cast<size_t>(lo)] = net.depth_of[static_cast<size_t>(hi)] = d;
     net.depth = std::max(net.depth, d);
-    return cells_[key] = {lo, hi};
+    return {lo, hi};
   }
   // median3 = max(min(a, b), min(max(a, b), c)).
-  int median3(int a, int b, int c) {
+  constexpr int median3(int a, int b, int c) {
     const auto [lo, hi] = cell(a, b);
     const int m = cell(hi, c).first;
     return cell(lo, m).second;
   }
   // median5 = median3 of e, max(min(a,b), min(c,d)) and min(max(a,b), max(c,d)).
-  int median5(int a, int b, int c, int d, int e) {
+  constexpr int median5(int a, int b, int c, int d, int e) {
     const auto [l1, h1] = cell(a, b);
     const auto [l2, h2] = cell(c, d);
     const int x = cell(l1, l2).second;
     const int y = cell(h1, h2).first;
     return median3(x, y, e);
   }
-
- private:
-  std::map<std::pair<int, int>, std::pair<int, int>> cells_;
 };
 
 constexpr int wire(int texel) { return texel - 1; }
-constexpr int kMaxWires = 128;
+
+constexpr NetlistArrays build_netlist() {
+  Builder b;
+  for (const Median3Spec& m : kMedian3) b.net.out[static_cast<size_t>(m.self)] = b.median3(wire(m.a), wire(m.b), wire(m.c));
+  for (const Median5Spec& m : kMedian5)
+    b.net.out[static_cast<size_t>(m.self)] = b.median5(wire(m.a), wire(m.b), wire(m.c), wire(m.d), wire(m.e));
+  return b.net;
+}
+constexpr NetlistArrays kNetlist = build_netlist();
+
+// One compare cell with its wires as constants.
+template <size_t I>
+inline void compare_cell(std::array<int32_t, kMaxWires>& w) {
+  constexpr CompareCell c = kNetlist.cells[I];
+  const int32_t a = w[static_cast<size_t>(c.in_a)], b = w[static_cast<size_t>(c.in_b)];
+  w[static_cast<size_t>(c.lo)] = std::min(a, b);
+  w[static_cast<size_t>(c.hi)] = std::max(a, b);
+}
+template <size_t... I>
+inline void compare_cells(std::array<int32_t, kMaxWires>& w, std::index_sequence<I...>) {
+  (compare_cell<I>(w), ...);  // in topological order
+}
 
 }  // namespace
 
 const MedianNetlist& median_netlist() {
   static const MedianNetlist net = [] {
-    Builder b;
-    for (const Median3Spec& m : kMedian3) b.net.out[static_cast<size_t>(m.self)] = b.median3(wire(m.a), wire(m.b), wire(m.c));
-    for (const Median5Spec& m : kMedian5)
-      b.net.out[static_cast<size_t>(m.self)] = b.median5(wire(m.a), wire(m.b), wire(m.c), wire(m.d), wire(m.e));
-    if (b.net.wires > kMaxWires) throw CheckFailed("median network: more wires than the evaluator holds");
-    return b.net;
+    MedianNetlist n;
+    n.wires = kNetlist.wires;
+    n.cells.assign(kNetlist.cells.begin(), kNetlist.cells.begin() + kNetlist.ncells);
+    n.out = kNetlist.out;
+    n.depth = kNetlist.depth;
+    return n;
   }();
   return net;
 }
@@ -107,18 +135,13 @@ std::array<int32_t, kTexels> median_input_select(const lee_jen::LumaKeys& key, l
 }
 
 lee_jen::LowIndex median_network_eval(const lee_jen::LumaKeys& key, lee_jen::TexelMask shape) {
-  const MedianNetlist& net = median_netlist();
   std::array<int32_t, kMaxWires> w;  // wires (12 inputs + 2 per cell), each written before it is read
   const std::array<int32_t, kTexels> in = median_input_select(key, shape);
   std::copy(in.begin(), in.end(), w.begin());
-  for (const CompareCell& c : net.cells) {
-    const int32_t a = w[static_cast<size_t>(c.in_a)], b = w[static_cast<size_t>(c.in_b)];
-    w[static_cast<size_t>(c.lo)] = std::min(a, b);
-    w[static_cast<size_t>(c.hi)] = std::max(a, b);
-  }
+  compare_cells(w, std::make_index_sequence<static_cast<size_t>(kNetlist.ncells)>{});
   lee_jen::LowIndex low{};
   for (int n = 1; n <= kTexels; ++n)
-    if ((shape >> (n - 1)) & 1u) low[static_cast<size_t>(n)] = w[static_cast<size_t>(net.out[static_cast<size_t>(n)])] & 15;
+    if ((shape >> (n - 1)) & 1u) low[static_cast<size_t>(n)] = w[static_cast<size_t>(kNetlist.out[static_cast<size_t>(n)])] & 15;
   return low;
 }
 

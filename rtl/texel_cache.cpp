@@ -82,30 +82,40 @@ bool TexelCache::lookup(uint64_t line) {
 
 FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
   FootprintResult r;
-  // Scratch lists (only the first n entries of each are ever read, so no initialisation).
+  const auto l = static_cast<size_t>(level);
+  const uint64_t base = level_base_[l];
+  const auto row = static_cast<uint64_t>(blocks_per_row_[l]);
+  const bool four_banks = cfg_.banks == 4;
+  // Distinct lines of the footprint (only the first nlines entries are written and read).
   std::array<uint64_t, 16> lines;
   size_t nlines = 0;
-  // Distinct reads per bank: texels (texel parity) or lines (block parity).
-  std::array<std::array<uint64_t, 16>, 4> per_bank;
-  std::array<size_t, 4> nbank{};
-  const auto add = [](auto& list, size_t& n, uint64_t v) {
-    for (size_t i = 0; i < n; ++i)
-      if (list[i] == v) return;
-    list[n++] = v;
-  };
-  for (const TexelTap& t : taps) {
-    const uint64_t line = line_of(level, t.x, t.y);
-    add(lines, nlines, line);
-    size_t bank = 0;
-    uint64_t item = 0;
-    if (cfg_.bank_mapping == BankMapping::TexelParity) {
-      bank = cfg_.banks == 4 ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0;
-      item = (static_cast<uint64_t>(static_cast<uint32_t>(t.y)) << 32) | static_cast<uint32_t>(t.x);
-    } else {
-      bank = cfg_.banks == 4 ? static_cast<size_t>(((t.x >> block_shift_) & 1) + 2 * ((t.y >> block_shift_) & 1)) : 0;
-      item = line;
+  // Reads per bank: the distinct lines (block parity) or distinct texels (texel parity) in it.
+  std::array<int, 4> nbank{};
+  if (cfg_.bank_mapping == BankMapping::BlockParity) {
+    for (const TexelTap& t : taps) {
+      const int bx = t.x >> block_shift_, by = t.y >> block_shift_;
+      const uint64_t line = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
+      size_t i = 0;
+      while (i < nlines && lines[i] != line) ++i;
+      if (i < nlines) continue;  // a line already read: no second bank read either
+      lines[nlines++] = line;
+      ++nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
     }
-    add(per_bank[bank], nbank[bank], item);
+  } else {
+    std::array<uint32_t, 16> texels;  // distinct texels, packed y:x (16 bits each)
+    size_t ntexels = 0;
+    for (const TexelTap& t : taps) {
+      const uint64_t line = base + static_cast<uint64_t>(t.y >> block_shift_) * row + static_cast<uint64_t>(t.x >> block_shift_);
+      size_t i = 0;
+      while (i < nlines && lines[i] != line) ++i;
+      if (i == nlines) lines[nlines++] = line;
+      const uint32_t texel = (static_cast<uint32_t>(t.y) << 16) | static_cast<uint32_t>(t.x);
+      size_t k = 0;
+      while (k < ntexels && texels[k] != texel) ++k;
+      if (k < ntexels) continue;
+      texels[ntexels++] = texel;
+      ++nbank[four_banks ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0];
+    }
   }
   for (size_t i = 0; i < nlines; ++i) {
     if (lookup(lines[i])) {
@@ -114,10 +124,9 @@ FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
       r.missed_lines[static_cast<size_t>(r.misses++)] = lines[i];
     }
   }
-  r.cycles = 1;
-  for (size_t n : nbank) r.cycles = std::max(r.cycles, static_cast<int>(n));
-  hits_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
-  misses_[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+  r.cycles = std::max(std::max(1, nbank[0]), std::max(std::max(nbank[1], nbank[2]), nbank[3]));
+  hits_[l] += static_cast<uint64_t>(r.hits);
+  misses_[l] += static_cast<uint64_t>(r.misses);
   return r;
 }
 

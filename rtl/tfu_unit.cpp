@@ -186,8 +186,12 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
   sim::Channel<EdgeS1> c_s1("edge_s1", depth);
   sim::Channel<EdgeS2> c_s2("edge_s2", depth);
   sim::Channel<Response> c_resp("response", depth);
-  for (sim::Clocked* c : std::initializer_list<sim::Clocked*>{&c_quad, &c_pixel, &c_addr, &c_shape, &c_texels, &c_s1, &c_s2, &c_resp})
+  for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_quad, &c_pixel, &c_addr, &c_shape, &c_texels, &c_resp})
     sim.add_clocked(c);
+  if (edge) {
+    sim.add_clocked(&c_s1);
+    sim.add_clocked(&c_s2);
+  }
   RequestFifo src(sim, trace, c_quad, accept);
   LodUnit lod(sim, c_quad, c_pixel, trace.mode, tex.width(), tex.height());
   AddressGen addr(sim, c_pixel, c_addr, smp);

@@ -99,6 +99,7 @@ void VcdWriter::sample(uint64_t cycle) {
 
 void Simulator::reset() {
   for (Clocked* c : clocked_) c->reset();
+  for (ChannelBase* c : channels_) c->reset();
   cycle_ = last_progress_ = 0;
 }
 
@@ -108,6 +109,7 @@ void Simulator::step() {
   } else {
     for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
   }
+  for (ChannelBase* c : channels_) c->commit_state();
   for (Clocked* c : clocked_) c->commit();
   const bool progressed = last_progress_ == cycle_;
   ++cycle_;

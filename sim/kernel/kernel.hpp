@@ -49,59 +49,69 @@ class Reg : public Clocked {
   T reset_, q_, d_;
 };
 
-// Valid/ready channel with a FIFO of `depth` entries (skid buffer), one producer and one consumer.
-// Storage is a preallocated ring: push() writes the tail slot, which becomes visible at commit().
-template <typename T>
-class Channel : public Clocked {
+// The occupancy state every channel shares, whatever its payload: the simulator commits all
+// channels in one loop without a virtual call per channel (commit_state() is inline).
+class ChannelBase : public Clocked {
  public:
-  Channel(std::string name, size_t depth) : name_(std::move(name)), depth_(depth) {
-    if (depth_ == 0) throw InputError(fmt::format("channel {}: depth must be at least 1", name_));
-    ring_.resize(depth_ + 1);  // one spare slot: a push into a full-at-commit ring never overwrites
-  }
-  const std::string& name() const { return name_; }
   size_t depth() const { return depth_; }
   size_t size() const { return count_; }
-  // Producer side (ready = can_push, registered).
-  bool can_push() const { return count_ < depth_; }
-  void push(const T& v) {
-    if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
-    pushed_ = true;
-    ring_[wrap(head_ + count_)] = v;
-  }
-  // push() without the copy: the producer fills the returned slot during this evaluate().
-  T& push_slot() {
-    if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
-    pushed_ = true;
-    return ring_[wrap(head_ + count_)];
-  }
-  // Consumer side (valid = can_pop).
-  bool can_pop() const { return count_ != 0; }
-  const T& front() const { return ring_[head_]; }
-  void pop() {
-    if (!can_pop() || popped_) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
-    popped_ = true;
-  }
-  void commit() override {
+  bool can_push() const { return count_ < depth_; }  // ready, registered
+  bool can_pop() const { return count_ != 0; }       // valid
+  void commit_state() {
     if (popped_) {
-      head_ = wrap(head_ + 1);
+      head_ = head_ + 1 == slots_ ? 0 : head_ + 1;
       --count_;
     }
     if (pushed_) ++count_;
     pushed_ = popped_ = false;
   }
-  void reset() override {
+  void commit() final { commit_state(); }
+  void reset() final {
     head_ = count_ = 0;
     pushed_ = popped_ = false;
+  }
+
+ protected:
+  explicit ChannelBase(size_t depth) : depth_(depth), slots_(depth + 1) {}
+  size_t depth_;
+  size_t slots_;  // ring slots: depth + 1, one spare so a push into a full-at-commit ring never overwrites
+  size_t head_ = 0, count_ = 0;
+  bool pushed_ = false, popped_ = false;
+  size_t tail() const {  // head + count < 2 slots: no division
+    const size_t i = head_ + count_;
+    return i >= slots_ ? i - slots_ : i;
+  }
+};
+
+// Valid/ready channel with a FIFO of `depth` entries (skid buffer), one producer and one consumer.
+// Storage is a preallocated ring: push() writes the tail slot, which becomes visible at commit().
+template <typename T>
+class Channel : public ChannelBase {
+ public:
+  Channel(std::string name, size_t depth) : ChannelBase(depth), name_(std::move(name)) {
+    if (depth_ == 0) throw InputError(fmt::format("channel {}: depth must be at least 1", name_));
+    ring_.resize(slots_);
+  }
+  const std::string& name() const { return name_; }
+  // Producer side.
+  void push(const T& v) { push_slot() = v; }
+  // push() without the copy: the producer fills the returned slot during this evaluate().
+  T& push_slot() {
+    if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
+    pushed_ = true;
+    return ring_[tail()];
+  }
+  // Consumer side.
+  const T& front() const { return ring_[head_]; }
+  void pop() {
+    if (!can_pop() || popped_) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
+    popped_ = true;
   }
   std::string state() const { return fmt::format("{} {}/{}{}", name_, count_, depth_, can_push() ? "" : " full"); }
 
  private:
   std::string name_;
-  size_t depth_;
   std::vector<T> ring_;
-  size_t head_ = 0, count_ = 0;
-  bool pushed_ = false, popped_ = false;
-  size_t wrap(size_t i) const { return i >= ring_.size() ? i - ring_.size() : i; }  // i < 2 size: no division
 };
 
 // A block-internal FIFO (no clocking of its own: the owning block's evaluate() is its only user),
@@ -227,6 +237,7 @@ class Simulator {
   explicit Simulator(uint64_t watchdog_cycles = 100000) : watchdog_(watchdog_cycles) {}
   void add_module(Module* m) { modules_.push_back(m); }
   void add_clocked(Clocked* c) { clocked_.push_back(c); }
+  void add_clocked(ChannelBase* c) { channels_.push_back(c); }  // committed without a virtual call
   void set_vcd(VcdWriter* v) { vcd_ = v; }
   // Jump over cycles in which no block can act (see Module::wake_cycle); on by default, off while
   // a VCD is written (every cycle is dumped). Results and statistics are identical (tested).
@@ -252,6 +263,7 @@ class Simulator {
  private:
   std::vector<Module*> modules_;
   std::vector<Clocked*> clocked_;
+  std::vector<ChannelBase*> channels_;
   VcdWriter* vcd_ = nullptr;
   Order order_ = Order::Forward;
   uint64_t cycle_ = 0, last_progress_ = 0, watchdog_;
