@@ -192,6 +192,57 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
   return *std::max_element(worst.begin(), worst.end()) * scale;
 }
 
+KernelErrorFloor kernel_error_floor(const KernelErrorSpec& spec, double max_error_lsb) {
+  spec.validate();
+  if (spec.dims > 2 || spec.composition == Composition::SeparableFixed || spec.requantize_linear)
+    throw InputError("the kernel-error floor needs --dims 1 or 2, --composition separable or tiles, and no --requantize");
+  if (!(max_error_lsb >= 0.0)) throw InputError("the kernel-error floor needs a quantizer error >= 0 LSB");
+  const FilterKernel h = FilterKernel::by_name(spec.kernel);
+  const Axis ax = build_axis(h, spec);
+  const double scale = static_cast<double>(unorm::max_code(spec.bits));
+  const double e = max_error_lsb / scale;
+  const int T = ax.taps, N = spec.effective_locations();
+  const auto sample = [&](int idx) { return idx < 0 ? 0.0 : ax.sample[static_cast<size_t>(idx)]; };
+  // Unquantized reconstructed 1D weights u (nearest or linear between exact ROM samples) and the
+  // exact weights, per location and tap.
+  std::vector<double> u(static_cast<size_t>(N) * T), abs_sum(static_cast<size_t>(N), 0.0);
+  for (int i = 0; i < N; ++i)
+    for (int t = 0; t < T; ++t) {
+      const AxisTap& l = ax.lookup[static_cast<size_t>(i) * T + t];
+      const double v = spec.recon == RomRecon::Nearest ? sample(l.k0) : sample(l.k0) * (1 - l.a) + sample(l.k1) * l.a;
+      u[static_cast<size_t>(i) * T + t] = v;
+      abs_sum[static_cast<size_t>(i)] += std::abs(v);
+    }
+  KernelErrorFloor out;
+  const auto at = [&](const std::vector<double>& v, int i, int t) { return v[static_cast<size_t>(i) * T + t]; };
+  if (spec.dims == 1) {
+    for (int i = 0; i < N; ++i) {
+      double d = 0;
+      for (int t = 0; t < T; ++t) d += std::abs(at(u, i, t) - at(ax.exact, i, t));
+      out.discretization = std::max(out.discretization, d);
+      out.floor = std::max(out.floor, d - T * e);
+    }
+  } else {
+    for (int iy = 0; iy < N; ++iy)
+      for (int ix = 0; ix < N; ++ix) {
+        double d = 0;
+        for (int ty = 0; ty < T; ++ty)
+          for (int tx = 0; tx < T; ++tx)
+            d += std::abs(at(u, ix, tx) * at(u, iy, ty) - at(ax.exact, ix, tx) * at(ax.exact, iy, ty));
+        // Separable: |q_x q_y - u_x u_y| <= E |u_y| + E |u_x| + E^2 for |q - u| <= E on each axis.
+        // Tiles: every 2D weight is quantized on its own, |q - u_x u_y| <= E.
+        const double q = spec.composition == Composition::Tiles
+                             ? T * T * e
+                             : T * e * (abs_sum[static_cast<size_t>(ix)] + abs_sum[static_cast<size_t>(iy)]) + T * T * e * e;
+        out.discretization = std::max(out.discretization, d);
+        out.floor = std::max(out.floor, d - q);
+      }
+  }
+  out.discretization *= scale;
+  out.floor *= scale;
+  return out;
+}
+
 const std::vector<PublishedKernelError>& published_table_3_5() {
   // Hadwiger 2004, Table 3.5 (values are 255 * eps_h). Transcribed from the dissertation text in
   // ../shared/seeds; these are the published targets, not our results.

@@ -58,6 +58,20 @@ struct KernelErrorSpec {
 // eps_h x (2^b - 1).
 double kernel_error_scaled(const KernelErrorSpec& spec);
 
+// What no quantizer can beat (docs/kernel-error.md, "why the published table differs"). For any
+// per-weight quantizer whose stored weights are within e LSB of the exact ROM samples (e = 1/2
+// for rounding, 1 for truncation or sum-preserving rounding), dims 1 or 2, separable or tiles
+// composition, no requantization, at every location i:
+//   eps_h >= D(i) - Q(i),  D(i) = sum_j |u_j - w_exact_j|  (unquantized ROM, discretization only),
+//   Q(i)  = bound of sum_j |q_j - u_j|: T E (d = 1); separable 2D T E sum over both axes of
+//           sum_t |u_t| + T^2 E^2; tiles 2D T^2 E; with E = e / (2^b - 1),
+// so eps_h >= max_i (D(i) - Q(i)) = floor. Both x (2^b - 1).
+struct KernelErrorFloor {
+  double discretization = 0;  // max_i D(i)
+  double floor = 0;           // max_i (D(i) - Q(i))
+};
+KernelErrorFloor kernel_error_floor(const KernelErrorSpec& spec, double max_error_lsb);
+
 // One published entry of Table 3.5 (dissertation p. 70): 255 * eps_h.
 struct PublishedKernelError {
   const char* kernel;  // bspline, catmull-rom, blackman

@@ -88,6 +88,58 @@ TEST(KernelError, QuantizationOnlyBoundHolds) {
   EXPECT_LE(e, 8.0);
 }
 
+// The floor is a lower bound for our own (rounding, <= 1/2 LSB) quantizer, is the discretization
+// error itself for an exact quantizer, and is tight enough to matter where discretization dominates.
+TEST(KernelError, FloorBoundsOurOwnError) {
+  for (const char* k : {"bspline", "catmull-rom", "blackman"})
+    for (RomRecon recon : {RomRecon::Nearest, RomRecon::Linear})
+      for (int dims : {1, 2}) {
+        auto s = spec(k, 16, recon, dims);
+        s.locations = 256;
+        const KernelErrorFloor f = kernel_error_floor(s, 0.5);
+        const double ours = kernel_error_scaled(s);
+        EXPECT_LE(f.floor, ours + 1e-9) << k << " dims " << dims;
+        EXPECT_GT(f.floor, 0.5 * ours) << k << " dims " << dims;  // discretization dominates at R = 16
+        EXPECT_DOUBLE_EQ(kernel_error_floor(s, 0.0).floor, f.discretization);
+        if (dims == 2) {
+          s.composition = Composition::Tiles;
+          EXPECT_LE(kernel_error_floor(s, 0.5).floor, kernel_error_scaled(s) + 1e-9) << k << " tiles";
+        }
+      }
+}
+
+// The claim docs/kernel-error.md rests on: with nearest reconstruction at R = 16, Eq. 3.5 summed
+// over the 16 weights of 1024^2 locations cannot give the published Catmull-Rom value under any
+// quantizer within 1 LSB per weight (round, truncate, sum-preserving), whatever the sampling
+// position or location grid.
+TEST(KernelError, PublishedCatmullRomR16IsBelowTheFloorOfEveryConvention) {
+  double published = 0;
+  for (const auto& e : published_table_3_5())
+    if (e.kernel == std::string("catmull-rom") && e.samples == 16 && e.dims == 2 && e.recon == RomRecon::Nearest)
+      published = e.value;
+  ASSERT_EQ(published, 25.3076);
+  for (SamplePos pos : {SamplePos::Centre, SamplePos::Corner})
+    for (LocationGrid grid : {LocationGrid::Corner, LocationGrid::Centre}) {
+      auto s = spec("catmull-rom", 16, RomRecon::Nearest);
+      s.sample_pos = pos;
+      s.grid = grid;
+      const KernelErrorFloor f = kernel_error_floor(s, 1.0);
+      EXPECT_GT(f.floor, published * 1.05);
+      EXPECT_GT(kernel_error_floor(s, 0.5).floor, published * 1.25);
+    }
+}
+
+TEST(KernelError, FloorRejectsWhatItDoesNotBound) {
+  auto s = spec("bspline", 16, RomRecon::Nearest, 3);
+  EXPECT_THROW(kernel_error_floor(s, 0.5), InputError);
+  s.dims = 2;
+  s.composition = Composition::SeparableFixed;
+  EXPECT_THROW(kernel_error_floor(s, 0.5), InputError);
+  s.composition = Composition::Separable;
+  s.requantize_linear = true;
+  EXPECT_THROW(kernel_error_floor(s, 0.5), InputError);
+}
+
 TEST(KernelError, ThreeDimensionsCostMoreThanTwo) {
   auto s2 = spec("bspline", 32, RomRecon::Nearest, 2);
   s2.locations = 64;

@@ -25,6 +25,8 @@ struct KernelErrorOptions {
   std::string composition = "separable";
   bool table = false;
   bool with_3d = false;
+  double floor_lsb = 0;  // --floor: the quantizer error bound in LSB
+  bool floor = false;     // --floor given
 };
 
 void apply_choices(KernelErrorOptions& o) {
@@ -78,6 +80,35 @@ void print_table(const KernelErrorOptions& o) {
   fmt::print("\ncomputed in {:.2f} s\n", secs);
 }
 
+// --table --floor: per 2D entry, the discretization error and the floor no quantizer within
+// `lsb` LSB can go below (kernel_error_floor), beside the published value.
+void print_floor_table(const KernelErrorOptions& o) {
+  const auto start = std::chrono::steady_clock::now();
+  fmt::print("Floor of 255*eps_h under Eq. 3.5 for ANY quantizer within {} LSB per stored weight (2D, composition {}, {}^2 "
+             "locations, sample-pos {}, grid {}, edge {})\n",
+             o.floor_lsb, o.composition, o.spec.effective_locations(), o.sample_pos, o.grid, o.edge);
+  fmt::print("discr. = unquantized ROM (discretization only); a published value below the floor cannot come from Eq. 3.5 as written\n\n");
+  fmt::print("| kernel | R | recon | discr. | floor | published | published below floor |\n|---|---:|---|---:|---:|---:|---|\n");
+  for (const char* kernel : {"bspline", "catmull-rom", "blackman"})
+    for (int R : {16, 32, 64, 128, 256, 512})
+      for (RomRecon recon : {RomRecon::Nearest, RomRecon::Linear}) {
+        const PublishedKernelError* p = nullptr;
+        for (const auto& e : published_table_3_5())
+          if (e.kernel == std::string(kernel) && e.samples == R && e.dims == 2 && e.recon == recon) p = &e;
+        KernelErrorSpec s = o.spec;
+        s.kernel = kernel;
+        s.samples = R;
+        s.dims = 2;
+        s.recon = recon;
+        const KernelErrorFloor f = kernel_error_floor(s, o.floor_lsb);
+        fmt::print("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} | {} |\n", kernel, R, recon == RomRecon::Nearest ? "box" : "linear",
+                   f.discretization, f.floor, p->value, p->value < f.floor ? "**yes**" : "no");
+        std::fflush(stdout);
+      }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("\ncomputed in {:.2f} s\n", secs);
+}
+
 }  // namespace
 
 void register_kernel_error(CLI::App& app) {
@@ -106,11 +137,32 @@ void register_kernel_error(CLI::App& app) {
   cmd->add_option("--threads", opts->spec.threads, "Worker threads (0 = all cores)")->capture_default_str();
   cmd->add_flag("--table", opts->table, "Print the whole Table 3.5 (2D) beside the published values");
   cmd->add_flag("--with-3d", opts->with_3d, "With --table: also the 3D columns (slow: minutes)");
-  cmd->callback([opts] {
+  CLI::Option* floor_opt = cmd->add_option("--floor", opts->floor_lsb,
+                  "Print the floor no quantizer within this many LSB per stored weight can go below (dims 1 or 2, "
+                  "separable or tiles; with --table: the 2D table beside the published values)");
+  cmd->callback([opts, floor_opt] {
     apply_choices(*opts);
+    opts->floor = floor_opt->count() > 0;
+    const bool floor = opts->floor;
+    if (floor && !(opts->floor_lsb >= 0 && opts->floor_lsb <= 8))
+      throw InputError(fmt::format("--floor must be in 0..8 LSB, got {}", opts->floor_lsb));
     if (opts->table) {
       opts->spec.validate();
-      print_table(*opts);
+      if (floor) {
+        print_floor_table(*opts);
+      } else {
+        print_table(*opts);
+      }
+      return;
+    }
+    if (floor) {
+      const KernelErrorFloor f = kernel_error_floor(opts->spec, opts->floor_lsb);
+      fmt::print("kernel={} R={} b={} recon={} dims={} locations={}^{} sample-pos={} grid={} edge={}: discretization {:.4f}, "
+                 "floor for quantizers within {} LSB\n",
+                 opts->spec.kernel, opts->spec.samples, opts->spec.bits, opts->recon, opts->spec.dims,
+                 opts->spec.effective_locations(), opts->spec.dims, opts->sample_pos, opts->grid, opts->edge,
+                 f.discretization, opts->floor_lsb);
+      fmt::print("{:.4f}\n", f.floor);
       return;
     }
     const double v = kernel_error_scaled(opts->spec);
