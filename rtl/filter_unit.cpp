@@ -14,7 +14,9 @@ FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Chann
       fmt_(smp.texture().format),
       // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
       unpack_fmt_(smp.cubic_rom() && smp.cubic_normalize().prefiltered ? TexelFormat::RGBA8 : smp.texture().format),
-      lanes_(lanes) {}
+      lanes_(lanes) {
+  for (size_t n = 0; n < extra_clocks_.size(); ++n) extra_clocks_[n] = (static_cast<int>(n) + 4 * lanes_ - 1) / (4 * lanes_) - 1;
+}
 
 Texel4 FilterUnit::filter_level(const FilterReq& r) const {
   const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack_fmt_); };
@@ -36,7 +38,7 @@ Texel4 FilterUnit::filter_level(const FilterReq& r) const {
 void FilterUnit::evaluate() {
   if (!in_.can_pop()) return;
   const FilterReq& r = in_.front();
-  if (remaining_ < 0) remaining_ = (r.ntaps + 4 * lanes_ - 1) / (4 * lanes_) - 1;
+  if (remaining_ < 0) remaining_ = extra_clocks_[static_cast<size_t>(r.ntaps)];
   if (remaining_ > 0) {  // the lanes are still working on this footprint
     --remaining_;
     ++busy_cycles_;

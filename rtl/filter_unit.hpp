@@ -33,6 +33,7 @@ class FilterUnit : public sim::Module {
   TexelFormat fmt_, unpack_fmt_;
   int lanes_;
   int remaining_ = -1;  // clocks left on the current footprint (-1: not started)
+  std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
   uint64_t busy_cycles_ = 0;
   Texel4 first_{};  // level0 result of a blending pixel (register)
   Texel4 filter_level(const FilterReq& r) const;

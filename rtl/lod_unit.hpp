@@ -35,7 +35,7 @@ class LodUnit : public sim::Module {
     }
     if (holding_ && out_.can_push()) {
       const auto k = static_cast<size_t>(k_);
-      out_.push({quad_.id + static_cast<uint32_t>(k_), quad_.s[k], quad_.t[k], lambda_});
+      out_.push_slot() = {quad_.id + static_cast<uint32_t>(k_), quad_.s[k], quad_.t[k], lambda_};
       if (++k_ == quad_.npix) holding_ = false;
       sim_.progress();
     }

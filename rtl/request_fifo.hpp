@@ -20,7 +20,7 @@ class RequestFifo : public sim::Module {
       : Module(s, "request_fifo"), trace_(tr), out_(o), accept_(accept_cycle) {}
   void evaluate() override {
     if (next_ >= trace_.requests.size() || !out_.can_push()) return;
-    QuadReq q;
+    QuadReq& q = out_.push_slot();  // formed in the output register
     q.id = static_cast<uint32_t>(next_);
     q.npix = trace_.mode == TraceMode::Quad ? 4 : 1;
     for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) {
@@ -35,7 +35,6 @@ class RequestFifo : public sim::Module {
     q.dtdx = r.dtdx;
     q.dsdy = r.dsdy;
     q.dtdy = r.dtdy;
-    out_.push(q);
     next_ += static_cast<size_t>(q.npix);
     sim_.progress();
   }

@@ -22,7 +22,7 @@
 namespace tfu::cli {
 namespace {
 
-constexpr int kBenchRuns = 3;  // --bench: best of this many runs
+constexpr int kBenchRuns = 5;  // --bench: best of this many runs
 
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
@@ -167,11 +167,12 @@ void run(SimOptions& o, CLI::App& cmd) {
       std::cout << fmt::format(
           "  speed, one thread each, CPU seconds, best of {} runs: cycle model {:.3f} s = {:.2f} M simulated pixels/s\n"
           "    golden LOD + sampler on the same requests {:.3f} s = {:.2f} M pixels/s: cycle model / golden sampling = {:.2f}x\n"
-          "    golden render of the scene (raster + LOD + sampler) {:.3f} s; the scene through the cycle model "
-          "(raster + cycle model) {:.3f} s: cost of cycle accuracy on the scene = {:.2f}x\n"
+          "    golden render of the scene (raster + LOD + sampler) {:.3f} s: cycle model / golden render = {:.2f}x\n"
+          "    the scene end to end through the cycle model (raster + cycle model) {:.3f} s: / golden render = {:.2f}x\n"
           "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
           runs, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
-          res.cycle_seconds / res.golden_seconds, render_secs, scene_cycle_secs, scene_cycle_secs / render_secs, secs,
+          res.cycle_seconds / res.golden_seconds, render_secs, res.cycle_seconds / render_secs, scene_cycle_secs,
+          scene_cycle_secs / render_secs, secs,
           o.units);
     }
     if (!o.out.empty()) {
