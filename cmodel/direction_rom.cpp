@@ -9,8 +9,7 @@
 namespace tfu::lee_jen {
 namespace {
 
-constexpr TexelPos kPos[kTexels] = {{0, -1}, {1, -1}, {-1, 0}, {0, 0}, {1, 0}, {2, 0},
-                                    {-1, 1}, {0, 1},  {1, 1},  {2, 1}, {0, 2}, {1, 2}};
+constexpr const TexelPos* kPos = kTexelPos;
 
 const double kRoiAxis = 0.5;                          // horizontal / vertical
 const double kRoiDiag = std::sqrt(2.0) / 4.0;         // all diagonals

@@ -42,7 +42,9 @@ inline constexpr double kNeverChooseThreshold = 1e-9;
 struct TexelPos {
   int x, y;
 };
-// Position of texel Cn (n = 1..12).
+// Position of texel Cn (n = 1..12): kTexelPos[n - 1].
+inline constexpr TexelPos kTexelPos[kTexels] = {{0, -1}, {1, -1}, {-1, 0}, {0, 0}, {1, 0}, {2, 0},
+                                                {-1, 1}, {0, 1},  {1, 1},  {2, 1}, {0, 2}, {1, 2}};
 TexelPos texel_pos(int n);
 // Texel number at (x, y), or 0 if (x, y) is not part of the 12-texel cross.
 int texel_at(int x, int y);

@@ -1,6 +1,7 @@
 #include "cmodel/edge_filter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 
@@ -51,15 +52,16 @@ constexpr K median5(const K& a, const K& b, const K& c, const K& d, const K& e) 
 }
 
 // Low-pass of Eq. 4 with the Sec. 3 adjustments: low[n] = number of the texel whose value is the
-// median for Cn. Reads key[n] only for available texels.
-template <typename K>
+// median for Cn. Reads key[n] only for available texels; kAll: every texel is (the cross).
+template <typename K, bool kAll = false>
 std::array<int, kTexels + 1> low_pass(const std::array<K, kTexels + 1>& key, TexelMask available) {
   const auto k = [&](int n) -> const K& { return key[static_cast<size_t>(n)]; };
+  const auto avail = [available](int n) { return kAll || has(available, n); };
   std::array<int, kTexels + 1> low{};
   for (const Boundary& b : kBoundary)
-    if (has(available, b.self)) low[static_cast<size_t>(b.self)] = texel_of(median3(k(b.self), k(b.a), k(b.b)));
+    if (avail(b.self)) low[static_cast<size_t>(b.self)] = texel_of(median3(k(b.self), k(b.a), k(b.b)));
   for (const Centre& c : kCentre) {
-    const bool h1 = has(available, c.o1), h2 = has(available, c.o2);
+    const bool h1 = avail(c.o1), h2 = avail(c.o2);
     K m;
     if (h1 && h2) {
       m = median5(k(c.self), k(c.c1), k(c.c2), k(c.o1), k(c.o2));
@@ -73,26 +75,63 @@ std::array<int, kTexels + 1> low_pass(const std::array<K, kTexels + 1>& key, Tex
   return low;
 }
 
-// Per-direction constants gathered once: endpoints, ROM, and the usable-direction set of every
-// 12-bit availability mask (the hardware decodes the kernel shape into these enables).
+// Per-direction constants gathered once: endpoints and blend axis, the usable-direction set of
+// every 12-bit availability mask (the hardware decodes the kernel shape into these enables), and
+// per ROM address the 22 weight codes side by side with the set of directions whose code is not
+// "never choose".
 struct DirectionTable {
   struct Entry {
-    int p, q;
-    const std::array<uint8_t, 256>* rom;
+    uint8_t p, q;  // endpoint texel numbers
+    bool blend_x;  // t of Eq. 3 is xf (else yf)
   };
   std::array<Entry, kDirections> dir{};
   std::array<uint32_t, kAllTexels + 1> usable{};
+  std::array<std::array<uint8_t, kDirections>, 256> weight{};  // [address][direction]
+  std::array<uint32_t, 256> choosable{};                       // [address]: bit i = direction i
 };
 
-const DirectionTable& direction_table() {
-  static const DirectionTable t = [] {
-    DirectionTable d;
-    for (const Direction& x : directions())
-      d.dir[static_cast<size_t>(x.index)] = {x.p, x.q, &direction_weight_rom(x.index)};
-    for (uint32_t m = 0; m <= kAllTexels; ++m) d.usable[m] = usable_directions(static_cast<TexelMask>(m));
-    return d;
-  }();
+[[gnu::noinline]] DirectionTable build_direction_table() {
+  DirectionTable d;
+  for (const Direction& x : directions()) {
+    const auto i = static_cast<size_t>(x.index);
+    d.dir[i] = {static_cast<uint8_t>(x.p), static_cast<uint8_t>(x.q), x.axis == BlendAxis::X};
+    const std::array<uint8_t, 256>& rom = direction_weight_rom(x.index);
+    for (size_t a = 0; a < rom.size(); ++a) {
+      d.weight[a][i] = rom[a];
+      if (rom[a] != kNeverChoose) d.choosable[a] |= 1u << i;
+    }
+  }
+  for (uint32_t m = 0; m <= kAllTexels; ++m) d.usable[m] = usable_directions(static_cast<TexelMask>(m));
+  return d;
+}
+
+inline const DirectionTable& direction_table() {
+  static const DirectionTable t = build_direction_table();
   return t;
+}
+
+// Stage 3 for one family of formats. Each candidate direction's cost and index form the key
+// cost * 32 + i, so the smallest key is the lowest cost with ties to the lowest index; only the
+// usable, choosable directions are visited and the running minimum needs no branch.
+template <bool kVs16>
+EdgeDecision select_direction_keyed(const std::array<Texel4, kTexels>& c, const LowIndex& low, uint32_t usable,
+                                    size_t addr) {
+  constexpr TexelFormat kFmt = kVs16 ? TexelFormat::VS16X2 : TexelFormat::RGBA8;
+  const DirectionTable& tab = direction_table();
+  const std::array<uint8_t, kDirections>& w = tab.weight[addr];
+  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
+  static_assert(kDirections <= 32);
+  constexpr uint64_t kNone = ~uint64_t{0};
+  uint64_t best = kNone;
+  for (uint32_t m = usable & tab.choosable[addr]; m != 0; m &= m - 1) {
+    const auto i = static_cast<size_t>(std::countr_zero(m));
+    const DirectionTable::Entry& e = tab.dir[i];
+    const uint64_t cost = uint64_t{w[i]} * direction_difference(lowv(e.p), lowv(e.q), kFmt);
+    const uint64_t key = (cost << 5) | i;
+    best = key < best ? key : best;
+  }
+  if (best == kNone) return {0, 0, 0};  // unreachable: an axis direction through the centre square is always usable
+  return {static_cast<int>(best & 31), static_cast<uint32_t>(best >> 5), 0};
 }
 
 }  // namespace
@@ -116,54 +155,45 @@ LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, Te
   return key;
 }
 
-LowIndex median_low_pass(const LumaKeys& key, TexelMask available) { return low_pass(key, available); }
+LowIndex median_low_pass(const LumaKeys& key, TexelMask available) {
+  return (available & kAllTexels) == kAllTexels ? low_pass<int32_t, true>(key, available) : low_pass(key, available);
+}
 
 
 EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
                               uint32_t xf, uint32_t yf, TexelFormat fmt) {
-  const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
-  // Direction choice (Eq. 1-2): min w_i * dP_i over the usable directions.
-  const DirectionTable& tab = direction_table();
-  const uint32_t usable = tab.usable[available & kAllTexels];
+  // Direction choice (Eq. 1-2): min w_i * dP_i over the usable directions, ties -> lowest index.
+  const uint32_t usable = direction_table().usable[available & kAllTexels];
   const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
-  int best = -1;
-  uint32_t best_cost = 0;
-  for (int i = 0; i < kDirections; ++i) {
-    if (!((usable >> i) & 1u)) continue;
-    const DirectionTable::Entry& e = tab.dir[static_cast<size_t>(i)];
-    const uint8_t w = (*e.rom)[addr];
-    if (w == kNeverChoose) continue;
-    const uint32_t cost = w * direction_difference(lowv(e.p), lowv(e.q), fmt);
-    if (best < 0 || cost < best_cost) {
-      best = i;
-      best_cost = cost;
-    }
-  }
-  if (best < 0) best = 0;  // unreachable: an axis direction through the centre square is always usable
-  return {best, best_cost, 0};
+  return fmt == TexelFormat::VS16X2 ? select_direction_keyed<true>(c, low, usable, addr)
+                                    : select_direction_keyed<false>(c, low, usable, addr);
 }
 
-Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
-                  TexelFormat fmt) {
+namespace {
+
+// Stage 4 with the high-frequency sum in Acc: int32_t holds it exactly for 8-bit channels
+// (|H| <= 255, the weights sum to 2^16), VS16X2 needs int64_t.
+template <typename Acc>
+Texel4 edge_merge_acc(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf,
+                      uint32_t yf, int32_t lo, int32_t hi) {
   const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Low-frequency part along the chosen direction (Eq. 3).
-  const Direction& d = directions()[static_cast<size_t>(direction)];
-  const int32_t t = static_cast<int32_t>(d.axis == BlendAxis::X ? xf : yf);
+  const DirectionTable::Entry& d = direction_table().dir[static_cast<size_t>(direction)];
+  const int32_t t = static_cast<int32_t>(d.blend_x ? xf : yf);
   const Texel4& cp = lowv(d.p);
   const Texel4& cq = lowv(d.q);
   // High-frequency part, bilinear over H4, H5, H8, H9 (Eq. 5).
   const int32_t fx = static_cast<int32_t>(xf), fy = static_cast<int32_t>(yf);
-  const std::array<int32_t, 4> bw{(256 - fx) * (256 - fy), fx * (256 - fy), (256 - fx) * fy, fx * fy};
+  const std::array<Acc, 4> bw{(256 - fx) * (256 - fy), fx * (256 - fy), (256 - fx) * fy, fx * fy};
   constexpr std::array<int, 4> centre{4, 5, 8, 9};
-  const auto [lo, hi] = channel_range(fmt);
   Texel4 out{};
   for (size_t ch = 0; ch < 4; ++ch) {
     const int32_t clow = ((256 - t) * cp[ch] + t * cq[ch] + 128) >> 8;
-    int64_t hsum = 0;
+    Acc hsum = 0;
     for (size_t k = 0; k < 4; ++k) {
       const int n = centre[k];
       const int32_t h = c[static_cast<size_t>(n - 1)][ch] - lowv(n)[ch];
-      hsum += int64_t{h} * bw[k];
+      hsum += Acc{h} * bw[k];
     }
     const auto chigh = static_cast<int32_t>((hsum + (1 << 15)) >> 16);
     out[ch] = std::clamp(clow + chigh, lo, hi);  // Eq. 6
@@ -171,9 +201,18 @@ Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int
   return out;
 }
 
+}  // namespace
+
+Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
+                  TexelFormat fmt) {
+  const auto [lo, hi] = channel_range(fmt);
+  return fmt == TexelFormat::VS16X2 ? edge_merge_acc<int64_t>(c, low, direction, xf, yf, lo, hi)
+                                    : edge_merge_acc<int32_t>(c, low, direction, xf, yf, lo, hi);
+}
+
 Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
                                    uint32_t yf, TexelFormat fmt, EdgeDecision* decision) {
-  const LowIndex low = low_pass(luma_keys(c, available, fmt), available);
+  const LowIndex low = median_low_pass(luma_keys(c, available, fmt), available);
   EdgeDecision d = select_direction(c, low, available, xf, yf, fmt);
   d.read = static_cast<TexelMask>(available & kAllTexels);
   if (decision) *decision = d;

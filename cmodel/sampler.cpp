@@ -1,9 +1,11 @@
 #include "cmodel/sampler.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -137,10 +139,14 @@ namespace {
 
 // Memo of tile_weights_2d for nearest reconstruction: the weights depend only on the two ROM
 // addresses, so the software model evaluates the multipliers once per address pair (a pure
-// function: bit-identical to computing them per sample, which the tests check).
+// function: bit-identical to computing them per sample, which the tests check), and looks the
+// addresses of the 8-bit fractions up in two tables.
 struct WeightMemo {
+  static constexpr size_t kStride = 16;  // weights per address pair
   int entries = 0;
-  std::vector<std::array<int32_t, 16>> w;  // [addr_y * entries + addr_x]
+  std::vector<int32_t> w;                  // [(addr_y * entries + addr_x) * kStride + tap]
+  std::array<uint32_t, 256> col{}, row{};  // addr_x and addr_y * entries of each fraction
+  const int32_t* weights(uint32_t fu, uint32_t fv) const { return w.data() + kStride * (row[fv] + col[fu]); }
 };
 
 }  // namespace
@@ -158,26 +164,43 @@ struct Sampler::Impl {
   double scale = 255.0;  // channel code -> real
 };
 
+// The fast paths of sample() (defined below, after the generic datapath).
+struct Sampler::FastPaths {
+  enum class Path { Linear8, Cubic8, Edge8 };
+  struct Variant {  // what an instantiation is specialized for
+    Path path;
+    bool mipmapped;  // MipMode other than None
+    WrapMode ws, wt;
+  };
+  template <Variant kV>
+  static auto filter(const Sampler& sm, int level, float s, float t);
+  template <Variant kV>
+  static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda);
+  template <Path kP, bool kMip, size_t... k>
+  static constexpr std::array<SampleFn, 16> wrap_table(std::index_sequence<k...>);
+  template <Path kP>
+  static SampleFn pick(bool mipmapped, WrapMode ws, WrapMode wt);
+  // Chooses sample()'s path once the configuration is known: the fast path where one exists
+  // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the generic datapath.
+  static void setup(Sampler& sm);
+};
+
 // ---------------------------------------------------------------- construction
 Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::move(cfg)), impl_(new Impl) {
   tex_.validate("texture");
   impl_->border = decode_texel(cfg_.border, tex_.format);
-  sample_fn_ = &sample_generic;
-  if (cfg_.mode.base == BaseFilter::Linear && tex_.format != TexelFormat::VS16X2) {
-    switch (cfg_.wrap_s) {
-      case WrapMode::Repeat: sample_fn_ = pick_linear8<WrapMode::Repeat>(cfg_.wrap_t); break;
-      case WrapMode::MirroredRepeat: sample_fn_ = pick_linear8<WrapMode::MirroredRepeat>(cfg_.wrap_t); break;
-      case WrapMode::ClampToEdge: sample_fn_ = pick_linear8<WrapMode::ClampToEdge>(cfg_.wrap_t); break;
-      case WrapMode::ClampToBorder: sample_fn_ = pick_linear8<WrapMode::ClampToBorder>(cfg_.wrap_t); break;
-    }
-  }
   impl_->scale = tex_.format == TexelFormat::VS16X2 ? 32640.0 : 255.0;
   if (cfg_.edge_cache_block < 4 || cfg_.edge_cache_block > 64 ||
       (cfg_.edge_cache_block & (cfg_.edge_cache_block - 1)) != 0)
     throw InputError(fmt::format("edge cache block {} is not a power of two in 4..64", cfg_.edge_cache_block));
   if (cfg_.lod.min_lod_q8 > cfg_.lod.max_lod_q8) throw InputError("min-lod is above max-lod");
-  if (cfg_.mode.base != BaseFilter::Cubic) return;
+  if (cfg_.mode.base == BaseFilter::Cubic) build_cubic();
+  FastPaths::setup(*this);
+}
 
+// CUBIC modes: kernel, tile-weight ROM, normalise registers, weight memo and, for bspline-interp,
+// the prefiltered coefficient levels.
+void Sampler::build_cubic() {
   cfg_.cubic_rom.validate();
   impl_->prefiltered = cfg_.kernel == kBsplineInterp;
   impl_->kernel = std::make_unique<FilterKernel>(
@@ -190,19 +213,24 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
   if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {
     auto memo = std::make_unique<WeightMemo>();
     memo->entries = impl_->rom->entries();
-    memo->w.resize(static_cast<size_t>(memo->entries) * static_cast<size_t>(memo->entries));
+    const auto entries = static_cast<size_t>(memo->entries);
+    memo->w.resize(entries * entries * WeightMemo::kStride);
     // One representative fraction per address: the smallest 8-bit f that maps to it.
-    std::vector<int> rep(static_cast<size_t>(memo->entries), -1);
+    std::vector<int> rep(entries, -1);
     for (uint32_t f = 0; f < 256; ++f) {
       const int a = impl_->rom->nearest_address(f, 8);
       if (rep[static_cast<size_t>(a)] < 0) rep[static_cast<size_t>(a)] = static_cast<int>(f);
+      memo->col[f] = static_cast<uint32_t>(a);
+      memo->row[f] = static_cast<uint32_t>(a) * static_cast<uint32_t>(entries);
     }
-    for (int ay = 0; ay < memo->entries; ++ay)
-      for (int ax = 0; ax < memo->entries; ++ax)
-        if (rep[static_cast<size_t>(ax)] >= 0 && rep[static_cast<size_t>(ay)] >= 0)
-          dp::tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[static_cast<size_t>(ax)]),
-                          static_cast<uint32_t>(rep[static_cast<size_t>(ay)]),
-                          memo->w[static_cast<size_t>(ay * memo->entries + ax)]);
+    for (size_t ay = 0; ay < entries; ++ay)
+      for (size_t ax = 0; ax < entries; ++ax)
+        if (rep[ax] >= 0 && rep[ay] >= 0) {
+          std::array<int32_t, 16> w2{};
+          dp::tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[ax]),
+                              static_cast<uint32_t>(rep[ay]), w2);
+          std::copy(w2.begin(), w2.end(), memo->w.begin() + static_cast<ptrdiff_t>((ay * entries + ax) * WeightMemo::kStride));
+        }
     impl_->memo = std::move(memo);
   }
   if (!impl_->prefiltered) return;
@@ -258,31 +286,48 @@ Sampler::Sampler(const Texture& tex, SamplerConfig cfg) : tex_(tex), cfg_(std::m
 Sampler::~Sampler() = default;
 
 // ---------------------------------------------------------------- LOD -> levels (GL 4.6 Sec. 8.14)
+namespace {
+
+// Level select of the LOD unit: the level(s) and the blend weight for lambda after bias and clamp;
+// q is the last level.
+struct LevelPick {
+  int level0 = 0, level1 = 0;
+  int blend = 0;  // weight of level1 (Q.8)
+};
+inline LevelPick select_levels(int32_t lambda_q8, MipMode mip, int q) {
+  LevelPick p;
+  if (lambda_q8 <= 0) return p;  // c = 0: the magnification filter is the mode's first word
+  switch (mip) {
+    case MipMode::None: break;
+    case MipMode::Nearest: {
+      // d = lambda <= 1/2 ? 0 : ceil(lambda + 1/2) - 1
+      const int d = lambda_q8 <= 128 ? 0 : (lambda_q8 + 127) >> kLodFracBits;
+      p.level0 = p.level1 = std::min(d, q);
+      break;
+    }
+    case MipMode::Linear:
+      if (lambda_q8 >= (q << kLodFracBits)) {
+        p.level0 = p.level1 = q;
+      } else {
+        p.level0 = lambda_q8 >> kLodFracBits;
+        p.level1 = p.level0 + 1;
+        p.blend = lambda_q8 & 255;
+      }
+      break;
+  }
+  return p;
+}
+
+}  // namespace
+
 LodInfo Sampler::lod_info(int32_t lambda_unclamped) const {
   LodInfo li;
   li.lambda_q8 = lambda_bias_clamp(lambda_unclamped, cfg_.lod);
-  const int q = tex_.max_level();
-  li.magnify = li.lambda_q8 <= 0;  // c = 0: the magnification filter is the mode's first word
-  if (!li.magnify) {
-    switch (cfg_.mode.mip) {
-      case MipMode::None: break;
-      case MipMode::Nearest: {
-        // d = lambda <= 1/2 ? 0 : ceil(lambda + 1/2) - 1
-        const int d = li.lambda_q8 <= 128 ? 0 : (li.lambda_q8 + 127) >> kLodFracBits;
-        li.level0 = li.level1 = std::min(d, q);
-        break;
-      }
-      case MipMode::Linear:
-        if (li.lambda_q8 >= (q << kLodFracBits)) {
-          li.level0 = li.level1 = q;
-        } else {
-          li.level0 = li.lambda_q8 >> kLodFracBits;
-          li.level1 = li.level0 + 1;
-          li.blend = li.lambda_q8 & 255;
-        }
-        break;
-    }
-  }
+  li.magnify = li.lambda_q8 <= 0;
+  const LevelPick p = select_levels(li.lambda_q8, cfg_.mode.mip, tex_.max_level());
+  li.level0 = p.level0;
+  li.level1 = p.level1;
+  li.blend = p.blend;
   const Image& l0 = tex_.levels[static_cast<size_t>(li.level0)];
   li.level0_width = l0.width;
   li.level0_height = l0.height;
@@ -342,7 +387,7 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
   std::array<int32_t, 16> w2_local;
   const int32_t* w2;
   if (memo) {
-    w2 = memo->w[static_cast<size_t>(rom.nearest_address(v.f, 8) * memo->entries + rom.nearest_address(u.f, 8))].data();
+    w2 = memo->weights(u.f, v.f);
   } else {
     dp::tile_weights_2d(rom, recon, u.f, v.f, w2_local);
     w2 = w2_local.data();
@@ -476,74 +521,230 @@ Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
   return dp::level_blend(c0, c1, li.blend);
 }
 
-namespace {
-
-// LINEAR on one level of an 8-bit format, straight from the texel words: the same arithmetic as
-// filter_linear (one rounding of the Q.16 sum), written as two exact lerps so that the compiler
-// keeps everything in registers. The result of 8-bit inputs is always within 0..255.
-[[gnu::always_inline]] inline Rgba8 bilinear8(const Image& img, WrapMode ws, WrapMode wt, Rgba8 border, float s,
-                                                 float t) {
-  const int w = img.width, h = img.height;
-  const int64_t u = float_to_fixed(s, static_cast<uint32_t>(w), 8) - 128;
-  const int64_t v = float_to_fixed(t, static_cast<uint32_t>(h), 8) - 128;
-  const int32_t fu = static_cast<int32_t>(u & 255), fv = static_cast<int32_t>(v & 255);
-  int xs[2], ys[2];
-  wrap_run(ws, u >> 8, 2, w, xs);
-  wrap_run(wt, v >> 8, 2, h, ys);
-  const int x0 = xs[0], x1 = xs[1], y0 = ys[0], y1 = ys[1];
-  const Rgba8* base = img.texels.data();
-  const bool may_border = ws == WrapMode::ClampToBorder || wt == WrapMode::ClampToBorder;
-  const auto word = [&](int x, int y) {
-    return may_border && (x | y) < 0 ? border
-                                     : base[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)];
-  };
-  const Rgba8 a = word(x0, y0), b = word(x1, y0), c = word(x0, y1), d = word(x1, y1);
-  const uint64_t gu = static_cast<uint64_t>(256 - fu), gv = static_cast<uint64_t>(256 - fv);
-  const auto ufu = static_cast<uint64_t>(fu), ufv = static_cast<uint64_t>(fv);
-  // Two channels per 64-bit word (32-bit lanes): (R, B) and (G, A). Exact: a horizontal lerp is at
-  // most 255 * 256 < 2^16 per lane, the vertical one below 2^24, so lanes never carry into each other.
-  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu).
-  const auto rb = [](Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); };
-  const auto ga = [](Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); };
-  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
-  const uint64_t srb = gv * (rb(a) * gu + rb(b) * ufu) + ufv * (rb(c) * gu + rb(d) * ufu) + kHalf;
-  const uint64_t sga = gv * (ga(a) * gu + ga(b) * ufu) + ufv * (ga(c) * gu + ga(d) * ufu) + kHalf;
-  return {static_cast<uint8_t>(srb >> 16), static_cast<uint8_t>(sga >> 16), static_cast<uint8_t>(srb >> 48),
-          static_cast<uint8_t>(sga >> 48)};
-}
-
-}  // namespace
-
 Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambda) {
   return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
 }
 
-// LINEAR / LINEAR_MIPMAP_* for 8-bit formats, one instantiation per pair of wrap modes so that the
-// wrap unit and the border select fold away. Bit-identical to the generic path (tested).
-template <WrapMode kWs, WrapMode kWt>
-Rgba8 Sampler::sample_linear8(const Sampler& sm, float s, float t, int32_t lambda) {
-  const Rgba8 border = sm.cfg_.border;
-  if (sm.cfg_.mode.mip == MipMode::None)  // GL: no MIP-mapping -> level 0 for magnification and minification
-    return bilinear8(sm.tex_.levels.front(), kWs, kWt, border, s, t);
-  const LodInfo li = sm.lod_info(lambda);
-  const Rgba8 a = bilinear8(sm.tex_.levels[static_cast<size_t>(li.level0)], kWs, kWt, border, s, t);
-  if (li.blend == 0) return a;
-  const Rgba8 b = bilinear8(sm.tex_.levels[static_cast<size_t>(li.level1)], kWs, kWt, border, s, t);
-  const int32_t f = li.blend, g = 256 - f;
-  const auto mix = [f, g](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * g + q * f + 128) >> 8); };
-  return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
+// ---------------------------------------------------------------- fast paths (software speed only)
+// sample() of LINEAR, CUBIC and EDGE_PRESERVING runs one instantiation per pair of wrap modes, so
+// that the wrap unit and the border select fold away, and reads texel words straight from the
+// level. Same arithmetic, bit for bit, as the generic datapath above (sample_channels), which the
+// tests compare them with.
+namespace {
+
+// The uncommon case of the fast paths' address generator, out of line so that the common case stays
+// small.
+[[gnu::noinline]] LevelCoord texel_coord_cold(float s, int size) { return texel_coord(s, size); }
+
+// The wrap unit for the n taps start, start + 1, ... of one row or column, with the mode known at
+// compile time: repeat on a power-of-two extent keeps the low bits, the clamps select (no branch
+// per tap); otherwise wrap_run.
+template <WrapMode kW, int n>
+[[gnu::always_inline]] inline void wrap_taps(int64_t start, int size, int* out) {
+  if constexpr (kW == WrapMode::Repeat) {
+    if ((size & (size - 1)) == 0) {
+      for (int k = 0; k < n; ++k) out[k] = static_cast<int>((start + k) & (size - 1));
+      return;
+    }
+  } else if constexpr (kW == WrapMode::ClampToEdge) {
+    for (int k = 0; k < n; ++k) out[k] = static_cast<int>(std::clamp<int64_t>(start + k, 0, size - 1));
+    return;
+  } else if constexpr (kW == WrapMode::ClampToBorder) {
+    for (int k = 0; k < n; ++k) out[k] = start + k >= 0 && start + k < size ? static_cast<int>(start + k) : -1;
+    return;
+  }
+  wrap_run(kW, start, n, size, out);
 }
 
-template <WrapMode kWs>
-Sampler::SampleFn Sampler::pick_linear8(WrapMode wt) {
-  switch (wt) {
-    case WrapMode::Repeat: return &sample_linear8<kWs, WrapMode::Repeat>;
-    case WrapMode::MirroredRepeat: return &sample_linear8<kWs, WrapMode::MirroredRepeat>;
-    case WrapMode::ClampToEdge: return &sample_linear8<kWs, WrapMode::ClampToEdge>;
-    case WrapMode::ClampToBorder: return &sample_linear8<kWs, WrapMode::ClampToBorder>;
-  }
-  return &sample_generic;
+// Address generator (dp::texel_coord) with its common case in a few integer operations: a normal
+// float whose product with the extent needs a right shift of 1..62 bits into Q.8 (|s W| below 2^15,
+// the usual texture coordinates) is (+-sig W) >> (142 - exp), exactly what float_to_fixed computes
+// for it; every other value goes through float_to_fixed.
+[[gnu::always_inline]] inline LevelCoord address_q8(float s, int size) {
+  const auto bits = std::bit_cast<uint32_t>(s);
+  const uint32_t exp = (bits >> 23) & 0xFF;
+  if (exp - 80u >= 62u) return texel_coord_cold(s, size);
+  const int64_t prod = static_cast<int64_t>((bits & 0x7FFFFF) | 0x800000) * size;
+  const int64_t u = (((bits >> 31) ? -prod : prod) >> (142 - exp)) - 128;
+  return {u >> 8, static_cast<uint32_t>(u & 255)};
 }
+
+template <WrapMode kWs, WrapMode kWt>
+inline constexpr bool kMayBorder = kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder;
+
+// Texel word at wrapped (x, y); a clamp-to-border tap (x or y = -1) reads the border word.
+template <bool kBorder>
+[[gnu::always_inline]] inline Rgba8 texel_word(const Image& img, int x, int y, Rgba8 border) {
+  if (kBorder && (x | y) < 0) return border;
+  return img.texels[static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x)];
+}
+
+// Two channels of a texel word in the 32-bit lanes of a 64-bit word: (R, B) and (G, A).
+inline uint64_t lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }
+inline uint64_t lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }
+
+// LINEAR on one level of an 8-bit format: the same arithmetic as filter_linear (one rounding of the
+// Q.16 sum), written as two exact lerps so that the compiler keeps everything in registers. The
+// result of 8-bit inputs is always within 0..255.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 bilinear8(const Image& img, Rgba8 border, float s, float t) {
+  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  int xs[2], ys[2];
+  wrap_taps<kWs, 2>(u.i0, img.width, xs);
+  wrap_taps<kWt, 2>(v.i0, img.height, ys);
+  constexpr bool kB = kMayBorder<kWs, kWt>;
+  const Rgba8 a = texel_word<kB>(img, xs[0], ys[0], border), b = texel_word<kB>(img, xs[1], ys[0], border),
+              c = texel_word<kB>(img, xs[0], ys[1], border), d = texel_word<kB>(img, xs[1], ys[1], border);
+  const uint64_t fu = u.f, fv = v.f, gu = 256 - fu, gv = 256 - fv;
+  // Two channels per 64-bit word (32-bit lanes). Exact: a horizontal lerp is at most 255 * 256 < 2^16
+  // per lane, the vertical one below 2^24, so lanes never carry into each other.
+  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu).
+  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
+  const uint64_t rb = gv * (lanes_rb(a) * gu + lanes_rb(b) * fu) + fv * (lanes_rb(c) * gu + lanes_rb(d) * fu) + kHalf;
+  const uint64_t ga = gv * (lanes_ga(a) * gu + lanes_ga(b) * fu) + fv * (lanes_ga(c) * gu + lanes_ga(d) * fu) + kHalf;
+  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
+          static_cast<uint8_t>(ga >> 48)};
+}
+
+// CUBIC (4 x 4 taps) on one level of 8-bit texel words with memoized weights: filter_tiled_acc_n
+// with the wrap modes fixed, then the normalise stage.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 cubic8(const Image& img, Rgba8 border, const WeightMemo& memo,
+                                            const dp::CubicNormalize& norm, float s, float t) {
+  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  const int32_t* w = memo.weights(u.f, v.f);
+  int col[4], row[4];
+  wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
+  wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  // (R, B) and (G, A) in signed 32-bit lanes, as in filter_tiled_acc_n: modular arithmetic keeps
+  // x = low + high 2^32 exactly and each lane's true sum is below 2^31 in magnitude.
+  // One row of taps per iteration (kept as a loop: fully unrolled, the compiler spills the 16
+  // addresses and weights).
+  uint64_t arb = 0, aga = 0;
+#pragma GCC unroll 1
+  for (int j = 0; j < 4; ++j) {
+    const int32_t* wr = w + 4 * j;
+    for (int i = 0; i < 4; ++i) {
+      const Rgba8 c = texel_word<kMayBorder<kWs, kWt>>(img, col[i], row[j], border);
+      const auto wt = static_cast<uint64_t>(static_cast<int64_t>(wr[i]));
+      arb += lanes_rb(c) * wt;
+      aga += lanes_ga(c) * wt;
+    }
+  }
+  const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };
+  const auto hi = [&lo](uint64_t x) {
+    return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>((x - static_cast<uint64_t>(lo(x))) >> 32)));
+  };
+  const std::array<int64_t, 4> acc{lo(arb), lo(aga), hi(arb), hi(aga)};
+  if (norm.M == 255 && !norm.prefiltered) {
+    // dp::cubic_normalize of the default 8-bit ROM: clamp(floor((2 acc + 255) / 510)) to 0..255; a
+    // negative numerator clamps to 0, so only non-negative ones are divided (truncation = floor).
+    const auto n8 = [](int64_t a) {
+      const int64_t n = 2 * a + 255;
+      return static_cast<uint8_t>(n < 0 ? 0 : std::min<int64_t>(n / 510, 255));
+    };
+    return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
+  }
+  const Texel4 c = dp::cubic_normalize(acc, norm);  // within 0..255
+  return {static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]), static_cast<uint8_t>(c[3])};
+}
+
+// EDGE_PRESERVING on one level of an 8-bit format: the cross footprint (edge_footprint with the
+// wrap modes fixed and no override; texels outside the shape are read but not used), then the
+// Lee & Jen datapath.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Texel4 edge8(const Image& img, Rgba8 border, TexelFormat fmt, bool cache_block,
+                                           int block, float s, float t) {
+  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  int col[4], row[4];
+  wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // columns and rows -1 .. 2
+  wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  const lee_jen::TexelMask mask =
+      cache_block ? lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], block) : lee_jen::kAllTexels;
+  std::array<Texel4, lee_jen::kTexels> c;
+  for (size_t k = 0; k < c.size(); ++k) {
+    const lee_jen::TexelPos p = lee_jen::kTexelPos[k];
+    const Rgba8 w = texel_word<kMayBorder<kWs, kWt>>(img, col[p.x + 1], row[p.y + 1], border);
+    c[k] = ((mask >> k) & 1u) ? Texel4{w.r, w.g, w.b, w.a} : Texel4{0, 0, 0, 0};
+  }
+  return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, fmt);
+}
+
+// Trilinear blend unit (dp::level_blend) and output encoding, for the 8-bit paths' texel words
+// (channels within 0..255, so encoding is the identity) and for datapath channels.
+inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) {
+  const auto mix = [f](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * (256 - f) + q * f + 128) >> 8); };
+  return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
+}
+inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
+inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
+inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }
+
+}  // namespace
+
+// The mode's filter on one level.
+template <Sampler::FastPaths::Variant kV>
+[[gnu::always_inline]] inline auto Sampler::FastPaths::filter(const Sampler& sm, int l, float s, float t) {
+  const auto level = static_cast<size_t>(l);
+  const Impl& im = *sm.impl_;
+  if constexpr (kV.path == Path::Linear8) {
+    return bilinear8<kV.ws, kV.wt>(sm.tex_.levels[level], sm.cfg_.border, s, t);
+  } else if constexpr (kV.path == Path::Cubic8) {
+    if (im.prefiltered) return cubic8<kV.ws, kV.wt>(im.coeff_levels[level], Rgba8{}, *im.memo, im.norm, s, t);
+    return cubic8<kV.ws, kV.wt>(sm.tex_.levels[level], sm.cfg_.border, *im.memo, im.norm, s, t);
+  } else {
+    return edge8<kV.ws, kV.wt>(sm.tex_.levels[level], sm.cfg_.border, sm.tex_.format,
+                               sm.cfg_.edge_shape == EdgeShapePolicy::CacheBlock, sm.cfg_.edge_cache_block, s, t);
+  }
+}
+
+// One filtered colour: level select, the filter on one or two levels, blend, encode.
+template <Sampler::FastPaths::Variant kV>
+Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda) {
+  const TexelFormat fmt = sm.tex_.format;
+  if constexpr (!kV.mipmapped) {
+    return output_word(filter<kV>(sm, 0, s, t), fmt);  // GL: no MIP-mapping -> level 0
+  } else {
+    const LevelPick p = select_levels(lambda_bias_clamp(lambda, sm.cfg_.lod), sm.cfg_.mode.mip, sm.tex_.max_level());
+    const auto c0 = filter<kV>(sm, p.level0, s, t);
+    if (p.blend == 0) return output_word(c0, fmt);
+    return output_word(blend_levels(c0, filter<kV>(sm, p.level1, s, t), p.blend), fmt);
+  }
+}
+
+// sample<kV> for the 16 pairs of wrap modes, indexed by 4 wrap_s + wrap_t.
+template <Sampler::FastPaths::Path kP, bool kMip, size_t... k>
+constexpr std::array<Sampler::SampleFn, 16> Sampler::FastPaths::wrap_table(std::index_sequence<k...>) {
+  return {&sample<Variant{kP, kMip, static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)}>...};
+}
+
+template <Sampler::FastPaths::Path kP>
+Sampler::SampleFn Sampler::FastPaths::pick(bool mipmapped, WrapMode ws, WrapMode wt) {
+  const auto k = static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt));
+  return mipmapped ? wrap_table<kP, true>(std::make_index_sequence<16>())[k]
+                   : wrap_table<kP, false>(std::make_index_sequence<16>())[k];
+}
+
+void Sampler::FastPaths::setup(Sampler& sm) {
+  const Impl& im = *sm.impl_;
+  const WrapMode ws = sm.cfg_.wrap_s, wt = sm.cfg_.wrap_t;
+  const bool mip = sm.cfg_.mode.mip != MipMode::None;
+  const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
+  sm.sample_fn_ = &sample_generic;
+  switch (sm.cfg_.mode.base) {
+    case BaseFilter::Nearest: break;
+    case BaseFilter::Linear:
+      if (bytes) sm.sample_fn_ = pick<Path::Linear8>(mip, ws, wt);
+      break;
+    case BaseFilter::Cubic:
+      if (bytes && im.memo && im.rom->taps() == 4) sm.sample_fn_ = pick<Path::Cubic8>(mip, ws, wt);
+      break;
+    case BaseFilter::EdgePreserving:
+      if (bytes) sm.sample_fn_ = pick<Path::Edge8>(mip, ws, wt);
+      break;
+  }
+}
+
 
 // ---------------------------------------------------------------- double-precision ideal
 std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) const {

@@ -133,17 +133,17 @@ class Sampler {
   const Texture& tex_;
   SamplerConfig cfg_;
   std::unique_ptr<Impl> impl_;
+  void build_cubic();
   Texel4 sample_level(int level, float s, float t) const;
   Texel4 sample_level_filter(BaseFilter f, int level, float s, float t) const;
-  // sample() dispatches once, at construction, to the generic datapath or to a LINEAR fast path
-  // specialized for the wrap modes (bit-identical; software speed only).
+  // sample() dispatches once, at construction, to the generic datapath or to a fast path of the
+  // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
+  // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
+  // sampler.cpp.
   using SampleFn = Rgba8 (*)(const Sampler&, float, float, int32_t);
   SampleFn sample_fn_ = nullptr;
   static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
-  template <WrapMode kWs, WrapMode kWt>
-  static Rgba8 sample_linear8(const Sampler& sm, float s, float t, int32_t lambda);
-  template <WrapMode kWs>
-  static SampleFn pick_linear8(WrapMode wt);
+  struct FastPaths;
 };
 
 }  // namespace tfu

@@ -1,7 +1,9 @@
 // Golden sampler: hand-derived values per filter mode and wrap mode, and properties that hold for
 // every mode (constant textures, interpolation at texel centres, fixed point vs ideal).
+#include <bit>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -276,6 +278,54 @@ TEST(Properties, CubicWeightMemoChangesNothing) {
         ASSERT_EQ(memo.sample(x, y, l), direct.sample(x, y, l)) << k;
       }
     }
+}
+
+// Every fast path of Sampler::sample (LINEAR, CUBIC and EDGE_PRESERVING, each specialized per pair
+// of wrap modes and for MIP-mapping) agrees bit for bit with the generic datapath (sample_channels),
+// on power-of-two and other extents, over random requests: ordinary coordinates, and random float
+// bit patterns (huge, tiny, denormal, infinite, NaN) for the address generator's uncommon cases.
+TEST(Properties, FastPathsEqualGenericPath) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
+  std::uniform_int_distribution<int32_t> lam(-512, 9 * 256);
+  const auto request_coord = [&] {
+    return rng() % 4 == 0 ? std::bit_cast<float>(static_cast<uint32_t>(rng())) : coord(rng);
+  };
+  struct Case {
+    BaseFilter base;
+    const char* kernel;
+    EdgeShapePolicy shape;
+  };
+  const Case cases[] = {{BaseFilter::Linear, "catmull-rom", EdgeShapePolicy::Cross},
+                        {BaseFilter::Cubic, "catmull-rom", EdgeShapePolicy::Cross},
+                        {BaseFilter::Cubic, "bspline", EdgeShapePolicy::Cross},
+                        {BaseFilter::Cubic, "bspline-interp", EdgeShapePolicy::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::CacheBlock}};
+  const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
+  for (const auto& [w, h, f] : {std::tuple{32, 16, TexelFormat::RGBA8}, std::tuple{37, 21, TexelFormat::L8}}) {
+    Texture t = random_texture(w, h, 17, f);
+    generate_mipmaps(t, MipMethod::Box);
+    for (const Case& k : cases)
+      for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
+        for (WrapMode ws : wraps)
+          for (WrapMode wt : wraps) {
+            SamplerConfig c = cfg(k.base, m);
+            c.wrap_s = ws;
+            c.wrap_t = wt;
+            c.kernel = k.kernel;
+            c.edge_shape = k.shape;
+            c.border = {9, 99, 199, 49};
+            const Sampler s(t, c);
+            for (int i = 0; i < 400; ++i) {
+              const float x = request_coord(), y = request_coord();
+              const int32_t l = lam(rng);
+              ASSERT_EQ(s.sample(x, y, l), encode_texel(s.sample_channels(x, y, l), t.format))
+                  << filter_mode_name(c.mode) << " " << k.kernel << " " << wrap_mode_name(ws) << "/"
+                  << wrap_mode_name(wt) << " " << w << "x" << h << " at (" << x << ", " << y << ")";
+            }
+          }
+  }
 }
 
 TEST(Vs16, FiltersSignedNumerators) {
