@@ -49,6 +49,28 @@ inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
   return out;
 }
 
+// The same two units on 8-bit texel words (RGBA8, L8: channels 0..255, so the result needs no
+// clamp and encode_texel is the identity). Bit-identical to bilinear_lerp / level_blend followed by
+// encode_texel (tested); written for software speed, two channels per 64-bit word.
+//   bilinear: sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu);
+//   exact in 32-bit lanes: a horizontal lerp is at most 255 * 256 < 2^16, the vertical one < 2^24.
+inline uint64_t word_lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }  // (R, B)
+inline uint64_t word_lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }  // (G, A)
+inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
+  const uint64_t fu = fu_, fv = fv_, gu = 256 - fu, gv = 256 - fv;
+  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
+  const uint64_t rb = gv * (word_lanes_rb(a) * gu + word_lanes_rb(b) * fu) +
+                      fv * (word_lanes_rb(c) * gu + word_lanes_rb(d) * fu) + kHalf;
+  const uint64_t ga = gv * (word_lanes_ga(a) * gu + word_lanes_ga(b) * fu) +
+                      fv * (word_lanes_ga(c) * gu + word_lanes_ga(d) * fu) + kHalf;
+  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
+          static_cast<uint8_t>(ga >> 48)};
+}
+inline Rgba8 level_blend8(Rgba8 c0, Rgba8 c1, int f) {
+  const auto mix = [f](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * (256 - f) + q * f + 128) >> 8); };
+  return {mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b), mix(c0.a, c1.a)};
+}
+
 // Cubic weight stage: the 2D weights of the separable tiled-ROM filter (T x T taps, T <= 4):
 // tile-weight multipliers for all taps but the centre one (offset (0, 0)), which takes the
 // complement so that the weights sum to exactly M = 2^b - 1.

@@ -579,9 +579,8 @@ template <bool kBorder>
   return img.texels[static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x)];
 }
 
-// Two channels of a texel word in the 32-bit lanes of a 64-bit word: (R, B) and (G, A).
-inline uint64_t lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }
-inline uint64_t lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }
+using dp::word_lanes_ga;  // two channels of a texel word in the 32-bit lanes of a 64-bit word
+using dp::word_lanes_rb;
 
 // LINEAR on one level of an 8-bit format: the same arithmetic as filter_linear (one rounding of the
 // Q.16 sum), written as two exact lerps so that the compiler keeps everything in registers. The
@@ -595,15 +594,7 @@ template <WrapMode kWs, WrapMode kWt>
   constexpr bool kB = kMayBorder<kWs, kWt>;
   const Rgba8 a = texel_word<kB>(img, xs[0], ys[0], border), b = texel_word<kB>(img, xs[1], ys[0], border),
               c = texel_word<kB>(img, xs[0], ys[1], border), d = texel_word<kB>(img, xs[1], ys[1], border);
-  const uint64_t fu = u.f, fv = v.f, gu = 256 - fu, gv = 256 - fv;
-  // Two channels per 64-bit word (32-bit lanes). Exact: a horizontal lerp is at most 255 * 256 < 2^16
-  // per lane, the vertical one below 2^24, so lanes never carry into each other.
-  // sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu).
-  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
-  const uint64_t rb = gv * (lanes_rb(a) * gu + lanes_rb(b) * fu) + fv * (lanes_rb(c) * gu + lanes_rb(d) * fu) + kHalf;
-  const uint64_t ga = gv * (lanes_ga(a) * gu + lanes_ga(b) * fu) + fv * (lanes_ga(c) * gu + lanes_ga(d) * fu) + kHalf;
-  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
-          static_cast<uint8_t>(ga >> 48)};
+  return dp::bilinear_lerp8(a, b, c, d, u.f, v.f);
 }
 
 // CUBIC (4 x 4 taps) on one level of 8-bit texel words with memoized weights: filter_tiled_acc_n
@@ -627,8 +618,8 @@ template <WrapMode kWs, WrapMode kWt>
     for (int i = 0; i < 4; ++i) {
       const Rgba8 c = texel_word<kMayBorder<kWs, kWt>>(img, col[i], row[j], border);
       const auto wt = static_cast<uint64_t>(static_cast<int64_t>(wr[i]));
-      arb += lanes_rb(c) * wt;
-      aga += lanes_ga(c) * wt;
+      arb += word_lanes_rb(c) * wt;
+      aga += word_lanes_ga(c) * wt;
     }
   }
   const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };
@@ -672,10 +663,7 @@ template <WrapMode kWs, WrapMode kWt>
 
 // Trilinear blend unit (dp::level_blend) and output encoding, for the 8-bit paths' texel words
 // (channels within 0..255, so encoding is the identity) and for datapath channels.
-inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) {
-  const auto mix = [f](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * (256 - f) + q * f + 128) >> 8); };
-  return {mix(a.r, b.r), mix(a.g, b.g), mix(a.b, b.b), mix(a.a, b.a)};
-}
+inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::level_blend8(a, b, f); }
 inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
 inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
 inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }

@@ -14,7 +14,8 @@ FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Chann
       fmt_(smp.texture().format),
       // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
       unpack_fmt_(smp.cubic_rom() && smp.cubic_normalize().prefiltered ? TexelFormat::RGBA8 : smp.texture().format),
-      lanes_(lanes) {
+      lanes_(lanes),
+      words8_(base_ == BaseFilter::Linear && unpack_fmt_ != TexelFormat::VS16X2 && fmt_ != TexelFormat::VS16X2) {
   for (size_t n = 0; n < extra_clocks_.size(); ++n) extra_clocks_[n] = (static_cast<int>(n) + 4 * lanes_ - 1) / (4 * lanes_) - 1;
 }
 
@@ -46,6 +47,19 @@ void FilterUnit::evaluate() {
     return;
   }
   if (r.tag.emits() && !out_.can_push()) return;
+  if (words8_) {  // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8)
+    const auto& w = r.texels;
+    const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
+    if (r.tag.holds()) {
+      first8_ = c8;
+    } else {
+      out_.push_slot() = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
+    }
+    in_.pop();
+    remaining_ = -1;
+    sim_.progress();
+    return;
+  }
   Texel4 c = filter_level(r);
   if (r.tag.holds()) {
     first_ = c;

@@ -36,6 +36,11 @@ class FilterUnit : public sim::Module {
   std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
   uint64_t busy_cycles_ = 0;
   Texel4 first_{};  // level0 result of a blending pixel (register)
+  // LINEAR on an 8-bit format (RGBA8, L8) runs dp::bilinear_lerp8 / level_blend8 on the texel words:
+  // the same units as dp::bilinear_lerp / level_blend + encode (bit-identical, tested), fewer
+  // software instructions.
+  bool words8_;
+  Rgba8 first8_{};  // level0 word of a blending pixel (register)
   Texel4 filter_level(const FilterReq& r) const;
 };
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/sampler.hpp"
 
@@ -284,6 +285,35 @@ TEST(Properties, CubicWeightMemoChangesNothing) {
 // of wrap modes and for MIP-mapping) agrees bit for bit with the generic datapath (sample_channels),
 // on power-of-two and other extents, over random requests: ordinary coordinates, and random float
 // bit patterns (huge, tiny, denormal, infinite, NaN) for the address generator's uncommon cases.
+// The 8-bit-word lerp and blend units (used by the LINEAR fast path and the cycle model's filter)
+// against the channel datapath + encode: every fraction pair with random words, plus the extreme
+// words, and every blend weight.
+TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
+  std::mt19937 rng(8);
+  const auto word = [&rng] {
+    const auto v = static_cast<uint32_t>(rng());
+    return Rgba8{static_cast<uint8_t>(v), static_cast<uint8_t>(v >> 8), static_cast<uint8_t>(v >> 16),
+                 static_cast<uint8_t>(v >> 24)};
+  };
+  const auto channels = [](Rgba8 w) { return decode_texel(w, TexelFormat::RGBA8); };
+  const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255};
+  for (uint32_t fu = 0; fu < 256; ++fu)
+    for (uint32_t fv = 0; fv < 256; ++fv) {
+      const std::array<Rgba8, 4> w = (fu + fv) % 7 == 0 ? std::array<Rgba8, 4>{full, full, full, full}
+                                     : (fu + fv) % 7 == 1 ? std::array<Rgba8, 4>{full, zero, zero, full}
+                                                          : std::array<Rgba8, 4>{word(), word(), word(), word()};
+      const Rgba8 want = encode_texel(
+          dp::bilinear_lerp({channels(w[0]), channels(w[1]), channels(w[2]), channels(w[3])}, fu, fv, TexelFormat::RGBA8),
+          TexelFormat::RGBA8);
+      ASSERT_EQ(dp::bilinear_lerp8(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
+    }
+  for (int f = 0; f <= 256; ++f)
+    for (int k = 0; k < 64; ++k) {
+      const Rgba8 a = k == 0 ? full : word(), b = k == 0 ? zero : word();
+      ASSERT_EQ(dp::level_blend8(a, b, f), encode_texel(dp::level_blend(channels(a), channels(b), f), TexelFormat::RGBA8)) << f;
+    }
+}
+
 TEST(Properties, FastPathsEqualGenericPath) {
   std::mt19937 rng(21);
   std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
