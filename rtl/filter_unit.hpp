@@ -1,8 +1,8 @@
 // filter: texel unpack, then the NEAREST select, the bilinear lerp unit or the cubic datapath
 // (tile-weight ROM + tile-weight multipliers, adder tree, normalise and clamp), then the trilinear
 // blend and the encode to the texture's word. Calls the golden arithmetic (cmodel/datapath.hpp:
-// dp::bilinear_lerp, dp::tile_weights_2d, dp::cubic_accumulate, dp::cubic_normalize,
-// dp::level_blend).
+// dp::bilinear_lerp (dp::bilinear_lerp8 on 8-bit words), dp::tile_weights_2d, dp::cubic_accumulate,
+// dp::cubic_normalize, dp::level_blend (dp::level_blend8)).
 //
 // Ports:
 //   in  texels    FilterReq: texel words, fu[7:0] fv[7:0], blend[8:0], two, second   valid/ready
