@@ -60,7 +60,7 @@ double kernel_error_scaled(const KernelErrorSpec& spec);
 
 // What no quantizer can beat (docs/kernel-error.md, "why the published table differs"). For any
 // per-weight quantizer whose stored weights are within e LSB of the exact ROM samples (e = 1/2
-// for rounding, 1 for truncation or sum-preserving rounding), dims 1 or 2, separable or tiles
+// for rounding, 1 for truncation), dims 1 or 2, separable or tiles
 // composition, no requantization, at every location i:
 //   eps_h >= D(i) - Q(i),  D(i) = sum_j |u_j - w_exact_j|  (unquantized ROM, discretization only),
 //   Q(i)  = bound of sum_j |q_j - u_j|: T E (d = 1); separable 2D T E sum over both axes of

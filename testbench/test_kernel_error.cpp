@@ -110,7 +110,7 @@ TEST(KernelError, FloorBoundsOurOwnError) {
 
 // The claim docs/kernel-error.md rests on: with nearest reconstruction at R = 16, Eq. 3.5 summed
 // over the 16 weights of 1024^2 locations cannot give the published Catmull-Rom value under any
-// quantizer within 1 LSB per weight (round, truncate, sum-preserving), whatever the sampling
+// quantizer within 1 LSB per weight (round, truncate), whatever the sampling
 // position or location grid.
 TEST(KernelError, PublishedCatmullRomR16IsBelowTheFloorOfEveryConvention) {
   double published = 0;
