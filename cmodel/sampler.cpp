@@ -579,8 +579,6 @@ template <bool kBorder>
   return img.texels[static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x)];
 }
 
-using dp::word_lanes_ga;  // two channels of a texel word in the 32-bit lanes of a 64-bit word
-using dp::word_lanes_rb;
 
 // LINEAR on one level of an 8-bit format: the same arithmetic as filter_linear (one rounding of the
 // Q.16 sum), written as two exact lerps so that the compiler keeps everything in registers. The
@@ -618,8 +616,8 @@ template <WrapMode kWs, WrapMode kWt>
     for (int i = 0; i < 4; ++i) {
       const Rgba8 c = texel_word<kMayBorder<kWs, kWt>>(img, col[i], row[j], border);
       const auto wt = static_cast<uint64_t>(static_cast<int64_t>(wr[i]));
-      arb += word_lanes_rb(c) * wt;
-      aga += word_lanes_ga(c) * wt;
+      arb += dp::word_lanes_rb(c) * wt;  // (R, B) and (G, A) in 32-bit lanes
+      aga += dp::word_lanes_ga(c) * wt;
     }
   }
   const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };

@@ -26,7 +26,6 @@ struct KernelErrorOptions {
   bool table = false;
   bool with_3d = false;
   double floor_lsb = 0;  // --floor: the quantizer error bound in LSB
-  bool floor = false;     // --floor given
 };
 
 void apply_choices(KernelErrorOptions& o) {
@@ -142,8 +141,7 @@ void register_kernel_error(CLI::App& app) {
                   "separable or tiles; with --table: the 2D table beside the published values)");
   cmd->callback([opts, floor_opt] {
     apply_choices(*opts);
-    opts->floor = floor_opt->count() > 0;
-    const bool floor = opts->floor;
+    const bool floor = floor_opt->count() > 0;
     if (floor && !(opts->floor_lsb >= 0 && opts->floor_lsb <= 8))
       throw InputError(fmt::format("--floor must be in 0..8 LSB, got {}", opts->floor_lsb));
     if (opts->table) {
