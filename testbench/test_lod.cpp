@@ -1,5 +1,6 @@
 // LOD unit: fixed-point input conversion, log2 ROM accuracy, quad / gradient / explicit lambda,
 // GL level selection.
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -7,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/sampler.hpp"
@@ -49,6 +51,25 @@ TEST(FixedCoord, MatchesExactFloorOnRandomFloats) {
     if (std::fabs(exact) >= static_cast<long double>(kFixedLimit)) continue;
     ASSERT_EQ(float_to_fixed(x, sc, fb), static_cast<int64_t>(exact)) << x << " " << sc << " " << fb;
   }
+}
+
+// Property: the address generator's integer common case (dp::texel_coord) equals the general
+// float_to_fixed conversion (dp::texel_coord_general) for every exponent, both signs, random
+// mantissas and the boundary mantissas, on power-of-two, odd and maximal extents.
+TEST(FixedCoord, TexelCoordFastPathEqualsGeneral) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<uint32_t> mant(0, 0x7FFFFF);
+  std::uniform_int_distribution<int> extent(1, 32768);
+  for (uint32_t exp = 0; exp < 256; ++exp)
+    for (uint32_t sign = 0; sign < 2; ++sign)
+      for (int k = 0; k < 2000; ++k) {
+        const uint32_t m = k == 0 ? 0 : k == 1 ? 0x7FFFFF : k == 2 ? 1 : mant(rng);
+        const float x = std::bit_cast<float>((sign << 31) | (exp << 23) | m);
+        const int w = k < 8 ? (1 << (k % 8) * 2) : k < 16 ? 32768 - k : extent(rng);
+        const dp::LevelCoord fast = dp::texel_coord(x, w), general = dp::texel_coord_general(x, w);
+        ASSERT_EQ(fast.i0, general.i0) << x << " " << w;
+        ASSERT_EQ(fast.f, general.f) << x << " " << w;
+      }
 }
 
 TEST(Log2Rom, ErrorBelowOne256thOfALevel) {
