@@ -38,6 +38,26 @@ struct LevelCoord {
   return {u >> 8, static_cast<uint32_t>(u & 255)};
 }
 
+// Wrap unit for the n taps start, start + 1, ... of one row or column with the mode fixed at
+// compile time (wrap_run with the mode's branches folded away): repeat on a power-of-two extent
+// keeps the low bits, the clamps select per tap; anything else takes wrap_run.
+template <WrapMode kW, int n>
+[[gnu::always_inline]] inline void wrap_taps(int64_t start, int size, int* out) {
+  if constexpr (kW == WrapMode::Repeat) {
+    if ((size & (size - 1)) == 0) {
+      for (int k = 0; k < n; ++k) out[k] = static_cast<int>((start + k) & (size - 1));
+      return;
+    }
+  } else if constexpr (kW == WrapMode::ClampToEdge) {
+    for (int k = 0; k < n; ++k) out[k] = static_cast<int>(start + k < 0 ? 0 : start + k >= size ? size - 1 : start + k);
+    return;
+  } else if constexpr (kW == WrapMode::ClampToBorder) {
+    for (int k = 0; k < n; ++k) out[k] = start + k >= 0 && start + k < size ? static_cast<int>(start + k) : -1;
+    return;
+  }
+  wrap_run(kW, start, n, size, out);
+}
+
 // Bilinear lerp unit: c = (sum c w + 2^15) >> 16 with w = (256 - fu | fu)(256 - fv | fv) in Q.16;
 // taps ordered (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1).
 inline Texel4 bilinear_lerp(const std::array<Texel4, 4>& c, uint32_t fu_, uint32_t fv_, TexelFormat fmt) {

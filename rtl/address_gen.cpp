@@ -5,68 +5,109 @@
 namespace tfu::rtl {
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Sampler& sm)
-    : Module(s, "address_gen"), in_(i), out_(o), smp_(sm) {}
+    : Module(s, "address_gen"), in_(i), out_(o), smp_(sm), grid_fn_(&grid_any) {
+  const SamplerConfig& c = sm.config();
+  if (c.mode.base == BaseFilter::Linear)
+    grid_fn_ = linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)),
+                           std::make_index_sequence<16>());
+}
 
 namespace {
 
-Tap tap(int x, int y) { return Tap{static_cast<int16_t>(x), static_cast<int16_t>(y), x < 0 || y < 0}; }
+// Grid cells whose column or row lies outside the texture (clamp-to-border: -1) read the border.
+uint16_t cells_inside(const TapGrid& g) {
+  uint16_t out = 0xFFFF;
+  for (int i = 0; i < g.cols; ++i)
+    if (g.x[static_cast<size_t>(i)] < 0) out = static_cast<uint16_t>(out & ~(0x1111u << i));
+  for (int j = 0; j < g.rows; ++j)
+    if (g.y[static_cast<size_t>(j)] < 0) out = static_cast<uint16_t>(out & ~(0xFu << (4 * j)));
+  return out;
+}
 
 // NEAREST: i = floor(s W) (GL).
 void nearest_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, float s, float t) {
-  f.ntaps = 1;
-  f.taps[0] = tap(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(img.width), 0), img.width),
-                  wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(img.height), 0), img.height));
+  TapGrid& g = f.grid;
+  g.cols = g.rows = 1;
+  g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(img.width), 0), img.width));
+  g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(img.height), 0), img.height));
 }
 
-// A T x T block of taps from column i0 + first and row j0 + first, row-major (LINEAR: T = 2,
-// first = 0; CUBIC: the ROM's taps).
+// T x T taps from column i0 + first and row j0 + first (LINEAR: T = 2, first = 0; CUBIC: the
+// ROM's taps; the edge cross: T = 4, first = -1).
 void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, const dp::LevelCoord& u,
                       const dp::LevelCoord& v, int first, int taps) {
   std::array<int, 4> col{}, row{};
   wrap_run(c.wrap_s, u.i0 + first, taps, img.width, col.data());
   wrap_run(c.wrap_t, v.i0 + first, taps, img.height, row.data());
-  f.ntaps = taps * taps;
-  for (int j = 0; j < taps; ++j)
-    for (int i = 0; i < taps; ++i)
-      f.taps[static_cast<size_t>(j * taps + i)] = tap(col[static_cast<size_t>(i)], row[static_cast<size_t>(j)]);
-}
-
-// EDGE_PRESERVING: the 12-texel cross, tap k = texel C(k+1) (Lee & Jen Eq. 4), columns and rows
-// -1..2 around the centre square.
-void cross_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, const dp::LevelCoord& u,
-                     const dp::LevelCoord& v) {
-  std::array<int, 4> col{}, row{};
-  wrap_run(c.wrap_s, u.i0 - 1, 4, img.width, col.data());
-  wrap_run(c.wrap_t, v.i0 - 1, 4, img.height, row.data());
-  static const std::array<lee_jen::TexelPos, lee_jen::kTexels> kPos = [] {
-    std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
-    for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
-    return p;
-  }();
-  f.ntaps = lee_jen::kTexels;
-  for (size_t k = 0; k < lee_jen::kTexels; ++k)
-    f.taps[k] = tap(col[static_cast<size_t>(kPos[k].x + 1)], row[static_cast<size_t>(kPos[k].y + 1)]);
+  TapGrid& g = f.grid;
+  g.cols = g.rows = taps;
+  for (size_t i = 0; i < static_cast<size_t>(taps); ++i) {
+    g.x[i] = static_cast<int16_t>(col[i]);
+    g.y[i] = static_cast<int16_t>(row[i]);
+  }
 }
 
 }  // namespace
 
+void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t) {
+  const SamplerConfig& c = a.smp_.config();
+  if (c.mode.base == BaseFilter::Nearest) {
+    nearest_footprint(f, c, img, s, t);
+  } else {
+    const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
+    f.tag.fu = u.f;
+    f.tag.fv = v.f;
+    switch (c.mode.base) {
+      case BaseFilter::Linear: square_footprint(f, c, img, u, v, 0, 2); break;
+      case BaseFilter::Cubic:
+        square_footprint(f, c, img, u, v, a.smp_.cubic_rom()->first_tap(), a.smp_.cubic_rom()->taps());
+        break;
+      case BaseFilter::EdgePreserving:  // the cross: columns and rows -1..2 around the centre square
+        square_footprint(f, c, img, u, v, -1, 4);
+        f.cross = true;
+        break;
+      case BaseFilter::Nearest: break;
+    }
+  }
+  TapGrid& g = f.grid;
+  g.used = f.cross ? cross_cells(lee_jen::kAllTexels) : square_cells(g.cols, g.rows);
+  if (c.wrap_s == WrapMode::ClampToBorder || c.wrap_t == WrapMode::ClampToBorder)
+    g.used = static_cast<uint16_t>(g.used & cells_inside(g));
+}
+
+// LINEAR: columns i0, i0 + 1 and rows j0, j0 + 1 through the wrap unit of each axis.
+template <WrapMode kWs, WrapMode kWt>
+void AddressGen::grid_linear(const AddressGen&, FootprintReq& f, const Image& img, float s, float t) {
+  const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
+  f.tag.fu = u.f;
+  f.tag.fv = v.f;
+  int col[2], row[2];
+  dp::wrap_taps<kWs, 2>(u.i0, img.width, col);
+  dp::wrap_taps<kWt, 2>(v.i0, img.height, row);
+  TapGrid& g = f.grid;
+  g.cols = g.rows = 2;
+  g.x[0] = static_cast<int16_t>(col[0]);
+  g.x[1] = static_cast<int16_t>(col[1]);
+  g.y[0] = static_cast<int16_t>(row[0]);
+  g.y[1] = static_cast<int16_t>(row[1]);
+  g.used = square_cells(2, 2);
+  if constexpr (kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder)
+    g.used = static_cast<uint16_t>(g.used & cells_inside(g));
+}
+
+template <size_t... k>
+AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence<k...>) {
+  constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
+  return kTable[wrap_pair];
+}
+
 void AddressGen::footprint(FootprintReq& f, uint32_t id, int level, float s, float t) const {
-  const Image& img = smp_.texture().levels[static_cast<size_t>(level)];
-  const SamplerConfig& c = smp_.config();
   f.tag = LevelTag{};
   f.tag.id = id;
   f.level = level;
   f.optional = 0;
-  if (c.mode.base == BaseFilter::Nearest) return nearest_footprint(f, c, img, s, t);
-  const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
-  f.tag.fu = u.f;
-  f.tag.fv = v.f;
-  switch (c.mode.base) {
-    case BaseFilter::Linear: return square_footprint(f, c, img, u, v, 0, 2);
-    case BaseFilter::Cubic: return square_footprint(f, c, img, u, v, smp_.cubic_rom()->first_tap(), smp_.cubic_rom()->taps());
-    case BaseFilter::EdgePreserving: return cross_footprint(f, c, img, u, v);
-    case BaseFilter::Nearest: break;
-  }
+  f.cross = false;
+  grid_fn_(*this, f, smp_.texture().levels[static_cast<size_t>(level)], s, t);
 }
 
 void AddressGen::evaluate() {

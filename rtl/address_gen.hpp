@@ -5,14 +5,19 @@
 //
 // Ports:
 //   in  pixel      PixelReq                                   valid/ready
-//   out footprint  FootprintReq: level[3:0], taps, fu[7:0] fv[7:0], blend[8:0], two, second
-// Footprints per base filter:
-//   NEAREST          1 tap  (floor(s W), floor(t H))
-//   LINEAR           4 taps (i0, j0) (i0 + 1, j0) (i0, j0 + 1) (i0 + 1, j0 + 1)
-//   CUBIC            T x T taps from (i0 + m0, j0 + m0), m0 = 1 - T/2, row-major
-//   EDGE_PRESERVING  the 12-texel cross (tap k = texel C(k+1) of Lee & Jen Eq. 4) around the
-//                    centre square (i0, j0)-(i0 + 1, j0 + 1)
+//   out footprint  FootprintReq: level[3:0], grid (columns x[4], rows y[4], cols, rows, used cells),
+//                  cross, fu[7:0] fv[7:0], blend[8:0], two, second
+// Footprints per base filter, as a grid of wrapped columns and rows (the cache forms the taps):
+//   NEAREST          1 x 1   (floor(s W), floor(t H))
+//   LINEAR           2 x 2   columns i0, i0 + 1 and rows j0, j0 + 1
+//   CUBIC            T x T   from (i0 + m0, j0 + m0), m0 = 1 - T/2
+//   EDGE_PRESERVING  4 x 4 less its corners: the 12-texel cross (tap k = texel C(k+1) of Lee & Jen
+//                    Eq. 4), columns and rows -1..2 around the centre square (i0, j0)-(i0 + 1, j0 + 1)
+// Under clamp-to-border the cells of a column or row outside the texture (-1) are not `used`:
+// they read the border word.
 #pragma once
+
+#include <utility>
 
 #include "cmodel/sampler.hpp"
 #include "rtl/unit_ports.hpp"
@@ -33,6 +38,15 @@ class AddressGen : public sim::Module {
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
   const Sampler& smp_;
+  // The grid of one footprint (taps, fractions, used cells), chosen at construction: LINEAR has
+  // one function per pair of wrap modes, the other filters share grid_any.
+  using GridFn = void (*)(const AddressGen&, FootprintReq&, const Image&, float, float);
+  GridFn grid_fn_;
+  static void grid_any(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t);
+  template <WrapMode kWs, WrapMode kWt>
+  static void grid_linear(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t);
+  template <size_t... k>
+  static GridFn linear_grid(size_t wrap_pair, std::index_sequence<k...>);
   bool holding_ = false;
   PixelReq pixel_{};
   LodInfo lod_{};

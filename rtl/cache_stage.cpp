@@ -25,8 +25,6 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       cache_(c),
       mem_(m),
       fifo_(static_cast<size_t>(miss_fifo_depth)) {
-  hits_per_level_.assign(levels_.size(), 0);
-  misses_per_level_.assign(levels_.size(), 0);
 }
 
 void CacheStage::accept(uint64_t now) {
@@ -34,32 +32,26 @@ void CacheStage::accept(uint64_t now) {
   entry.f = in_.front();
   FootprintReq& cur = entry.f;
   in_.pop();
+  const TapGrid& g = cur.grid;
   if (edge_ && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
     for (const auto& arm : kArms) {
       const lee_jen::TexelMask bits = arm_bits(arm);
       if ((cur.optional & bits) != bits) continue;
       bool resident = true;
       for (int n : arm) {
-        const Tap& t = cur.taps[static_cast<size_t>(n - 1)];
-        if (!t.border && !cache_.resident(cur.level, t.x, t.y)) resident = false;
+        const uint8_t cell = kCrossCell[static_cast<size_t>(n - 1)];
+        const size_t i = cell & 3u, j = cell >> 2;
+        if (((g.used >> cell) & 1u) && !cache_.resident(cur.level, g.x[i], g.y[j])) resident = false;
       }
       if (resident) cur.tag.shape = static_cast<lee_jen::TexelMask>(cur.tag.shape | bits);
     }
   }
-  std::array<TexelTap, 16> taps;  // [0, n) written and read
-  size_t n = 0;
-  for (int k = 0; k < cur.ntaps; ++k) {
-    const Tap& t = cur.taps[static_cast<size_t>(k)];
-    if (t.border || (edge_ && !((cur.tag.shape >> k) & 1u))) continue;
-    taps[n++] = {t.x, t.y};
-  }
-  const FootprintResult r = cache_.access(cur.level, std::span<const TexelTap>(taps.data(), n));
+  TapGrid lookup = g;  // the taps that read the cache: inside the texture and, for edge, in the shape
+  if (edge_) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
+  const FootprintResult r = cache_.access(cur.level, lookup);
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
   uint64_t ready = port_free_ - 1;
   for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes()));
-  const auto l = static_cast<size_t>(cur.level);
-  hits_per_level_[l] += static_cast<uint64_t>(r.hits);
-  misses_per_level_[l] += static_cast<uint64_t>(r.misses);
   if (edge_) {
     int missing_arms = 0;
     for (const auto& arm : kArms) missing_arms += (cur.tag.shape & arm_bits(arm)) == 0;
@@ -108,17 +100,48 @@ void CacheStage::skip_cycles(uint64_t n) {
   if (in_.can_pop() && now < port_free_) stall_bank_ += n;
 }
 
+namespace {
+
+// Texel read-out of an n x n square whose taps are all inside the texture, row-major.
+template <int n>
+void read_square(const TapGrid& g, const Image& img, Rgba8* out) {
+  for (size_t j = 0; j < n; ++j) {
+    const Rgba8* row = img.texels.data() + static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width);
+    for (size_t i = 0; i < n; ++i) out[n * j + i] = row[g.x[i]];
+  }
+}
+
+}  // namespace
+
+// Texel read-out: the footprint's taps in FilterReq order (row-major over the grid; the cross in
+// C order), the border word where a tap is outside the texture, zero where an edge shape has no
+// texel (not read).
 void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
+  const TapGrid& g = cur.grid;
   FilterReq& f = out_.push_slot();
   f.tag = cur.tag;
-  f.ntaps = cur.ntaps;
+  f.ntaps = cur.ntaps();
   const Image& img = *levels_[static_cast<size_t>(cur.level)];
-  for (int k = 0; k < cur.ntaps; ++k) {
-    const Tap& tp = cur.taps[static_cast<size_t>(k)];
-    f.texels[static_cast<size_t>(k)] = (edge_ && !((cur.tag.shape >> k) & 1u)) ? Rgba8{0, 0, 0, 0}  // not read
-                                       : tp.border                           ? border_
-                                                                             : img.at(tp.x, tp.y);
+  const auto word = [&](size_t i, size_t j) {
+    return ((g.used >> (4 * j + i)) & 1u)
+               ? img.texels[static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width) + static_cast<size_t>(g.x[i])]
+               : border_;
+  };
+  if (cur.cross) {
+    for (size_t k = 0; k < lee_jen::kTexels; ++k)
+      f.texels[k] = ((cur.tag.shape >> k) & 1u) ? word(kCrossCell[k] & 3u, kCrossCell[k] >> 2) : Rgba8{0, 0, 0, 0};
+  } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
+    switch (g.cols) {
+      case 1: read_square<1>(g, img, f.texels.data()); break;
+      case 2: read_square<2>(g, img, f.texels.data()); break;
+      case 3: read_square<3>(g, img, f.texels.data()); break;
+      default: read_square<4>(g, img, f.texels.data()); break;
+    }
+  } else {
+    size_t k = 0;
+    for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
+      for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(i, j);
   }
   fifo_.pop_front();
   sim_.progress();
@@ -131,12 +154,12 @@ std::string CacheStage::state() const {
 
 void CacheStage::publish(sim::Stats& st) const {
   uint64_t hits = 0, misses = 0;
-  for (size_t l = 0; l < hits_per_level_.size(); ++l) {
-    hits += hits_per_level_[l];
-    misses += misses_per_level_[l];
-    if (hits_per_level_[l] + misses_per_level_[l] == 0) continue;
-    st.add(fmt::format("cache_line_hits_level{}", l), hits_per_level_[l]);
-    st.add(fmt::format("cache_line_misses_level{}", l), misses_per_level_[l]);
+  for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {  // counted by the cache's tag unit
+    hits += cache_.hits(l);
+    misses += cache_.misses(l);
+    if (cache_.hits(l) + cache_.misses(l) == 0) continue;
+    st.add(fmt::format("cache_line_hits_level{}", l), cache_.hits(l));
+    st.add(fmt::format("cache_line_misses_level{}", l), cache_.misses(l));
   }
   st.add("cache_line_hits", hits);
   st.add("cache_line_misses", misses);

@@ -8,7 +8,7 @@
 // (the paper's reference counters); texel data comes from the level images.
 //
 // Ports:
-//   in  footprint  FootprintReq (taps, shape, optional arms)         valid/ready
+//   in  footprint  FootprintReq (tap grid, shape, optional arms)     valid/ready
 //   out texels     FilterReq: up to 16 texel words [31:0], shape[11:0]
 //   mem            line read requests (MemoryModel::read), bytes counted there
 // Border taps (clamp-to-border outside the texture) take the border word and no cache access.
@@ -56,7 +56,6 @@ class CacheStage : public sim::Module {
   uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
-  std::vector<uint64_t> hits_per_level_, misses_per_level_;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
   void accept(uint64_t now);
   void emit();

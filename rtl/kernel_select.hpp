@@ -33,9 +33,8 @@ class KernelSelect : public sim::Module {
     f.tag.shape = lee_jen::kAllTexels;
     f.optional = 0;
     if (policy == ShapePolicy::FullCross) return;
-    // Centre square C4 (tap 3), C5 (tap 4), C8 (tap 7): its wrapped columns and rows.
-    const Tap &c4 = f.taps[3], &c5 = f.taps[4], &c8 = f.taps[7];
-    f.tag.shape = lee_jen::cache_block_mask(c4.x, c5.x, c4.y, c8.y, block);
+    // Centre square C4 C5 / C8 C9: grid columns 1, 2 and rows 1, 2.
+    f.tag.shape = lee_jen::cache_block_mask(f.grid.x[1], f.grid.x[2], f.grid.y[1], f.grid.y[2], block);
     if (policy == ShapePolicy::CacheAware) f.optional = static_cast<lee_jen::TexelMask>(lee_jen::kAllTexels & ~f.tag.shape);
   }
   void evaluate() override {

@@ -1,6 +1,7 @@
 #include "rtl/texel_cache.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include <fmt/format.h>
 
@@ -80,51 +81,151 @@ bool TexelCache::lookup(uint64_t line) {
   return false;
 }
 
-FootprintResult TexelCache::access(int level, std::span<const TexelTap> taps) {
-  FootprintResult r;
-  const auto l = static_cast<size_t>(level);
-  const uint64_t base = level_base_[l];
-  const auto row = static_cast<uint64_t>(blocks_per_row_[l]);
-  const bool four_banks = cfg_.banks == 4;
-  // Distinct lines of the footprint (only the first nlines entries are written and read).
-  std::array<uint64_t, 16> lines;
-  size_t nlines = 0;
-  // Reads per bank: the distinct lines (block parity) or distinct texels (texel parity) in it.
+namespace {
+
+// The distinct values of v[0, n) in order of first appearance (out[0, result)) and, per entry,
+// the index of its value among them (group[i]).
+template <int n>
+[[gnu::always_inline]] inline int distinct(const std::array<int, 4>& v, std::array<int, 4>& out,
+                                           std::array<uint8_t, 4>& group) {
+  int m = 0;
+  for (size_t i = 0; i < n; ++i) {
+    int k = 0;
+    while (k < m && out[static_cast<size_t>(k)] != v[i]) ++k;
+    if (k == m) out[static_cast<size_t>(m++)] = v[i];
+    group[i] = static_cast<uint8_t>(k);
+  }
+  return m;
+}
+
+}  // namespace
+
+// The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU
+// order), and the reads per bank: distinct lines (block parity) or distinct texels (texel parity).
+struct TexelCache::LineSet {
+  std::array<uint64_t, 16> lines;  // [0, n) written and read
+  size_t n = 0;
   std::array<int, 4> nbank{};
-  if (cfg_.bank_mapping == BankMapping::BlockParity) {
-    for (const TexelTap& t : taps) {
-      const int bx = t.x >> block_shift_, by = t.y >> block_shift_;
-      const uint64_t line = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
-      size_t i = 0;
-      while (i < nlines && lines[i] != line) ++i;
-      if (i < nlines) continue;  // a line already read: no second bank read either
-      lines[nlines++] = line;
-      ++nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+};
+
+// Block columns and rows of an n x n grid, grouped: taps share a line iff they share both.
+template <int n>
+struct BlockGroups {
+  std::array<int, 4> bx, by;  // distinct block columns / rows, [0, nbx) / [0, nby)
+  std::array<uint8_t, 4> gx, gy;  // per grid column / row: its group
+  int nbx, nby;
+  BlockGroups(const TapGrid& g, int shift) {
+    std::array<int, 4> cx, cy;
+    for (size_t i = 0; i < n; ++i) {
+      cx[i] = g.x[i] >> shift;
+      cy[i] = g.y[i] >> shift;
     }
-  } else {
-    std::array<uint32_t, 16> texels;  // distinct texels, packed y:x (16 bits each)
-    size_t ntexels = 0;
-    for (const TexelTap& t : taps) {
-      const uint64_t line = base + static_cast<uint64_t>(t.y >> block_shift_) * row + static_cast<uint64_t>(t.x >> block_shift_);
-      size_t i = 0;
-      while (i < nlines && lines[i] != line) ++i;
-      if (i == nlines) lines[nlines++] = line;
-      const uint32_t texel = (static_cast<uint32_t>(t.y) << 16) | static_cast<uint32_t>(t.x);
-      size_t k = 0;
-      while (k < ntexels && texels[k] != texel) ++k;
-      if (k < ntexels) continue;
-      texels[ntexels++] = texel;
-      ++nbank[four_banks ? static_cast<size_t>((t.x & 1) + 2 * (t.y & 1)) : 0];
+    nbx = distinct<n>(cx, bx, gx);
+    nby = distinct<n>(cy, by, gy);
+  }
+};
+
+// A whole n x n square under block parity: every block row with every block column.
+template <int n>
+void TexelCache::square_lines(size_t l, const TapGrid& g, LineSet& s) const {
+  const BlockGroups<n> b(g, block_shift_);
+  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
+  for (size_t j = 0; j < static_cast<size_t>(b.nby); ++j)
+    for (size_t i = 0; i < static_cast<size_t>(b.nbx); ++i) {
+      s.lines[s.n++] = base + static_cast<uint64_t>(b.by[j]) * row + static_cast<uint64_t>(b.bx[i]);
+      ++s.nbank[cfg_.banks == 4 ? static_cast<size_t>((b.bx[i] & 1) + 2 * (b.by[j] & 1)) : 0];
+    }
+}
+
+// Any set of used cells (edge shapes, border taps) of a grid, either bank mapping: a scan of the
+// used cells in row-major order. Grid columns and rows beyond cols / rows are never used.
+void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
+  TapGrid full = g;  // pad to 4 x 4 (unused cells never read the padding)
+  for (size_t i = static_cast<size_t>(g.cols); i < 4; ++i) full.x[i] = g.x[0];
+  for (size_t j = static_cast<size_t>(g.rows); j < 4; ++j) full.y[j] = g.y[0];
+  const BlockGroups<4> b(full, block_shift_);
+  const bool texel_parity = cfg_.bank_mapping == BankMapping::TexelParity, four_banks = cfg_.banks == 4;
+  // Taps share a texel iff they share column and row values.
+  std::array<int, 4> xs, ys, xv, yv;
+  std::array<uint8_t, 4> tx, ty;
+  for (size_t i = 0; i < 4; ++i) {
+    xs[i] = full.x[i];
+    ys[i] = full.y[i];
+  }
+  distinct<4>(xs, xv, tx);
+  distinct<4>(ys, yv, ty);
+  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
+  uint32_t seen_line = 0, seen_texel = 0;  // bit 4 gy + gx, bit 4 ty + tx
+  for (uint32_t cells = g.used; cells != 0; cells &= cells - 1) {
+    const auto c = static_cast<size_t>(std::countr_zero(cells));
+    const size_t i = c & 3, j = c >> 2;
+    const uint32_t line_bit = 1u << (4 * b.gy[j] + b.gx[i]);
+    if (!(seen_line & line_bit)) {
+      seen_line |= line_bit;
+      const int bx = b.bx[b.gx[i]], by = b.by[b.gy[j]];
+      s.lines[s.n++] = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
+      if (!texel_parity) ++s.nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+    }
+    const uint32_t texel_bit = 1u << (4 * ty[j] + tx[i]);
+    if (texel_parity && !(seen_texel & texel_bit)) {
+      seen_texel |= texel_bit;
+      ++s.nbank[four_banks ? static_cast<size_t>((g.x[i] & 1) + 2 * (g.y[j] & 1)) : 0];
     }
   }
-  for (size_t i = 0; i < nlines; ++i) {
-    if (lookup(lines[i])) {
+}
+
+// The bilinear 2x2 footprint under block parity (every LINEAR pixel): its block columns bx0, bx1
+// and rows by0, by1 give one, two or four lines, looked up row-major.
+FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
+  const int bx0 = g.x[0] >> block_shift_, bx1 = g.x[1] >> block_shift_;
+  const int by0 = g.y[0] >> block_shift_, by1 = g.y[1] >> block_shift_;
+  const uint64_t row = static_cast<uint64_t>(blocks_per_row_[l]);
+  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row, line1 = line0 + static_cast<uint64_t>(by1 - by0) * row;
+  const bool four_banks = cfg_.banks == 4;
+  FootprintResult r;
+  std::array<int, 4> nbank{};
+  const auto read = [&](uint64_t line, int bx, int by) {
+    if (lookup(line)) {
       ++r.hits;
     } else {
-      r.missed_lines[static_cast<size_t>(r.misses++)] = lines[i];
+      r.missed_lines[static_cast<size_t>(r.misses++)] = line;
     }
+    ++nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+  };
+  read(line0 + static_cast<uint64_t>(bx0), bx0, by0);
+  if (bx1 != bx0) read(line0 + static_cast<uint64_t>(bx1), bx1, by0);
+  if (by1 != by0) {
+    read(line1 + static_cast<uint64_t>(bx0), bx0, by1);
+    if (bx1 != bx0) read(line1 + static_cast<uint64_t>(bx1), bx1, by1);
   }
   r.cycles = std::max(std::max(1, nbank[0]), std::max(std::max(nbank[1], nbank[2]), nbank[3]));
+  hits_[l] += static_cast<uint64_t>(r.hits);
+  misses_[l] += static_cast<uint64_t>(r.misses);
+  return r;
+}
+
+FootprintResult TexelCache::access(int level, const TapGrid& g) {
+  const auto l = static_cast<size_t>(level);
+  LineSet s;
+  if (cfg_.bank_mapping == BankMapping::BlockParity && g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
+    switch (g.cols) {
+      case 1: square_lines<1>(l, g, s); break;
+      case 2: return access_quad(l, g);
+      case 3: square_lines<3>(l, g, s); break;
+      default: square_lines<4>(l, g, s); break;
+    }
+  } else {
+    cell_lines(l, g, s);
+  }
+  FootprintResult r;
+  for (size_t i = 0; i < s.n; ++i) {
+    if (lookup(s.lines[i])) {
+      ++r.hits;
+    } else {
+      r.missed_lines[static_cast<size_t>(r.misses++)] = s.lines[i];
+    }
+  }
+  r.cycles = std::max(std::max(1, s.nbank[0]), std::max(std::max(s.nbank[1], s.nbank[2]), s.nbank[3]));
   hits_[l] += static_cast<uint64_t>(r.hits);
   misses_[l] += static_cast<uint64_t>(r.misses);
   return r;

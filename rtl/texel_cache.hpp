@@ -2,7 +2,8 @@
 //
 // Ports (per cycle, one footprint request):
 //   in  level   [3:0]   MIP level
-//   in  taps    N x {x[13:0], y[13:0]}  wrapped texel coordinates of the filter footprint (N <= 16)
+//   in  grid    TapGrid: columns x[4] and rows y[4] (wrapped texel coordinates), cols, rows, and the
+//               used[15:0] grid cells: the footprint's taps (x[i], y[j]) that read the cache
 //   out hits    [4:0]   distinct cache lines of the footprint found in the cache
 //   out misses  [4:0]   distinct lines missing (their addresses go to the memory model)
 //   out cycles  [4:0]   cycles the footprint occupies the banks (>= 1; bank conflicts add cycles)
@@ -30,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "rtl/unit_ports.hpp"
+
 namespace tfu::rtl {
 
 enum class BankMapping { TexelParity, BlockParity };
@@ -49,10 +52,6 @@ struct TexelCacheConfig {
   void validate() const;
 };
 
-struct TexelTap {
-  int x, y;  // wrapped coordinates inside the level
-};
-
 struct FootprintResult {
   int hits = 0, misses = 0;
   int cycles = 1;                           // bank occupancy
@@ -64,9 +63,10 @@ class TexelCache {
   // level_widths[l] = width of level l in texels (line numbering needs the blocks per row).
   TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights);
   const TexelCacheConfig& config() const { return cfg_; }
-  // Looks up every tap of one footprint (allocating missed lines, LRU update) and reports hits,
-  // misses and the bank cycles. Taps that share a line count one access to that line.
-  FootprintResult access(int level, std::span<const TexelTap> taps);
+  // Looks up every used tap of one footprint (allocating missed lines, LRU update, lines in the
+  // order the taps first reach them, row-major) and reports hits, misses and the bank cycles.
+  // Taps that share a line count one access to that line.
+  FootprintResult access(int level, const TapGrid& grid);
   // Line address (unique over all levels) of the block that holds texel (x, y) of `level`.
   uint64_t line_of(int level, int x, int y) const;
   // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
@@ -90,6 +90,11 @@ class TexelCache {
   uint64_t tick_ = 0;
   std::vector<uint64_t> hits_, misses_;
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
+  struct LineSet;
+  template <int n>
+  void square_lines(size_t level, const TapGrid& g, LineSet& s) const;
+  void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
+  FootprintResult access_quad(size_t level, const TapGrid& g);
 };
 
 }  // namespace tfu::rtl

@@ -26,12 +26,50 @@ struct PixelReq {
   int32_t lambda = 0;
 };
 
-// A texel address: x[13:0] y[13:0] inside the level; border = outside the texture under
-// clamp-to-border (the border word, no cache access).
-struct Tap {  // trivial (no initialisers): only the first ntaps of a footprint are written and read
-  int16_t x, y;  // levels are at most 16384 texels wide: 15 bits, -1 with border
-  bool border;
+// The taps of one footprint as the address generator sends them, the columns and rows of a grid
+// (the cache forms the tap addresses):
+//   x[4] {x[13:0]}, y[4] {y[13:0]}  wrapped coordinates inside the level; -1 = outside the texture
+//                                   under clamp-to-border (the border word, no cache access)
+//   cols[2:0] rows[2:0]             1 (NEAREST), 2 (LINEAR), T <= 4 (CUBIC), 4 (edge cross)
+//   used[15:0]                      grid cells (bit 4 j + i = tap (x[i], y[j])) that read the cache
+struct TapGrid {
+  std::array<int16_t, 4> x, y;  // levels are at most 16384 texels wide: 15 bits, -1 with border
+  int cols, rows;
+  uint16_t used;
 };
+
+// Grid cells of a full cols x rows square (LINEAR, CUBIC, NEAREST): kSquareCells[cols][rows].
+inline constexpr auto kSquareCells = [] {
+  std::array<std::array<uint16_t, 5>, 5> t{};
+  for (uint32_t c = 0; c <= 4; ++c)
+    for (uint32_t r = 0; r <= 4; ++r)
+      for (uint32_t j = 0; j < r; ++j) t[c][r] = static_cast<uint16_t>(t[c][r] | (((1u << c) - 1u) << (4 * j)));
+  return t;
+}();
+constexpr uint16_t square_cells(int cols, int rows) {
+  return kSquareCells[static_cast<size_t>(cols)][static_cast<size_t>(rows)];
+}
+
+// The edge cross on the 4x4 grid of columns and rows -1..2: texel C(k+1) of Lee & Jen Eq. 4 is
+// cell kCrossCell[k] (the corners are not used); the C order is row-major over the grid.
+inline constexpr std::array<uint8_t, lee_jen::kTexels> kCrossCell = [] {
+  std::array<uint8_t, lee_jen::kTexels> c{};
+  for (size_t k = 0; k < c.size(); ++k)
+    c[k] = static_cast<uint8_t>(4 * (lee_jen::kTexelPos[k].y + 1) + lee_jen::kTexelPos[k].x + 1);
+  return c;
+}();
+// Grid cells of the cross texels in a shape mask (bit k = C(k+1)): two 64-entry tables.
+inline constexpr auto kCrossCellsOf6 = [] {
+  std::array<std::array<uint16_t, 64>, 2> t{};
+  for (size_t half = 0; half < 2; ++half)
+    for (uint32_t m = 0; m < 64; ++m)
+      for (size_t b = 0; b < 6; ++b)
+        if ((m >> b) & 1u) t[half][m] = static_cast<uint16_t>(t[half][m] | (1u << kCrossCell[6 * half + b]));
+  return t;
+}();
+constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
+  return static_cast<uint16_t>(kCrossCellsOf6[0][shape & 63u] | kCrossCellsOf6[1][(shape >> 6) & 63u]);
+}
 
 // What travels with one level footprint from address_gen to the filter's output, unchanged except
 // for the shape (set by kernel_select, widened by the cache-aware probe):
@@ -49,13 +87,16 @@ struct LevelTag {
 };
 
 // address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
-//   tag, level[3:0], ntaps[4:0] (1, 4, T*T <= 16, or 12 for the edge cross: tap k = texel C(k+1)),
+//   tag, level[3:0], grid (its `used` cells: those inside the texture; the edge shape narrows
+//   them at the cache), cross (the edge cross: 12 taps in C order, else cols x rows row-major),
 //   optional[11:0] (cache-aware: arms to add when their lines are resident)
 struct FootprintReq {
   LevelTag tag;
-  int level = 0, ntaps = 0;
-  std::array<Tap, 16> taps;  // [0, ntaps) valid
+  int level = 0;
+  bool cross = false;
+  TapGrid grid;
   lee_jen::TexelMask optional = 0;
+  int ntaps() const { return cross ? lee_jen::kTexels : grid.cols * grid.rows; }
 };
 
 // texel_cache -> filter: the footprint's texel words.

@@ -1,5 +1,8 @@
 // texel_cache and memory_model: blocked line mapping, LRU, bank conflicts, configuration errors,
 // bandwidth and latency.
+#include <algorithm>
+#include <deque>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -21,6 +24,16 @@ TexelCacheConfig small(int block, int capacity, int ways, int banks = 4,
   c.banks = banks;
   return c;
 }
+
+// A full grid of the columns xs and rows ys (every tap reads the cache).
+TapGrid grid(std::initializer_list<int> xs, std::initializer_list<int> ys) {
+  TapGrid g{};
+  for (int x : xs) g.x[static_cast<size_t>(g.cols++)] = static_cast<int16_t>(x);
+  for (int y : ys) g.y[static_cast<size_t>(g.rows++)] = static_cast<int16_t>(y);
+  g.used = square_cells(g.cols, g.rows);
+  return g;
+}
+TapGrid tap(int x, int y) { return grid({x}, {y}); }
 
 TEST(TexelCache, ConfigurationErrorsNameTheField) {
   EXPECT_THROW(small(6, 4096, 2).validate(), InputError);   // B not 4 or 8
@@ -48,35 +61,31 @@ TEST(TexelCache, BlockedLineNumbering) {
 
 TEST(TexelCache, BilinearFootprintOneCycleCubicFour) {
   TexelCache c(small(4, 4096, 2), {16}, {16});
-  const std::vector<TexelTap> quad{{5, 6}, {6, 6}, {5, 7}, {6, 7}};
+  const TapGrid quad = grid({5, 6}, {6, 7});
   FootprintResult r = c.access(0, quad);
   EXPECT_EQ(r.cycles, 1);  // one texel per parity bank
   EXPECT_EQ(r.misses, 1);  // all in block (1, 1)
   EXPECT_EQ(c.access(0, quad).hits, 1);
-  std::vector<TexelTap> cubic;
-  for (int y = 4; y < 8; ++y)
-    for (int x = 4; x < 8; ++x) cubic.push_back({x, y});
+  const TapGrid cubic = grid({4, 5, 6, 7}, {4, 5, 6, 7});
   EXPECT_EQ(c.access(0, cubic).cycles, 4);  // 16 texels over 4 banks
   TexelCache one_bank(small(4, 4096, 2, 1), {16}, {16});
   EXPECT_EQ(one_bank.access(0, quad).cycles, 4);
   // A footprint across a block corner touches four lines.
-  const std::vector<TexelTap> corner{{3, 3}, {4, 3}, {3, 4}, {4, 4}};
+  const TapGrid corner = grid({3, 4}, {3, 4});
   const FootprintResult rc = c.access(0, corner);
   EXPECT_EQ(rc.misses + rc.hits, 4);
 }
 
 TEST(TexelCache, BlockParityBanksReadWholeLines) {
   TexelCache c(small(4, 4096, 4, 4, BankMapping::BlockParity), {16}, {16});
-  std::vector<TexelTap> cubic, cross;
-  for (int y = 2; y < 6; ++y)
-    for (int x = 2; x < 6; ++x) cubic.push_back({x, y});  // 4x4 over the corner of 4 blocks
-  EXPECT_EQ(c.access(0, cubic).cycles, 1);             // one line from each bank
-  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{5, 4}, {6, 4}, {4, 5}, {5, 5}, {6, 5}, {7, 5},
-                                                             {4, 6}, {5, 6}, {6, 6}, {7, 6}, {5, 7}, {6, 7}})
-    cross.push_back({x, y});  // the 12-texel cross inside block (1, 1)
+  const TapGrid cubic = grid({2, 3, 4, 5}, {2, 3, 4, 5});  // 4x4 over the corner of 4 blocks
+  EXPECT_EQ(c.access(0, cubic).cycles, 1);                   // one line from each bank
+  TapGrid cross = grid({4, 5, 6, 7}, {4, 5, 6, 7});
+  cross.used = cross_cells(lee_jen::kAllTexels);  // the 12-texel cross inside block (1, 1)
+  EXPECT_EQ(cross.used, 0x6FF6);
   EXPECT_EQ(c.access(0, cross).cycles, 1);
   // Blocks (0, 0) and (2, 0) share bank 0: two cycles.
-  EXPECT_EQ(c.access(0, std::vector<TexelTap>{{0, 0}, {8, 0}}).cycles, 2);
+  EXPECT_EQ(c.access(0, grid({0, 8}, {0})).cycles, 2);
   TexelCache one(small(4, 4096, 4, 1, BankMapping::BlockParity), {16}, {16});
   EXPECT_EQ(one.access(0, cubic).cycles, 4);  // four lines through one port
   EXPECT_EQ(one.access(0, cross).cycles, 1);
@@ -86,7 +95,7 @@ TEST(TexelCache, ResidencyProbeDoesNotAllocate) {
   TexelCache c(small(4, 4096, 2), {16}, {16});
   EXPECT_FALSE(c.resident(0, 5, 5));
   EXPECT_FALSE(c.resident(0, 5, 5));  // a probe does not allocate
-  c.access(0, std::vector<TexelTap>{{5, 5}});
+  c.access(0, tap(5, 5));
   EXPECT_TRUE(c.resident(0, 4, 7));   // same block
   EXPECT_FALSE(c.resident(0, 8, 5));
 }
@@ -94,7 +103,7 @@ TEST(TexelCache, ResidencyProbeDoesNotAllocate) {
 TEST(TexelCache, LruEvictsTheLeastRecentlyUsedWay) {
   // Direct lines 0, 2, 4 all map to set 0 of a 2-set, 2-way cache.
   TexelCache c(small(4, 256, 2), {64}, {4});  // 4 lines = 2 sets x 2 ways; 16 blocks in one row
-  const auto at = [](int block) { return std::vector<TexelTap>{{4 * block, 0}}; };
+  const auto at = [](int block) { return tap(4 * block, 0); };
   EXPECT_EQ(c.access(0, at(0)).misses, 1);
   EXPECT_EQ(c.access(0, at(2)).misses, 1);
   EXPECT_EQ(c.access(0, at(0)).hits, 1);    // 0 becomes most recent
@@ -112,10 +121,79 @@ TEST(TexelCache, ScanlineHitRateOfABlockedCache) {
   uint64_t misses = 0;
   for (int y = 0; y < 63; ++y)
     for (int x = 0; x < 63; ++x) {
-      const std::vector<TexelTap> q{{x, y}, {x + 1, y}, {x, y + 1}, {x + 1, y + 1}};
-      misses += static_cast<uint64_t>(c.access(0, q).misses);
+      misses += static_cast<uint64_t>(c.access(0, grid({x, x + 1}, {y, y + 1})).misses);
     }
   EXPECT_EQ(misses, 256u);
+}
+
+// Property: the grid lookup equals a per-tap reference model, footprint after footprint: the taps
+// (x[i], y[j]) of the used cells in row-major order, their distinct lines in order of first
+// appearance through an LRU list per set, and the bank cycles counted from distinct lines (block
+// parity) or distinct texels (texel parity). Random grids with repeated columns and rows (clamped
+// or wrapped runs), random used cells, two levels, both mappings, 1 or 4 banks, B = 4 and 8.
+TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
+  std::mt19937 rng(5);
+  const std::vector<int> widths{40, 20}, heights{24, 12};
+  for (const BankMapping mapping : {BankMapping::TexelParity, BankMapping::BlockParity})
+    for (const int banks : {1, 4})
+      for (const int block : {4, 8}) {
+        const TexelCacheConfig cfg = small(block, 8 * block * block * 4, 2, banks, mapping);
+        TexelCache c(cfg, widths, heights);
+        std::vector<std::deque<uint64_t>> lru(static_cast<size_t>(cfg.sets()));  // front: most recent
+        for (int n = 0; n < 3000; ++n) {
+          const int level = static_cast<int>(rng() % 2);
+          const int w = widths[static_cast<size_t>(level)], h = heights[static_cast<size_t>(level)];
+          TapGrid g{};
+          g.cols = 1 + static_cast<int>(rng() % 4);
+          g.rows = 1 + static_cast<int>(rng() % 4);
+          const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(w)), y0 = static_cast<int>(rng() % static_cast<uint32_t>(h));
+          const bool clamp = rng() % 2 == 0;
+          for (int i = 0; i < g.cols; ++i)
+            g.x[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(x0 + i, w - 1) : (x0 + i) % w);
+          for (int j = 0; j < g.rows; ++j)
+            g.y[static_cast<size_t>(j)] = static_cast<int16_t>(clamp ? std::min(y0 + j, h - 1) : (y0 + j) % h);
+          g.used = square_cells(g.cols, g.rows);
+          if (rng() % 2 == 0) g.used = static_cast<uint16_t>(g.used & rng());
+          // Reference.
+          std::vector<uint64_t> lines;
+          std::vector<std::pair<int, int>> texels;
+          std::array<int, 4> nbank{};
+          for (int cell = 0; cell < 16; ++cell) {
+            if (!((g.used >> cell) & 1)) continue;
+            const int x = g.x[static_cast<size_t>(cell & 3)], y = g.y[static_cast<size_t>(cell >> 2)];
+            const uint64_t line = c.line_of(level, x, y);
+            if (std::find(lines.begin(), lines.end(), line) == lines.end()) {
+              lines.push_back(line);
+              if (mapping == BankMapping::BlockParity)
+                ++nbank[banks == 4 ? static_cast<size_t>((x / block) % 2 + 2 * ((y / block) % 2)) : 0];
+            }
+            if (mapping == BankMapping::TexelParity &&
+                std::find(texels.begin(), texels.end(), std::pair{x, y}) == texels.end()) {
+              texels.emplace_back(x, y);
+              ++nbank[banks == 4 ? static_cast<size_t>(x % 2 + 2 * (y % 2)) : 0];
+            }
+          }
+          int hits = 0;
+          std::vector<uint64_t> missed;
+          for (const uint64_t line : lines) {
+            auto& set = lru[line % static_cast<uint64_t>(cfg.sets())];
+            const auto it = std::find(set.begin(), set.end(), line);
+            if (it != set.end()) {
+              ++hits;
+              set.erase(it);
+            } else {
+              missed.push_back(line);
+              if (set.size() == static_cast<size_t>(cfg.ways)) set.pop_back();
+            }
+            set.push_front(line);
+          }
+          const FootprintResult r = c.access(level, g);
+          ASSERT_EQ(r.hits, hits) << n;
+          ASSERT_EQ(r.misses, static_cast<int>(missed.size())) << n;
+          ASSERT_EQ(std::vector<uint64_t>(r.missed_lines.begin(), r.missed_lines.begin() + r.misses), missed) << n;
+          ASSERT_EQ(r.cycles, std::max({1, nbank[0], nbank[1], nbank[2], nbank[3]})) << n;
+        }
+      }
 }
 
 TEST(MemoryModel, BandwidthAndLatency) {
