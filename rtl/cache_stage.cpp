@@ -129,8 +129,16 @@ void CacheStage::emit() {
                : border_;
   };
   if (cur.cross) {
-    for (size_t k = 0; k < lee_jen::kTexels; ++k)
-      f.texels[k] = ((cur.tag.shape >> k) & 1u) ? word(kCrossCell[k] & 3u, kCrossCell[k] >> 2) : Rgba8{0, 0, 0, 0};
+    std::array<ptrdiff_t, 4> row;  // offsets of the four texel rows (a row outside is never read)
+    for (size_t j = 0; j < 4; ++j) row[j] = static_cast<ptrdiff_t>(g.y[j]) * static_cast<ptrdiff_t>(img.width);
+    const Rgba8* texels = img.texels.data();
+#pragma GCC unroll 12
+    for (size_t k = 0; k < lee_jen::kTexels; ++k) {
+      const size_t cell = kCrossCell[k];
+      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0}
+                    : ((g.used >> cell) & 1u)     ? texels[row[cell >> 2] + g.x[cell & 3]]
+                                                  : border_;
+    }
   } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
       case 1: read_square<1>(g, img, f.texels.data()); break;

@@ -137,15 +137,44 @@ void TexelCache::square_lines(size_t l, const TapGrid& g, LineSet& s) const {
     }
 }
 
-// Any set of used cells (edge shapes, border taps) of a grid, either bank mapping: a scan of the
-// used cells in row-major order. Grid columns and rows beyond cols / rows are never used.
+// Any set of used cells (edge shapes, border taps) of a grid under block parity: the lines are
+// the (block column, block row) groups that hold a used cell, each looked up when the row-major
+// scan of the cells first reaches it, i.e. in order of its lowest used cell.
+void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
+  TapGrid full = g;  // pad to 4 x 4 (unused cells never read the padding)
+  for (size_t i = static_cast<size_t>(g.cols); i < 4; ++i) full.x[i] = g.x[0];
+  for (size_t j = static_cast<size_t>(g.rows); j < 4; ++j) full.y[j] = g.y[0];
+  const BlockGroups<4> b(full, block_shift_);
+  std::array<uint16_t, 4> col_cells{}, row_cells{};  // grid cells of each block column / row group
+  for (size_t i = 0; i < 4; ++i) col_cells[b.gx[i]] = static_cast<uint16_t>(col_cells[b.gx[i]] | (0x1111u << i));
+  for (size_t j = 0; j < 4; ++j) row_cells[b.gy[j]] = static_cast<uint16_t>(row_cells[b.gy[j]] | (0xFu << (4 * j)));
+  std::array<uint32_t, 16> key;  // first cell << 8 | by group << 4 | bx group, [0, n)
+  size_t n = 0;
+  for (size_t h = 0; h < static_cast<size_t>(b.nby); ++h)
+    for (size_t k = 0; k < static_cast<size_t>(b.nbx); ++k) {
+      const uint32_t cells = g.used & col_cells[k] & row_cells[h];
+      if (cells == 0) continue;
+      uint32_t v = static_cast<uint32_t>(std::countr_zero(cells)) << 8 | static_cast<uint32_t>(h << 4 | k);
+      size_t m = n++;
+      for (; m > 0 && key[m - 1] > v; --m) key[m] = key[m - 1];  // insertion by first cell
+      key[m] = v;
+    }
+  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
+  for (size_t m = 0; m < n; ++m) {
+    const int bx = b.bx[key[m] & 15u], by = b.by[(key[m] >> 4) & 15u];
+    s.lines[s.n++] = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
+    ++s.nbank[cfg_.banks == 4 ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+  }
+}
+
+// Any set of used cells under texel parity: a scan of the used cells in row-major order; the
+// banks count distinct texels (taps share a texel iff they share column and row values).
 void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
   TapGrid full = g;  // pad to 4 x 4 (unused cells never read the padding)
   for (size_t i = static_cast<size_t>(g.cols); i < 4; ++i) full.x[i] = g.x[0];
   for (size_t j = static_cast<size_t>(g.rows); j < 4; ++j) full.y[j] = g.y[0];
   const BlockGroups<4> b(full, block_shift_);
-  const bool texel_parity = cfg_.bank_mapping == BankMapping::TexelParity, four_banks = cfg_.banks == 4;
-  // Taps share a texel iff they share column and row values.
+  const bool four_banks = cfg_.banks == 4;
   std::array<int, 4> xs, ys, xv, yv;
   std::array<uint8_t, 4> tx, ty;
   for (size_t i = 0; i < 4; ++i) {
@@ -162,12 +191,10 @@ void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
     const uint32_t line_bit = 1u << (4 * b.gy[j] + b.gx[i]);
     if (!(seen_line & line_bit)) {
       seen_line |= line_bit;
-      const int bx = b.bx[b.gx[i]], by = b.by[b.gy[j]];
-      s.lines[s.n++] = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
-      if (!texel_parity) ++s.nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+      s.lines[s.n++] = base + static_cast<uint64_t>(b.by[b.gy[j]]) * row + static_cast<uint64_t>(b.bx[b.gx[i]]);
     }
     const uint32_t texel_bit = 1u << (4 * ty[j] + tx[i]);
-    if (texel_parity && !(seen_texel & texel_bit)) {
+    if (!(seen_texel & texel_bit)) {
       seen_texel |= texel_bit;
       ++s.nbank[four_banks ? static_cast<size_t>((g.x[i] & 1) + 2 * (g.y[j] & 1)) : 0];
     }
@@ -214,6 +241,8 @@ FootprintResult TexelCache::access(int level, const TapGrid& g) {
       case 3: square_lines<3>(l, g, s); break;
       default: square_lines<4>(l, g, s); break;
     }
+  } else if (cfg_.bank_mapping == BankMapping::BlockParity) {
+    group_lines(l, g, s);
   } else {
     cell_lines(l, g, s);
   }

@@ -93,6 +93,7 @@ class TexelCache {
   struct LineSet;
   template <int n>
   void square_lines(size_t level, const TapGrid& g, LineSet& s) const;
+  void group_lines(size_t level, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
   FootprintResult access_quad(size_t level, const TapGrid& g);
 };
