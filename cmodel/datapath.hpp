@@ -19,22 +19,8 @@ struct LevelCoord {
   int64_t i0;
   uint32_t f;
 };
-// Any FP32 value (NaN, infinities, denormals, saturation): float_to_fixed. Out of line so that the
-// common case below stays small where it is inlined.
-[[gnu::noinline]] inline LevelCoord texel_coord_general(float s, int size) {
-  const int64_t u = float_to_fixed(s, static_cast<uint32_t>(size), 8) - 128;
-  return {u >> 8, static_cast<uint32_t>(u & 255)};
-}
-// The same, with its common case in a few integer operations: a normal float whose product with
-// the extent needs a right shift of 1..62 bits into Q.8 (biased exponent 80..141, i.e. |s W| below
-// 2^15, every usual texture coordinate) is (+-sig W) >> (142 - exp), exactly what float_to_fixed
-// computes for it (e = exp - 142 < 0, prod != 0); every other value takes texel_coord_general.
-[[gnu::always_inline]] inline LevelCoord texel_coord(float s, int size) {
-  const auto bits = std::bit_cast<uint32_t>(s);
-  const uint32_t exp = (bits >> 23) & 0xFF;
-  if (exp - 80u >= 62u) return texel_coord_general(s, size);
-  const int64_t prod = static_cast<int64_t>((bits & 0x7FFFFF) | 0x800000) * size;
-  const int64_t u = (((bits >> 31) ? -prod : prod) >> (142 - exp)) - 128;
+inline LevelCoord texel_coord(float s, int size) {
+  const int64_t u = float_to_fixed_fast(s, static_cast<uint32_t>(size), 8) - 128;
   return {u >> 8, static_cast<uint32_t>(u & 255)};
 }
 

@@ -56,15 +56,15 @@ int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_
 }
 
 int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
-  const auto u = [&](int k) { return float_to_fixed(s[k], static_cast<uint32_t>(width), 16); };
-  const auto v = [&](int k) { return float_to_fixed(t[k], static_cast<uint32_t>(height), 16); };
+  const auto u = [&](int k) { return float_to_fixed_fast(s[k], static_cast<uint32_t>(width), 16); };
+  const auto v = [&](int k) { return float_to_fixed_fast(t[k], static_cast<uint32_t>(height), 16); };
   return lambda_from_derivatives(u(1) - u(0), v(1) - v(0), u(2) - u(0), v(2) - v(0));
 }
 
 int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {
   const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
-  return lambda_from_derivatives(float_to_fixed(dsdx, w, 16), float_to_fixed(dtdx, h, 16),
-                                 float_to_fixed(dsdy, w, 16), float_to_fixed(dtdy, h, 16));
+  return lambda_from_derivatives(float_to_fixed_fast(dsdx, w, 16), float_to_fixed_fast(dtdx, h, 16),
+                                 float_to_fixed_fast(dsdy, w, 16), float_to_fixed_fast(dtdy, h, 16));
 }
 
 int32_t lambda_explicit(float lod) {

@@ -53,22 +53,25 @@ TEST(FixedCoord, MatchesExactFloorOnRandomFloats) {
   }
 }
 
-// Property: the address generator's integer common case (dp::texel_coord) equals the general
-// float_to_fixed conversion (dp::texel_coord_general) for every exponent, both signs, random
-// mantissas and the boundary mantissas, on power-of-two, odd and maximal extents.
-TEST(FixedCoord, TexelCoordFastPathEqualsGeneral) {
+// Property: the integer common case (float_to_fixed_fast, and dp::texel_coord built on it) equals
+// float_to_fixed for every exponent, both signs, random and boundary mantissas, fraction widths
+// 0..24 and power-of-two, odd and maximal scales.
+TEST(FixedCoord, FastPathEqualsGeneral) {
   std::mt19937 rng(11);
   std::uniform_int_distribution<uint32_t> mant(0, 0x7FFFFF);
-  std::uniform_int_distribution<int> extent(1, 32768);
+  std::uniform_int_distribution<uint32_t> scale(1, 32768);
   for (uint32_t exp = 0; exp < 256; ++exp)
     for (uint32_t sign = 0; sign < 2; ++sign)
       for (int k = 0; k < 2000; ++k) {
         const uint32_t m = k == 0 ? 0 : k == 1 ? 0x7FFFFF : k == 2 ? 1 : mant(rng);
         const float x = std::bit_cast<float>((sign << 31) | (exp << 23) | m);
-        const int w = k < 8 ? (1 << (k % 8) * 2) : k < 16 ? 32768 - k : extent(rng);
-        const dp::LevelCoord fast = dp::texel_coord(x, w), general = dp::texel_coord_general(x, w);
-        ASSERT_EQ(fast.i0, general.i0) << x << " " << w;
-        ASSERT_EQ(fast.f, general.f) << x << " " << w;
+        const uint32_t w = k < 8 ? (1u << (k % 8) * 2) : k < 16 ? 32768u - static_cast<uint32_t>(k) : scale(rng);
+        const int fb = k % 25;
+        ASSERT_EQ(float_to_fixed_fast(x, w, fb), float_to_fixed(x, w, fb)) << x << " " << w << " " << fb;
+        const int64_t u = float_to_fixed(x, w, 8) - 128;
+        const dp::LevelCoord c = dp::texel_coord(x, static_cast<int>(w));
+        ASSERT_EQ(c.i0, u >> 8) << x << " " << w;
+        ASSERT_EQ(c.f, static_cast<uint32_t>(u & 255)) << x << " " << w;
       }
 }
 
