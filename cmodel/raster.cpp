@@ -158,12 +158,22 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       std::array<glm::dvec2, 4> st_if;
       for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
       const double lambda_ideal = ctx.opts->ideal ? ideal_lambda(st_if, tex.width(), tex.height()) : 0.0;
+      // The quad's covered pixels go to the filter unit together (its quad interface).
+      std::array<SampleRequest, 4> reqs;
+      std::array<Rgba8, 4> colour;
+      if (!ctx.opts->ideal) {
+        size_t n = 0;
+        for (size_t k = 0; k < 4; ++k)
+          if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
+        sampler.sample_batch(reqs.data(), n, colour.data());
+      }
+      size_t next = 0;  // index of the next covered pixel's colour
       for (int k = 0; k < 4; ++k) {
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
         res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(sampler.sample_ideal(s[k], t[k], lambda_ideal))
-                                                : sampler.sample(s[k], t[k], lambda);
+                                                : colour[next++];
         ctx.depth[idx] = static_cast<float>(z[uk]);
         if (ctx.opts->keep_coords) res.coords[idx] = {s[k], t[k]};
         ++out.pixels;

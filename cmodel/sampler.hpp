@@ -1,6 +1,7 @@
 // The golden texture sampler: every filter mode, bit-accurate, untimed (no notion of cycles).
 //
-// Interface: sample(s, t, lambda) with s, t as FP32 and lambda from the LOD unit (lod.hpp, Q.8).
+// Interface: sample(s, t, lambda) with s, t as FP32 and lambda from the LOD unit (lod.hpp, Q.8);
+// sample_batch(requests) gives the same for a quad's (or any number of) requests at once.
 // Datapath widths and rounding, per mode, are listed in docs/filters.md; the short version:
 //   texel coordinate  u = floor(s W_L 2^8) - 128 (Q.8, texel centres at integers): i0 = u >> 8, fu = u & 255
 //   NEAREST           i = floor(s W_L) (GL)
@@ -15,6 +16,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,6 +93,12 @@ struct EdgeFootprint {
   std::array<int, 4> col{}, row{};  // -1 = border (clamp-to-border outside the texture)
 };
 
+// One request of a batch: what sample() takes (lambda before bias and clamp, Q.8).
+struct SampleRequest {
+  float s, t;
+  int32_t lambda_q8;
+};
+
 class Sampler {
  public:
   // Validates the configuration (throws InputError); precomputes ROMs and, for bspline-interp,
@@ -105,6 +114,12 @@ class Sampler {
   LodInfo lod_info(int32_t lambda_q8_unclamped) const;  // applies bias and clamp
   // One filtered colour, as the RGBA8 word of the texture's format.
   Rgba8 sample(float s, float t, int32_t lambda_q8_unclamped) const { return sample_fn_(*this, s, t, lambda_q8_unclamped); }
+  // The unit's quad interface: out[i] = sample(req[i].s, req[i].t, req[i].lambda_q8) for i < n, bit
+  // for bit (the renderer hands it the up to 4 covered pixels of a 2x2 quad). Software speed only:
+  // the per-call dispatch is paid once per batch, the sampler's registers (level base, extent,
+  // border) stay in machine registers, and LINEAR on 8-bit formats filters 4 requests at once in
+  // the 4-lane lerp unit (dp::bilinear_lerp8x4). Array of structures, as the requests arrive.
+  void sample_batch(const SampleRequest* req, size_t n, Rgba8* out) const { batch_fn_(*this, req, n, out); }
   // The same in datapath channels (before encoding).
   Texel4 sample_channels(float s, float t, int32_t lambda_q8_unclamped) const;
   // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
@@ -140,9 +155,14 @@ class Sampler {
   // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
   // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
   // sampler.cpp.
+  // sample_batch() dispatches the same way: LINEAR's fast paths have a batch variant, every other
+  // configuration loops over sample_fn_.
   using SampleFn = Rgba8 (*)(const Sampler&, float, float, int32_t);
+  using BatchFn = void (*)(const Sampler&, const SampleRequest*, size_t, Rgba8*);
   SampleFn sample_fn_ = nullptr;
+  BatchFn batch_fn_ = nullptr;
   static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
+  static void batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
   struct FastPaths;
 };
 

@@ -2,8 +2,11 @@
 // every mode (constant textures, interpolation at texel centres, fixed point vs ideal).
 #include <bit>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <random>
 #include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -281,10 +284,6 @@ TEST(Properties, CubicWeightMemoChangesNothing) {
     }
 }
 
-// Every fast path of Sampler::sample (LINEAR, CUBIC and EDGE_PRESERVING, each specialized per pair
-// of wrap modes and for MIP-mapping) agrees bit for bit with the generic datapath (sample_channels),
-// on power-of-two and other extents, over random requests: ordinary coordinates, and random float
-// bit patterns (huge, tiny, denormal, infinite, NaN) for the address generator's uncommon cases.
 // The 8-bit-word lerp and blend units (used by the LINEAR fast path and the cycle model's filter)
 // against the channel datapath + encode: every fraction pair with random words, plus the extreme
 // words, and every blend weight.
@@ -314,6 +313,95 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
     }
 }
 
+// The 4-lane lerp unit (sample_batch's LINEAR path) against the scalar one, lane by lane: every
+// fraction pair in every lane (the four lanes get (fu, fv), (fv, fu), (255 - fu, fv) and
+// (fu, 255 - fv)), with random words, and the extreme words that drive the 16-bit lanes' sums to
+// their ends.
+TEST(Properties, QuadLerpEqualsScalarLerp) {
+  std::mt19937 rng(9);
+  const auto word = [&rng] {
+    const auto v = static_cast<uint32_t>(rng());
+    return Rgba8{static_cast<uint8_t>(v), static_cast<uint8_t>(v >> 8), static_cast<uint8_t>(v >> 16),
+                 static_cast<uint8_t>(v >> 24)};
+  };
+  const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255}, mixed{255, 0, 255, 0};
+  for (uint32_t fu = 0; fu < 256; ++fu)
+    for (uint32_t fv = 0; fv < 256; ++fv) {
+      dp::Quad8 q;
+      q.fu = {fu, fv, 255 - fu, fu};
+      q.fv = {fv, fu, fv, 255 - fv};
+      for (size_t k = 0; k < 4; ++k) {
+        const uint32_t sel = (fu + fv + static_cast<uint32_t>(k)) % 8;
+        q.a[k] = sel == 0 ? full : sel == 1 ? zero : sel == 2 ? mixed : word();
+        q.b[k] = sel == 0 ? full : sel == 1 ? full : sel == 2 ? zero : word();
+        q.c[k] = sel == 0 ? full : sel == 1 ? zero : sel == 2 ? full : word();
+        q.d[k] = sel == 0 ? full : sel == 1 ? full : sel == 2 ? mixed : word();
+      }
+      std::array<Rgba8, 4> out;
+      dp::bilinear_lerp8x4(q, out.data());
+      for (size_t k = 0; k < 4; ++k)
+        ASSERT_EQ(out[k], dp::bilinear_lerp8(q.a[k], q.b[k], q.c[k], q.d[k], q.fu[k], q.fv[k]))
+            << "lane " << k << " at " << q.fu[k] << "," << q.fv[k];
+    }
+}
+
+// Sample_batch returns sample() of every request, in order, and writes nothing past out[n - 1]:
+// every base filter and MIP mode, all 16 wrap pairs, a power-of-two RGBA8, an NPOT L8 and a VS16X2
+// texture (no batch fast path: the loop over sample()), batch sizes around the 4-lane groups, and
+// random float bit patterns (NaN, infinities, denormals, huge values) and extreme lambdas.
+TEST(Properties, BatchEqualsSample) {
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
+  std::uniform_int_distribution<int32_t> lam(-512, 9 * 256);
+  const float specials[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::denorm_min(),
+                            -1e-40f, 0.0f, -0.0f, std::numeric_limits<float>::max(), -1e20f, 65536.0f, 0.5f, 1.0f};
+  const auto request_coord = [&] {
+    const uint32_t r = rng() % 8;
+    if (r == 0) return std::bit_cast<float>(static_cast<uint32_t>(rng()));
+    if (r == 1) return specials[rng() % std::size(specials)];
+    return coord(rng);
+  };
+  const auto request_lambda = [&] {
+    const uint32_t r = rng() % 16;
+    return r == 0 ? std::numeric_limits<int32_t>::min() : r == 1 ? std::numeric_limits<int32_t>::max() : lam(rng);
+  };
+  const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
+  const size_t sizes[] = {0, 1, 3, 4, 5, 257};
+  for (const auto& [w, h, f] : {std::tuple{32, 16, TexelFormat::RGBA8}, std::tuple{37, 21, TexelFormat::L8},
+                                std::tuple{16, 8, TexelFormat::VS16X2}}) {
+    Texture t = random_texture(w, h, 5, f);
+    generate_mipmaps(t, MipMethod::Box);
+    for (BaseFilter b : {BaseFilter::Nearest, BaseFilter::Linear, BaseFilter::Cubic, BaseFilter::EdgePreserving})
+      for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
+        for (WrapMode ws : wraps)
+          for (WrapMode wt : wraps) {
+            SamplerConfig c = cfg(b, m);
+            c.wrap_s = ws;
+            c.wrap_t = wt;
+            c.border = {9, 99, 199, 49};
+            const Sampler smp(t, c);
+            for (size_t n : sizes) {
+              std::vector<SampleRequest> req(n);
+              for (SampleRequest& r : req) r = {request_coord(), request_coord(), request_lambda()};
+              const Rgba8 sentinel{1, 2, 3, 4};
+              std::vector<Rgba8> out(n + 4, sentinel);
+              smp.sample_batch(req.data(), n, out.data());
+              for (size_t i = 0; i < n; ++i)
+                ASSERT_EQ(out[i], smp.sample(req[i].s, req[i].t, req[i].lambda_q8))
+                    << filter_mode_name(c.mode) << " " << wrap_mode_name(ws) << "/" << wrap_mode_name(wt) << " "
+                    << w << "x" << h << " batch " << n << " request " << i << " at (" << req[i].s << ", "
+                    << req[i].t << ", " << req[i].lambda_q8 << ")";
+              for (size_t i = n; i < out.size(); ++i) ASSERT_EQ(out[i], sentinel) << "wrote past the batch";
+            }
+          }
+  }
+}
+
+// Every fast path of Sampler::sample (LINEAR, CUBIC and EDGE_PRESERVING, each specialized per pair
+// of wrap modes and for MIP-mapping) agrees bit for bit with the generic datapath (sample_channels),
+// on power-of-two and other extents, over random requests: ordinary coordinates, and random float
+// bit patterns (huge, tiny, denormal, infinite, NaN) for the address generator's uncommon cases.
 TEST(Properties, FastPathsEqualGenericPath) {
   std::mt19937 rng(21);
   std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
