@@ -47,11 +47,14 @@ constexpr int64_t float_to_fixed(float x, uint32_t scale, int frac_bits) {
 // of 1..62 bits (e = exp - 150 + frac_bits in -62..-1; every usual texture coordinate) is
 // (+-sig scale) >> -e, exactly what float_to_fixed computes for it (prod != 0); every other value
 // (NaN, infinities, denormals, zero, large values) takes float_to_fixed.
+[[gnu::noinline]] inline int64_t float_to_fixed_general(float x, uint32_t scale, int frac_bits) {
+  return float_to_fixed(x, scale, frac_bits);  // out of line: the rare case stays out of the fast path
+}
 [[gnu::always_inline]] inline int64_t float_to_fixed_fast(float x, uint32_t scale, int frac_bits) {
   const uint32_t bits = std::bit_cast<uint32_t>(x);
   const int exp = static_cast<int>((bits >> 23) & 0xFF);
   const int shift = 150 - frac_bits - exp;  // -e
-  if (exp == 0 || static_cast<unsigned>(shift - 1) >= 62u) return float_to_fixed(x, scale, frac_bits);
+  if (exp == 0 || static_cast<unsigned>(shift - 1) >= 62u) return float_to_fixed_general(x, scale, frac_bits);
   const auto prod = static_cast<int64_t>(static_cast<uint64_t>((bits & 0x7FFFFF) | 0x800000) * scale);
   return ((bits >> 31) ? -prod : prod) >> shift;
 }

@@ -539,43 +539,6 @@ Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambd
 // tests compare them with.
 namespace {
 
-// The uncommon case of the fast paths' address generator, out of line so that the common case stays
-// small.
-[[gnu::noinline]] LevelCoord texel_coord_cold(float s, int size) { return texel_coord(s, size); }
-
-// The wrap unit for the n taps start, start + 1, ... of one row or column, with the mode known at
-// compile time: repeat on a power-of-two extent keeps the low bits, the clamps select (no branch
-// per tap); otherwise wrap_run.
-template <WrapMode kW, int n>
-[[gnu::always_inline]] inline void wrap_taps(int64_t start, int size, int* out) {
-  if constexpr (kW == WrapMode::Repeat) {
-    if ((size & (size - 1)) == 0) {
-      for (int k = 0; k < n; ++k) out[k] = static_cast<int>((start + k) & (size - 1));
-      return;
-    }
-  } else if constexpr (kW == WrapMode::ClampToEdge) {
-    for (int k = 0; k < n; ++k) out[k] = static_cast<int>(std::clamp<int64_t>(start + k, 0, size - 1));
-    return;
-  } else if constexpr (kW == WrapMode::ClampToBorder) {
-    for (int k = 0; k < n; ++k) out[k] = start + k >= 0 && start + k < size ? static_cast<int>(start + k) : -1;
-    return;
-  }
-  wrap_run(kW, start, n, size, out);
-}
-
-// Address generator (dp::texel_coord) with its common case in a few integer operations: a normal
-// float whose product with the extent needs a right shift of 1..62 bits into Q.8 (|s W| below 2^15,
-// the usual texture coordinates) is (+-sig W) >> (142 - exp), exactly what float_to_fixed computes
-// for it; every other value goes through float_to_fixed.
-[[gnu::always_inline]] inline LevelCoord address_q8(float s, int size) {
-  const auto bits = std::bit_cast<uint32_t>(s);
-  const uint32_t exp = (bits >> 23) & 0xFF;
-  if (exp - 80u >= 62u) return texel_coord_cold(s, size);
-  const int64_t prod = static_cast<int64_t>((bits & 0x7FFFFF) | 0x800000) * size;
-  const int64_t u = (((bits >> 31) ? -prod : prod) >> (142 - exp)) - 128;
-  return {u >> 8, static_cast<uint32_t>(u & 255)};
-}
-
 template <WrapMode kWs, WrapMode kWt>
 inline constexpr bool kMayBorder = kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder;
 
@@ -599,10 +562,10 @@ template <bool kBorder>
 // or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit inputs is always within 0..255.
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
-  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
   int xs[2], ys[2];
-  wrap_taps<kWs, 2>(u.i0, img.width, xs);
-  wrap_taps<kWt, 2>(v.i0, img.height, ys);
+  dp::wrap_taps<kWs, 2>(u.i0, img.width, xs);
+  dp::wrap_taps<kWt, 2>(v.i0, img.height, ys);
   constexpr bool kB = kMayBorder<kWs, kWt>;
   q.a[k] = texel_word<kB>(img, xs[0], ys[0], border);
   q.b[k] = texel_word<kB>(img, xs[1], ys[0], border);
@@ -623,11 +586,11 @@ template <WrapMode kWs, WrapMode kWt>
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 cubic8(LevelView img, Rgba8 border, const WeightMemo& memo,
                                             const dp::CubicNormalize& norm, float s, float t) {
-  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
   const int32_t* w = memo.weights(u.f, v.f);
   int col[4], row[4];
-  wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
-  wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
+  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
   // (R, B) and (G, A) in signed 32-bit lanes, as in filter_tiled_acc_n: modular arithmetic keeps
   // x = low + high 2^32 exactly and each lane's true sum is below 2^31 in magnitude.
   // One row of taps per iteration (kept as a loop: fully unrolled, the compiler spills the 16
@@ -667,10 +630,10 @@ template <WrapMode kWs, WrapMode kWt>
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, bool cache_block,
                                            int block, float s, float t) {
-  const LevelCoord u = address_q8(s, img.width), v = address_q8(t, img.height);
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
   int col[4], row[4];
-  wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // columns and rows -1 .. 2
-  wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // columns and rows -1 .. 2
+  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
   const lee_jen::TexelMask mask =
       cache_block ? lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], block) : lee_jen::kAllTexels;
   std::array<Texel4, lee_jen::kTexels> c;
