@@ -7,6 +7,8 @@ namespace tfu::rtl {
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Sampler& sm)
     : Module(s, "address_gen"), in_(i), out_(o), smp_(sm), grid_fn_(&grid_any) {
   const SamplerConfig& c = sm.config();
+  mipmapped_ = c.mode.mip != MipMode::None;
+  lod_ = sm.lod_info(0);  // a sampler without MIP-mapping: level 0, no blend, whatever lambda
   if (c.mode.base == BaseFilter::Linear)
     grid_fn_ = linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)),
                            std::make_index_sequence<16>());
@@ -114,7 +116,7 @@ void AddressGen::evaluate() {
   if (!holding_ && in_.can_pop()) {
     const PixelReq& p = in_.front();
     pixel_ = p;
-    lod_ = smp_.lod_info(p.lambda);
+    if (mipmapped_) lod_ = smp_.lod_info(p.lambda);  // else level 0 alone (GL), lod_ keeps it
     count_ = lod_.blend != 0 ? 2 : 1;
     in_.pop();
     holding_ = true;

@@ -50,6 +50,7 @@ class AddressGen : public sim::Module {
   bool holding_ = false;
   PixelReq pixel_{};
   LodInfo lod_{};
+  bool mipmapped_ = true;
   int count_ = 0, sent_ = 0;  // footprints of the held pixel (1, or 2 when blending), sent so far
 };
 

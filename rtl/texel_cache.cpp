@@ -66,18 +66,26 @@ size_t TexelCache::set_of(uint64_t line) const {
 
 bool TexelCache::lookup(uint64_t line) {
   ++tick_;
+  if (line == mru_line_) {  // the line of the previous lookup is still where it was (a hit)
+    ways_[mru_way_].last_use = tick_;
+    return true;
+  }
   const size_t set = set_of(line);
   Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
   Way* victim = w;
   for (int i = 0; i < cfg_.ways; ++i) {
     if (w[i].tag == line) {
       w[i].last_use = tick_;
+      mru_line_ = line;
+      mru_way_ = static_cast<size_t>(&w[i] - ways_.data());
       return true;
     }
     if (w[i].last_use < victim->last_use) victim = &w[i];
   }
   victim->tag = line;  // least recently used (an empty way has last_use 0)
   victim->last_use = tick_;
+  mru_line_ = line;
+  mru_way_ = static_cast<size_t>(victim - ways_.data());
   return false;
 }
 
@@ -262,6 +270,7 @@ FootprintResult TexelCache::access(int level, const TapGrid& g) {
 
 void TexelCache::reset() {
   std::fill(ways_.begin(), ways_.end(), Way{});
+  mru_line_ = ~uint64_t{0};
   std::fill(hits_.begin(), hits_.end(), 0);
   std::fill(misses_.begin(), misses_.end(), 0);
   tick_ = 0;

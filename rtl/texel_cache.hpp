@@ -88,6 +88,10 @@ class TexelCache {
   };
   std::vector<Way> ways_;  // sets * ways
   uint64_t tick_ = 0;
+  // Software memo (not hardware state): the line of the latest lookup and its way, so that a run of
+  // footprints in one block skips the way search. A lookup always leaves its line resident.
+  uint64_t mru_line_ = ~uint64_t{0};
+  size_t mru_way_ = 0;
   std::vector<uint64_t> hits_, misses_;
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   struct LineSet;
