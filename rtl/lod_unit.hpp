@@ -5,6 +5,9 @@
 // Ports:
 //   in  quad   QuadReq                 valid/ready
 //   out pixel  PixelReq, lambda[15:0]  Q.8 before bias and clamp; one per cycle
+// A sampler without MIP-mapping has no level to select (GL: level 0), so its lambda is not used:
+// the model then leaves it at 0 instead of evaluating the derivatives and the log2 ROM (software
+// speed only; the pixels' timing is the same).
 #pragma once
 
 #include "cmodel/lod.hpp"
@@ -16,15 +19,16 @@ namespace tfu::rtl {
 
 class LodUnit : public sim::Module {
  public:
-  LodUnit(sim::Simulator& s, sim::Channel<QuadReq>& i, sim::Channel<PixelReq>& o, TraceMode mode, int w, int h)
-      : Module(s, "lod_unit"), in_(i), out_(o), mode_(mode), width_(w), height_(h) {}
+  LodUnit(sim::Simulator& s, sim::Channel<QuadReq>& i, sim::Channel<PixelReq>& o, TraceMode mode, int w, int h,
+          bool lambda_used = true)
+      : Module(s, "lod_unit"), in_(i), out_(o), mode_(mode), width_(w), height_(h), lambda_used_(lambda_used) {}
   void evaluate() override {
     if (!holding_ && in_.can_pop()) {
       quad_ = in_.front();
       in_.pop();
-      switch (mode_) {
+      switch (lambda_used_ ? mode_ : TraceMode::Lod) {
         case TraceMode::Quad: lambda_ = lambda_from_quad(quad_.s.data(), quad_.t.data(), width_, height_); break;
-        case TraceMode::Lod: lambda_ = lambda_explicit(quad_.lod); break;
+        case TraceMode::Lod: lambda_ = lambda_used_ ? lambda_explicit(quad_.lod) : 0; break;
         case TraceMode::Grad:
           lambda_ = lambda_from_gradients(quad_.dsdx, quad_.dtdx, quad_.dsdy, quad_.dtdy, width_, height_);
           break;
@@ -48,6 +52,7 @@ class LodUnit : public sim::Module {
   sim::Channel<PixelReq>& out_;
   TraceMode mode_;
   int width_, height_;
+  bool lambda_used_;
   bool holding_ = false;
   QuadReq quad_;
   int32_t lambda_ = 0;

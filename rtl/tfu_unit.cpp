@@ -193,7 +193,7 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
     sim.add_clocked(&c_s2);
   }
   RequestFifo src(sim, trace, c_quad, accept);
-  LodUnit lod(sim, c_quad, c_pixel, trace.mode, tex.width(), tex.height());
+  LodUnit lod(sim, c_quad, c_pixel, trace.mode, tex.width(), tex.height(), cfg.mode.mip != MipMode::None);
   AddressGen addr(sim, c_pixel, c_addr, smp);
   KernelSelect shape(sim, c_addr, c_shape, edge, ucfg.shape_policy, ucfg.cache.block);
   CacheStage cst(sim, c_shape, c_texels, levels, border, edge, cache, mem, ucfg.miss_fifo_depth);
