@@ -57,12 +57,10 @@ class ChannelBase : public Clocked {
   size_t size() const { return count_; }
   bool can_push() const { return count_ < depth_; }  // ready, registered
   bool can_pop() const { return count_ != 0; }       // valid
-  void commit_state() {
-    if (popped_) {
-      head_ = head_ + 1 == slots_ ? 0 : head_ + 1;
-      --count_;
-    }
-    if (pushed_) ++count_;
+  void commit_state() {  // the pop advances the head, both change the count (no branches)
+    const size_t head = head_ + static_cast<size_t>(popped_);
+    head_ = head == slots_ ? 0 : head;
+    count_ = count_ + static_cast<size_t>(pushed_) - static_cast<size_t>(popped_);
     pushed_ = popped_ = false;
   }
   void commit() final { commit_state(); }
