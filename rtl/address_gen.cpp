@@ -34,7 +34,7 @@ void nearest_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img
   g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(img.height), 0), img.height));
 }
 
-// T x T taps from column i0 + first and row j0 + first (LINEAR: T = 2, first = 0; CUBIC: the
+// T x T taps from column i0 + first and row j0 + first (CUBIC: the
 // ROM's taps; the edge cross: T = 4, first = -1).
 void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, const dp::LevelCoord& u,
                       const dp::LevelCoord& v, int first, int taps) {
@@ -60,7 +60,6 @@ void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img
     f.tag.fu = u.f;
     f.tag.fv = v.f;
     switch (c.mode.base) {
-      case BaseFilter::Linear: square_footprint(f, c, img, u, v, 0, 2); break;
       case BaseFilter::Cubic:
         square_footprint(f, c, img, u, v, a.smp_.cubic_rom()->first_tap(), a.smp_.cubic_rom()->taps());
         break;
@@ -68,6 +67,7 @@ void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img
         square_footprint(f, c, img, u, v, -1, 4);
         f.cross = true;
         break;
+      case BaseFilter::Linear:  // grid_linear
       case BaseFilter::Nearest: break;
     }
   }

@@ -26,12 +26,16 @@ class LodUnit : public sim::Module {
     if (!holding_ && in_.can_pop()) {
       quad_ = in_.front();
       in_.pop();
-      switch (lambda_used_ ? mode_ : TraceMode::Lod) {
-        case TraceMode::Quad: lambda_ = lambda_from_quad(quad_.s.data(), quad_.t.data(), width_, height_); break;
-        case TraceMode::Lod: lambda_ = lambda_used_ ? lambda_explicit(quad_.lod) : 0; break;
-        case TraceMode::Grad:
-          lambda_ = lambda_from_gradients(quad_.dsdx, quad_.dtdx, quad_.dsdy, quad_.dtdy, width_, height_);
-          break;
+      if (!lambda_used_) {
+        lambda_ = 0;
+      } else {
+        switch (mode_) {
+          case TraceMode::Quad: lambda_ = lambda_from_quad(quad_.s.data(), quad_.t.data(), width_, height_); break;
+          case TraceMode::Lod: lambda_ = lambda_explicit(quad_.lod); break;
+          case TraceMode::Grad:
+            lambda_ = lambda_from_gradients(quad_.dsdx, quad_.dtdx, quad_.dsdy, quad_.dtdy, width_, height_);
+            break;
+        }
       }
       holding_ = true;
       k_ = 0;

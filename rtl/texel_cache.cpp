@@ -91,20 +91,34 @@ bool TexelCache::lookup(uint64_t line) {
 
 namespace {
 
-// The distinct values of v[0, n) in order of first appearance (out[0, result)) and, per entry,
-// the index of its value among them (group[i]).
-template <int n>
-[[gnu::always_inline]] inline int distinct(const std::array<int, 4>& v, std::array<int, 4>& out,
-                                           std::array<uint8_t, 4>& group) {
-  int m = 0;
-  for (size_t i = 0; i < n; ++i) {
-    int k = 0;
-    while (k < m && out[static_cast<size_t>(k)] != v[i]) ++k;
-    if (k == m) out[static_cast<size_t>(m++)] = v[i];
-    group[i] = static_cast<uint8_t>(k);
+// Column and row groups of a grid, padded to 4 x 4 with column / row 0 (unused cells never read the
+// padding): the distinct values of x >> shift over the columns (vx[0, nx)) and of y >> shift over
+// the rows, in order of first appearance, and per grid column / row the index of its group. With
+// shift = log2 B, taps share a line iff they share both groups; with shift = 0, a texel.
+struct GridGroups {
+  std::array<int, 4> vx, vy;
+  std::array<uint8_t, 4> gx, gy;
+  int nx, ny;
+  GridGroups(const TapGrid& g, int shift) {
+    std::array<int, 4> cx, cy;
+    for (size_t i = 0; i < 4; ++i) {
+      cx[i] = g.x[i < static_cast<size_t>(g.cols) ? i : 0] >> shift;
+      cy[i] = g.y[i < static_cast<size_t>(g.rows) ? i : 0] >> shift;
+    }
+    nx = distinct(cx, vx, gx);
+    ny = distinct(cy, vy, gy);
   }
-  return m;
-}
+  static int distinct(const std::array<int, 4>& v, std::array<int, 4>& out, std::array<uint8_t, 4>& group) {
+    int m = 0;
+    for (size_t i = 0; i < 4; ++i) {
+      int k = 0;
+      while (k < m && out[static_cast<size_t>(k)] != v[i]) ++k;
+      if (k == m) out[static_cast<size_t>(m++)] = v[i];
+      group[i] = static_cast<uint8_t>(k);
+    }
+    return m;
+  }
+};
 
 }  // namespace
 
@@ -116,50 +130,18 @@ struct TexelCache::LineSet {
   std::array<int, 4> nbank{};
 };
 
-// Block columns and rows of an n x n grid, grouped: taps share a line iff they share both.
-template <int n>
-struct BlockGroups {
-  std::array<int, 4> bx, by;  // distinct block columns / rows, [0, nbx) / [0, nby)
-  std::array<uint8_t, 4> gx, gy;  // per grid column / row: its group
-  int nbx, nby;
-  BlockGroups(const TapGrid& g, int shift) {
-    std::array<int, 4> cx, cy;
-    for (size_t i = 0; i < n; ++i) {
-      cx[i] = g.x[i] >> shift;
-      cy[i] = g.y[i] >> shift;
-    }
-    nbx = distinct<n>(cx, bx, gx);
-    nby = distinct<n>(cy, by, gy);
-  }
-};
-
-// A whole n x n square under block parity: every block row with every block column.
-template <int n>
-void TexelCache::square_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  const BlockGroups<n> b(g, block_shift_);
-  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
-  for (size_t j = 0; j < static_cast<size_t>(b.nby); ++j)
-    for (size_t i = 0; i < static_cast<size_t>(b.nbx); ++i) {
-      s.lines[s.n++] = base + static_cast<uint64_t>(b.by[j]) * row + static_cast<uint64_t>(b.bx[i]);
-      ++s.nbank[cfg_.banks == 4 ? static_cast<size_t>((b.bx[i] & 1) + 2 * (b.by[j] & 1)) : 0];
-    }
-}
-
-// Any set of used cells (edge shapes, border taps) of a grid under block parity: the lines are
-// the (block column, block row) groups that hold a used cell, each looked up when the row-major
-// scan of the cells first reaches it, i.e. in order of its lowest used cell.
+// Any set of used cells of a grid under block parity: the lines are the (block column, block row)
+// groups that hold a used cell, each looked up when the row-major scan of the cells first reaches
+// it, i.e. in order of its lowest used cell.
 void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  TapGrid full = g;  // pad to 4 x 4 (unused cells never read the padding)
-  for (size_t i = static_cast<size_t>(g.cols); i < 4; ++i) full.x[i] = g.x[0];
-  for (size_t j = static_cast<size_t>(g.rows); j < 4; ++j) full.y[j] = g.y[0];
-  const BlockGroups<4> b(full, block_shift_);
+  const GridGroups b(g, block_shift_);
   std::array<uint16_t, 4> col_cells{}, row_cells{};  // grid cells of each block column / row group
   for (size_t i = 0; i < 4; ++i) col_cells[b.gx[i]] = static_cast<uint16_t>(col_cells[b.gx[i]] | (0x1111u << i));
   for (size_t j = 0; j < 4; ++j) row_cells[b.gy[j]] = static_cast<uint16_t>(row_cells[b.gy[j]] | (0xFu << (4 * j)));
   std::array<uint32_t, 16> key;  // first cell << 8 | by group << 4 | bx group, [0, n)
   size_t n = 0;
-  for (size_t h = 0; h < static_cast<size_t>(b.nby); ++h)
-    for (size_t k = 0; k < static_cast<size_t>(b.nbx); ++k) {
+  for (size_t h = 0; h < static_cast<size_t>(b.ny); ++h)
+    for (size_t k = 0; k < static_cast<size_t>(b.nx); ++k) {
       const uint32_t cells = g.used & col_cells[k] & row_cells[h];
       if (cells == 0) continue;
       uint32_t v = static_cast<uint32_t>(std::countr_zero(cells)) << 8 | static_cast<uint32_t>(h << 4 | k);
@@ -169,39 +151,28 @@ void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
     }
   const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
   for (size_t m = 0; m < n; ++m) {
-    const int bx = b.bx[key[m] & 15u], by = b.by[(key[m] >> 4) & 15u];
+    const int bx = b.vx[key[m] & 15u], by = b.vy[(key[m] >> 4) & 15u];
     s.lines[s.n++] = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
     ++s.nbank[cfg_.banks == 4 ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
   }
 }
 
 // Any set of used cells under texel parity: a scan of the used cells in row-major order; the
-// banks count distinct texels (taps share a texel iff they share column and row values).
+// banks count distinct texels.
 void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  TapGrid full = g;  // pad to 4 x 4 (unused cells never read the padding)
-  for (size_t i = static_cast<size_t>(g.cols); i < 4; ++i) full.x[i] = g.x[0];
-  for (size_t j = static_cast<size_t>(g.rows); j < 4; ++j) full.y[j] = g.y[0];
-  const BlockGroups<4> b(full, block_shift_);
+  const GridGroups b(g, block_shift_), t(g, 0);
   const bool four_banks = cfg_.banks == 4;
-  std::array<int, 4> xs, ys, xv, yv;
-  std::array<uint8_t, 4> tx, ty;
-  for (size_t i = 0; i < 4; ++i) {
-    xs[i] = full.x[i];
-    ys[i] = full.y[i];
-  }
-  distinct<4>(xs, xv, tx);
-  distinct<4>(ys, yv, ty);
   const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
-  uint32_t seen_line = 0, seen_texel = 0;  // bit 4 gy + gx, bit 4 ty + tx
+  uint32_t seen_line = 0, seen_texel = 0;  // bit 4 gy + gx of the block groups, of the texel groups
   for (uint32_t cells = g.used; cells != 0; cells &= cells - 1) {
     const auto c = static_cast<size_t>(std::countr_zero(cells));
     const size_t i = c & 3, j = c >> 2;
     const uint32_t line_bit = 1u << (4 * b.gy[j] + b.gx[i]);
     if (!(seen_line & line_bit)) {
       seen_line |= line_bit;
-      s.lines[s.n++] = base + static_cast<uint64_t>(b.by[b.gy[j]]) * row + static_cast<uint64_t>(b.bx[b.gx[i]]);
+      s.lines[s.n++] = base + static_cast<uint64_t>(b.vy[b.gy[j]]) * row + static_cast<uint64_t>(b.vx[b.gx[i]]);
     }
-    const uint32_t texel_bit = 1u << (4 * ty[j] + tx[i]);
+    const uint32_t texel_bit = 1u << (4 * t.gy[j] + t.gx[i]);
     if (!(seen_texel & texel_bit)) {
       seen_texel |= texel_bit;
       ++s.nbank[four_banks ? static_cast<size_t>((g.x[i] & 1) + 2 * (g.y[j] & 1)) : 0];
@@ -210,49 +181,35 @@ void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
 }
 
 // The bilinear 2x2 footprint under block parity (every LINEAR pixel): its block columns bx0, bx1
-// and rows by0, by1 give one, two or four lines, looked up row-major.
-FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
+// and rows by0, by1 give one, two or four lines, row-major.
+void TexelCache::quad_lines(size_t l, const TapGrid& g, LineSet& s) const {
   const int bx0 = g.x[0] >> block_shift_, bx1 = g.x[1] >> block_shift_;
   const int by0 = g.y[0] >> block_shift_, by1 = g.y[1] >> block_shift_;
   const uint64_t row = static_cast<uint64_t>(blocks_per_row_[l]);
-  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row, line1 = line0 + static_cast<uint64_t>(by1 - by0) * row;
+  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row;
   const bool four_banks = cfg_.banks == 4;
-  FootprintResult r;
-  std::array<int, 4> nbank{};
-  const auto read = [&](uint64_t line, int bx, int by) {
-    if (lookup(line)) {
-      ++r.hits;
-    } else {
-      r.missed_lines[static_cast<size_t>(r.misses++)] = line;
-    }
-    ++nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
+  const auto add = [&](uint64_t line, int bx, int by) {
+    s.lines[s.n++] = line;
+    ++s.nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
   };
-  read(line0 + static_cast<uint64_t>(bx0), bx0, by0);
-  if (bx1 != bx0) read(line0 + static_cast<uint64_t>(bx1), bx1, by0);
+  add(line0 + static_cast<uint64_t>(bx0), bx0, by0);
+  if (bx1 != bx0) add(line0 + static_cast<uint64_t>(bx1), bx1, by0);
   if (by1 != by0) {
-    read(line1 + static_cast<uint64_t>(bx0), bx0, by1);
-    if (bx1 != bx0) read(line1 + static_cast<uint64_t>(bx1), bx1, by1);
+    const uint64_t line1 = line0 + static_cast<uint64_t>(by1 - by0) * row;
+    add(line1 + static_cast<uint64_t>(bx0), bx0, by1);
+    if (bx1 != bx0) add(line1 + static_cast<uint64_t>(bx1), bx1, by1);
   }
-  r.cycles = std::max(std::max(1, nbank[0]), std::max(std::max(nbank[1], nbank[2]), nbank[3]));
-  hits_[l] += static_cast<uint64_t>(r.hits);
-  misses_[l] += static_cast<uint64_t>(r.misses);
-  return r;
 }
 
 FootprintResult TexelCache::access(int level, const TapGrid& g) {
   const auto l = static_cast<size_t>(level);
   LineSet s;
-  if (cfg_.bank_mapping == BankMapping::BlockParity && g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
-    switch (g.cols) {
-      case 1: square_lines<1>(l, g, s); break;
-      case 2: return access_quad(l, g);
-      case 3: square_lines<3>(l, g, s); break;
-      default: square_lines<4>(l, g, s); break;
-    }
-  } else if (cfg_.bank_mapping == BankMapping::BlockParity) {
-    group_lines(l, g, s);
-  } else {
+  if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
+  } else if (g.cols == 2 && g.rows == 2 && g.used == square_cells(2, 2)) {
+    quad_lines(l, g, s);  // every LINEAR footprint
+  } else {
+    group_lines(l, g, s);
   }
   FootprintResult r;
   for (size_t i = 0; i < s.n; ++i) {

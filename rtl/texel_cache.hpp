@@ -95,11 +95,9 @@ class TexelCache {
   std::vector<uint64_t> hits_, misses_;
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   struct LineSet;
-  template <int n>
-  void square_lines(size_t level, const TapGrid& g, LineSet& s) const;
   void group_lines(size_t level, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
-  FootprintResult access_quad(size_t level, const TapGrid& g);
+  void quad_lines(size_t level, const TapGrid& g, LineSet& s) const;
 };
 
 }  // namespace tfu::rtl
