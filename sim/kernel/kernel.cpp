@@ -103,16 +103,7 @@ void Simulator::reset() {
   cycle_ = last_progress_ = 0;
 }
 
-void Simulator::step() {
-  if (order_ == Order::Forward) {
-    for (Module* m : modules_) m->evaluate();
-  } else {
-    for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
-  }
-  for (ChannelBase* c : channels_) c->commit_state();
-  for (Clocked* c : clocked_) c->commit();
-  const bool progressed = last_progress_ == cycle_;
-  ++cycle_;
+void Simulator::after_edge(bool progressed) {
   if (vcd_) {
     vcd_->sample(cycle_);
   } else if (idle_skip_ && !progressed) {
@@ -136,29 +127,27 @@ std::string Simulator::dump() const {
   return s;
 }
 
-void Simulator::run(const std::function<bool()>& done, uint64_t max_cycles, const std::function<uint64_t()>& work_done,
-                    uint64_t work_total) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto last_print = t0;
-  bool printed = false;
-  const uint64_t start = cycle_;
-  last_progress_ = cycle_;
-  while (!done()) {
-    if (cycle_ - start >= max_cycles) throw CheckFailed(fmt::format("simulation exceeded {} cycles; {}", max_cycles, dump()));
-    if (cycle_ - last_progress_ > watchdog_)
-      throw CheckFailed(fmt::format("deadlock: no progress for {} cycles; {}", watchdog_, dump()));
-    step();
-    if (work_total > 0 && work_done && (cycle_ & 0xFFF) == 0) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - t0 > std::chrono::seconds(2) && now - last_print > std::chrono::milliseconds(500)) {
-        std::fprintf(stderr, "\r  simulating: %5.1f %% (cycle %llu)", 100.0 * static_cast<double>(work_done()) / static_cast<double>(work_total),
-                     static_cast<unsigned long long>(cycle_));
-        last_print = now;
-        printed = true;
-      }
-    }
+void Simulator::stop(uint64_t start, uint64_t max_cycles) const {
+  if (cycle_ - start >= max_cycles) throw CheckFailed(fmt::format("simulation exceeded {} cycles; {}", max_cycles, dump()));
+  throw CheckFailed(fmt::format("deadlock: no progress for {} cycles; {}", watchdog_, dump()));
+}
+
+Simulator::ProgressBar::ProgressBar(const std::function<uint64_t()>& done, uint64_t total)
+    : done_(done), total_(total), t0_(std::chrono::steady_clock::now()), last_(t0_) {}
+
+void Simulator::ProgressBar::update(uint64_t cycle) {
+  if (total_ == 0 || !done_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - t0_ > std::chrono::seconds(2) && now - last_ > std::chrono::milliseconds(500)) {
+    std::fprintf(stderr, "\r  simulating: %5.1f %% (cycle %llu)",
+                 100.0 * static_cast<double>(done_()) / static_cast<double>(total_), static_cast<unsigned long long>(cycle));
+    last_ = now;
+    printed_ = true;
   }
-  if (printed) std::fprintf(stderr, "\r  simulating: 100.0 %% (cycle %llu)\n", static_cast<unsigned long long>(cycle_));
+}
+
+void Simulator::ProgressBar::finish(uint64_t cycle) const {
+  if (printed_) std::fprintf(stderr, "\r  simulating: 100.0 %% (cycle %llu)\n", static_cast<unsigned long long>(cycle));
 }
 
 }  // namespace tfu::sim

@@ -11,6 +11,9 @@
 // sustains one transfer per cycle under back-pressure-free flow.
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -58,27 +61,27 @@ class ChannelBase : public Clocked {
   bool can_push() const { return count_ < depth_; }  // ready, registered
   bool can_pop() const { return count_ != 0; }       // valid
   void commit_state() {  // the pop advances the head, both change the count (no branches)
-    const size_t head = head_ + static_cast<size_t>(popped_);
-    head_ = head == slots_ ? 0 : head;
-    count_ = count_ + static_cast<size_t>(pushed_) - static_cast<size_t>(popped_);
-    pushed_ = popped_ = false;
+    head_ = (head_ + popped_) & mask_;
+    count_ = count_ + pushed_ - popped_;
+    pushed_ = popped_ = 0;
   }
   void commit() final { commit_state(); }
   void reset() final {
     head_ = count_ = 0;
-    pushed_ = popped_ = false;
+    pushed_ = popped_ = 0;
   }
 
  protected:
-  explicit ChannelBase(size_t depth) : depth_(depth), slots_(depth + 1) {}
-  size_t depth_;
-  size_t slots_;  // ring slots: depth + 1, one spare so a push into a full-at-commit ring never overwrites
-  size_t head_ = 0, count_ = 0;
-  bool pushed_ = false, popped_ = false;
-  size_t tail() const {  // head + count < 2 slots: no division
-    const size_t i = head_ + count_;
-    return i >= slots_ ? i - slots_ : i;
-  }
+  // Ring slots: the power of two >= depth + 1, so that a push into a full-at-commit ring never
+  // overwrites the head and ring indices wrap with a mask.
+  explicit ChannelBase(size_t depth)
+      : depth_(static_cast<uint32_t>(depth)), mask_(static_cast<uint32_t>(std::bit_ceil(std::min<size_t>(depth, 4096) + 1) - 1)) {}
+  size_t slots() const { return size_t{mask_} + 1; }
+  uint32_t depth_;
+  uint32_t mask_;
+  uint32_t head_ = 0, count_ = 0;
+  uint8_t pushed_ = 0, popped_ = 0;  // this cycle's transfers (0 or 1), committed at the edge
+  size_t tail() const { return (head_ + count_) & mask_; }
 };
 
 // Valid/ready channel with a FIFO of `depth` entries (skid buffer), one producer and one consumer.
@@ -87,8 +90,8 @@ template <typename T>
 class Channel : public ChannelBase {
  public:
   Channel(std::string name, size_t depth) : ChannelBase(depth), name_(std::move(name)) {
-    if (depth_ == 0) throw InputError(fmt::format("channel {}: depth must be at least 1", name_));
-    ring_.resize(slots_);
+    if (depth == 0 || depth > 4096) throw InputError(fmt::format("channel {}: depth {} must be in 1..4096", name_, depth));
+    ring_.resize(slots());
   }
   const std::string& name() const { return name_; }
   // Producer side.
@@ -96,14 +99,14 @@ class Channel : public ChannelBase {
   // push() without the copy: the producer fills the returned slot during this evaluate().
   T& push_slot() {
     if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
-    pushed_ = true;
+    pushed_ = 1;
     return ring_[tail()];
   }
   // Consumer side.
   const T& front() const { return ring_[head_]; }
   void pop() {
     if (!can_pop() || popped_) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
-    popped_ = true;
+    popped_ = 1;
   }
   std::string state() const { return fmt::format("{} {}/{}{}", name_, count_, depth_, can_push() ? "" : " full"); }
 
@@ -250,15 +253,55 @@ class Simulator {
   uint64_t cycle() const { return cycle_; }
   Stats& stats() { return stats_; }
   void reset();
-  void step();
+  // One clock: every module evaluates, then every channel and register commits (the edge).
+  void step() {
+    if (order_ == Order::Forward) {
+      for (Module* m : modules_) m->evaluate();
+    } else {
+      for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
+    }
+    for (ChannelBase* c : channels_) c->commit_state();
+    for (Clocked* c : clocked_) c->commit();
+    const bool progressed = last_progress_ == cycle_;
+    ++cycle_;
+    if (vcd_ || (idle_skip_ && !progressed)) after_edge(progressed);
+  }
   // Steps until done() is true. Throws CheckFailed with a dump of every module's state if the
   // watchdog fires or max_cycles pass. Shows a progress bar on stderr for runs over ~2 s when
-  // `work_total` > 0 and `work_done` reports progress.
-  void run(const std::function<bool()>& done, uint64_t max_cycles,
-           const std::function<uint64_t()>& work_done = {}, uint64_t work_total = 0);
+  // `work_total` > 0 and `work_done` reports progress. (A template, so that the per-cycle test of
+  // done() and the step inline into one loop.)
+  template <typename Done>
+  void run(Done&& done, uint64_t max_cycles, const std::function<uint64_t()>& work_done = {}, uint64_t work_total = 0) {
+    ProgressBar bar(work_done, work_total);
+    const uint64_t start = cycle_;
+    last_progress_ = cycle_;
+    for (uint32_t steps = 1; !done(); ++steps) {
+      if (cycle_ - start >= max_cycles || cycle_ - last_progress_ > watchdog_) stop(start, max_cycles);
+      step();
+      if ((steps & 0xFFFu) == 0) bar.update(cycle_);
+    }
+    bar.finish(cycle_);
+  }
   std::string dump() const;
 
  private:
+  // The progress bar of run(): stderr, after ~2 s, at most every 0.5 s.
+  class ProgressBar {
+   public:
+    ProgressBar(const std::function<uint64_t()>& done, uint64_t total);
+    void update(uint64_t cycle);
+    void finish(uint64_t cycle) const;
+
+   private:
+    const std::function<uint64_t()>& done_;
+    uint64_t total_;
+    std::chrono::steady_clock::time_point t0_, last_;
+    bool printed_ = false;
+  };
+  // After the edge: the VCD sample, or the jump over idle cycles (see Module::wake_cycle).
+  void after_edge(bool progressed);
+  // Throws the watchdog's or the cycle limit's CheckFailed with the state dump.
+  [[noreturn]] void stop(uint64_t start, uint64_t max_cycles) const;
   std::vector<Module*> modules_;
   std::vector<Clocked*> clocked_;
   std::vector<ChannelBase*> channels_;
