@@ -27,7 +27,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       fifo_(static_cast<size_t>(miss_fifo_depth)) {
 }
 
-void CacheStage::accept(uint64_t now) {
+[[gnu::always_inline]] inline void CacheStage::accept(uint64_t now) {
   Entry& entry = fifo_.push_back();  // the footprint goes straight into the miss FIFO
   entry.f = in_.front();
   FootprintReq& cur = entry.f;
@@ -60,6 +60,61 @@ void CacheStage::accept(uint64_t now) {
     shapes[cur.tag.id][cur.tag.second ? 1 : 0] = cur.tag.shape;
   }
   entry.ready = ready;
+}
+
+namespace {
+
+// Texel read-out of an n x n square whose taps are all inside the texture, row-major.
+template <int n>
+void read_square(const TapGrid& g, const Image& img, Rgba8* out) {
+  for (size_t j = 0; j < n; ++j) {
+    const Rgba8* row = img.texels.data() + static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width);
+    for (size_t i = 0; i < n; ++i) out[n * j + i] = row[g.x[i]];
+  }
+}
+
+}  // namespace
+
+// Texel read-out: the footprint's taps in FilterReq order (row-major over the grid; the cross in
+// C order), the border word where a tap is outside the texture, zero where an edge shape has no
+// texel (not read).
+[[gnu::always_inline]] inline void CacheStage::emit() {
+  const FootprintReq& cur = fifo_.front().f;
+  const TapGrid& g = cur.grid;
+  FilterReq& f = out_.push_slot();
+  f.tag = cur.tag;
+  f.ntaps = cur.ntaps();
+  const Image& img = *levels_[static_cast<size_t>(cur.level)];
+  const auto word = [&](size_t i, size_t j) {
+    return ((g.used >> (4 * j + i)) & 1u)
+               ? img.texels[static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width) + static_cast<size_t>(g.x[i])]
+               : border_;
+  };
+  if (cur.cross) {
+    std::array<ptrdiff_t, 4> row;  // offsets of the four texel rows (a row outside is never read)
+    for (size_t j = 0; j < 4; ++j) row[j] = static_cast<ptrdiff_t>(g.y[j]) * static_cast<ptrdiff_t>(img.width);
+    const Rgba8* texels = img.texels.data();
+#pragma GCC unroll 12
+    for (size_t k = 0; k < lee_jen::kTexels; ++k) {
+      const size_t cell = kCrossCell[k];
+      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0}
+                    : ((g.used >> cell) & 1u)     ? texels[row[cell >> 2] + g.x[cell & 3]]
+                                                  : border_;
+    }
+  } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
+    switch (g.cols) {
+      case 1: read_square<1>(g, img, f.texels.data()); break;
+      case 2: read_square<2>(g, img, f.texels.data()); break;
+      case 3: read_square<3>(g, img, f.texels.data()); break;
+      default: read_square<4>(g, img, f.texels.data()); break;
+    }
+  } else {
+    size_t k = 0;
+    for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
+      for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(i, j);
+  }
+  fifo_.pop_front();
+  sim_.progress();
 }
 
 void CacheStage::evaluate() {
@@ -98,61 +153,6 @@ void CacheStage::skip_cycles(uint64_t n) {
   if (!fifo_.empty() && now < fifo_.front().ready) stall_miss_ += n;
   else if (!fifo_.empty() && !out_.can_push()) stall_back_ += n;
   if (in_.can_pop() && now < port_free_) stall_bank_ += n;
-}
-
-namespace {
-
-// Texel read-out of an n x n square whose taps are all inside the texture, row-major.
-template <int n>
-void read_square(const TapGrid& g, const Image& img, Rgba8* out) {
-  for (size_t j = 0; j < n; ++j) {
-    const Rgba8* row = img.texels.data() + static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width);
-    for (size_t i = 0; i < n; ++i) out[n * j + i] = row[g.x[i]];
-  }
-}
-
-}  // namespace
-
-// Texel read-out: the footprint's taps in FilterReq order (row-major over the grid; the cross in
-// C order), the border word where a tap is outside the texture, zero where an edge shape has no
-// texel (not read).
-void CacheStage::emit() {
-  const FootprintReq& cur = fifo_.front().f;
-  const TapGrid& g = cur.grid;
-  FilterReq& f = out_.push_slot();
-  f.tag = cur.tag;
-  f.ntaps = cur.ntaps();
-  const Image& img = *levels_[static_cast<size_t>(cur.level)];
-  const auto word = [&](size_t i, size_t j) {
-    return ((g.used >> (4 * j + i)) & 1u)
-               ? img.texels[static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width) + static_cast<size_t>(g.x[i])]
-               : border_;
-  };
-  if (cur.cross) {
-    std::array<ptrdiff_t, 4> row;  // offsets of the four texel rows (a row outside is never read)
-    for (size_t j = 0; j < 4; ++j) row[j] = static_cast<ptrdiff_t>(g.y[j]) * static_cast<ptrdiff_t>(img.width);
-    const Rgba8* texels = img.texels.data();
-#pragma GCC unroll 12
-    for (size_t k = 0; k < lee_jen::kTexels; ++k) {
-      const size_t cell = kCrossCell[k];
-      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0}
-                    : ((g.used >> cell) & 1u)     ? texels[row[cell >> 2] + g.x[cell & 3]]
-                                                  : border_;
-    }
-  } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
-    switch (g.cols) {
-      case 1: read_square<1>(g, img, f.texels.data()); break;
-      case 2: read_square<2>(g, img, f.texels.data()); break;
-      case 3: read_square<3>(g, img, f.texels.data()); break;
-      default: read_square<4>(g, img, f.texels.data()); break;
-    }
-  } else {
-    size_t k = 0;
-    for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
-      for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(i, j);
-  }
-  fifo_.pop_front();
-  sim_.progress();
 }
 
 std::string CacheStage::state() const {

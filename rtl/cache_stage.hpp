@@ -57,8 +57,9 @@ class CacheStage : public sim::Module {
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
-  void accept(uint64_t now);
-  void emit();
+  // The input and output halves of evaluate() (inline: once per cycle each).
+  inline void accept(uint64_t now);
+  inline void emit();
 };
 
 }  // namespace tfu::rtl

@@ -15,23 +15,28 @@ namespace tfu::rtl {
 
 class ResponseSink : public sim::Module {
  public:
-  ResponseSink(sim::Simulator& s, sim::Channel<Response>& i, std::vector<Rgba8>& p, std::vector<uint64_t>& exit_cycle,
+  // `pixels` and `exit_cycle` have one slot per request (sized by the caller); pixel i lands in
+  // slot i when it retires.
+  ResponseSink(sim::Simulator& s, sim::Channel<Response>& i, std::vector<Rgba8>& pixels, std::vector<uint64_t>& exit_cycle,
                const std::vector<uint64_t>& accept_cycle)
-      : Module(s, "response"), in_(i), pixels_(p), exit_(exit_cycle), accept_(accept_cycle) {}
+      : Module(s, "response"), in_(i), pixels_(pixels), exit_(exit_cycle), accept_(accept_cycle) {}
   void evaluate() override {
     if (!in_.can_pop()) return;
     const Response& r = in_.front();
-    if (r.id != pixels_.size())
-      throw CheckFailed(fmt::format("response {} out of order (expected {}) at cycle {}", r.id, pixels_.size(), sim_.cycle()));
-    pixels_.push_back(r.rgba);
-    exit_.push_back(sim_.cycle());
-    const uint64_t lat = sim_.cycle() - accept_[r.id];
-    if (latency.size() <= lat) latency.resize(lat + 1);
+    if (r.id != retired_ || r.id >= pixels_.size())
+      throw CheckFailed(fmt::format("response {} out of order (expected {}) at cycle {}", r.id, retired_, sim_.cycle()));
+    const uint64_t now = sim_.cycle();
+    pixels_[r.id] = r.rgba;
+    exit_[r.id] = now;
+    const uint64_t lat = now - accept_[r.id];
+    if (lat >= latency.size()) latency.resize(lat + 1);
     ++latency[lat];
+    ++retired_;
     in_.pop();
     sim_.progress();
   }
   std::string state() const override { return in_.state(); }
+  size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)
   std::vector<uint64_t> latency;  // histogram: latency[c] = pixels that took c cycles
 
  private:
@@ -39,6 +44,7 @@ class ResponseSink : public sim::Module {
   std::vector<Rgba8>& pixels_;
   std::vector<uint64_t>& exit_;
   const std::vector<uint64_t>& accept_;
+  uint32_t retired_ = 0;
 };
 
 }  // namespace tfu::rtl

@@ -60,35 +60,6 @@ bool TexelCache::resident(int level, int x, int y) const {
   return false;
 }
 
-size_t TexelCache::set_of(uint64_t line) const {
-  return set_mask_ ? static_cast<size_t>(line & set_mask_) : static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
-}
-
-bool TexelCache::lookup(uint64_t line) {
-  ++tick_;
-  if (line == mru_line_) {  // the line of the previous lookup is still where it was (a hit)
-    ways_[mru_way_].last_use = tick_;
-    return true;
-  }
-  const size_t set = set_of(line);
-  Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
-  Way* victim = w;
-  for (int i = 0; i < cfg_.ways; ++i) {
-    if (w[i].tag == line) {
-      w[i].last_use = tick_;
-      mru_line_ = line;
-      mru_way_ = static_cast<size_t>(&w[i] - ways_.data());
-      return true;
-    }
-    if (w[i].last_use < victim->last_use) victim = &w[i];
-  }
-  victim->tag = line;  // least recently used (an empty way has last_use 0)
-  victim->last_use = tick_;
-  mru_line_ = line;
-  mru_way_ = static_cast<size_t>(victim - ways_.data());
-  return false;
-}
-
 namespace {
 
 // Column and row groups of a grid, padded to 4 x 4 with column / row 0 (unused cells never read the
@@ -180,34 +151,12 @@ void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
   }
 }
 
-// The bilinear 2x2 footprint under block parity (every LINEAR pixel): its block columns bx0, bx1
-// and rows by0, by1 give one, two or four lines, row-major.
-void TexelCache::quad_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  const int bx0 = g.x[0] >> block_shift_, bx1 = g.x[1] >> block_shift_;
-  const int by0 = g.y[0] >> block_shift_, by1 = g.y[1] >> block_shift_;
-  const uint64_t row = static_cast<uint64_t>(blocks_per_row_[l]);
-  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row;
-  const bool four_banks = cfg_.banks == 4;
-  const auto add = [&](uint64_t line, int bx, int by) {
-    s.lines[s.n++] = line;
-    ++s.nbank[four_banks ? static_cast<size_t>((bx & 1) + 2 * (by & 1)) : 0];
-  };
-  add(line0 + static_cast<uint64_t>(bx0), bx0, by0);
-  if (bx1 != bx0) add(line0 + static_cast<uint64_t>(bx1), bx1, by0);
-  if (by1 != by0) {
-    const uint64_t line1 = line0 + static_cast<uint64_t>(by1 - by0) * row;
-    add(line1 + static_cast<uint64_t>(bx0), bx0, by1);
-    if (bx1 != bx0) add(line1 + static_cast<uint64_t>(bx1), bx1, by1);
-  }
-}
-
-FootprintResult TexelCache::access(int level, const TapGrid& g) {
-  const auto l = static_cast<size_t>(level);
+// Any other footprint (and every footprint under texel parity): its line set, then the lookups in
+// that order and the bank reads.
+FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
-  } else if (g.cols == 2 && g.rows == 2 && g.used == square_cells(2, 2)) {
-    quad_lines(l, g, s);  // every LINEAR footprint
   } else {
     group_lines(l, g, s);
   }

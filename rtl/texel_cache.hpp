@@ -66,7 +66,12 @@ class TexelCache {
   // Looks up every used tap of one footprint (allocating missed lines, LRU update, lines in the
   // order the taps first reach them, row-major) and reports hits, misses and the bank cycles.
   // Taps that share a line count one access to that line.
-  FootprintResult access(int level, const TapGrid& grid);
+  FootprintResult access(int level, const TapGrid& grid) {
+    if (cfg_.bank_mapping == BankMapping::BlockParity && grid.cols == 2 && grid.rows == 2 &&
+        grid.used == square_cells(2, 2))
+      return access_quad(static_cast<size_t>(level), grid);  // every LINEAR footprint
+    return access_grid(static_cast<size_t>(level), grid);
+  }
   // Line address (unique over all levels) of the block that holds texel (x, y) of `level`.
   uint64_t line_of(int level, int x, int y) const;
   // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
@@ -94,10 +99,77 @@ class TexelCache {
   size_t mru_way_ = 0;
   std::vector<uint64_t> hits_, misses_;
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
+  FootprintResult access_quad(size_t level, const TapGrid& g);
+  FootprintResult access_grid(size_t level, const TapGrid& g);
   struct LineSet;
   void group_lines(size_t level, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
-  void quad_lines(size_t level, const TapGrid& g, LineSet& s) const;
 };
+
+// Inline: the tag lookup and the 2x2 path run once per LINEAR pixel.
+
+inline size_t TexelCache::set_of(uint64_t line) const {
+  return set_mask_ ? static_cast<size_t>(line & set_mask_) : static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
+}
+
+inline bool TexelCache::lookup(uint64_t line) {
+  ++tick_;
+  if (line == mru_line_) {  // the line of the previous lookup is still where it was (a hit)
+    ways_[mru_way_].last_use = tick_;
+    return true;
+  }
+  Way* w = &ways_[set_of(line) * static_cast<size_t>(cfg_.ways)];
+  Way* victim = w;
+  for (int i = 0; i < cfg_.ways; ++i) {
+    if (w[i].tag == line) {
+      w[i].last_use = tick_;
+      mru_line_ = line;
+      mru_way_ = static_cast<size_t>(&w[i] - ways_.data());
+      return true;
+    }
+    if (w[i].last_use < victim->last_use) victim = &w[i];
+  }
+  victim->tag = line;  // least recently used (an empty way has last_use 0)
+  victim->last_use = tick_;
+  mru_line_ = line;
+  mru_way_ = static_cast<size_t>(victim - ways_.data());
+  return false;
+}
+
+// The bilinear 2x2 footprint under block parity: its block columns bx0, bx1 and rows by0, by1 give
+// one, two or four lines, looked up row-major. Banks: the lines in one bank share the parity of bx
+// and of by, so per axis two distinct blocks of equal parity (a wrap over an odd number of blocks)
+// put two lines into every bank touched; with one bank every line is a read.
+inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
+  const int bx0 = g.x[0] >> block_shift_, bx1 = g.x[1] >> block_shift_;
+  const int by0 = g.y[0] >> block_shift_, by1 = g.y[1] >> block_shift_;
+  const auto row = static_cast<uint64_t>(blocks_per_row_[l]);
+  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row + static_cast<uint64_t>(bx0);
+  const auto dx = static_cast<uint64_t>(static_cast<int64_t>(bx1 - bx0));  // modulo 2^64
+  const uint64_t dy = static_cast<uint64_t>(static_cast<int64_t>(by1 - by0)) * row;
+  const bool two_cols = bx1 != bx0, two_rows = by1 != by0;
+  FootprintResult r;
+  const auto probe = [&](uint64_t line) {
+    if (lookup(line)) {
+      ++r.hits;
+    } else {
+      r.missed_lines[static_cast<size_t>(r.misses++)] = line;
+    }
+  };
+  probe(line0);
+  if (two_cols) probe(line0 + dx);
+  if (two_rows) {
+    probe(line0 + dy);
+    if (two_cols) probe(line0 + dy + dx);
+  }
+  if (cfg_.banks == 4) {
+    r.cycles = (two_cols && !((bx0 ^ bx1) & 1) ? 2 : 1) * (two_rows && !((by0 ^ by1) & 1) ? 2 : 1);
+  } else {
+    r.cycles = (two_cols ? 2 : 1) * (two_rows ? 2 : 1);
+  }
+  hits_[l] += static_cast<uint64_t>(r.hits);
+  misses_[l] += static_cast<uint64_t>(r.misses);
+  return r;
+}
 
 }  // namespace tfu::rtl

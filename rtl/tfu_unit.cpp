@@ -173,8 +173,8 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
 
   const size_t n = trace.requests.size();
   UnitOutput out;
-  out.pixels.reserve(n);
-  out.response_cycle.reserve(n);
+  out.pixels.resize(n);
+  out.response_cycle.resize(n);
   std::vector<uint64_t> accept(n, 0);
   sim::Simulator sim(static_cast<uint64_t>(ucfg.memory.latency) * 64 + 10000);
   const auto depth = static_cast<size_t>(ucfg.channel_depth);
@@ -232,13 +232,13 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
     vcd->add("tfu.address_gen.busy", 1, [&addr] { return uint64_t{addr.busy()}; });
     vcd->add("tfu.texel_cache.busy", 1, [&cst] { return uint64_t{cst.busy()}; });
     vcd->add("tfu.texel_cache.id", 32, [&cst] { return uint64_t{cst.current_id()}; });
-    vcd->add("tfu.response.count", 32, [&out] { return uint64_t{out.pixels.size()}; });
+    vcd->add("tfu.response.count", 32, [&sink] { return uint64_t{sink.retired()}; });
     sim.set_vcd(vcd.get());
   }
 
   sim.set_idle_skip(ucfg.idle_skip);
-  sim.run([&] { return out.pixels.size() == n; }, static_cast<uint64_t>(n) * 4096 + 1000000,
-          [&] { return static_cast<uint64_t>(out.pixels.size()); }, n);
+  sim.run([&] { return sink.retired() == n; }, static_cast<uint64_t>(n) * 4096 + 1000000,
+          [&] { return static_cast<uint64_t>(sink.retired()); }, n);
   out.cycles = sim.cycle();
   out.edge_shapes = std::move(cst.shapes);
   cst.publish(sim.stats());
