@@ -80,7 +80,26 @@ inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
 //   exact in 32-bit lanes: a horizontal lerp is at most 255 * 256 < 2^16, the vertical one < 2^24.
 inline uint64_t word_lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }  // (R, B)
 inline uint64_t word_lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }  // (G, A)
+// With SSE2 (every x86-64) the four channels of one sample go side by side instead, in 16-bit lanes:
+//   horizontal: (h0, h1) = (a, c) gu + (b, d) fu, 8 lanes, each <= 255 * 256 < 2^16 (exact);
+//   vertical:   h0 gv + h1 fv = pmaddwd([h0 - 2^15, h1 - 2^15], [gv, fv]) + 2^15 * 256, the biased
+//               h fitting signed 16 bits, then (+ 2^15) >> 16 as in the 64-bit word version.
 inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
+#if defined(__SSE2__)
+  const auto pair = [](Rgba8 x, Rgba8 y) {  // 16-bit lanes: x.r x.g x.b x.a y.r y.g y.b y.a
+    const __m128i w = _mm_unpacklo_epi32(_mm_cvtsi32_si128(std::bit_cast<int32_t>(x)), _mm_cvtsi32_si128(std::bit_cast<int32_t>(y)));
+    return _mm_unpacklo_epi8(w, _mm_setzero_si128());
+  };
+  const auto fu = static_cast<int16_t>(fu_);
+  const __m128i h = _mm_add_epi16(_mm_mullo_epi16(pair(a, c), _mm_set1_epi16(static_cast<int16_t>(256 - fu))),
+                                  _mm_mullo_epi16(pair(b, d), _mm_set1_epi16(fu)));  // (h0, h1) per channel
+  const __m128i hb = _mm_xor_si128(h, _mm_set1_epi16(static_cast<int16_t>(0x8000)));  // h - 2^15
+  const __m128i h01 = _mm_unpacklo_epi16(hb, _mm_srli_si128(hb, 8));                  // (h0, h1) pairs per channel
+  const __m128i v = _mm_madd_epi16(h01, _mm_set1_epi32(static_cast<int32_t>((uint32_t{fv_} << 16) | (256 - fv_))));
+  const __m128i ch = _mm_srli_epi32(_mm_add_epi32(v, _mm_set1_epi32((1 << 23) + (1 << 15))), 16);  // 4 x 0..255
+  const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(ch, ch), _mm_setzero_si128());
+  return std::bit_cast<Rgba8>(_mm_cvtsi128_si32(bytes));
+#else
   const uint64_t fu = fu_, fv = fv_, gu = 256 - fu, gv = 256 - fv;
   constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
   const uint64_t rb = gv * (word_lanes_rb(a) * gu + word_lanes_rb(b) * fu) +
@@ -89,6 +108,7 @@ inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, ui
                       fv * (word_lanes_ga(c) * gu + word_lanes_ga(d) * fu) + kHalf;
   return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
           static_cast<uint8_t>(ga >> 48)};
+#endif
 }
 
 // Four bilinear lerp units side by side (lane k = request k, as the unit filters a 2x2 quad's
