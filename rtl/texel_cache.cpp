@@ -80,6 +80,16 @@ struct GridGroups {
     ny = distinct(cy, vy, gy);
   }
   static int distinct(const std::array<int, 4>& v, std::array<int, 4>& out, std::array<uint8_t, 4>& group) {
+    // A run that steps by 0 or 1 (no wrap inside the footprint, the common case): the values are
+    // v[0] .. v[3], met in that order.
+    const int d1 = v[1] - v[0], d2 = v[2] - v[1], d3 = v[3] - v[2];
+    if (static_cast<unsigned>(d1) <= 1u && static_cast<unsigned>(d2) <= 1u && static_cast<unsigned>(d3) <= 1u) {
+      for (size_t i = 0; i < 4; ++i) {
+        out[i] = v[0] + static_cast<int>(i);
+        group[i] = static_cast<uint8_t>(v[i] - v[0]);
+      }
+      return v[3] - v[0] + 1;
+    }
     int m = 0;
     for (size_t i = 0; i < 4; ++i) {
       int k = 0;
