@@ -1,6 +1,7 @@
 #include "rtl/edge_datapath.hpp"
 
 #include <algorithm>
+#include <bit>
 
 #include "cmodel/datapath.hpp"
 #include "rtl/median_network.hpp"
@@ -39,14 +40,17 @@ void weighted_differences(const DirectionTables& tab, const std::array<Texel4, l
                           const lee_jen::LowIndex& low, uint32_t usable, size_t addr,
                           std::array<uint32_t, lee_jen::kDirections>& leaf) {
   const TexelFormat fmt = kVs16 ? TexelFormat::VS16X2 : TexelFormat::RGBA8;
-  std::array<uint8_t, lee_jen::kTexels + 1> src{};  // texel read for each low-pass value (0 where undefined)
-  for (size_t n = 1; n <= lee_jen::kTexels; ++n) src[n] = static_cast<uint8_t>(low[n] > 0 ? low[n] - 1 : 0);
-  for (size_t i = 0; i < lee_jen::kDirections; ++i) {
+  // The texel read for low-pass value n (texel 0 where undefined: such an endpoint is never chosen).
+  const auto endpoint = [&](size_t n) -> const Texel4& { return c[static_cast<size_t>(low[n] > 0 ? low[n] - 1 : 0)]; };
+  // Every leaf whose direction the shape does not allow, or whose ROM entry says never, is the
+  // invalid operand; the model evaluates only the other leaves' multipliers (the same values).
+  leaf.fill(kInvalidCandidate);
+  for (uint32_t m = usable; m != 0; m &= m - 1) {
+    const auto i = static_cast<size_t>(std::countr_zero(m));
     const uint8_t w = (*tab.rom[i])[addr];
-    const bool valid = ((usable >> i) & 1u) && w != lee_jen::kNeverChoose;
-    const Texel4& p = c[src[tab.ends[i][0]]];
-    const Texel4& q = c[src[tab.ends[i][1]]];
-    leaf[i] = valid ? candidate(w * lee_jen::direction_difference(p, q, fmt), static_cast<int>(i)) : kInvalidCandidate;
+    if (w == lee_jen::kNeverChoose) continue;
+    const uint32_t dp = lee_jen::direction_difference(endpoint(tab.ends[i][0]), endpoint(tab.ends[i][1]), fmt);
+    leaf[i] = candidate(w * dp, static_cast<int>(i));
   }
 }
 
