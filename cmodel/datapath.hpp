@@ -75,15 +75,25 @@ inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
 
 // The same two units on 8-bit texel words (RGBA8, L8: channels 0..255, so the result needs no
 // clamp and encode_texel is the identity). Bit-identical to bilinear_lerp / level_blend followed by
-// encode_texel (tested); written for software speed, two channels per 64-bit word.
-//   bilinear: sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu);
-//   exact in 32-bit lanes: a horizontal lerp is at most 255 * 256 < 2^16, the vertical one < 2^24.
+// encode_texel (tested, both forms of the lerp); written for software speed.
+//   bilinear: sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu),
+//   a horizontal lerp at most 255 * 256 < 2^16, the vertical one < 2^24, then (+ 2^15) >> 16.
+// Portable form: two channels per 64-bit word, exact in 32-bit lanes.
 inline uint64_t word_lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }  // (R, B)
 inline uint64_t word_lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }  // (G, A)
-// With SSE2 (every x86-64) the four channels of one sample go side by side instead, in 16-bit lanes:
-//   horizontal: (h0, h1) = (a, c) gu + (b, d) fu, 8 lanes, each <= 255 * 256 < 2^16 (exact);
-//   vertical:   h0 gv + h1 fv = pmaddwd([h0 - 2^15, h1 - 2^15], [gv, fv]) + 2^15 * 256, the biased
-//               h fitting signed 16 bits, then (+ 2^15) >> 16 as in the 64-bit word version.
+inline Rgba8 bilinear_lerp8_words(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
+  const uint64_t fu = fu_, fv = fv_, gu = 256 - fu, gv = 256 - fv;
+  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
+  const uint64_t rb = gv * (word_lanes_rb(a) * gu + word_lanes_rb(b) * fu) +
+                      fv * (word_lanes_rb(c) * gu + word_lanes_rb(d) * fu) + kHalf;
+  const uint64_t ga = gv * (word_lanes_ga(a) * gu + word_lanes_ga(b) * fu) +
+                      fv * (word_lanes_ga(c) * gu + word_lanes_ga(d) * fu) + kHalf;
+  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
+          static_cast<uint8_t>(ga >> 48)};
+}
+// With SSE2 (every x86-64) the four channels of one sample go side by side in 16-bit lanes, the
+// horizontal lerps (h0, h1) = (a, c) gu + (b, d) fu exact, the vertical one the biased pmaddwd of
+// bilinear_lerp8x4 below; elsewhere the portable form.
 inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
 #if defined(__SSE2__)
   const auto pair = [](Rgba8 x, Rgba8 y) {  // 16-bit lanes: x.r x.g x.b x.a y.r y.g y.b y.a
@@ -100,14 +110,7 @@ inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, ui
   const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(ch, ch), _mm_setzero_si128());
   return std::bit_cast<Rgba8>(_mm_cvtsi128_si32(bytes));
 #else
-  const uint64_t fu = fu_, fv = fv_, gu = 256 - fu, gv = 256 - fv;
-  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
-  const uint64_t rb = gv * (word_lanes_rb(a) * gu + word_lanes_rb(b) * fu) +
-                      fv * (word_lanes_rb(c) * gu + word_lanes_rb(d) * fu) + kHalf;
-  const uint64_t ga = gv * (word_lanes_ga(a) * gu + word_lanes_ga(b) * fu) +
-                      fv * (word_lanes_ga(c) * gu + word_lanes_ga(d) * fu) + kHalf;
-  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
-          static_cast<uint8_t>(ga >> 48)};
+  return bilinear_lerp8_words(a, b, c, d, fu_, fv_);
 #endif
 }
 

@@ -72,8 +72,8 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
   const DirectionTables& tab = direction_tables();
   const uint32_t usable = tab.usable[shape & lee_jen::kAllTexels];
   const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
-  // Leaves: one ROM and one weighted-difference multiplier per direction. Every entry is written.
-  // Entries of endpoints outside the shape are read but never chosen (their direction is not usable).
+  // Leaves: one ROM and one weighted-difference multiplier per direction; a direction the shape
+  // does not allow is the invalid operand (weighted_differences).
   std::array<uint32_t, lee_jen::kDirections> level;
   if (fmt == TexelFormat::VS16X2) {
     weighted_differences<true>(tab, c, low, usable, addr, level);

@@ -81,7 +81,7 @@ struct GridGroups {
   }
   static int distinct(const std::array<int, 4>& v, std::array<int, 4>& out, std::array<uint8_t, 4>& group) {
     // A run that steps by 0 or 1 (no wrap inside the footprint, the common case): the values are
-    // v[0] .. v[3], met in that order.
+    // v[0], v[0] + 1, ..., v[3], met in that order (out[] past them is never read).
     const int d1 = v[1] - v[0], d2 = v[2] - v[1], d3 = v[3] - v[2];
     if (static_cast<unsigned>(d1) <= 1u && static_cast<unsigned>(d2) <= 1u && static_cast<unsigned>(d3) <= 1u) {
       for (size_t i = 0; i < 4; ++i) {
@@ -171,16 +171,9 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
     group_lines(l, g, s);
   }
   FootprintResult r;
-  for (size_t i = 0; i < s.n; ++i) {
-    if (lookup(s.lines[i])) {
-      ++r.hits;
-    } else {
-      r.missed_lines[static_cast<size_t>(r.misses++)] = s.lines[i];
-    }
-  }
+  for (size_t i = 0; i < s.n; ++i) probe(s.lines[i], r);
   r.cycles = std::max(std::max(1, s.nbank[0]), std::max(std::max(s.nbank[1], s.nbank[2]), s.nbank[3]));
-  hits_[l] += static_cast<uint64_t>(r.hits);
-  misses_[l] += static_cast<uint64_t>(r.misses);
+  tally(l, r);
   return r;
 }
 

@@ -101,6 +101,9 @@ class TexelCache {
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   FootprintResult access_quad(size_t level, const TapGrid& g);
   FootprintResult access_grid(size_t level, const TapGrid& g);
+  // The lookup tail both share: one line into r's hits or misses; the level's counters.
+  void probe(uint64_t line, FootprintResult& r);
+  void tally(size_t level, const FootprintResult& r);
   struct LineSet;
   void group_lines(size_t level, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
@@ -136,6 +139,19 @@ inline bool TexelCache::lookup(uint64_t line) {
   return false;
 }
 
+[[gnu::always_inline]] inline void TexelCache::probe(uint64_t line, FootprintResult& r) {
+  if (lookup(line)) {
+    ++r.hits;
+  } else {
+    r.missed_lines[static_cast<size_t>(r.misses++)] = line;
+  }
+}
+
+inline void TexelCache::tally(size_t l, const FootprintResult& r) {
+  hits_[l] += static_cast<uint64_t>(r.hits);
+  misses_[l] += static_cast<uint64_t>(r.misses);
+}
+
 // The bilinear 2x2 footprint under block parity: its block columns bx0, bx1 and rows by0, by1 give
 // one, two or four lines, looked up row-major. Banks: the lines in one bank share the parity of bx
 // and of by, so per axis two distinct blocks of equal parity (a wrap over an odd number of blocks)
@@ -149,26 +165,18 @@ inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
   const uint64_t dy = static_cast<uint64_t>(static_cast<int64_t>(by1 - by0)) * row;
   const bool two_cols = bx1 != bx0, two_rows = by1 != by0;
   FootprintResult r;
-  const auto probe = [&](uint64_t line) {
-    if (lookup(line)) {
-      ++r.hits;
-    } else {
-      r.missed_lines[static_cast<size_t>(r.misses++)] = line;
-    }
-  };
-  probe(line0);
-  if (two_cols) probe(line0 + dx);
+  probe(line0, r);
+  if (two_cols) probe(line0 + dx, r);
   if (two_rows) {
-    probe(line0 + dy);
-    if (two_cols) probe(line0 + dy + dx);
+    probe(line0 + dy, r);
+    if (two_cols) probe(line0 + dy + dx, r);
   }
   if (cfg_.banks == 4) {
     r.cycles = (two_cols && !((bx0 ^ bx1) & 1) ? 2 : 1) * (two_rows && !((by0 ^ by1) & 1) ? 2 : 1);
   } else {
     r.cycles = (two_cols ? 2 : 1) * (two_rows ? 2 : 1);
   }
-  hits_[l] += static_cast<uint64_t>(r.hits);
-  misses_[l] += static_cast<uint64_t>(r.misses);
+  tally(l, r);
   return r;
 }
 

@@ -34,6 +34,11 @@ SamplerConfig cfg(BaseFilter b, MipMode m = MipMode::None, WrapMode w = WrapMode
 
 constexpr int32_t kMag = -256;  // lambda for magnification
 
+// A texel word of four random bytes (one draw of the generator).
+Rgba8 random_word(std::mt19937& rng) {
+  return std::bit_cast<Rgba8>(static_cast<uint32_t>(rng()));
+}
+
 TEST(FilterNames, ParseAndPrint) {
   EXPECT_EQ(filter_mode_from_name("linear-mipmap-linear"), (FilterMode{BaseFilter::Linear, MipMode::Linear}));
   EXPECT_EQ(filter_mode_from_name("Edge_Preserving_Mipmap_Linear"),
@@ -284,16 +289,12 @@ TEST(Properties, CubicWeightMemoChangesNothing) {
     }
 }
 
-// The 8-bit-word lerp and blend units (used by the LINEAR fast path and the cycle model's filter)
-// against the channel datapath + encode: every fraction pair with random words, plus the extreme
+// The 8-bit-word lerp and blend units (used by the LINEAR fast path and the cycle model's filter;
+// the lerp in both its SSE2 and its portable 64-bit word form) against the channel datapath + encode: every fraction pair with random words, plus the extreme
 // words, and every blend weight.
 TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
   std::mt19937 rng(8);
-  const auto word = [&rng] {
-    const auto v = static_cast<uint32_t>(rng());
-    return Rgba8{static_cast<uint8_t>(v), static_cast<uint8_t>(v >> 8), static_cast<uint8_t>(v >> 16),
-                 static_cast<uint8_t>(v >> 24)};
-  };
+  const auto word = [&rng] { return random_word(rng); };
   const auto channels = [](Rgba8 w) { return decode_texel(w, TexelFormat::RGBA8); };
   const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255};
   for (uint32_t fu = 0; fu < 256; ++fu)
@@ -305,6 +306,7 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
           dp::bilinear_lerp({channels(w[0]), channels(w[1]), channels(w[2]), channels(w[3])}, fu, fv, TexelFormat::RGBA8),
           TexelFormat::RGBA8);
       ASSERT_EQ(dp::bilinear_lerp8(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
+      ASSERT_EQ(dp::bilinear_lerp8_words(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
     }
   for (int f = 0; f <= 256; ++f)
     for (int k = 0; k < 64; ++k) {
@@ -319,11 +321,7 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
 // their ends.
 TEST(Properties, QuadLerpEqualsScalarLerp) {
   std::mt19937 rng(9);
-  const auto word = [&rng] {
-    const auto v = static_cast<uint32_t>(rng());
-    return Rgba8{static_cast<uint8_t>(v), static_cast<uint8_t>(v >> 8), static_cast<uint8_t>(v >> 16),
-                 static_cast<uint8_t>(v >> 24)};
-  };
+  const auto word = [&rng] { return random_word(rng); };
   const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255}, mixed{255, 0, 255, 0};
   for (uint32_t fu = 0; fu < 256; ++fu)
     for (uint32_t fv = 0; fv < 256; ++fv) {
