@@ -35,6 +35,7 @@ struct LodParams {
   int32_t bias_q8 = 0;
   int32_t min_lod_q8 = -1000 * 256;
   int32_t max_lod_q8 = 1000 * 256;
+  friend constexpr bool operator==(const LodParams&, const LodParams&) = default;
 };
 
 // Texel-space derivative lengths -> lambda (before bias/clamp). Derivatives in Q.16 texels.
@@ -46,7 +47,7 @@ int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, in
 // textureLod: explicit lambda (nearest Q.8 value).
 int32_t lambda_explicit(float lod);
 // lambda' = clamp(lambda + bias, min_lod, max_lod) (GL Eq. 8.6 order: bias, then clamp).
-inline int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
+constexpr int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
   const int64_t l = int64_t{lambda_q8} + p.bias_q8;
   return static_cast<int32_t>(l < p.min_lod_q8 ? p.min_lod_q8 : (l > p.max_lod_q8 ? p.max_lod_q8 : l));
 }

@@ -207,12 +207,12 @@ bool wrap_continuous(WrapMode m, double& c) {
   return true;
 }
 
-std::array<double, 4> border_colour(const SamplerConfig& cfg) {
+std::array<double, 4> border_colour(const SamplerDescriptor& cfg) {
   return {cfg.border.r / 255.0, cfg.border.g / 255.0, cfg.border.b / 255.0, cfg.border.a / 255.0};
 }
 
 // File textures have no analytic function: bilinear reconstruction of level 0 in double precision.
-std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerConfig& cfg, double s, double t) {
+std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerDescriptor& cfg, double s, double t) {
   const Image& im = tex.levels.front();
   const double x = s * im.width - 0.5, y = t * im.height - 0.5;
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
@@ -232,7 +232,7 @@ std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerConfig& c
 }
 
 std::array<double, 4> truth_colour(const Mesh& mesh, double s, double t) {
-  const SamplerConfig& cfg = mesh.sampler;
+  const SamplerDescriptor& cfg = mesh.sampler;
   if (!wrap_continuous(cfg.wrap_s, s) || !wrap_continuous(cfg.wrap_t, t)) return border_colour(cfg);
   return mesh.truth ? mesh.truth(s, t) : bilinear_level0(*mesh.texture, cfg, s, t);
 }
@@ -335,7 +335,7 @@ void setup_scene(Context& ctx) {
 
 void make_samplers(Context& ctx) {
   for (const Mesh& mesh : ctx.scene->meshes) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.sampler;
     if (ctx.opts->filter) cfg.mode = *ctx.opts->filter;
     ctx.samplers.push_back(std::make_unique<Sampler>(*mesh.texture, cfg));
   }

@@ -204,8 +204,8 @@ void parse_texture(const Obj& mesh, const std::string& base_dir, TextureCache& c
   out.truth = cache[key].second;
 }
 
-SamplerConfig parse_sampler(const Obj& mesh) {
-  SamplerConfig cfg;
+SamplerDescriptor parse_sampler(const Obj& mesh) {
+  SamplerDescriptor cfg;
   cfg.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
   if (!mesh.has("sampler")) return cfg;
   const Obj o(mesh.raw("sampler"), mesh.child("sampler"), mesh.source(),

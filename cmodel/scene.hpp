@@ -44,7 +44,7 @@ struct Mesh {
   std::string texture_name;                // "procedural:text@1024" or the file path
   std::shared_ptr<const Texture> texture;  // complete MIP chain (box, Lee & Jen Eq. 8) or the file's
   ColourFn truth;                          // analytic colour (procedural textures); empty for files
-  SamplerConfig sampler;
+  SamplerDescriptor sampler;
 };
 
 struct Scene {

@@ -6,7 +6,7 @@ namespace tfu::rtl {
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Sampler& sm)
     : Module(s, "address_gen"), in_(i), out_(o), smp_(sm), grid_fn_(&grid_any) {
-  const SamplerConfig& c = sm.config();
+  const SamplerDescriptor& c = sm.config();
   mipmapped_ = c.mode.mip != MipMode::None;
   lod_ = sm.lod_info(0);  // a sampler without MIP-mapping: level 0, no blend, whatever lambda
   if (c.mode.base == BaseFilter::Linear)
@@ -27,7 +27,7 @@ uint16_t cells_inside(const TapGrid& g) {
 }
 
 // NEAREST: i = floor(s W) (GL).
-void nearest_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, float s, float t) {
+void nearest_footprint(FootprintReq& f, const SamplerDescriptor& c, const Image& img, float s, float t) {
   TapGrid& g = f.grid;
   g.cols = g.rows = 1;
   g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(img.width), 0), img.width));
@@ -36,7 +36,7 @@ void nearest_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img
 
 // T x T taps from column i0 + first and row j0 + first (CUBIC: the
 // ROM's taps; the edge cross: T = 4, first = -1).
-void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, const dp::LevelCoord& u,
+void square_footprint(FootprintReq& f, const SamplerDescriptor& c, const Image& img, const dp::LevelCoord& u,
                       const dp::LevelCoord& v, int first, int taps) {
   std::array<int, 4> col{}, row{};
   wrap_run(c.wrap_s, u.i0 + first, taps, img.width, col.data());
@@ -52,7 +52,7 @@ void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img,
 }  // namespace
 
 void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t) {
-  const SamplerConfig& c = a.smp_.config();
+  const SamplerDescriptor& c = a.smp_.config();
   if (c.mode.base == BaseFilter::Nearest) {
     nearest_footprint(f, c, img, s, t);
   } else {

@@ -59,7 +59,7 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   const auto run_job = [&](Job& job) {
     if (job.quads.empty()) return;
     const Mesh& mesh = scene.meshes[static_cast<size_t>(job.mesh)];
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.sampler;
     if (opt.filter) cfg.mode = *opt.filter;
     std::ostream* vcd = (job.unit == 0 && &job == &jobs[0]) ? opt.vcd : nullptr;
     const double t0 = thread_cpu_seconds();

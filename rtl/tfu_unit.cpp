@@ -129,8 +129,8 @@ std::string unit_config_to_json(const UnitConfig& c) {
   return j.dump(2);
 }
 
-SamplerConfig golden_sampler_config(const SamplerConfig& cfg, const UnitConfig& u) {
-  SamplerConfig g = cfg;
+SamplerDescriptor golden_sampler_config(const SamplerDescriptor& cfg, const UnitConfig& u) {
+  SamplerDescriptor g = cfg;
   if (u.shape_policy == ShapePolicy::FullCross) {
     g.edge_shape = EdgeShapePolicy::Cross;
   } else {
@@ -147,12 +147,12 @@ Rgba8 golden_pixel(const Sampler& golden, const UnitConfig& u, const UnitOutput&
   return golden.sample(r.s, r.t, lambda);
 }
 
-UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace& trace, const UnitConfig& ucfg,
+UnitOutput run_unit(const Texture& tex, const SamplerDescriptor& cfg_in, const Trace& trace, const UnitConfig& ucfg,
                     std::ostream* vcd_stream) {
   ucfg.validate();
   if (trace.mode == TraceMode::Quad && trace.requests.size() % 4 != 0)
     throw InputError("a quad trace needs a multiple of 4 requests");
-  const SamplerConfig cfg = golden_sampler_config(cfg_in, ucfg);
+  const SamplerDescriptor cfg = golden_sampler_config(cfg_in, ucfg);
   const Sampler smp(tex, cfg);
   const bool edge = cfg.mode.base == BaseFilter::EdgePreserving;
   TexelCacheConfig cc = ucfg.cache;

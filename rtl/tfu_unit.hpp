@@ -56,12 +56,12 @@ struct UnitOutput {
 // The sampler configuration the golden model must use to see what the unit computes: the edge
 // shape policy follows the unit's (static -> cache blocks of B, full-cross -> cross; cache-aware
 // needs the per-pixel shapes of UnitOutput, see golden_pixel).
-SamplerConfig golden_sampler_config(const SamplerConfig& cfg, const UnitConfig& u);
+SamplerDescriptor golden_sampler_config(const SamplerDescriptor& cfg, const UnitConfig& u);
 
 // Runs a trace through the unit (clocked by the simulation kernel). `vcd`, if given, receives a
 // value-change dump of every channel's valid/ready/occupancy and the stages' busy flags. Throws
 // InputError for an invalid configuration, CheckFailed on deadlock (with every block's state).
-UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg, const Trace& trace, const UnitConfig& ucfg,
+UnitOutput run_unit(const Texture& tex, const SamplerDescriptor& cfg, const Trace& trace, const UnitConfig& ucfg,
                     std::ostream* vcd = nullptr);
 
 // The golden model's value for pixel i of a run (uses the run's kernel shapes for cache-aware).

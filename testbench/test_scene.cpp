@@ -126,13 +126,13 @@ TEST(Scene, LoadSceneFromNameOrPath) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(Scene, SamplerSettingsMapOntoSamplerConfig) {
+TEST(Scene, SamplerSettingsMapOntoSamplerDescriptor) {
   std::string mesh = kMinimalMesh;
   mesh.insert(mesh.size() - 1,
               R"(, "sampler": {"filter": "nearest_mipmap_nearest", "kernel": "bspline", "wrap_s": "mirrored-repeat",
                    "wrap_t": "clamp-to-edge", "lod_bias": -0.5})");
   const Scene s = parse_scene(scene_with_mesh(mesh), "s.json");
-  const SamplerConfig& c = s.meshes.at(0).sampler;
+  const SamplerDescriptor& c = s.meshes.at(0).sampler;
   EXPECT_EQ(c.mode, (FilterMode{BaseFilter::Nearest, MipMode::Nearest}));
   EXPECT_EQ(c.kernel, "bspline");
   EXPECT_EQ(c.wrap_s, WrapMode::MirroredRepeat);

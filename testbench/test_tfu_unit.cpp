@@ -35,7 +35,7 @@ SceneTrace scene_trace(const std::string& name, int w, int h) {
 }
 
 // Runs the unit and checks every pixel against the golden model; returns the run.
-UnitOutput run_and_compare(const Texture& tex, const SamplerConfig& cfg, const Trace& tr, const UnitConfig& u,
+UnitOutput run_and_compare(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
                            const std::string& what) {
   UnitOutput got = run_unit(tex, cfg, tr, u);
   const Sampler golden(tex, golden_sampler_config(cfg, u));
@@ -67,7 +67,7 @@ TEST_P(EveryModeAndBlock, BitExactAgainstGolden) {
   const Mesh& mesh = st.scene.meshes.front();
   for (const FilterMode& m : all_filter_modes())
     for (int block : {4, 8}) {
-      SamplerConfig cfg = mesh.sampler;
+      SamplerDescriptor cfg = mesh.sampler;
       cfg.mode = m;
       const UnitOutput got =
           run_and_compare(*mesh.texture, cfg, st.trace, small_cache(block),
@@ -85,7 +85,7 @@ TEST(TfuUnit, EveryShapePolicyAndBankMapping) {
   for (const char* mode : {"EDGE_PRESERVING", "EDGE_PRESERVING_MIPMAP_LINEAR"})
     for (ShapePolicy p : {ShapePolicy::Static, ShapePolicy::CacheAware, ShapePolicy::FullCross})
       for (BankMapping b : {BankMapping::TexelParity, BankMapping::BlockParity}) {
-        SamplerConfig cfg = mesh.sampler;
+        SamplerDescriptor cfg = mesh.sampler;
         cfg.mode = filter_mode_from_name(mode);
         UnitConfig u = small_cache(4);
         u.shape_policy = p;
@@ -106,7 +106,7 @@ TEST(TfuUnit, EveryShapePolicyAndBankMapping) {
 TEST(TfuUnit, CacheAwareShapesContainTheStaticShapes) {
   const SceneTrace st = scene_trace("text_patch", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.sampler;
   cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
   UnitConfig u = small_cache(4);
   u.shape_policy = ShapePolicy::CacheAware;
@@ -132,7 +132,7 @@ TEST(TfuUnit, StaticShapesReadExactlyTheBilinearBytes) {
     const Mesh& mesh = st.scene.meshes.front();
     for (int block : {4, 8}) {
       UnitConfig u = small_cache(block);
-      SamplerConfig cfg = mesh.sampler;
+      SamplerDescriptor cfg = mesh.sampler;
       cfg.mode = filter_mode_from_name("LINEAR");
       const uint64_t bilinear = run_unit(*mesh.texture, cfg, st.trace, u).stats.counter("memory_bytes");
       cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
@@ -156,7 +156,7 @@ TEST(TfuUnit, BitExactForEveryWrapModeAndFilterFamily) {
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR", "NEAREST"})
     for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
-      SamplerConfig cfg = mesh.sampler;
+      SamplerDescriptor cfg = mesh.sampler;
       cfg.mode = filter_mode_from_name(mode);
       cfg.wrap_s = cfg.wrap_t = w;
       cfg.border = {10, 200, 30, 255};
@@ -168,7 +168,7 @@ TEST(TfuUnit, CubicKernelsRomReconstructionAndBsplineInterp) {
   const SceneTrace st = scene_trace("magnified", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* kernel : {"catmull-rom", "bspline", "mitchell", kBsplineInterp}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.sampler;
     cfg.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
     cfg.kernel = kernel;
     for (RomRecon r : {RomRecon::Nearest, RomRecon::Linear}) {
@@ -190,7 +190,7 @@ TEST(TfuUnit, Vs16x2Textures) {
   generate_mipmaps(tex, MipMethod::Box);
   const SceneTrace st = scene_trace("ground_plane", 48, 32);
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC", "EDGE_PRESERVING_MIPMAP_LINEAR", "NEAREST_MIPMAP_NEAREST"}) {
-    SamplerConfig cfg;
+    SamplerDescriptor cfg;
     cfg.mode = filter_mode_from_name(mode);
     run_and_compare(tex, cfg, st.trace, UnitConfig{}, mode);
   }
@@ -217,7 +217,7 @@ TEST(TfuUnit, LodAndGradTraces) {
     grad.requests.push_back(r);
   }
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_NEAREST", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.sampler;
     cfg.mode = filter_mode_from_name(mode);
     run_and_compare(*mesh.texture, cfg, lod, UnitConfig{}, fmt::format("lod {}", mode));
     run_and_compare(*mesh.texture, cfg, grad, UnitConfig{}, fmt::format("grad {}", mode));
@@ -235,7 +235,7 @@ UnitConfig hot_cache() {
 
 // Clocks per pixel on hits: the trace twice through a cache that holds the whole texture, minus
 // the trace once (the second pass hits everywhere).
-double clocks_per_pixel_on_hits(const Texture& tex, const SamplerConfig& cfg, const Trace& tr, const UnitConfig& u,
+double clocks_per_pixel_on_hits(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
                                 const std::string& what) {
   Trace twice = tr;
   twice.requests.insert(twice.requests.end(), tr.requests.begin(), tr.requests.end());
@@ -246,7 +246,7 @@ double clocks_per_pixel_on_hits(const Texture& tex, const SamplerConfig& cfg, co
 TEST(TfuUnit, RatesOnHits) {
   const SceneTrace st = scene_trace("magnified", 64, 64);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.sampler;
   UnitConfig u = hot_cache();
   const auto rate = [&](const char* mode, const UnitConfig& uc) {
     cfg.mode = filter_mode_from_name(mode);
@@ -279,7 +279,7 @@ TEST(TfuUnit, LatencyPerMode) {
   r.s = r.t = 6.0f / 64.0f;
   r.lod = -1.0f;
   one.requests.push_back(r);
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.sampler;
   const auto latency = [&](const char* mode, int lanes) {
     cfg.mode = filter_mode_from_name(mode);
     UnitConfig u = hot_cache();
@@ -303,7 +303,7 @@ TEST(TfuUnit, IdleSkippingChangesNothing) {
   const SceneTrace st = scene_trace("text_patch", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* mode : {"LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.sampler;
     cfg.mode = filter_mode_from_name(mode);
     UnitConfig u = small_cache(4);
     u.memory.latency = 300;  // memory-bound: long idle stretches
@@ -370,7 +370,7 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
 TEST(TfuUnit, VcdDumpsEveryChannel) {
   const SceneTrace st = scene_trace("magnified", 16, 16);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.sampler;
   cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
   std::ostringstream vcd;
   const UnitOutput o = run_unit(*mesh.texture, cfg, st.trace, UnitConfig{}, &vcd);
@@ -383,7 +383,7 @@ TEST(TfuUnit, VcdDumpsEveryChannel) {
 TEST(TfuUnit, ErrorsAreInputErrors) {
   const SceneTrace st = scene_trace("magnified", 16, 16);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.sampler;
   UnitConfig bad;
   bad.cache.block = 5;
   EXPECT_THROW(run_unit(*mesh.texture, cfg, st.trace, bad), InputError);

@@ -30,7 +30,7 @@ struct SampleOptions {
 void run(const SampleOptions& o) {
   if (o.out != "-" && std::filesystem::exists(o.out) && !o.force)
     throw InputError(fmt::format("--out '{}' already exists (use --force to overwrite)", o.out));
-  const SamplerConfig cfg = sampler_config_from_options(o.smp);
+  const SamplerDescriptor cfg = sampler_config_from_options(o.smp);
   const Trace tr = load_trace(o.requests);
   const Texture tex = load_texture_from_options(o.tex);
   const Sampler smp(tex, cfg);

@@ -104,7 +104,7 @@ void run(SimOptions& o, CLI::App& cmd) {
     if (o.tex.texture.empty()) throw InputError("--requests needs --texture");
     if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
     const Texture texture = load_texture_from_options(o.tex);
-    const SamplerConfig cfg = sampler_config_from_options(o.smp);
+    const SamplerDescriptor cfg = sampler_config_from_options(o.smp);
     const Trace trace = load_trace(o.requests);
     const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit, vcd.get());
     const Sampler golden(texture, rtl::golden_sampler_config(cfg, o.unit));

@@ -21,6 +21,8 @@ void add_texture_options(CLI::App& cmd, TextureOptions& o) {
   cmd.add_option("--mipmaps", o.mipmaps,
                  "MIP levels: auto (the file's stored levels, else box), stored, none, box, gaussian, edge");
   cmd.add_option("--alpha", o.alpha, "Edge-preserving MIP weight alpha of Lee & Jen Eq. 7 (0..1)");
+  cmd.add_option("--layout", o.layout, "Memory layout of the texture: tiled (one tile per cache line) or linear rows");
+  cmd.add_option("--tile-bytes", o.tile_bytes, "Tiled layout: bytes per tile, one cache line (64, 256 or 1024)");
 }
 
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o) {
@@ -36,8 +38,8 @@ void add_sampler_options(CLI::App& cmd, SamplerOptions& o) {
   cmd.add_option("--rom-samples", o.rom_samples, "CUBIC weight ROM: samples per tile (16..512)");
   cmd.add_option("--rom-bits", o.rom_bits, "CUBIC weight ROM: magnitude bits (4..16)");
   cmd.add_option("--rom-recon", o.rom_recon, "CUBIC weight reconstruction: nearest or linear");
-  cmd.add_option("--edge-shape", o.edge_shape, "Edge-preserving kernel shape: cross, or cache-block (T/L at block borders)");
-  cmd.add_option("--cache-block", o.cache_block, "Cache block size B (texels) for --edge-shape cache-block");
+  cmd.add_option("--edge-shape", o.edge_shape,
+                 "Edge-preserving kernel shapes: static (cross / T / L from the texture's tiles), cross, cache-aware");
 }
 
 namespace {
@@ -100,6 +102,9 @@ Texture load_texture_from_options(const TextureOptions& o) {
         for (Rgba8& t : l.texels) t = {t.r, t.r, t.r, 255};
     tex.format = f;
   }
+  tex.layout = memory_layout_from_name(o.layout);
+  if (!valid_tile_bytes(o.tile_bytes)) throw InputError(fmt::format("--tile-bytes {} must be 64, 256 or 1024", o.tile_bytes));
+  tex.tile_bytes = o.tile_bytes;
   const std::string& m = o.mipmaps;
   if (m == "auto") {
     if (tex.levels.size() == 1) generate_mipmaps(tex, MipMethod::Box);
@@ -113,8 +118,8 @@ Texture load_texture_from_options(const TextureOptions& o) {
   return tex;
 }
 
-SamplerConfig sampler_config_from_options(const SamplerOptions& o) {
-  SamplerConfig c;
+SamplerDescriptor sampler_config_from_options(const SamplerOptions& o) {
+  SamplerDescriptor c;
   c.mode = filter_mode_from_name(o.filter);
   c.wrap_s = wrap_mode_from_name(o.wrap_s.empty() ? o.wrap : o.wrap_s);
   c.wrap_t = wrap_mode_from_name(o.wrap_t.empty() ? o.wrap : o.wrap_t);
@@ -122,21 +127,14 @@ SamplerConfig sampler_config_from_options(const SamplerOptions& o) {
   c.lod.bias_q8 = lod_q8("--lod-bias", o.lod_bias);
   c.lod.min_lod_q8 = lod_q8("--min-lod", o.min_lod);
   c.lod.max_lod_q8 = lod_q8("--max-lod", o.max_lod);
-  bool known = false;
-  for (const auto& k : cubic_kernel_names()) known = known || k == o.kernel;
-  if (!known) {
-    std::string list;
-    for (const auto& k : cubic_kernel_names()) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(fmt::format("unknown kernel '{}' (valid: {})", o.kernel, list));
-  }
+  cubic_kernel_index(o.kernel);
   c.kernel = o.kernel;
   c.cubic_rom.samples = o.rom_samples;
   c.cubic_rom.bits = o.rom_bits;
   c.cubic_rom.validate();
   c.cubic_recon = parse_choice<RomRecon>("--rom-recon", o.rom_recon, {{"nearest", RomRecon::Nearest}, {"linear", RomRecon::Linear}});
-  c.edge_shape = parse_choice<EdgeShapePolicy>("--edge-shape", o.edge_shape,
-                                               {{"cross", EdgeShapePolicy::Cross}, {"cache-block", EdgeShapePolicy::CacheBlock}});
-  c.edge_cache_block = o.cache_block;
+  c.edge_shape = parse_choice<EdgeShape>("--edge-shape", o.edge_shape,
+                                         {{"static", EdgeShape::Static}, {"cross", EdgeShape::Cross}, {"cache-aware", EdgeShape::CacheAware}});
   return c;
 }
 

@@ -16,6 +16,8 @@ struct TextureOptions {
   std::string format = "auto";    // auto | rgba8 | l8 | vs16x2 (reinterpret the file's bytes)
   std::string mipmaps = "auto";   // auto (stored levels, else box) | stored | none | box | gaussian | edge
   double alpha = 0.5;             // edge-preserving MIP blend (Lee & Jen Eq. 7)
+  std::string layout = "tiled";   // memory layout: linear | tiled
+  int tile_bytes = 64;            // tiled: bytes per tile (one cache line): 64, 256, 1024
 };
 
 struct SamplerOptions {
@@ -28,14 +30,14 @@ struct SamplerOptions {
   int rom_samples = 64;
   unsigned rom_bits = 8;
   std::string rom_recon = "nearest";
-  std::string edge_shape = "cross";
-  int cache_block = 4;
+  std::string edge_shape = "static";
+  int max_aniso = 1;
 };
 
 void add_texture_options(CLI::App& cmd, TextureOptions& o);
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o);
 Texture load_texture_spec(const std::string& spec);  // file path or proc:NAME[:SIZE]
 Texture load_texture_from_options(const TextureOptions& o);
-SamplerConfig sampler_config_from_options(const SamplerOptions& o);
+SamplerDescriptor sampler_config_from_options(const SamplerOptions& o);
 
 }  // namespace tfu::cli

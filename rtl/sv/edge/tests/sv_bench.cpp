@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     const tfu::Mesh& mesh = scene.meshes.front();
     std::vector<tfu::EdgeFootprint> fps;
     for (const bool blocks : {false, true}) {
-      tfu::SamplerConfig cfg = mesh.sampler;
+      tfu::SamplerDescriptor cfg = mesh.sampler;
       cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
       cfg.edge_shape = blocks ? tfu::EdgeShapePolicy::CacheBlock : tfu::EdgeShapePolicy::Cross;
       const tfu::Sampler smp(*mesh.texture, cfg);
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
     {
       // The whole C++ cycle model (rtl/, static 4x4 shapes) on the same scene trace, for scale: it
       // adds the LOD unit, address generation, kernel selection, the cache and the pipeline.
-      tfu::SamplerConfig cfg = mesh.sampler;
+      tfu::SamplerDescriptor cfg = mesh.sampler;
       cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
       tfu::Trace big;
       big.mode = trace.mode;

@@ -586,7 +586,7 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
   ASSERT_NE(tex.format, tfu::TexelFormat::VS16X2);  // the SV is RGBA8 only
   const std::vector<int32_t> lambdas = tfu::trace_lambdas(trace, tex.width(), tex.height());
   for (const int block : {0, 4, 8}) {  // 0: cross
-    tfu::SamplerConfig cfg = mesh.sampler;
+    tfu::SamplerDescriptor cfg = mesh.sampler;
     cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
     cfg.edge_shape = block ? tfu::EdgeShapePolicy::CacheBlock : tfu::EdgeShapePolicy::Cross;
     cfg.edge_cache_block = block ? block : 4;

@@ -1,0 +1,53 @@
+// The texel memory: one byte-addressed image holding every texture of a frame at its descriptor's
+// addresses (docs/descriptors.md), as the driver uploads them and as the cycle model's texel cache
+// fetches them, line by line, by address.
+//
+//   allocate     next free address aligned to 256 bytes (addresses start at 0x1000; 0 is never a texture)
+//   place        writes a texture's levels in its layout (linear rows or tiles of one cache line) and
+//                returns its descriptor; every level and every linear row starts on 256 bytes
+//   read_texel   the texel word at (level, x, y) through the descriptor: RGBA8 / VS16X2 4 bytes
+//                (R, G, B, A in address order), L8 1 byte fetched as (L, L, L, 255) as GL_LUMINANCE
+//   read_texture the texture back from memory (decode; equals what was placed, tested)
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cmodel/descriptors.hpp"
+#include "cmodel/texture.hpp"
+
+namespace tfu {
+
+class TextureMemory {
+ public:
+  static constexpr uint64_t kFirstAddress = 0x1000;
+  static constexpr uint64_t kMaxBytes = uint64_t{1} << 32;  // 4 GiB of texels per frame
+
+  // Reserves `bytes` at the next multiple of kLevelAlign; throws InputError beyond kMaxBytes.
+  uint64_t allocate(uint64_t bytes);
+  uint64_t end() const { return kFirstAddress + bytes_.size(); }  // first unallocated address
+  uint64_t bytes_used() const { return bytes_.size(); }
+
+  Rgba8 read_word(uint64_t address, TexelFormat f) const {
+    const uint8_t* p = bytes_.data() + (address - kFirstAddress);
+    if (f == TexelFormat::L8) return {p[0], p[0], p[0], 255};
+    return {p[0], p[1], p[2], p[3]};
+  }
+  void write_word(uint64_t address, TexelFormat f, Rgba8 w);
+  // The bytes [address, address + n) (a cache line fill).
+  const uint8_t* bytes_at(uint64_t address) const { return bytes_.data() + (address - kFirstAddress); }
+
+ private:
+  std::vector<uint8_t> bytes_;
+};
+
+// Writes `tex` (its format, layout and tile size) at fresh addresses and returns its descriptor.
+TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex);
+inline Rgba8 read_texel(const TextureMemory& mem, const TextureDescriptor& d, int level, int x, int y) {
+  return mem.read_word(d.texel_address(level, x, y), d.format);
+}
+// Decodes the levels of `d` from memory (format, layout and tile size from the descriptor).
+Texture read_texture(const TextureMemory& mem, const TextureDescriptor& d);
+
+}  // namespace tfu
