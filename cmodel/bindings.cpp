@@ -133,16 +133,20 @@ constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layo
 
 std::span<const SamplerParam> sampler_params() { return kSamplerParams; }
 
+void set_sampler_param(SamplerDescriptor& s, const std::string& key, const std::string& value) {
+  for (const SamplerParam& q : kSamplerParams)
+    if (key == q.key) return q.set(s, value);
+  throw InputError(fmt::format("unknown sampler key '{}'", clip(key)));
+}
+
 SamplerDescriptor sampler_from_params(const Params& params, const std::string& where, SamplerDescriptor s) {
   for (const auto& [key, value] : params) {
-    const SamplerParam* p = nullptr;
-    for (const SamplerParam& q : kSamplerParams)
-      if (key == q.key) p = &q;
-    if (!p) throw InputError(fmt::format("{}: unknown sampler key '{}'", where, clip(key)));
     try {
-      p->set(s, value);
+      set_sampler_param(s, key, value);
     } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: key '{}': {}", where, key, e.what()));
+      const std::string msg = e.what();
+      throw InputError(msg.rfind("unknown sampler key", 0) == 0 ? fmt::format("{}: {}", where, msg)
+                                                                 : fmt::format("{}: key '{}': {}", where, key, msg));
     }
   }
   try {
@@ -188,13 +192,17 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       }
       name.resize(colon);
     }
-    Procedural p = make_procedural(name, size);
-    tex = std::move(p.texture);
-    out.truth = std::move(p.eval);
+    try {
+      Procedural p = make_procedural(name, size);
+      tex = std::move(p.texture);
+      out.truth = std::move(p.eval);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", where, e.what()));
+    }
   } else {
     std::filesystem::path path(spec.source);
     if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-    tex = load_texture(path.string());
+    tex = load_texture(path.string());  // its errors name the file
   }
   const std::string format = param("format", "auto");
   if (format != "auto") {

@@ -25,6 +25,8 @@ struct SamplerParam {
   std::string (*get)(const SamplerDescriptor& s);
 };
 std::span<const SamplerParam> sampler_params();
+// Sets one key (InputError without a location: "unknown sampler key ..." or the value's problem).
+void set_sampler_param(SamplerDescriptor& s, const std::string& key, const std::string& value);
 // Applies `params` over `base`; an unknown key or bad value is an InputError "WHERE: key 'k': ...".
 SamplerDescriptor sampler_from_params(const Params& params, const std::string& where, SamplerDescriptor base = {});
 // Every key with its value (what a trace header records).

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <tuple>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
 #include "cmodel/kernels.hpp"
+#include "cmodel/unorm.hpp"
 
 namespace tfu {
 
@@ -156,6 +158,24 @@ void Registers::validate() const {
       throw InputError(fmt::format("sampler descriptor {}: {}", i, e.what()));
     }
   }
+}
+
+std::unique_ptr<TileWeightRom> make_cubic_rom(const SamplerDescriptor& s) {
+  s.cubic_rom.validate();
+  const FilterKernel kernel = s.kernel == kBsplineInterp ? FilterKernel::bspline() : FilterKernel::by_name(s.kernel);
+  if (kernel.width() > 4) throw InputError(fmt::format("kernel '{}' is wider than the 4x4 CUBIC footprint", s.kernel));
+  return std::make_unique<TileWeightRom>(kernel, s.cubic_rom);
+}
+
+dp::CubicNormalize cubic_normalize_registers(unsigned rom_bits, const TextureDescriptor& t) {
+  dp::CubicNormalize n;
+  n.M = static_cast<int64_t>(unorm::max_code(rom_bits));
+  const TexelFormat f = t.content == TextureContent::BsplineCoefficients ? TexelFormat::RGBA8 : t.format;
+  std::tie(n.lo, n.hi) = channel_range(f);
+  n.prefiltered = t.content == TextureContent::BsplineCoefficients;
+  n.scale_q = t.coeff_scale_q;
+  n.bias_q = t.coeff_bias_q;
+  return n;
 }
 
 // ---------------------------------------------------------------- register encoding

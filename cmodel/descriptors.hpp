@@ -21,6 +21,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "cmodel/datapath.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/weight_rom.hpp"
@@ -164,6 +167,14 @@ constexpr LevelPick select_levels(int32_t lambda_q8, MipMode mip, int last) {
 constexpr LevelPick select_levels(int32_t lambda_q8_unclamped, const SamplerDescriptor& s, int last) {
   return select_levels(lambda_bias_clamp(lambda_q8_unclamped, s.lod), s.mode.mip, last);
 }
+
+// ---- What the descriptors configure in the cubic datapath (both models build it with these) ----
+// The tile-weight ROM of a CUBIC sampler: its kernel (the cubic B-spline for bspline-interp) sampled
+// by its ROM fields (weight_rom.hpp); InputError for a kernel wider than the 4 x 4 footprint.
+std::unique_ptr<TileWeightRom> make_cubic_rom(const SamplerDescriptor& s);
+// The normalise stage's registers for a ROM of `rom_bits` and a texture: M = 2^b - 1, the format's
+// channel range, and for B-spline coefficient textures the decode with S and B (dp::cubic_normalize).
+dp::CubicNormalize cubic_normalize_registers(unsigned rom_bits, const TextureDescriptor& t);
 
 // ---- Register encoding ----
 // One field of a descriptor's register words: bits [lsb, lsb + width) of word `word` (+ `stride`

@@ -26,7 +26,7 @@ int FrameBuilder::add_texture(std::shared_ptr<const Texture> tex, TextureSpec sp
   }
   if (frame_.textures.size() >= kMaxTextureDescriptors)
     throw InputError(fmt::format("more than {} textures in one frame", kMaxTextureDescriptors));
-  frame_.regs.textures.push_back(place_texture(frame_.memory, *tex));
+  frame_.regs.textures.push_back(place_texture(frame_.memory, *tex, static_cast<uint64_t>(frame_.line_bytes)));
   frame_.textures.push_back({spec.source, std::move(spec), std::move(tex), -1});
   const int index = static_cast<int>(frame_.textures.size()) - 1;
   placed_[key] = index;
@@ -51,7 +51,8 @@ int FrameBuilder::bind(int texture, int sampler) {
   if (const auto it = coefficients_.find(key); it != coefficients_.end()) return it->second;
   const FrameTexture& src = frame_.textures.at(static_cast<size_t>(texture));
   const BsplineCoefficients c = prefilter_bspline(*src.texels, s.wrap_s, s.wrap_t);
-  TextureDescriptor d = place_texture(frame_.memory, bspline_coefficient_texture(*src.texels, c));
+  TextureDescriptor d =
+      place_texture(frame_.memory, bspline_coefficient_texture(*src.texels, c), static_cast<uint64_t>(frame_.line_bytes));
   d.content = TextureContent::BsplineCoefficients;
   d.coeff_scale_q = c.scale_q;
   d.coeff_bias_q = c.bias_q;

@@ -32,13 +32,10 @@ Sampler::Sampler(const Texture& tex, SamplerDescriptor cfg) : tex_(tex), cfg_(st
 // CUBIC modes: kernel, tile-weight ROM, normalise registers, weight memo and, for bspline-interp,
 // the prefiltered coefficient levels.
 void Sampler::build_cubic() {
-  cfg_.cubic_rom.validate();
   impl_->prefiltered = cfg_.kernel == kBsplineInterp;
   impl_->kernel = std::make_unique<FilterKernel>(
-      impl_->prefiltered ? FilterKernel::bspline() : FilterKernel::by_name(cfg_.kernel));
-  if (impl_->kernel->width() > 4)
-    throw InputError(fmt::format("kernel '{}' is wider than the 4x4 CUBIC footprint", cfg_.kernel));
-  impl_->rom = std::make_unique<TileWeightRom>(*impl_->kernel, cfg_.cubic_rom);
+      impl_->prefiltered ? FilterKernel::bspline() : FilterKernel::by_name(cfg_.kernel));  // the ideal path's h
+  impl_->rom = make_cubic_rom(cfg_);
   impl_->norm.M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
   std::tie(impl_->norm.lo, impl_->norm.hi) = channel_range(tex_.format);
   if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {

@@ -1,13 +1,15 @@
 #include "cmodel/texture_memory.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
 
 namespace tfu {
 
-uint64_t TextureMemory::allocate(uint64_t bytes) {
-  const uint64_t at = (end() + kLevelAlign - 1) / kLevelAlign * kLevelAlign;
+uint64_t TextureMemory::allocate(uint64_t bytes, uint64_t align) {
+  const uint64_t at = (end() + align - 1) / align * align;
   const uint64_t size = at + bytes - kFirstAddress;
   if (bytes > kMaxBytes || size > kMaxBytes)
     throw InputError(fmt::format("texel memory: {} more bytes exceed the frame's {} GiB", bytes, kMaxBytes >> 30));
@@ -27,8 +29,9 @@ void TextureMemory::write_word(uint64_t address, TexelFormat f, Rgba8 w) {
   p[3] = w.a;
 }
 
-TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex) {
+TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t align) {
   tex.validate("texture");
+  align = std::max(align, kLevelAlign);
   TextureDescriptor d;
   d.format = tex.format;
   d.width = tex.width();
@@ -41,13 +44,12 @@ TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex) {
     const Image& img = tex.levels[static_cast<size_t>(l)];
     LevelDescriptor& ld = d.level[static_cast<size_t>(l)];
     if (d.layout == MemoryLayout::Linear) {
-      ld.row_pitch = static_cast<uint32_t>((static_cast<uint64_t>(img.width) * bpt + kLevelAlign - 1) / kLevelAlign * kLevelAlign);
+      ld.row_pitch = static_cast<uint32_t>((static_cast<uint64_t>(img.width) * bpt + align - 1) / align * align);
     } else {
       const uint64_t tiles_per_row = static_cast<uint64_t>((img.width + d.tile_side() - 1) >> d.tile_log2);
-      ld.row_pitch = static_cast<uint32_t>((tiles_per_row * static_cast<uint64_t>(d.tile_bytes()) + kLevelAlign - 1) /
-                                           kLevelAlign * kLevelAlign);
+      ld.row_pitch = static_cast<uint32_t>((tiles_per_row * static_cast<uint64_t>(d.tile_bytes()) + align - 1) / align * align);
     }
-    ld.address = mem.allocate(d.level_bytes(l));
+    ld.address = mem.allocate(d.level_bytes(l), align);
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x) mem.write_word(d.texel_address(l, x, y), d.format, img.at(x, y));
   }

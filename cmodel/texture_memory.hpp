@@ -24,8 +24,9 @@ class TextureMemory {
   static constexpr uint64_t kFirstAddress = 0x1000;
   static constexpr uint64_t kMaxBytes = uint64_t{1} << 32;  // 4 GiB of texels per frame
 
-  // Reserves `bytes` at the next multiple of kLevelAlign; throws InputError beyond kMaxBytes.
-  uint64_t allocate(uint64_t bytes);
+  // Reserves `bytes` at the next multiple of `align` (a power of two >= kLevelAlign); throws
+  // InputError beyond kMaxBytes.
+  uint64_t allocate(uint64_t bytes, uint64_t align = kLevelAlign);
   uint64_t end() const { return kFirstAddress + bytes_.size(); }  // first unallocated address
   uint64_t bytes_used() const { return bytes_.size(); }
 
@@ -43,7 +44,9 @@ class TextureMemory {
 };
 
 // Writes `tex` (its format, layout and tile size) at fresh addresses and returns its descriptor.
-TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex);
+// Levels and linear rows start on multiples of `align` (256, or the cache line when it is longer,
+// so that lines never straddle two rows or levels).
+TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t align = kLevelAlign);
 inline Rgba8 read_texel(const TextureMemory& mem, const TextureDescriptor& d, int level, int x, int y) {
   return mem.read_word(d.texel_address(level, x, y), d.format);
 }

@@ -5,23 +5,35 @@
 #include <array>
 #include <cstdint>
 
+#include "cmodel/descriptors.hpp"
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/texture.hpp"
 
 namespace tfu::rtl {
 
+// The descriptor indices a request names and the material stage it belongs to:
+//   texture[11:0] (texture descriptor), sampler[7:0] (sampler descriptor), stage[1:0] (statistics)
+struct RequestTag {
+  uint16_t texture = 0;
+  uint8_t sampler = 0;
+  uint8_t stage = 0;
+};
+
 // request_fifo -> lod_unit: one 2x2 quad (quad traces) or one pixel (lod / grad traces).
-//   id[31:0], npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32
+//   id[31:0], descriptor indices, npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32
 struct QuadReq {
   uint32_t id = 0;  // index of the first pixel in the trace
+  RequestTag req;
   int npix = 4;
   std::array<float, 4> s{}, t{};
   float lod = 0, dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;
 };
 
-// lod_unit -> address_gen: one pixel per cycle.  id, s t FP32, lambda[15:0] (Q.8, before bias/clamp)
+// lod_unit -> address_gen: one pixel per cycle.  id, descriptor indices, s t FP32, lambda[15:0]
+// (Q.8, before bias/clamp)
 struct PixelReq {
   uint32_t id = 0;
+  RequestTag req;
   float s = 0, t = 0;
   int32_t lambda = 0;
 };
@@ -73,11 +85,16 @@ constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
 
 // What travels with one level footprint from address_gen to the filter's output, unchanged except
 // for the shape (set by kernel_select, widened by the cache-aware probe):
-//   id[31:0], fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1),
-//   two/second (a blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross:
-//   texels the kernel may use)
+//   id[31:0], descriptor indices, base[1:0] (the sampler's base filter: routes the footprint to
+//   the filter or the edge datapath), format[1:0] (the texture's texel format, for unpack),
+//   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), two/second (a
+//   blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross: texels the
+//   kernel may use)
 struct LevelTag {
   uint32_t id = 0;
+  RequestTag req;
+  BaseFilter base = BaseFilter::Linear;
+  TexelFormat format = TexelFormat::RGBA8;
   uint32_t fu = 0, fv = 0;
   int blend = 0;
   bool two = false, second = false;

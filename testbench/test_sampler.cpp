@@ -410,14 +410,14 @@ TEST(Properties, FastPathsEqualGenericPath) {
   struct Case {
     BaseFilter base;
     const char* kernel;
-    EdgeShapePolicy shape;
+    EdgeShape shape;
   };
-  const Case cases[] = {{BaseFilter::Linear, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "bspline", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "bspline-interp", EdgeShapePolicy::Cross},
-                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::CacheBlock}};
+  const Case cases[] = {{BaseFilter::Linear, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "bspline", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "bspline-interp", EdgeShape::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShape::Static}};
   const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
   for (const auto& [w, h, f] : {std::tuple{32, 16, TexelFormat::RGBA8}, std::tuple{37, 21, TexelFormat::L8}}) {
     Texture t = random_texture(w, h, 17, f);
@@ -463,8 +463,12 @@ TEST(Config, RejectsBadSettings) {
   SamplerDescriptor c = cfg(BaseFilter::Cubic);
   c.kernel = "no-such-kernel";
   EXPECT_THROW(Sampler(t, c), std::exception);
-  c = cfg(BaseFilter::EdgePreserving);
-  c.edge_cache_block = 3;
+  c = cfg(BaseFilter::Linear);
+  c.max_aniso = 17;
+  EXPECT_THROW(Sampler(t, c), std::exception);
+  c = cfg(BaseFilter::Linear);
+  c.lod.min_lod_q8 = 2 * 256;
+  c.lod.max_lod_q8 = 256;
   EXPECT_THROW(Sampler(t, c), std::exception);
   Texture big;
   big.levels.emplace_back(kMaxTextureSize + 1, 1);

@@ -143,9 +143,14 @@ class Fifo {
   size_t head_ = 0, count_ = 0;
 };
 
-// Named counters and histograms, written as JSON.
+// Named counters, values, histograms and tables (rows of counters under a label, e.g. one row per
+// texture), written as JSON.
 class Stats {
  public:
+  struct Table {
+    std::vector<std::string> columns;
+    std::vector<std::pair<std::string, std::vector<uint64_t>>> rows;  // label, one counter per column
+  };
   void add(const std::string& name, uint64_t n = 1) { counters_[name] += n; }
   void set(const std::string& name, double v) { values_[name] = v; }
   void sample(const std::string& histogram, size_t bucket) {
@@ -167,12 +172,22 @@ class Stats {
     return it == counters_.end() ? 0 : it->second;
   }
   const std::map<std::string, uint64_t>& counters() const { return counters_; }
+  void set_table(const std::string& name, Table t) { tables_[name] = std::move(t); }
+  const Table* table(const std::string& name) const {
+    const auto it = tables_.find(name);
+    return it == tables_.end() ? nullptr : &it->second;
+  }
+  // Adds `from`'s counters, histograms and table rows (rows with equal labels summed) into this.
+  void merge(const Stats& from, bool add_counters = true);
   void write_json(std::ostream& os) const;
+  // The same as a JSON object (to embed in a larger document).
+  std::string json_text() const;
 
  private:
   std::map<std::string, uint64_t> counters_;
   std::map<std::string, double> values_;
   std::map<std::string, std::vector<uint64_t>> histograms_;
+  std::map<std::string, Table> tables_;
 };
 
 class Simulator;

@@ -8,7 +8,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/mipmap.hpp"
 #include "sim/tfu/commands.hpp"
-#include "sim/tfu/sampler_options.hpp"
+#include "cmodel/bindings.hpp"
 
 namespace tfu::cli {
 namespace {
@@ -27,10 +27,7 @@ void run(const MipmapOptions& o) {
   namespace fs = std::filesystem;
   if (fs::exists(o.out) && !fs::is_directory(o.out))
     throw InputError(fmt::format("--out '{}' exists and is not a directory", o.out));
-  TextureOptions to;
-  to.texture = o.texture;
-  to.mipmaps = "none";
-  Texture tex = load_texture_from_options(to);
+  Texture tex = *load_texture_spec({o.texture, {{"mipmaps", "none"}}}, "--texture").texture;
   generate_mipmaps(tex, method, o.alpha);
   // Check every target before writing any, so nothing is half-overwritten.
   std::vector<std::string> paths;

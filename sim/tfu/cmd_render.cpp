@@ -12,6 +12,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_frame.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 
@@ -77,7 +78,7 @@ void run(const RenderCliOptions& o) {
   save_image(r.image, out, o.force);
   std::cout << out << '\n';
   if (ro.trace) {
-    write_trace_file(r.trace, o.trace_out);
+    write_trace_file(loadable_trace(r.frame->frame, r.trace), o.trace_out);
     std::cout << o.trace_out << '\n';
   }
   if (ro.ground_truth) {
@@ -96,7 +97,8 @@ void register_render(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "render", "Render a scene through the golden sampler (2x2 quads, quad-derivative LOD); optional trace and ground truth");
   cmd->add_option("--scene", o->scene, "Built-in scene name (see --list) or a scene JSON file")->capture_default_str();
-  cmd->add_option("--filter", o->filter, "Override every mesh's filter (e.g. linear_mipmap_linear, cubic, edge_preserving)");
+  cmd->add_option("--filter", o->filter,
+                  "Override the filter of every mesh's base stage (e.g. trilinear, cubic, edge_preserving_mipmap_linear)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--truth-out", o->truth_out, "Also write the 8x8-supersampled analytic ground truth image");

@@ -1,5 +1,7 @@
-// tfu sample: run a request trace through the golden sampler (one r,g,b,a line per request), or
-// report what the LOD unit / meta MIP-map supplies per request (--query-lod).
+// tfu sample: run a request trace through the golden model (one r,g,b,a line per request), or
+// report what the LOD unit / meta MIP-map supplies per request (--query-lod). The trace's header
+// binds its textures and samplers (docs/traces.md), or the command line describes texture 0 and
+// sampler 0.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -8,8 +10,8 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/lod.hpp"
-#include "cmodel/sampler.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
@@ -27,14 +29,17 @@ struct SampleOptions {
   bool ideal = false;
 };
 
-void run(const SampleOptions& o) {
+void run(const SampleOptions& o, const CLI::App& cmd) {
   if (o.out != "-" && std::filesystem::exists(o.out) && !o.force)
     throw InputError(fmt::format("--out '{}' already exists (use --force to overwrite)", o.out));
-  const SamplerDescriptor cfg = sampler_config_from_options(o.smp);
-  const Trace tr = load_trace(o.requests);
-  const Texture tex = load_texture_from_options(o.tex);
-  const Sampler smp(tex, cfg);
-  const std::vector<int32_t> lam = trace_lambdas(tr, tex.width(), tex.height());
+  Trace tr = load_trace(o.requests);
+  const std::optional<TextureSpec> spec = texture_spec_given(cmd, o.tex);
+  int line_bytes = 64;  // tiles of --tile-bytes, if given (the static edge shapes follow them)
+  if (spec && spec->params.contains("tile_bytes")) line_bytes = std::atoi(spec->params.at("tile_bytes").c_str());
+  if (!valid_tile_bytes(line_bytes)) throw InputError(fmt::format("--tile-bytes {} must be 64, 256 or 1024", line_bytes));
+  const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes);
+  const GoldenUnit golden(frame);
+  const std::vector<int32_t> lam = golden.lambdas(tr);
 
   std::unique_ptr<std::ofstream> file;
   if (o.out != "-") {
@@ -42,18 +47,15 @@ void run(const SampleOptions& o) {
     if (!*file) throw InputError(fmt::format("--out '{}' cannot be written", o.out));
   }
   std::ostream& os = file ? *file : std::cout;
-  if (o.query_lod) {
-    os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
-    for (size_t i = 0; i < tr.requests.size(); ++i) {
+  if (o.query_lod) os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
+  for (size_t i = 0; i < tr.requests.size(); ++i) {
+    const TraceRequest& r = tr.requests[i];
+    const Sampler& smp = golden.sampler(r.texture, r.sampler);
+    if (o.query_lod) {
       const LodInfo li = smp.lod_info(lam[i]);
       os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0, li.level0,
                         li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale);
-    }
-    return;
-  }
-  for (size_t i = 0; i < tr.requests.size(); ++i) {
-    const TraceRequest& r = tr.requests[i];
-    if (o.ideal) {
+    } else if (o.ideal) {
       const auto v = smp.sample_ideal(r.s, r.t, lam[i] / 256.0);
       os << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f}\n", v[0], v[1], v[2], v[3]);
     } else {
@@ -64,8 +66,7 @@ void run(const SampleOptions& o) {
   if (file) {
     file->close();
     if (!*file) throw InputError(fmt::format("--out '{}': write failed", o.out));
-    std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(),
-                             trace_mode_name(tr.mode), o.out);
+    std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(), trace_mode_name(tr.mode), o.out);
   }
 }
 
@@ -74,7 +75,7 @@ void run(const SampleOptions& o) {
 void register_sample(CLI::App& app) {
   auto o = std::make_shared<SampleOptions>();
   CLI::App* cmd = app.add_subcommand("sample", "Filter a request trace with the golden reference sampler");
-  add_texture_options(*cmd, o->tex);
+  add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--requests", o->requests, "Request trace (docs/traces.md)")->required();
   cmd->add_option("--out", o->out, "Output: one r,g,b,a line per request ('-' = stdout)")->required();
@@ -82,7 +83,7 @@ void register_sample(CLI::App& app) {
   cmd->add_flag("--query-lod", o->query_lod,
                 "Write the LOD unit's report per request instead: lambda, magnify, levels, blend, level size, kernel scale");
   cmd->add_flag("--ideal", o->ideal, "Write the double-precision ideal result (channels as reals) instead");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
 }  // namespace tfu::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_compare(app);
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
+  tfu::cli::register_descriptors(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -582,15 +582,16 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
   const tfu::Trace trace = tfu::render_scene(scene, o).trace;
   ASSERT_GT(trace.requests.size(), 1000u);
   const tfu::Mesh& mesh = scene.meshes.front();
-  const tfu::Texture& tex = *mesh.texture;
-  ASSERT_NE(tex.format, tfu::TexelFormat::VS16X2);  // the SV is RGBA8 only
-  const std::vector<int32_t> lambdas = tfu::trace_lambdas(trace, tex.width(), tex.height());
+  ASSERT_NE(mesh.stages[0].texture->format, tfu::TexelFormat::VS16X2);  // the SV is RGBA8 only
+  const std::vector<int32_t> lambdas =
+      tfu::trace_lambdas(trace, mesh.stages[0].texture->width(), mesh.stages[0].texture->height());
   for (const int block : {0, 4, 8}) {  // 0: cross
-    tfu::SamplerDescriptor cfg = mesh.sampler;
+    tfu::SamplerDescriptor cfg = mesh.stages[0].sampler;
     cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
-    cfg.edge_shape = block ? tfu::EdgeShapePolicy::CacheBlock : tfu::EdgeShapePolicy::Cross;
-    cfg.edge_cache_block = block ? block : 4;
-    const tfu::Sampler smp(tex, cfg);
+    cfg.edge_shape = block ? tfu::EdgeShape::Static : tfu::EdgeShape::Cross;
+    auto tex = std::make_shared<tfu::Texture>(*mesh.stages[0].texture);
+    tex->tile_bytes = block ? block * block * 4 : 64;  // static shapes follow the texture's tiles
+    const tfu::Sampler smp(*tex, cfg);
     TopBench tb;
     std::set<lj::TexelMask> shapes;
     for (size_t i = 0; i < trace.requests.size(); ++i) {
@@ -604,9 +605,14 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
     // The C++ cycle model on the same trace and kernel-shape policy: its pixels equal the golden
     // sampler's, which the Verilated top's equal, so the three models agree request by request.
     tfu::rtl::UnitConfig ucfg;
-    ucfg.cache.block = block ? block : 4;
-    ucfg.shape_policy = block ? tfu::rtl::ShapePolicy::Static : tfu::rtl::ShapePolicy::FullCross;
-    const tfu::rtl::UnitOutput unit = tfu::rtl::run_unit(tex, cfg, trace, ucfg);
+    ucfg.cache.line_bytes = tex->tile_bytes;
+    tfu::FrameBuilder fb(ucfg.cache.line_bytes);
+    fb.add_texture(tex, {"text_quad", {}});
+    fb.add_sampler(cfg);
+    tfu::Trace bound = trace;
+    for (tfu::TraceRequest& q : bound.requests) q.texture = q.sampler = 0;
+    const tfu::Frame frame = fb.finish();
+    const tfu::rtl::UnitOutput unit = tfu::rtl::run_unit(frame, bound, ucfg);
     ASSERT_EQ(unit.pixels.size(), trace.requests.size());
     size_t unit_bad = 0;
     for (size_t i = 0; i < trace.requests.size(); ++i)
