@@ -485,22 +485,18 @@ EdgeFootprint Sampler::edge_footprint(int level, float s, float t, int mask_over
   fp.xf = u.f;
   fp.yf = v.f;
   // Columns and rows -1..2 around the centre square, wrapped once each.
-  wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, fp.col.data());
-  wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, fp.row.data());
+  wrap_run(cfg_.wrap_s, u.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.width, fp.col.data());
+  wrap_run(cfg_.wrap_t, v.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.height, fp.row.data());
   fp.mask = lee_jen::kAllTexels;
   if (mask_override >= 0)
     fp.mask = static_cast<lee_jen::TexelMask>(mask_override & lee_jen::kAllTexels);
   else if (cfg_.edge_shape == EdgeShapePolicy::CacheBlock)
-    fp.mask = lee_jen::cache_block_mask(fp.col[1], fp.col[2], fp.row[1], fp.row[2], cfg_.edge_cache_block);
-  static const auto kPos = [] {
-    std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
-    for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
-    return p;
-  }();
-  for (size_t k = 0; k < fp.texels.size(); ++k)
-    fp.texels[k] = ((fp.mask >> k) & 1u)
-                       ? rd.at(fp.col[static_cast<size_t>(kPos[k].x + 1)], fp.row[static_cast<size_t>(kPos[k].y + 1)])
-                       : Texel4{0, 0, 0, 0};
+    fp.mask = lee_jen::cache_block_mask_of_grid(fp.col, fp.row, cfg_.edge_cache_block);
+  for (int n = 1; n <= lee_jen::kTexels; ++n)
+    fp.texels[static_cast<size_t>(n - 1)] =
+        lee_jen::has_texel(fp.mask, n)
+            ? rd.at(fp.col[static_cast<size_t>(lee_jen::grid_col(n))], fp.row[static_cast<size_t>(lee_jen::grid_row(n))])
+            : Texel4{0, 0, 0, 0};
   return fp;
 }
 
@@ -631,15 +627,15 @@ template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, bool cache_block,
                                            int block, float s, float t) {
   const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
-  int col[4], row[4];
-  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // columns and rows -1 .. 2
-  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
-  const lee_jen::TexelMask mask =
-      cache_block ? lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], block) : lee_jen::kAllTexels;
+  int col[lee_jen::kGridSide], row[lee_jen::kGridSide];  // columns and rows -1 .. 2
+  dp::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
+  dp::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
+  const lee_jen::TexelMask mask = cache_block ? lee_jen::cache_block_mask_of_grid(col, row, block) : lee_jen::kAllTexels;
   std::array<Texel4, lee_jen::kTexels> c;
   for (size_t k = 0; k < c.size(); ++k) {
-    const lee_jen::TexelPos p = lee_jen::kTexelPos[k];
-    const Rgba8 w = texel_word<kMayBorder<kWs, kWt>>(img, col[p.x + 1], row[p.y + 1], border);
+    const int n = static_cast<int>(k) + 1;
+    const Rgba8 w =
+        texel_word<kMayBorder<kWs, kWt>>(img, col[lee_jen::grid_col(n)], row[lee_jen::grid_row(n)], border);
     c[k] = ((mask >> k) & 1u) ? Texel4{w.r, w.g, w.b, w.a} : Texel4{0, 0, 0, 0};
   }
   return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, fmt);

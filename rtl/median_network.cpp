@@ -24,11 +24,31 @@ struct Median5Spec {
 constexpr std::array<Median5Spec, 4> kMedian5{{
     {4, 4, 5, 3, 8, 1}, {5, 4, 5, 6, 9, 2}, {8, 8, 9, 4, 7, 11}, {9, 8, 9, 5, 10, 12}}};
 
-// Centre texel, its two outer neighbours (o1, o2) and the diagonally opposite centre texel (Sec. 3).
-struct CentreOuter {
-  int self, o1, o2, opposite;
-};
-constexpr std::array<CentreOuter, 4> kCentreOuter{{{4, 1, 3, 9}, {5, 2, 6, 8}, {8, 7, 11, 5}, {9, 10, 12, 4}}};
+// The pairings above cover exactly the Eq. 4 neighbourhoods of cmodel/lee_jen_geometry.hpp.
+constexpr bool same_set(std::array<int, 5> a, std::array<int, 5> b, size_t n) {
+  std::sort(a.begin(), a.begin() + static_cast<ptrdiff_t>(n));
+  std::sort(b.begin(), b.begin() + static_cast<ptrdiff_t>(n));
+  for (size_t i = 0; i < n; ++i)
+    if (a[i] != b[i]) return false;
+  return true;
+}
+constexpr bool pairings_follow_eq4() {
+  for (const lee_jen::BoundaryMedian& g : lee_jen::kBoundaryMedians) {
+    bool found = false;
+    for (const Median3Spec& m : kMedian3)
+      if (m.self == g.self) found = same_set({m.a, m.b, m.c, 0, 0}, {g.self, g.nb[0], g.nb[1], 0, 0}, 3);
+    if (!found) return false;
+  }
+  for (const lee_jen::CentreMedian& g : lee_jen::kCentreMedians) {
+    bool found = false;
+    for (const Median5Spec& m : kMedian5)
+      if (m.self == g.self)
+        found = same_set({m.a, m.b, m.c, m.d, m.e}, {g.self, g.centre[0], g.centre[1], g.outer[0], g.outer[1]}, 5);
+    if (!found) return false;
+  }
+  return true;
+}
+static_assert(pairings_follow_eq4());
 
 constexpr int kMaxWires = 128;
 constexpr int kMaxCells = (kMaxWires - kTexels) / 2;
@@ -120,15 +140,16 @@ const MedianNetlist& median_netlist() {
 std::array<int32_t, kTexels> median_input_select(const lee_jen::LumaKeys& key, lee_jen::TexelMask shape) {
   std::array<int32_t, kTexels> in{};
   for (int n = 1; n <= kTexels; ++n) in[static_cast<size_t>(wire(n))] = key[static_cast<size_t>(n)];
-  const auto has = [shape](int n) { return ((shape >> (n - 1)) & 1u) != 0; };
-  for (const CentreOuter& c : kCentreOuter) {
-    const bool h1 = has(c.o1), h2 = has(c.o2);
+  const auto has = [shape](int n) { return lee_jen::has_texel(shape, n); };
+  for (const lee_jen::CentreMedian& c : lee_jen::kCentreMedians) {
+    const int o1 = c.outer[0], o2 = c.outer[1];
+    const bool h1 = has(o1), h2 = has(o2);
     if (h1 && h2) continue;
     if (h1 || h2) {  // T: the missing outer neighbour is replaced by the opposite centre texel
-      in[static_cast<size_t>(wire(h1 ? c.o2 : c.o1))] = key[static_cast<size_t>(c.opposite)];
+      in[static_cast<size_t>(wire(h1 ? o2 : o1))] = key[static_cast<size_t>(c.opposite)];
     } else {  // L corner: +inf and -inf leave the median of the other three
-      in[static_cast<size_t>(wire(c.o1))] = kKeyPlusInfinity;
-      in[static_cast<size_t>(wire(c.o2))] = kKeyMinusInfinity;
+      in[static_cast<size_t>(wire(o1))] = kKeyPlusInfinity;
+      in[static_cast<size_t>(wire(o2))] = kKeyMinusInfinity;
     }
   }
   return in;

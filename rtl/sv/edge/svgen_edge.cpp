@@ -6,7 +6,8 @@
 //
 // writes into OUTDIR (= <build>/rtl/sv/gen, named "gen/<file>" in rtl/sv/edge/blocks.json):
 //   tfu_edge_pkg.sv              package tfu_edge_pkg: the 22 directions of lee_jen::directions()
-//                                (endpoints Cp, Cq and the blend axis of Eq. 3)
+//                                (endpoints Cp, Cq and the blend axis of Eq. 3) and the centre
+//                                square (lee_jen::kCentreSquare)
 //   tfu_edge_dir_rom_NN.sv       NN = 00..21: the direction-weight ROM of direction NN
 //                                (lee_jen::direction_weight_rom), one module each, a case table
 //   tfu_edge_dir_roms.sv         all 22 ROMs side by side on one address
@@ -69,6 +70,9 @@ std::string edge_pkg_sv() {
   for (const lj::Direction& d : dirs)
     table += fmt::format("//   {:2d}  C{:<2d} C{:<2d}  t = {}f   {}\n", d.index, d.p, d.q, d.axis == lj::BlendAxis::X ? 'x' : 'y',
                          d.family());
+  std::string centre, centre_names;  // MSB first: centre texel 3 .. 0
+  for (int k = 3; k >= 0; --k) centre += fmt::format("4'd{}{}", lj::kCentreSquare[static_cast<size_t>(k)], k ? ", " : "");
+  for (const int n : lj::kCentreSquare) centre_names += fmt::format(" C{}", n);
   std::string s = kBanner;
   s += fmt::format(
       "// The 22 measured directions of Lee & Jen 2003 (Eq. 1-3), in the order of lee_jen::directions()\n"
@@ -78,6 +82,8 @@ std::string edge_pkg_sv() {
       "{}"
       "// DIR_P / DIR_Q: texel number (1..12) of Cp / Cq of direction i at bits [4i +: 4];\n"
       "// DIR_AXIS_Y: bit i = 1 when t = yf.\n"
+      "// CENTRE: texel numbers of the centre square (lee_jen::kCentreSquare:{}), in the order of the\n"
+      "// bilinear weights of Eq. 5 ((1 - xf)(1 - yf), xf (1 - yf), (1 - xf) yf, xf yf), k-th at [4k +: 4].\n"
       "// Not every consumer uses every constant: UNUSEDPARAM is waived for this package only.\n"
       "/* verilator lint_off UNUSEDPARAM */\n"
       "package tfu_edge_pkg;\n"
@@ -85,9 +91,10 @@ std::string edge_pkg_sv() {
       "  localparam logic [4*NDIR-1:0] DIR_P = {{{}}};\n"
       "  localparam logic [4*NDIR-1:0] DIR_Q = {{{}}};\n"
       "  localparam logic [NDIR-1:0] DIR_AXIS_Y = {}'b{};\n"
+      "  localparam logic [15:0] CENTRE = {{{}}};\n"
       "endpackage\n"
       "/* verilator lint_on UNUSEDPARAM */\n",
-      table, lj::kDirections, p, q, lj::kDirections, axis);
+      table, centre_names, lj::kDirections, p, q, lj::kDirections, axis, centre);
   return s;
 }
 
@@ -139,57 +146,35 @@ std::string dir_roms_sv() {
 }
 
 // ------------------------------------------------------------------ median network
-// The Sec. 3 input-select rule, derived from the kernel geometry: a centre texel's two outer
-// neighbours (o1 < o2) and the diagonally opposite centre texel.
-struct CentreOuter {
-  int self, o1, o2, opposite;
-};
-
-std::vector<CentreOuter> centre_outer() {
-  std::vector<CentreOuter> v;
-  for (int n = 1; n <= lj::kTexels; ++n) {
-    const lj::TexelPos p = lj::texel_pos(n);
-    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) continue;  // not a centre texel
-    std::vector<int> outer;
-    for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
-      const int x = p.x + dx, y = p.y + dy;
-      if (x >= 0 && x <= 1 && y >= 0 && y <= 1) continue;  // a centre neighbour
-      if (const int m = lj::texel_at(x, y)) outer.push_back(m);
-    }
-    if (outer.size() != 2) throw std::logic_error("centre texel without two outer neighbours");
-    std::sort(outer.begin(), outer.end());
-    v.push_back({n, outer[0], outer[1], lj::texel_at(1 - p.x, 1 - p.y)});
-  }
-  return v;
-}
-
-// Input select per the rule above, in the C++ key domain (for the check against the model).
-std::array<int32_t, lj::kTexels> derived_input_select(const lj::LumaKeys& key, lj::TexelMask shape,
-                                                      const std::vector<CentreOuter>& co) {
+// The Sec. 3 input-select rule from the kernel geometry (lee_jen::kCentreMedians: a centre texel's
+// two outer neighbours, outer[0] < outer[1], and the diagonally opposite centre texel), in the C++
+// key domain (for the check against the model).
+std::array<int32_t, lj::kTexels> derived_input_select(const lj::LumaKeys& key, lj::TexelMask shape) {
   std::array<int32_t, lj::kTexels> in{};
   for (int n = 1; n <= lj::kTexels; ++n) in[static_cast<size_t>(n - 1)] = key[static_cast<size_t>(n)];
-  const auto has = [shape](int n) { return ((shape >> (n - 1)) & 1u) != 0; };
-  for (const CentreOuter& c : co)
-    for (const auto& [o, other, inf] : {std::tuple{c.o1, c.o2, tfu::rtl::kKeyPlusInfinity}, std::tuple{c.o2, c.o1, tfu::rtl::kKeyMinusInfinity}}) {
+  const auto has = [shape](int n) { return lj::has_texel(shape, n); };
+  for (const lj::CentreMedian& c : lj::kCentreMedians)
+    for (const auto& [o, other, inf] : {std::tuple{c.outer[0], c.outer[1], tfu::rtl::kKeyPlusInfinity},
+                                        std::tuple{c.outer[1], c.outer[0], tfu::rtl::kKeyMinusInfinity}}) {
       if (has(o)) continue;
       in[static_cast<size_t>(o - 1)] = has(other) ? key[static_cast<size_t>(c.opposite)] : inf;
     }
   return in;
 }
 
-void check_input_select(const std::vector<CentreOuter>& co) {
+void check_input_select() {
   lj::LumaKeys key{};
   for (int n = 1; n <= lj::kTexels; ++n) key[static_cast<size_t>(n)] = 1000 + n;
   for (uint32_t m = 0; m <= lj::kAllTexels; ++m) {
     const auto shape = static_cast<lj::TexelMask>(m);
-    if (derived_input_select(key, shape, co) != tfu::rtl::median_input_select(key, shape))
+    if (derived_input_select(key, shape) != tfu::rtl::median_input_select(key, shape))
       throw std::logic_error(fmt::format("derived input select differs from rtl::median_input_select at mask {:#05x}", m));
   }
 }
 
 std::string key_slice(int n) { return fmt::format("key[{} +: {}]", kKeyBits * (n - 1), kKeyBits); }
 
-std::string median_network_sv(const std::vector<CentreOuter>& co) {
+std::string median_network_sv() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
   // Use of every wire: read by a cell (all bits), by an output (bits [3:0]) or by nothing.
   std::vector<int> cell_reads(static_cast<size_t>(net.wires), 0), out_reads(static_cast<size_t>(net.wires), 0);
@@ -198,8 +183,8 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
     ++cell_reads[static_cast<size_t>(c.in_b)];
   }
   for (int n = 1; n <= lj::kTexels; ++n) ++out_reads[static_cast<size_t>(net.out[static_cast<size_t>(n)])];
-  std::set<int> centre_bits;
-  for (const CentreOuter& c : co) centre_bits.insert(c.self - 1);
+  std::string centre_names;
+  for (const int n : lj::kCentreSquare) centre_names += fmt::format("{}C{}", centre_names.empty() ? "" : " ", n);
 
   std::string s = kBanner;
   s += fmt::format(
@@ -219,7 +204,7 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
       "// Combinational.\n"
       "module tfu_median_network (\n"
       "  input  logic [{}:0] key,\n"
-      "  /* verilator lint_off UNUSEDSIGNAL */  // shape bits of C4 C5 C8 C9\n"
+      "  /* verilator lint_off UNUSEDSIGNAL */  // shape bits of {}\n"
       "  input  logic [11:0]  shape,\n"
       "  /* verilator lint_on UNUSEDSIGNAL */\n"
       "  output logic [47:0]  low\n"
@@ -227,12 +212,12 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
       "  localparam logic [{}:0] PLUS_INF = '1;\n"
       "  localparam logic [{}:0] MINUS_INF = '0;\n\n"
       "  // ---- input select: wire n-1 carries the key for texel Cn's position ----\n",
-      net.cells.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, kKeyBits - 1, kKeyBits - 1);
-  if (centre_bits.size() != 4) throw std::logic_error("expected four centre texels");
+      net.cells.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, centre_names, kKeyBits - 1,
+      kKeyBits - 1);
   std::vector<std::string> in_expr(lj::kTexels);
   for (int n = 1; n <= lj::kTexels; ++n) in_expr[static_cast<size_t>(n - 1)] = key_slice(n);
-  for (const CentreOuter& c : co)
-    for (const auto& [o, other, inf] : {std::tuple{c.o1, c.o2, "PLUS_INF"}, std::tuple{c.o2, c.o1, "MINUS_INF"}})
+  for (const lj::CentreMedian& c : lj::kCentreMedians)
+    for (const auto& [o, other, inf] : {std::tuple{c.outer[0], c.outer[1], "PLUS_INF"}, std::tuple{c.outer[1], c.outer[0], "MINUS_INF"}})
       in_expr[static_cast<size_t>(o - 1)] =
           fmt::format("shape[{}] ? {} : (shape[{}] ? {} : {})", o - 1, key_slice(o), other - 1, key_slice(c.opposite), inf);
   for (int w = 0; w < lj::kTexels; ++w) {
@@ -268,7 +253,7 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
 // Texels whose key can reach Cn's median output, over the nine kernel shapes in which Cn is
 // available: the netlist inputs feeding net.out[n], each carrying its own texel or the substitute
 // that the input select drives onto it in that shape (infinities are never a median).
-std::vector<std::vector<int>> lowpass_candidates(const std::vector<CentreOuter>& co) {
+std::vector<std::vector<int>> lowpass_candidates() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
   std::vector<std::array<int, 2>> driver(static_cast<size_t>(net.wires), {-1, -1});
   for (const tfu::rtl::CompareCell& c : net.cells) driver[static_cast<size_t>(c.lo)] = driver[static_cast<size_t>(c.hi)] = {c.in_a, c.in_b};
@@ -279,7 +264,7 @@ std::vector<std::vector<int>> lowpass_candidates(const std::vector<CentreOuter>&
     std::set<int> texels;
     for (const lj::KernelShape& shape : lj::kernel_shapes()) {
       if (!((shape.mask >> (n - 1)) & 1u)) continue;
-      const auto in = derived_input_select(id, shape.mask, co);
+      const auto in = derived_input_select(id, shape.mask);
       std::vector<int> stack{net.out[static_cast<size_t>(n)]};
       std::set<int> seen;
       while (!stack.empty()) {
@@ -351,10 +336,9 @@ int main(int argc, char** argv) {
     write_if_changed(out / "tfu_edge_pkg.sv", edge_pkg_sv());
     for (int i = 0; i < lj::kDirections; ++i) write_if_changed(out / (rom_module_name(i) + ".sv"), dir_rom_sv(i));
     write_if_changed(out / "tfu_edge_dir_roms.sv", dir_roms_sv());
-    const std::vector<CentreOuter> co = centre_outer();
-    check_input_select(co);
-    write_if_changed(out / "tfu_median_network.sv", median_network_sv(co));
-    write_if_changed(out / "tfu_edge_lowpass_select.sv", lowpass_select_sv(lowpass_candidates(co)));
+    check_input_select();
+    write_if_changed(out / "tfu_median_network.sv", median_network_sv());
+    write_if_changed(out / "tfu_edge_lowpass_select.sv", lowpass_select_sv(lowpass_candidates()));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tfu_svgen_edge: error: %s\n", e.what());

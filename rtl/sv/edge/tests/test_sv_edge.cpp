@@ -391,10 +391,9 @@ TEST(SvEdgeMerge, CornersEveryDirectionExtremeHighFrequency) {
             c[static_cast<size_t>(n - 1)] = (n & 1) ? black : white;
             low[static_cast<size_t>(n)] = n;
           }
-          const std::array<int, 4> centre{4, 5, 8, 9};
           for (size_t k = 0; k < 4; ++k) {
             const bool hi = (pattern >> k) & 1;
-            const int n = centre[k];
+            const int n = lj::kCentreSquare[k];
             c[static_cast<size_t>(n - 1)] = hi ? white : black;
             low[static_cast<size_t>(n)] = hi ? 1 : 2;  // C1 black, C2 white
           }
