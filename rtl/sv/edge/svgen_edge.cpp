@@ -13,6 +13,7 @@
 //   tfu_edge_dir_roms.sv         all 22 ROMs side by side on one address
 //   tfu_median_network.sv        the compare-cell network of rtl::median_netlist() with the input
 //                                select of rtl::median_input_select, one tfu_compare_cell per cell
+//                                and one tfu_median3_select per three-point selector
 //   tfu_edge_lowpass_select.sv   low-pass texel select: Cn_low = texel number low[n], muxing only
 //                                the texels whose key can reach Cn's median output in the netlist
 //                                in one of the nine kernel shapes
@@ -176,22 +177,33 @@ std::string key_slice(int n) { return fmt::format("key[{} +: {}]", kKeyBits * (n
 
 std::string median_network_sv() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
-  // Use of every wire: read by a cell (all bits), by an output (bits [3:0]) or by nothing.
-  std::vector<int> cell_reads(static_cast<size_t>(net.wires), 0), out_reads(static_cast<size_t>(net.wires), 0);
+  // Use of every wire: read by a cell (all bits), by a selector or an output (bits [3:0]) or by
+  // nothing; use of every cell's flag: read by a selector or not.
+  std::vector<int> cell_reads(static_cast<size_t>(net.wires), 0), low_reads(static_cast<size_t>(net.wires), 0);
+  std::vector<int> flag_reads(net.cells.size(), 0);
   for (const tfu::rtl::CompareCell& c : net.cells) {
     ++cell_reads[static_cast<size_t>(c.in_a)];
     ++cell_reads[static_cast<size_t>(c.in_b)];
   }
-  for (int n = 1; n <= lj::kTexels; ++n) ++out_reads[static_cast<size_t>(net.out[static_cast<size_t>(n)])];
+  for (const tfu::rtl::Median3Select& m : net.selects) {
+    for (const int w : {m.a, m.b, m.c}) ++low_reads[static_cast<size_t>(w)];
+    for (const int c : {m.ab, m.ac, m.bc}) ++flag_reads[static_cast<size_t>(c)];
+  }
+  for (int n = 1; n <= lj::kTexels; ++n) ++low_reads[static_cast<size_t>(net.out[static_cast<size_t>(n)])];
+  for (const tfu::rtl::Median3Select& m : net.selects)
+    if (cell_reads[static_cast<size_t>(m.out)] > 0) throw std::logic_error("a compare cell reads a selector output");
   std::string centre_names;
   for (const int n : lj::kCentreSquare) centre_names += fmt::format("{}C{}", centre_names.empty() ? "" : " ", n);
 
   std::string s = kBanner;
   s += fmt::format(
       "// The twelve medians of Lee & Jen Eq. 4 with the Sec. 3 adjustments for T and L kernels, as the\n"
-      "// compare-cell network of rtl::median_netlist() (rtl/median_network.hpp): {} compare cells\n"
-      "// (Lee & Jen Fig. 10; 8 x 3 + 4 x 7 = 52 before merging cells on shared inputs; the paper\n"
-      "// reports 40), {} cells on the longest path.\n"
+      "// compare-cell network of rtl::median_netlist() (rtl/median_network.hpp): {} compare cells and {}\n"
+      "// three-point selectors (Lee & Jen Sec. 6, Fig. 10: 8 x 3 + 4 x 7 = 52 cells before merging the\n"
+      "// cells on shared inputs; the paper reports 40), {} cells on the longest path, then a selector.\n"
+      "// A three-point median is three cells in parallel on its input pairs and a selector on their\n"
+      "// flags; a five-point median is two cells on input pairs, the max of their minima and the min of\n"
+      "// their maxima, and the three-point median of those two and its fifth input.\n"
       "// Ports (RGBA8 keys; VS16X2 is not in the SV):\n"
       "//   key   [{}:0] key of Cn = Y * 16 + n (Y = 5R + 9G + 2B, unsigned) at bits [16(n-1) +: 16]\n"
       "//   shape [11:0]  available texels, bit n-1 = Cn (the cross, a T or an L)\n"
@@ -212,8 +224,8 @@ std::string median_network_sv() {
       "  localparam logic [{}:0] PLUS_INF = '1;\n"
       "  localparam logic [{}:0] MINUS_INF = '0;\n\n"
       "  // ---- input select: wire n-1 carries the key for texel Cn's position ----\n",
-      net.cells.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, centre_names, kKeyBits - 1,
-      kKeyBits - 1);
+      net.cells.size(), net.selects.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, centre_names,
+      kKeyBits - 1, kKeyBits - 1);
   std::vector<std::string> in_expr(lj::kTexels);
   for (int n = 1; n <= lj::kTexels; ++n) in_expr[static_cast<size_t>(n - 1)] = key_slice(n);
   for (const lj::CentreMedian& c : lj::kCentreMedians)
@@ -224,39 +236,52 @@ std::string median_network_sv() {
     s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
     s += fmt::format("  assign w{} = {};\n", w, in_expr[static_cast<size_t>(w)]);
   }
-  s += "\n  // ---- compare cells: lo = min(a, b), hi = max(a, b) ----\n";
-  int k = 0;
-  for (const tfu::rtl::CompareCell& c : net.cells) {
-    for (const int w : {c.lo, c.hi}) {
-      const bool full = cell_reads[static_cast<size_t>(w)] > 0;
-      const bool any = full || out_reads[static_cast<size_t>(w)] > 0;
-      if (full) {
-        s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
-      } else {
-        s += fmt::format("  /* verilator lint_off UNUSEDSIGNAL */  // {}\n", any ? "only bits [3:0] are read (a median output)"
-                                                                                : "the other output of a median's last cell");
-        s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
-        s += "  /* verilator lint_on UNUSEDSIGNAL */\n";
-      }
+  const auto declare = [&s](const std::string& decl, bool read, const char* why_unread) {
+    if (read) {
+      s += fmt::format("  {};\n", decl);
+    } else {
+      s += fmt::format("  /* verilator lint_off UNUSEDSIGNAL */  // {}\n  {};\n  /* verilator lint_on UNUSEDSIGNAL */\n", why_unread,
+                       decl);
     }
-    s += fmt::format("  tfu_compare_cell #(.W({})) u_cell{:02d} (.a(w{}), .b(w{}), .lo(w{}), .hi(w{}));\n", kKeyBits, k, c.in_a,
-                     c.in_b, c.lo, c.hi);
-    ++k;
+  };
+  s += "\n  // ---- compare cells: lo = min(a, b), hi = max(a, b), flag g = a > b ----\n";
+  for (size_t k = 0; k < net.cells.size(); ++k) {
+    const tfu::rtl::CompareCell& c = net.cells[k];
+    for (const int w : {c.lo, c.hi}) {
+      if (low_reads[static_cast<size_t>(w)] > 0 && cell_reads[static_cast<size_t>(w)] == 0)
+        throw std::logic_error("a cell output read only by a selector");
+      declare(fmt::format("logic [{}:0] w{}", kKeyBits - 1, w), cell_reads[static_cast<size_t>(w)] > 0,
+              "a cell of a three-point median: only its flag is read");
+    }
+    declare(fmt::format("logic g{:02d}", k), flag_reads[k] > 0, "a min/max cell of a five-point median: its flag is not read");
+    s += fmt::format("  tfu_compare_cell #(.W({})) u_cell{:02d} (.a(w{}), .b(w{}), .lo(w{}), .hi(w{}), .a_gt_b(g{:02d}));\n", kKeyBits, k,
+                     c.in_a, c.in_b, c.lo, c.hi, k);
+  }
+  s += "\n  // ---- three-point selectors on the cells' flags: the texel number of the median ----\n";
+  for (size_t k = 0; k < net.selects.size(); ++k) {
+    const tfu::rtl::Median3Select& m = net.selects[k];
+    s += fmt::format("  logic [3:0] w{};\n", m.out);
+    s += fmt::format(
+        "  tfu_median3_select #(.W(4)) u_sel{:02d} (.a_gt_b(g{:02d}), .a_gt_c(g{:02d}), .b_gt_c(g{:02d}), .a(w{}[3:0]), .b(w{}[3:0]),\n"
+        "                                       .c(w{}[3:0]), .m(w{}));\n",
+        k, m.ab, m.ac, m.bc, m.a, m.b, m.c, m.out);
   }
   s += "\n  // ---- outputs: texel number of each median ----\n";
   for (int n = 1; n <= lj::kTexels; ++n)
-    s += fmt::format("  assign low[{} +: 4] = w{}[3:0];  // C{}\n", 4 * (n - 1), net.out[static_cast<size_t>(n)], n);
+    s += fmt::format("  assign low[{} +: 4] = w{};  // C{}\n", 4 * (n - 1), net.out[static_cast<size_t>(n)], n);
   s += "endmodule\n";
   return s;
 }
 
 // Texels whose key can reach Cn's median output, over the nine kernel shapes in which Cn is
-// available: the netlist inputs feeding net.out[n], each carrying its own texel or the substitute
-// that the input select drives onto it in that shape (infinities are never a median).
+// available: the netlist inputs whose values reach net.out[n] (through cell outputs and selector
+// data inputs; flags carry no value), each carrying its own texel or the substitute that the input
+// select drives onto it in that shape (infinities are never a median).
 std::vector<std::vector<int>> lowpass_candidates() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
-  std::vector<std::array<int, 2>> driver(static_cast<size_t>(net.wires), {-1, -1});
+  std::vector<std::vector<int>> driver(static_cast<size_t>(net.wires));
   for (const tfu::rtl::CompareCell& c : net.cells) driver[static_cast<size_t>(c.lo)] = driver[static_cast<size_t>(c.hi)] = {c.in_a, c.in_b};
+  for (const tfu::rtl::Median3Select& m : net.selects) driver[static_cast<size_t>(m.out)] = {m.a, m.b, m.c};
   lj::LumaKeys id{};  // "key" n = texel number n: the input select then tells which texel each wire carries
   for (int n = 1; n <= lj::kTexels; ++n) id[static_cast<size_t>(n)] = n;
   std::vector<std::vector<int>> cand(lj::kTexels + 1);

@@ -15,7 +15,7 @@
 // Pipeline, latency 3 clocks (Lee & Jen Sec. 6: "3-clock latency"): a request on the inputs at
 // rising edge n is on out_valid / c after edge n + 2. Inputs feed stage 1's logic directly (the
 // texels arrive from the texel cache's registers).
-//   S1  12 x RGB->Y (carry-save adder trees), keys Y * 16 + n, the 44-cell median network with its
+//   S1  12 x RGB->Y (carry-save adder trees), keys Y * 16 + n, the 40-cell median network with its
 //       T/L input select                        -> R1: texels, shape, xf, yf, low[1..12] (4 bits each)
 //   S2  low-pass texel select (Cn_low), 22 x (|dR| + |dG| + |dB|, weight ROM, w * dP), min tree
 //                                               -> R2: Cn_low (12 x RGBA), C4 C5 C8 C9, direction, xf, yf
