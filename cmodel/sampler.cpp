@@ -235,22 +235,18 @@ EdgeFootprint Sampler::edge_footprint(int level, float s, float t, int mask_over
   fp.xf = u.f;
   fp.yf = v.f;
   // Columns and rows -1..2 around the centre square, wrapped once each.
-  wrap_run(cfg_.wrap_s, u.i0 - 1, 4, img.width, fp.col.data());
-  wrap_run(cfg_.wrap_t, v.i0 - 1, 4, img.height, fp.row.data());
+  wrap_run(cfg_.wrap_s, u.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.width, fp.col.data());
+  wrap_run(cfg_.wrap_t, v.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.height, fp.row.data());
   fp.mask = lee_jen::kAllTexels;
   if (mask_override >= 0)
     fp.mask = static_cast<lee_jen::TexelMask>(mask_override & lee_jen::kAllTexels);
   else if (const int b = static_shape_block(); b != 0)
-    fp.mask = lee_jen::cache_block_mask(fp.col[1], fp.col[2], fp.row[1], fp.row[2], b);
-  static const auto kPos = [] {
-    std::array<lee_jen::TexelPos, lee_jen::kTexels> p{};
-    for (int n = 1; n <= lee_jen::kTexels; ++n) p[static_cast<size_t>(n - 1)] = lee_jen::texel_pos(n);
-    return p;
-  }();
-  for (size_t k = 0; k < fp.texels.size(); ++k)
-    fp.texels[k] = ((fp.mask >> k) & 1u)
-                       ? rd.at(fp.col[static_cast<size_t>(kPos[k].x + 1)], fp.row[static_cast<size_t>(kPos[k].y + 1)])
-                       : Texel4{0, 0, 0, 0};
+    fp.mask = lee_jen::cache_block_mask_of_grid(fp.col, fp.row, b);
+  for (int n = 1; n <= lee_jen::kTexels; ++n)
+    fp.texels[static_cast<size_t>(n - 1)] =
+        lee_jen::has_texel(fp.mask, n)
+            ? rd.at(fp.col[static_cast<size_t>(lee_jen::grid_col(n))], fp.row[static_cast<size_t>(lee_jen::grid_row(n))])
+            : Texel4{0, 0, 0, 0};
   return fp;
 }
 

@@ -115,15 +115,15 @@ template <WrapMode kWs, WrapMode kWt>
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, int block, float s, float t) {
   const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
-  int col[4], row[4];
-  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // columns and rows -1 .. 2
-  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
-  const lee_jen::TexelMask mask =
-      block != 0 ? lee_jen::cache_block_mask(col[1], col[2], row[1], row[2], block) : lee_jen::kAllTexels;
+  int col[lee_jen::kGridSide], row[lee_jen::kGridSide];  // columns and rows -1 .. 2
+  dp::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
+  dp::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
+  const lee_jen::TexelMask mask = block != 0 ? lee_jen::cache_block_mask_of_grid(col, row, block) : lee_jen::kAllTexels;
   std::array<Texel4, lee_jen::kTexels> c;
   for (size_t k = 0; k < c.size(); ++k) {
-    const lee_jen::TexelPos p = lee_jen::kTexelPos[k];
-    const Rgba8 w = texel_word<kMayBorder<kWs, kWt>>(img, col[p.x + 1], row[p.y + 1], border);
+    const int n = static_cast<int>(k) + 1;
+    const Rgba8 w =
+        texel_word<kMayBorder<kWs, kWt>>(img, col[lee_jen::grid_col(n)], row[lee_jen::grid_row(n)], border);
     c[k] = ((mask >> k) & 1u) ? Texel4{w.r, w.g, w.b, w.a} : Texel4{0, 0, 0, 0};
   }
   return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, fmt);

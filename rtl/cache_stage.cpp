@@ -3,15 +3,6 @@
 #include <algorithm>
 
 namespace tfu::rtl {
-namespace {
-
-// The four arms of the cross (Lee & Jen Fig. 4): top C1 C2, bottom C11 C12, left C3 C7, right C6 C10.
-constexpr std::array<std::array<int, 2>, 4> kArms{{{1, 2}, {11, 12}, {3, 7}, {6, 10}}};
-constexpr lee_jen::TexelMask arm_bits(const std::array<int, 2>& a) {
-  return static_cast<lee_jen::TexelMask>((1u << (a[0] - 1)) | (1u << (a[1] - 1)));
-}
-
-}  // namespace
 
 CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
                        sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
@@ -37,11 +28,11 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   const bool edge = cur.tag.base == BaseFilter::EdgePreserving;
   const int texture = cur.tag.req.texture;
   if (edge && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
-    for (const auto& arm : kArms) {
-      const lee_jen::TexelMask bits = arm_bits(arm);
+    for (const lee_jen::Arm& arm : lee_jen::kArms) {  // the four arms of the cross (Lee & Jen Fig. 4)
+      const lee_jen::TexelMask bits = arm.mask;
       if ((cur.optional & bits) != bits) continue;
       bool resident = true;
-      for (int n : arm) {
+      for (int n : arm.texels) {
         const uint8_t cell = kCrossCell[static_cast<size_t>(n - 1)];
         const size_t i = cell & 3u, j = cell >> 2;
         if (((g.used >> cell) & 1u) && !cache_.resident(texture, cur.level, g.x[i], g.y[j])) resident = false;
@@ -59,7 +50,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));
   if (edge) {
     int missing_arms = 0;
-    for (const auto& arm : kArms) missing_arms += (cur.tag.shape & arm_bits(arm)) == 0;
+    for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
     if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
     shapes[cur.tag.id][cur.tag.second ? 1 : 0] = cur.tag.shape;

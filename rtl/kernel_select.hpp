@@ -32,8 +32,8 @@ class KernelSelect : public sim::Module {
     f.tag.shape = lee_jen::kAllTexels;
     f.optional = 0;
     if (policy == EdgeShape::Cross || tile == 0) return;
-    // Centre square C4 C5 / C8 C9: grid columns 1, 2 and rows 1, 2.
-    f.tag.shape = lee_jen::cache_block_mask(f.grid.x[1], f.grid.x[2], f.grid.y[1], f.grid.y[2], tile);
+    // The centre square's columns and rows of the cross's grid (cmodel/lee_jen_geometry.hpp).
+    f.tag.shape = lee_jen::cache_block_mask_of_grid(f.grid.x, f.grid.y, tile);
     if (policy == EdgeShape::CacheAware) f.optional = static_cast<lee_jen::TexelMask>(lee_jen::kAllTexels & ~f.tag.shape);
   }
   void evaluate() override {

@@ -62,12 +62,14 @@ constexpr uint16_t square_cells(int cols, int rows) {
   return kSquareCells[static_cast<size_t>(cols)][static_cast<size_t>(rows)];
 }
 
-// The edge cross on the 4x4 grid of columns and rows -1..2: texel C(k+1) of Lee & Jen Eq. 4 is
-// cell kCrossCell[k] (the corners are not used); the C order is row-major over the grid.
+// The edge cross on the 4x4 grid of columns and rows -1..2 (lee_jen::grid_col, grid_row): texel
+// C(k+1) of Lee & Jen Eq. 4 is cell kCrossCell[k] (the corners are not used); the C order is
+// row-major over the grid.
 inline constexpr std::array<uint8_t, lee_jen::kTexels> kCrossCell = [] {
+  static_assert(lee_jen::kGridSide == 4);
   std::array<uint8_t, lee_jen::kTexels> c{};
-  for (size_t k = 0; k < c.size(); ++k)
-    c[k] = static_cast<uint8_t>(4 * (lee_jen::kTexelPos[k].y + 1) + lee_jen::kTexelPos[k].x + 1);
+  for (int n = 1; n <= lee_jen::kTexels; ++n)
+    c[static_cast<size_t>(n - 1)] = static_cast<uint8_t>(4 * lee_jen::grid_row(n) + lee_jen::grid_col(n));
   return c;
 }();
 // Grid cells of the cross texels in a shape mask (bit k = C(k+1)): two 64-entry tables.
