@@ -14,8 +14,9 @@
 //   probes                  [4:0]          N, 1..16
 //   lambda_q8               [15:0] signed  log2(Pmax / N), Q.8, before bias/clamp (-16384 for Pmax = 0)
 //
-// Parts: two tfu_aniso_axis_len2 (the four squares), one 63-bit compare and the Pmax/Pmin and
-// major-vector select, tfu_aniso_count (N), tfu_aniso_lambda (log2 unit and the log2(N^2) ROM).
+// Parts, in series: two tfu_aniso_axis_len2 (the four squares, side by side),
+// tfu_aniso_major_select (63-bit compare, Pmax/Pmin and major-vector select), tfu_aniso_count (N),
+// tfu_aniso_lambda (log2 unit and the log2(N^2) ROM).
 module tfu_aniso_lod (
   input  logic signed [48:0] dudx,
   input  logic signed [48:0] dvdx,
@@ -35,20 +36,11 @@ module tfu_aniso_lod (
   tfu_aniso_axis_len2 u_px (.du(dudx), .dv(dvdx), .mag_u(mag_udx), .mag_v(mag_vdx), .len2(px2));
   tfu_aniso_axis_len2 u_py (.du(dudy), .dv(dvdy), .mag_u(mag_udy), .mag_v(mag_vdy), .len2(py2));
 
-  assign major_x = px2 >= py2;
   logic [62:0] pmax2, pmin2;
-  assign pmax2 = major_x ? px2 : py2;
-  assign pmin2 = major_x ? py2 : px2;
-
-  // Clamped magnitude with the input's sign (a clamped -2^47 stays negative).
-  logic [30:0] mag_du, mag_dv;
-  logic        neg_du, neg_dv;
-  assign mag_du = major_x ? mag_udx : mag_udy;
-  assign mag_dv = major_x ? mag_vdx : mag_vdy;
-  assign neg_du = major_x ? dudx[48] : dudy[48];
-  assign neg_dv = major_x ? dvdx[48] : dvdy[48];
-  assign major_du = neg_du ? -$signed({1'b0, mag_du}) : $signed({1'b0, mag_du});
-  assign major_dv = neg_dv ? -$signed({1'b0, mag_dv}) : $signed({1'b0, mag_dv});
+  tfu_aniso_major_select u_select (
+    .px2(px2), .py2(py2), .mag_udx(mag_udx), .mag_vdx(mag_vdx), .mag_udy(mag_udy), .mag_vdy(mag_vdy),
+    .neg_udx(dudx[48]), .neg_vdx(dvdx[48]), .neg_udy(dudy[48]), .neg_vdy(dvdy[48]),
+    .major_x(major_x), .pmax2(pmax2), .pmin2(pmin2), .major_du(major_du), .major_dv(major_dv));
 
   tfu_aniso_count u_count (.pmax2(pmax2), .pmin2(pmin2), .max_aniso(max_aniso), .pow2(pow2), .probes(probes));
   tfu_aniso_lambda u_lambda (.pmax2(pmax2), .probes(probes), .lambda_q8(lambda_q8));
