@@ -6,10 +6,10 @@
 
 namespace tfu {
 
-const Sampler& GoldenUnit::sampler(int texture, int sampler) const {
+const Sampler& GoldenUnit::build(int texture, int sampler) const {
   const std::lock_guard lock(mutex_);
-  auto& slot = samplers_[{texture, sampler}];
-  if (slot) return *slot;
+  auto& slot = slots_.at(static_cast<size_t>(texture) * frame_.regs.samplers.size() + static_cast<size_t>(sampler));
+  if (const Sampler* s = slot.load(std::memory_order_acquire)) return *s;
   const FrameTexture& t = frame_.textures.at(static_cast<size_t>(texture));
   const TextureDescriptor& d = frame_.regs.textures.at(static_cast<size_t>(texture));
   const SamplerDescriptor& s = frame_.regs.samplers.at(static_cast<size_t>(sampler));
@@ -18,10 +18,12 @@ const Sampler& GoldenUnit::sampler(int texture, int sampler) const {
     throw InputError(fmt::format("texture {} ({}) holds {} but sampler {} is {} {}", texture, t.name,
                                  d.content == TextureContent::BsplineCoefficients ? "B-spline coefficients" : "texels",
                                  sampler, filter_mode_name(s.mode), s.kernel));
-  slot = std::make_unique<Sampler>(*t.texels, s);
-  if (wants_coefficients && (slot->cubic_normalize().scale_q != d.coeff_scale_q || slot->cubic_normalize().bias_q != d.coeff_bias_q))
+  auto smp = std::make_unique<Sampler>(*t.texels, s);
+  if (wants_coefficients && (smp->cubic_normalize().scale_q != d.coeff_scale_q || smp->cubic_normalize().bias_q != d.coeff_bias_q))
     throw CheckFailed(fmt::format("texture {}: the golden prefilter's S, B differ from the descriptor's", texture));
-  return *slot;
+  owned_.push_back(std::move(smp));
+  slot.store(owned_.back().get(), std::memory_order_release);
+  return *owned_.back();
 }
 
 int32_t GoldenUnit::lambda(const Trace& trace, size_t i) const {

@@ -9,9 +9,10 @@
 // descriptor's S and B registers (checked when the pair is built).
 #pragma once
 
-#include <map>
+#include <atomic>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "cmodel/frame.hpp"
 #include "cmodel/sampler.hpp"
@@ -21,9 +22,14 @@ namespace tfu {
 
 class GoldenUnit {
  public:
-  explicit GoldenUnit(const Frame& frame) : frame_(frame) {}
+  explicit GoldenUnit(const Frame& frame)
+      : frame_(frame), slots_(frame.regs.textures.size() * frame.regs.samplers.size()) {}
   const Frame& frame() const { return frame_; }
-  const Sampler& sampler(int texture, int sampler) const;
+  const Sampler& sampler(int texture, int sampler) const {
+    const Sampler* s = slots_[static_cast<size_t>(texture) * frame_.regs.samplers.size() + static_cast<size_t>(sampler)].load(
+        std::memory_order_acquire);
+    return s ? *s : build(texture, sampler);
+  }
   // lambda of request i (quad mode: of its quad) before bias and clamp.
   int32_t lambda(const Trace& trace, size_t i) const;
   std::vector<int32_t> lambdas(const Trace& trace) const;
@@ -31,8 +37,11 @@ class GoldenUnit {
 
  private:
   const Frame& frame_;
+  // One slot per (texture, sampler) pair, filled on first use under the mutex.
+  mutable std::vector<std::atomic<const Sampler*>> slots_;
   mutable std::mutex mutex_;
-  mutable std::map<std::pair<int, int>, std::unique_ptr<Sampler>> samplers_;
+  mutable std::vector<std::unique_ptr<Sampler>> owned_;
+  const Sampler& build(int texture, int sampler) const;
 };
 
 }  // namespace tfu

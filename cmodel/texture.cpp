@@ -14,8 +14,6 @@ namespace tfu {
 Image::Image(int w, int h, Rgba8 fill)
     : width(w), height(h), texels(static_cast<size_t>(w) * static_cast<size_t>(h), fill) {}
 
-int mip_extent(int size0, int level) { return std::max(1, size0 >> level); }
-
 int mip_level_count(int width, int height) {
   int n = 1;
   for (int m = std::max(width, height); m > 1; m >>= 1) ++n;

@@ -97,7 +97,7 @@ constexpr int tile_side_log2(int tile_bytes, TexelFormat f) {
 }
 
 // Size of level `level` of a W x H texture (GL floor rule).
-int mip_extent(int size0, int level);
+constexpr int mip_extent(int size0, int level) { return (size0 >> level) > 1 ? size0 >> level : 1; }
 int mip_level_count(int width, int height);
 
 struct Texture {

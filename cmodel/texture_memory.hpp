@@ -50,6 +50,45 @@ TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t
 inline Rgba8 read_texel(const TextureMemory& mem, const TextureDescriptor& d, int level, int x, int y) {
   return mem.read_word(d.texel_address(level, x, y), d.format);
 }
+
+// One level of a texture as the texel read-out addresses it: the same address arithmetic as
+// TextureDescriptor::texel_address with the level's registers decoded once (a footprint's taps
+// share them). The address is separable: offset(x, y) = column(x) + row(y), since a tiled address
+// puts the tile column and the column inside the tile in other bits than the row parts:
+//   linear  column(x) = x << b,                                  row(y) = y * pitch
+//   tiled   column(x) = (x >> k) << (2k + b) | (x & m) << b,     row(y) = (y >> k) * pitch + (y & m) << (k + b)
+// (b = log2 bytes per texel, k = log2 tile side, m = 2^k - 1).
+class LevelReadout {
+ public:
+  LevelReadout(const TextureMemory& mem, const TextureDescriptor& d, int level)
+      : base_(mem.bytes_at(d.level[static_cast<size_t>(level)].address)),
+        pitch_(d.level[static_cast<size_t>(level)].row_pitch),
+        l8_(d.format == TexelFormat::L8),
+        b_(l8_ ? 0 : 2),
+        k_(d.layout == MemoryLayout::Tiled ? d.tile_log2 : 0),
+        m_((1 << k_) - 1),
+        tiled_(d.layout == MemoryLayout::Tiled) {}
+  size_t column(int x) const {
+    return tiled_ ? (static_cast<size_t>(x >> k_) << (2 * k_ + b_)) | (static_cast<size_t>(x & m_) << b_)
+                  : static_cast<size_t>(x) << b_;
+  }
+  size_t row(int y) const {
+    return tiled_ ? static_cast<size_t>(y >> k_) * pitch_ + (static_cast<size_t>(y & m_) << (k_ + b_)) : static_cast<size_t>(y) * pitch_;
+  }
+  Rgba8 at(size_t offset) const {
+    const uint8_t* p = base_ + offset;
+    return l8_ ? Rgba8{p[0], p[0], p[0], 255} : Rgba8{p[0], p[1], p[2], p[3]};
+  }
+  Rgba8 operator()(int x, int y) const { return at(column(x) + row(y)); }
+
+ private:
+  const uint8_t* base_;
+  size_t pitch_;
+  bool l8_;
+  int b_, k_, m_;
+  bool tiled_;
+};
+
 // Decodes the levels of `d` from memory (format, layout and tile size from the descriptor).
 Texture read_texture(const TextureMemory& mem, const TextureDescriptor& d);
 

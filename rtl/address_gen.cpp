@@ -92,7 +92,7 @@ void AddressGen::grid_linear(const SamplerDescriptor&, int, int, FootprintReq& f
 
 template <size_t... k>
 AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence<k...>) {
-  constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
+  static constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
   return kTable[wrap_pair];
 }
 

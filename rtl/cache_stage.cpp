@@ -40,9 +40,14 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       if (resident) cur.tag.shape = static_cast<lee_jen::TexelMask>(cur.tag.shape | bits);
     }
   }
-  TapGrid lookup = g;  // the taps that read the cache: inside the texture and, for edge, in the shape
-  if (edge) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
-  const FootprintResult r = cache_.access(texture, cur.level, lookup);
+  FootprintResult r;
+  if (edge) {  // the taps that read the cache: inside the texture and in the shape
+    TapGrid lookup = g;
+    lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
+    r = cache_.access(texture, cur.level, lookup);
+  } else {
+    r = cache_.access(texture, cur.level, g);
+  }
   stage_hits[cur.tag.req.stage] += static_cast<uint64_t>(r.hits);
   stage_misses[cur.tag.req.stage] += static_cast<uint64_t>(r.misses);
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
@@ -62,9 +67,13 @@ namespace {
 
 // Texel read-out of an n x n square whose taps are all inside the texture, row-major.
 template <int n>
-void read_square(const TapGrid& g, const TextureMemory& mem, const TextureDescriptor& d, int level, Rgba8* out) {
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = 0; i < n; ++i) out[n * j + i] = read_texel(mem, d, level, g.x[i], g.y[j]);
+void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
+  size_t col[n];
+  for (size_t i = 0; i < n; ++i) col[i] = level.column(g.x[i]);
+  for (size_t j = 0; j < n; ++j) {
+    const size_t row = level.row(g.y[j]);
+    for (size_t i = 0; i < n; ++i) out[n * j + i] = level.at(col[i] + row);
+  }
 }
 
 }  // namespace
@@ -79,11 +88,11 @@ void read_square(const TapGrid& g, const TextureMemory& mem, const TextureDescri
   f.tag = cur.tag;
   f.ntaps = cur.ntaps();
   const TextureDescriptor& d = regs_.textures[cur.tag.req.texture];
-  const int level = cur.level;
-  const Rgba8 border = d.content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0} : regs_.samplers[cur.tag.req.sampler].border;
-  const auto word = [&](size_t i, size_t j) {
-    return ((g.used >> (4 * j + i)) & 1u) ? read_texel(memory_, d, level, g.x[i], g.y[j]) : border;
+  const LevelReadout level(memory_, d, cur.level);
+  const auto border = [&] {  // the border word (clamp-to-border taps outside the texture)
+    return d.content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0} : regs_.samplers[cur.tag.req.sampler].border;
   };
+  const auto word = [&](size_t i, size_t j) { return ((g.used >> (4 * j + i)) & 1u) ? level(g.x[i], g.y[j]) : border(); };
   if (cur.cross) {
 #pragma GCC unroll 12
     for (size_t k = 0; k < lee_jen::kTexels; ++k) {
@@ -92,10 +101,10 @@ void read_square(const TapGrid& g, const TextureMemory& mem, const TextureDescri
     }
   } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
-      case 1: read_square<1>(g, memory_, d, level, f.texels.data()); break;
-      case 2: read_square<2>(g, memory_, d, level, f.texels.data()); break;
-      case 3: read_square<3>(g, memory_, d, level, f.texels.data()); break;
-      default: read_square<4>(g, memory_, d, level, f.texels.data()); break;
+      case 1: read_square<1>(g, level, f.texels.data()); break;
+      case 2: read_square<2>(g, level, f.texels.data()); break;
+      case 3: read_square<3>(g, level, f.texels.data()); break;
+      default: read_square<4>(g, level, f.texels.data()); break;
     }
   } else {
     size_t k = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -50,6 +51,8 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
 }
 
 // The wiring: every block and channel of one unit, connected (the block diagram of tfu_unit.hpp).
+// A datapath no sampler of the frame uses is left out of the simulation (software speed only: it
+// would see no footprint).
 struct Unit {
   Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out)
       : depth(static_cast<size_t>(u.channel_depth)),
@@ -62,15 +65,21 @@ struct Unit {
         addr(sim, c_pixel, c_addr, frame.regs, roms),
         shape(sim, c_addr, c_shape, frame.regs),
         cst(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
-        filter(sim, c_texels, c_resp, frame.regs, roms, u.filter_lanes),
-        e1(sim, c_edge_texels, c_s1),
-        e2(sim, c_s1, c_s2),
-        e3(sim, c_s2, c_edge_resp),
         sink(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
-    for (sim::ChannelBase* c : channels()) sim.add_clocked(c);
-  }
-  std::vector<sim::ChannelBase*> channels() {
-    return {&c_quad, &c_pixel, &c_addr, &c_shape, &c_texels, &c_edge_texels, &c_s1, &c_s2, &c_resp, &c_edge_resp};
+    bool any_edge = false, any_filter = false;
+    for (const SamplerDescriptor& s : frame.regs.samplers)
+      (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;
+    for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_quad, &c_pixel, &c_addr, &c_shape}) sim.add_clocked(c);
+    if (any_filter) {
+      filter.emplace(sim, c_texels, c_resp, frame.regs, roms, u.filter_lanes);
+      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_texels, &c_resp}) sim.add_clocked(c);
+    }
+    if (any_edge) {
+      e1.emplace(sim, c_edge_texels, c_s1);
+      e2.emplace(sim, c_s1, c_s2);
+      e3.emplace(sim, c_s2, c_edge_resp);
+      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_s1, &c_s2, &c_edge_resp}) sim.add_clocked(c);
+    }
   }
   size_t depth;
   std::vector<uint64_t> accept;
@@ -93,11 +102,11 @@ struct Unit {
   AddressGen addr;
   KernelSelect shape;
   CacheStage cst;
-  FilterUnit filter;
-  EdgeMedian e1;
-  EdgeDirection e2;
-  EdgeMerge e3;
   ResponseSink sink;
+  std::optional<FilterUnit> filter;
+  std::optional<EdgeMedian> e1;
+  std::optional<EdgeDirection> e2;
+  std::optional<EdgeMerge> e3;
 };
 
 // The waveform probes: every channel's valid / ready / occupancy, the blocks' busy flags, the
@@ -135,9 +144,8 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   st.add("pixels", n);
   st.add("memory_bytes", u.mem.bytes_read());
   st.add("memory_requests", u.mem.requests());
-  st.add("filter_lane_busy_cycles", u.filter.busy_cycles());
-  if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
-    st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2.chosen.begin(), u.e2.chosen.end()));
+  if (u.filter) st.add("filter_lane_busy_cycles", u.filter->busy_cycles());
+  if (u.e2) st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
   st.set_histogram("latency", u.sink.latency);
   // Traffic per texture descriptor and per material stage.
   std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
