@@ -32,6 +32,7 @@ struct Rgba8 {
   uint8_t r = 0, g = 0, b = 0, a = 0;
   friend constexpr bool operator==(const Rgba8&, const Rgba8&) = default;
 };
+static_assert(sizeof(Rgba8) == 4, "a texel word is 4 bytes: R, G, B, A in address order");
 
 enum class TexelFormat { RGBA8, L8, VS16X2 };
 TexelFormat texel_format_from_name(const std::string& name);  // "rgba8", "l8", "vs16x2"

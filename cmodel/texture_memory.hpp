@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -53,40 +54,39 @@ inline Rgba8 read_texel(const TextureMemory& mem, const TextureDescriptor& d, in
 
 // One level of a texture as the texel read-out addresses it: the same address arithmetic as
 // TextureDescriptor::texel_address with the level's registers decoded once (a footprint's taps
-// share them). The address is separable: offset(x, y) = column(x) + row(y), since a tiled address
-// puts the tile column and the column inside the tile in other bits than the row parts:
-//   linear  column(x) = x << b,                                  row(y) = y * pitch
-//   tiled   column(x) = (x >> k) << (2k + b) | (x & m) << b,     row(y) = (y >> k) * pitch + (y & m) << (k + b)
-// (b = log2 bytes per texel, k = log2 tile side, m = 2^k - 1).
+// share them). The address is separable, offset(x, y) = column(x) + row(y), because a tiled
+// address puts the tile column and the column inside the tile in other bits than the row parts:
+//   column(x) = (x >> k) << (2k + b) | (x & m) << b      row(y) = (y >> k) pitch + (y & m) << (k + b)
+// (b = log2 bytes per texel, k = log2 tile side, m = 2^k - 1); a linear level is the case k = 0
+// (column x << b, row y pitch), so one formula serves both layouts without a branch.
 class LevelReadout {
  public:
+  LevelReadout() = default;
   LevelReadout(const TextureMemory& mem, const TextureDescriptor& d, int level)
       : base_(mem.bytes_at(d.level[static_cast<size_t>(level)].address)),
         pitch_(d.level[static_cast<size_t>(level)].row_pitch),
         l8_(d.format == TexelFormat::L8),
         b_(l8_ ? 0 : 2),
         k_(d.layout == MemoryLayout::Tiled ? d.tile_log2 : 0),
-        m_((1 << k_) - 1),
-        tiled_(d.layout == MemoryLayout::Tiled) {}
+        m_((1 << k_) - 1) {}
   size_t column(int x) const {
-    return tiled_ ? (static_cast<size_t>(x >> k_) << (2 * k_ + b_)) | (static_cast<size_t>(x & m_) << b_)
-                  : static_cast<size_t>(x) << b_;
+    return (static_cast<size_t>(x >> k_) << (2 * k_ + b_)) | (static_cast<size_t>(x & m_) << b_);
   }
-  size_t row(int y) const {
-    return tiled_ ? static_cast<size_t>(y >> k_) * pitch_ + (static_cast<size_t>(y & m_) << (k_ + b_)) : static_cast<size_t>(y) * pitch_;
-  }
+  size_t row(int y) const { return static_cast<size_t>(y >> k_) * pitch_ + (static_cast<size_t>(y & m_) << (k_ + b_)); }
   Rgba8 at(size_t offset) const {
     const uint8_t* p = base_ + offset;
-    return l8_ ? Rgba8{p[0], p[0], p[0], 255} : Rgba8{p[0], p[1], p[2], p[3]};
+    if (l8_) return {p[0], p[0], p[0], 255};
+    Rgba8 w;
+    std::memcpy(&w, p, sizeof w);  // R, G, B, A in address order
+    return w;
   }
   Rgba8 operator()(int x, int y) const { return at(column(x) + row(y)); }
 
  private:
-  const uint8_t* base_;
-  size_t pitch_;
-  bool l8_;
-  int b_, k_, m_;
-  bool tiled_;
+  const uint8_t* base_ = nullptr;
+  size_t pitch_ = 0;
+  bool l8_ = false;
+  int b_ = 2, k_ = 0, m_ = 0;
 };
 
 // Decodes the levels of `d` from memory (format, layout and tile size from the descriptor).

@@ -99,11 +99,15 @@ AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence
 void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level) const {
   const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
   const TextureDescriptor& tex = regs_.textures[p.req.texture];
-  f.tag = LevelTag{};
-  f.tag.id = p.id;
-  f.tag.req = p.req;
-  f.tag.base = c.mode.base;
-  f.tag.format = tex.format;
+  LevelTag& tag = f.tag;  // every field written (the output register is reused)
+  tag.id = p.id;
+  tag.req = p.req;
+  tag.base = c.mode.base;
+  tag.format = tex.format;
+  tag.fu = tag.fv = 0;
+  tag.blend = 0;
+  tag.two = tag.second = false;
+  tag.shape = lee_jen::kAllTexels;
   f.level = level;
   f.optional = 0;
   f.cross = false;

@@ -17,6 +17,10 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       mem_(m),
       fifo_(static_cast<size_t>(miss_fifo_depth)) {
   for (const SamplerDescriptor& d : regs.samplers) any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
+  for (const TextureDescriptor& d : regs.textures) {
+    first_readout_.push_back(readout_.size());
+    for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
+  }
 }
 
 [[gnu::always_inline]] inline void CacheStage::accept(uint64_t now) {
@@ -87,10 +91,10 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
   FilterReq& f = out_of(cur).push_slot();
   f.tag = cur.tag;
   f.ntaps = cur.ntaps();
-  const TextureDescriptor& d = regs_.textures[cur.tag.req.texture];
-  const LevelReadout level(memory_, d, cur.level);
+  const LevelReadout& level = readout_[first_readout_[cur.tag.req.texture] + static_cast<size_t>(cur.level)];
   const auto border = [&] {  // the border word (clamp-to-border taps outside the texture)
-    return d.content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0} : regs_.samplers[cur.tag.req.sampler].border;
+    return regs_.textures[cur.tag.req.texture].content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0}
+                                                                                             : regs_.samplers[cur.tag.req.sampler].border;
   };
   const auto word = [&](size_t i, size_t j) { return ((g.used >> (4 * j + i)) & 1u) ? level(g.x[i], g.y[j]) : border(); };
   if (cur.cross) {

@@ -60,6 +60,10 @@ class CacheStage : public sim::Module {
     uint64_t ready;  // cycle the footprint's lines are all in the cache
   };
   sim::Fifo<Entry> fifo_;  // the miss FIFO
+  // The read-out registers of every level of every texture (decoded from the descriptors once):
+  // texture t's level l is readout_[first_readout_[t] + l].
+  std::vector<LevelReadout> readout_;
+  std::vector<size_t> first_readout_;
   uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;

@@ -92,6 +92,7 @@ constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
 //   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), two/second (a
 //   blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross: texels the
 //   kernel may use)
+// (address_gen::footprint writes every field into the reused output register: keep it in step.)
 struct LevelTag {
   uint32_t id = 0;
   RequestTag req;
