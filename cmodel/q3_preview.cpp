@@ -1,0 +1,77 @@
+#include "cmodel/q3_preview.hpp"
+
+#include <charconv>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+#include "cmodel/q3_camera.hpp"
+
+namespace tfu::q3 {
+
+bool is_level_scene(const std::string& scene) { return scene.starts_with(kLevelScenePrefix); }
+
+LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& option) {
+  const auto fail = [&](const std::string& what) {
+    throw InputError(fmt::format("{} '{}': {} (expected oa:MAP[:SPAWN])", option, scene.substr(0, 80), what));
+  };
+  if (!is_level_scene(scene)) fail("not a level scene");
+  const std::string rest = scene.substr(std::string(kLevelScenePrefix).size());
+  LevelSceneSpec spec;
+  const size_t colon = rest.find(':');
+  spec.level = rest.substr(0, colon);
+  if (spec.level.empty()) fail("no level name");
+  if (spec.level.find_first_of("/\\") != std::string::npos) fail("the level name contains a path separator");
+  if (colon != std::string::npos) {
+    const std::string n = rest.substr(colon + 1);
+    const auto [end, ec] = std::from_chars(n.data(), n.data() + n.size(), spec.spawn);
+    if (n.empty() || ec != std::errc{} || end != n.data() + n.size() || spec.spawn < 0)
+      fail(fmt::format("spawn point '{}' is not a number >= 0", n.substr(0, 20)));
+  }
+  return spec;
+}
+
+Scene make_preview_scene(const Level& level, int spawn, int width, int height) {
+  if (width < 1 || height < 1 || width > kMaxRenderSize || height > kMaxRenderSize)
+    throw InputError(fmt::format("preview size {}x{} outside 1..{}", width, height, kMaxRenderSize));
+  Scene scene;
+  scene.name = fmt::format("oa-{}-{}", level.name, spawn);
+  scene.description = level_summary(level);
+  scene.width = width;
+  scene.height = height;
+  scene.camera = spawn_camera(level, spawn, width, height);
+  scene.background = kPreviewBackground;
+
+  std::map<int32_t, size_t> mesh_of_texture;        // BSP texture index -> mesh
+  std::vector<std::map<uint32_t, uint32_t>> remap;  // per mesh: level vertex -> mesh vertex
+  for (const LevelFace& f : level.faces) {
+    auto [it, added] = mesh_of_texture.try_emplace(f.texture, scene.meshes.size());
+    if (added) {
+      const LevelTexture& t = level.textures[static_cast<size_t>(f.texture)];
+      Mesh m;
+      m.primitive = "bsp";
+      m.texture_name = t.fallback ? t.name + " (fallback)" : t.source;
+      m.texture = t.texture;
+      m.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
+      m.sampler.wrap_s = m.sampler.wrap_t = WrapMode::Repeat;
+      scene.meshes.push_back(std::move(m));
+      remap.emplace_back();
+    }
+    Mesh& mesh = scene.meshes[it->second];
+    auto& vmap = remap[it->second];
+    for (uint32_t k = 0; k < f.triangle_count; ++k) {
+      std::array<uint32_t, 3> tri{};
+      for (size_t j = 0; j < 3; ++j) {
+        const uint32_t v = level.triangles[f.first_triangle + k][j];
+        auto [vit, fresh] = vmap.try_emplace(v, static_cast<uint32_t>(mesh.vertices.size()));
+        if (fresh) mesh.vertices.push_back({level.vertices[v].pos, level.vertices[v].uv0});
+        tri[j] = vit->second;
+      }
+      mesh.triangles.push_back(tri);
+    }
+  }
+  return scene;
+}
+
+}  // namespace tfu::q3
