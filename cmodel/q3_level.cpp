@@ -36,20 +36,14 @@ std::optional<std::vector<double>> parse_numbers(const std::string& text) {
 
 class LevelBuilder {
  public:
-  LevelBuilder(const Bsp& bsp, Level& level) : bsp_(bsp), level_(level) {}
+  LevelBuilder(const Bsp& bsp, Level& level, TextureCache& cache) : bsp_(bsp), level_(level), cache_(cache) {}
 
-  void add_textures(TextureCache& cache) {
+  void add_textures() {
     for (const BspTexture& t : bsp_.textures) {
       LevelTexture lt;
       lt.name = t.name;
       lt.surface_flags = t.surface_flags;
       lt.surface = classify_surface(t);
-      if (lt.surface == SurfaceClass::Drawn) {
-        const ResolvedTexture& r = cache.get(t.name);
-        lt.texture = r.texture;
-        lt.fallback = r.fallback;
-        lt.source = r.source;
-      }
       level_.textures.push_back(std::move(lt));
     }
   }
@@ -94,6 +88,7 @@ class LevelBuilder {
 
  private:
   void add_face(int32_t index, const BspFace& f, LevelTexture& tex) {
+    if (!tex.texture) resolve(tex);
     LevelFace lf;
     lf.bsp_face = index;
     lf.type = f.type;
@@ -113,6 +108,14 @@ class LevelBuilder {
     if (tex.fallback) ++c.fallback_faces;
     if (f.type == FaceType::Patch) ++c.patches;
     if (f.lightmap < 0) ++c.vertex_lit_faces;
+  }
+
+  // A texture is looked up (and decoded) when the first face drawn with it is added.
+  void resolve(LevelTexture& tex) {
+    const ResolvedTexture& r = cache_.get(tex.name);
+    tex.texture = r.texture;
+    tex.fallback = r.fallback;
+    tex.source = r.source;
   }
 
   void add_meshverts(const BspFace& f) {
@@ -154,6 +157,7 @@ class LevelBuilder {
 
   const Bsp& bsp_;
   Level& level_;
+  TextureCache& cache_;
 };
 
 }  // namespace
@@ -197,8 +201,8 @@ Level build_level(const Bsp& bsp, const std::string& name, const std::string& so
       break;
     }
   }
-  LevelBuilder b(bsp, level);
-  b.add_textures(cache);
+  LevelBuilder b(bsp, level, cache);
+  b.add_textures();
   b.add_lightmaps();
   b.add_faces();
   return level;

@@ -45,8 +45,10 @@ struct LevelTexture {
   std::string name;  // as in the BSP
   int32_t surface_flags = 0;
   SurfaceClass surface = SurfaceClass::Drawn;
-  std::shared_ptr<const Texture> texture;  // Drawn only: the image or the fallback; null otherwise
-  bool fallback = false;                   // Drawn, no image found
+  // The image or the fallback, for textures of drawn faces (looked up and decoded when the first
+  // such face is added); null for Invisible and Sky textures and those no drawn face uses.
+  std::shared_ptr<const Texture> texture;
+  bool fallback = false;                   // drawn with the fallback (no image found)
   std::string source;                      // "pak4-textures.pk3:textures/...jpg" when resolved
   int64_t faces_drawn = 0;                 // faces of this level drawn with it
 };

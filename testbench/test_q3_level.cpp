@@ -44,6 +44,7 @@ constexpr Rgba8 kRed{255, 0, 0, 255}, kGreen{0, 255, 0, 255}, kBlue{0, 0, 255, 2
 //   5 patch 5x3      "textures/test/wall"                      lightmap 0
 //   6 polygon        "textures/test/sky" (SURF_SKY)
 //   7 polygon        "textures/test/hint_marker" (name token "hint", no flags)
+// and a texture entry no face uses ("textures/test/both").
 BspBuilder tiny_level() {
   BspBuilder b;
   b.entities =
@@ -54,7 +55,8 @@ BspBuilder tiny_level() {
       "{\n\"classname\" \"info_player_deathmatch\"\n\"origin\" \"-8 8 40\"\n\"angles\" \"0 180 0\"\n}\n";
   b.textures = {{"textures/test/wall", 0, 1},       {"textures/test/jpgwall", 0, 1}, {"textures/test/missing", 0, 1},
                 {"flareShader", 0, 0},              {"textures/common/caulk", kSurfNodraw, 1},
-                {"textures/test/sky", kSurfSky, 1}, {"textures/test/hint_marker", 0, 0}};
+                {"textures/test/sky", kSurfSky, 1}, {"textures/test/hint_marker", 0, 0},
+                {"textures/test/both", 0, 1}};  // used by no face
   // 0..3 quad, 4..6 mesh, 7..15 patch 3x3, 16..30 patch 5x3, 31 billboard, 32..34 caulk,
   // 35..37 sky, 38..40 hint.
   b.vertices = {vtx({0, 0, 0}, {0, 1}, {0, 0.5}, {10, 20, 30, 40}, {0, -1, 0}), vtx({64, 0, 0}, {1, 1}, {0.5, 0.5}),
@@ -226,7 +228,7 @@ TEST_F(TinyGame, LevelAssemblyAndCounts) {
   EXPECT_EQ(c.vertices, 41 + 81 + 17 * 9);            // BSP vertices + both patch grids
   ASSERT_EQ(l.triangles.size(), 387u);
   // Textures: one per BSP entry, classified.
-  ASSERT_EQ(l.textures.size(), 7u);
+  ASSERT_EQ(l.textures.size(), 8u);
   EXPECT_EQ(l.textures[0].source, "pak0.pk3:textures/test/wall.tga");
   EXPECT_EQ(l.textures[0].faces_drawn, 2);
   EXPECT_TRUE(l.textures[2].fallback);
@@ -235,6 +237,9 @@ TEST_F(TinyGame, LevelAssemblyAndCounts) {
   EXPECT_EQ(l.textures[4].texture, nullptr);
   EXPECT_EQ(l.textures[5].surface, SurfaceClass::Sky);
   EXPECT_EQ(l.textures[6].surface, SurfaceClass::Invisible);
+  EXPECT_EQ(l.textures[7].surface, SurfaceClass::Drawn);
+  EXPECT_EQ(l.textures[7].texture, nullptr);  // no drawn face: not decoded
+  EXPECT_EQ(cache.decoded(), 2u);             // wall.tga, jpgwall.jpg
   // Faces: drawn ones in BSP order with their triangle ranges.
   ASSERT_EQ(l.faces.size(), 4u);
   EXPECT_EQ(l.faces[0].bsp_face, 0);
