@@ -62,7 +62,25 @@ class LevelBuilder {
     level_.lightmaps.push_back(std::make_shared<const Texture>(std::move(white)));
   }
 
+  // Faces may share vertex ranges, so a small file could ask for any number of patch triangles:
+  // the drawn faces' triangles are counted before anything is built.
+  void check_triangle_budget() const {
+    int64_t total = 0;
+    for (size_t i = 0; i < bsp_.faces.size(); ++i) {
+      const BspFace& f = bsp_.faces[i];
+      if (f.type == FaceType::Billboard || level_.textures[static_cast<size_t>(f.texture)].surface != SurfaceClass::Drawn)
+        continue;
+      total += f.type == FaceType::Patch ? int64_t{2} * kPatchSubdivision * kPatchSubdivision *
+                                               ((f.patch_size[0] - 1) / 2) * ((f.patch_size[1] - 1) / 2)
+                                         : f.meshvert_count / 3;
+      if (total > kMaxLevelTriangles)
+        throw InputError(fmt::format("{}: lump 13 (faces): face {}: the level exceeds {} triangles", level_.source, i,
+                                     kMaxLevelTriangles));
+    }
+  }
+
   void add_faces() {
+    check_triangle_budget();
     level_.vertices = bsp_.vertices;
     LevelCounts& c = level_.counts;
     for (size_t i = 0; i < bsp_.faces.size(); ++i) {

@@ -40,6 +40,10 @@ namespace tfu::q3 {
 inline constexpr std::array<const char*, 4> kSpawnClasses = {"info_player_deathmatch", "info_player_start",
                                                              "team_CTF_redspawn", "team_CTF_bluespawn"};
 
+// At most this many triangles per level (InputError beyond): 40 times the largest OpenArena level
+// (oa_dm5, 107,414), and a bound on memory, since faces may share vertex ranges.
+inline constexpr int64_t kMaxLevelTriangles = int64_t{1} << 22;
+
 // One entry of the BSP texture lump (index = the BSP's shader index).
 struct LevelTexture {
   std::string name;  // as in the BSP

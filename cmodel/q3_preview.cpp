@@ -22,6 +22,7 @@ LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& op
   const size_t colon = rest.find(':');
   spec.level = rest.substr(0, colon);
   if (spec.level.empty()) fail("no level name");
+  if (spec.level.size() > kMaxLevelNameLength) fail(fmt::format("level name longer than {} characters", kMaxLevelNameLength));
   if (spec.level.find_first_of("/\\") != std::string::npos) fail("the level name contains a path separator");
   if (colon != std::string::npos) {
     const std::string n = rest.substr(colon + 1);

@@ -20,6 +20,7 @@
 namespace tfu::q3 {
 
 inline constexpr const char* kLevelScenePrefix = "oa:";
+inline constexpr size_t kMaxLevelNameLength = 48;  // "maps/NAME.bsp" within Quake III's 64-character paths
 inline constexpr int kPreviewWidth = 1280, kPreviewHeight = 720;
 inline constexpr std::array<double, 4> kPreviewBackground{0.35, 0.45, 0.6, 1.0};
 

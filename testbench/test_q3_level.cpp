@@ -369,6 +369,8 @@ TEST(Q3Preview, SceneNames) {
   EXPECT_NE(error_of([] { parse_level_scene("oa:x:1z"); }).find("spawn point '1z'"), std::string::npos);
   EXPECT_NE(error_of([] { parse_level_scene("oa:x:"); }).find("spawn point ''"), std::string::npos);
   EXPECT_NE(error_of([] { parse_level_scene("oa:../x"); }).find("path separator"), std::string::npos);
+  EXPECT_NE(error_of([] { parse_level_scene("oa:" + std::string(49, 'a')); }).find("level name longer than 48 characters"),
+            std::string::npos);
 }
 
 // ---- Bad archives ----
@@ -414,6 +416,23 @@ TEST_F(TinyGame, BadLevelNamesArchiveAndLump) {
   EXPECT_EQ(error_of([&] { load_level(a, "bad", cache); }),
             "pak5.pk3:maps/bad.bsp: lump 11 (meshverts): meshvert 10 (face 4) is 5, outside the face's 3 vertices");
   EXPECT_EQ(error_of([&] { load_level(a, "old", cache); }), "pak5.pk3:maps/old.bsp: BSP version 47, expected 46 (Quake III)");
+}
+
+TEST(Q3Level, TriangleBudget) {
+  // 33 patch faces sharing one 65 x 65 control grid: 33 x 32 x 32 x 128 triangles > 2^22. Refused
+  // before anything is tessellated.
+  BspBuilder b;
+  b.textures = {{"textures/test/wall", 0, 1}};
+  for (int j = 0; j < 65; ++j)
+    for (int i = 0; i < 65; ++i) b.vertices.push_back(vtx({1.0 * i, 1.0 * j, 0}, {0, 0}));
+  for (int k = 0; k < 33; ++k) b.faces.push_back({0, FaceType::Patch, 0, 65 * 65, 0, 0, -1, 65, 65});
+  const Bsp bsp = parse_bsp(b.build(), "t.bsp");
+  const GameArchives none(std::vector<std::string>{});
+  TextureCache cache(none);
+  EXPECT_EQ(error_of([&] { build_level(bsp, "t", "t.bsp", cache); }),
+            "t.bsp: lump 13 (faces): face 32: the level exceeds 4194304 triangles");
+  b.faces.resize(1);  // one such patch is fine: 32 x 32 sub-patches of 8 x 8 quads
+  EXPECT_EQ(build_level(parse_bsp(b.build(), "t.bsp"), "t", "t.bsp", cache).counts.triangles, 131072);
 }
 
 // ---- The real game data (Debian openarena-081-maps / -textures; scripts/bootstrap installs them) ----
