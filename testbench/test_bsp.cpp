@@ -4,12 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "cmodel/bezier_patch.hpp"
 #include "cmodel/bsp.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/q3_level.hpp"
 #include "testbench/q3_test_data.hpp"
 
 namespace tfu::q3 {
@@ -230,6 +234,42 @@ TEST(Bsp, Entities) {
   EXPECT_EQ(error("{\n\"a\" \"b\"\n"), "t.bsp: lump 0 (entities): line 3: text ends inside an entity");
   EXPECT_EQ(error("{\n\"a\" }"), "t.bsp: lump 0 (entities): line 2: key 'a' has no value");
   EXPECT_EQ(error("{ { }"), "t.bsp: lump 0 (entities): line 1: '{' inside an entity");
+}
+
+// Random damage to the words of a valid file (header, directory, records; the lightmap texels at
+// the end are left alone, any value is valid there): the loader either
+// accepts the file and builds a level from it, or throws InputError; nothing else (the ASan build
+// also checks every access).
+TEST(Bsp, RandomWordDamageGivesInputErrorOrALevel) {
+  const Bytes good = small_bsp().build();
+  const GameArchives none(std::vector<std::string>{});
+  TextureCache cache(none);
+  std::mt19937 rng(20240611);
+  const int32_t interesting[] = {0, 1, -1, 2, 3, 4, 5, 7, 9, 65, 67, 128, 1 << 20, INT32_MAX, INT32_MIN,
+                                 static_cast<int32_t>(good.size())};
+  const size_t damageable = static_cast<size_t>(testdata::get_lump(good, kLumpLightmaps).first);
+  int accepted = 0, refused = 0;
+  for (int iter = 0; iter < 3000; ++iter) {
+    Bytes f = good;
+    const int words = 1 + static_cast<int>(rng() % 3);
+    for (int w = 0; w < words; ++w) {
+      const size_t at = 4 * (rng() % (damageable / 4));
+      const int32_t v = rng() % 2 ? interesting[rng() % std::size(interesting)] : static_cast<int32_t>(rng());
+      std::memcpy(f.data() + at, &v, 4);
+    }
+    if (rng() % 8 == 0) f.resize(rng() % f.size());  // and sometimes truncated
+    try {
+      const Bsp bsp = parse_bsp(f, "fuzz.bsp");
+      build_level(bsp, "fuzz", "fuzz.bsp", cache);
+      ++accepted;
+    } catch (const InputError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).rfind("fuzz.bsp: ", 0), 0u) << e.what();
+    }
+  }
+  std::printf("random damage: %d files accepted, %d refused\n", accepted, refused);
+  EXPECT_GT(accepted, 300);  // damage to floats, colours and names is harmless
+  EXPECT_GT(refused, 1000);
 }
 
 // ---- Patches ----
