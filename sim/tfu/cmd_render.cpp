@@ -1,5 +1,6 @@
 // tfu render: draw a scene (built-in or JSON file) through the golden sampler; optionally write the
-// quad request trace and the supersampled analytic ground truth (docs/renderer.md).
+// quad request trace and the supersampled analytic ground truth (docs/renderer.md). Scenes named
+// oa:MAP[:SPAWN] are single-stage previews of OpenArena levels (docs/real-frames.md).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -10,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/q3_archives.hpp"
+#include "cmodel/q3_scene.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_frame.hpp"
@@ -23,6 +26,7 @@ struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out;
+  std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   bool ideal = false, force = false, list = false;
   int threads = 0;
   int width = 0, height = 0;  // 0: the scene's size
@@ -34,6 +38,29 @@ void list_scenes(std::ostream& os) {
     const Scene s = parse_scene(builtin_scene_json(name), name + ".json");
     os << fmt::format("| {} | {}x{} | {} | {} |\n", name, s.width, s.height, s.meshes.size(), s.description);
   }
+}
+
+// The levels of the game data, as oa:MAP scene names (or why there are none).
+void list_levels(std::ostream& os, const std::string& game_dir) {
+  const std::string dir = q3::openarena_dir(game_dir);
+  try {
+    const q3::GameArchives archives(dir);
+    const auto names = archives.level_names();
+    os << fmt::format("\nOpenArena levels in {} ({}, as --scene oa:MAP[:SPAWN]):\n", dir, names.size());
+    for (const std::string& n : names) os << q3::kLevelScenePrefix << n << '\n';
+  } catch (const InputError& e) {
+    os << fmt::format("\nNo OpenArena levels: {}\n", e.what());
+  }
+}
+
+// oa:MAP[:SPAWN]: the level's single-stage preview at the requested size (the camera needs it).
+Scene load_level_scene(const RenderCliOptions& o) {
+  const q3::LevelSceneSpec spec = q3::parse_level_scene(o.scene);
+  const q3::GameArchives archives(q3::openarena_dir(o.game_dir));
+  q3::TextureCache cache(archives);
+  const q3::Level level = q3::load_level(archives, spec.level, cache);
+  return q3::level_scene(level, spec.spawn, o.width > 0 ? o.width : q3::kLevelSceneWidth,
+                                o.height > 0 ? o.height : q3::kLevelSceneHeight);
 }
 
 void write_trace_file(const Trace& trace, const std::string& path) {
@@ -51,12 +78,14 @@ void check_size_override(const char* option, int v) {
 void run(const RenderCliOptions& o) {
   if (o.list) {
     list_scenes(std::cout);
+    list_levels(std::cout, o.game_dir);
     return;
   }
   if (o.threads < 0 || o.threads > 1024) throw InputError(fmt::format("--threads must be in 0..1024, got {}", o.threads));
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
-  Scene scene = load_scene(o.scene);
+  const bool level_scene = q3::is_level_scene(o.scene);
+  Scene scene = level_scene ? load_level_scene(o) : load_scene(o.scene);
   if (o.width > 0) scene.width = o.width;
   if (o.height > 0) scene.height = o.height;
 
@@ -88,6 +117,7 @@ void run(const RenderCliOptions& o) {
   std::cerr << fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels\n",
                            scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
                            r.stats.clipped_away, r.stats.quads, r.stats.pixels);
+  if (level_scene) std::cerr << "tfu render: " << scene.description << '\n';
 }
 
 }  // namespace
@@ -96,7 +126,11 @@ void register_render(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
   auto* cmd = app.add_subcommand(
       "render", "Render a scene through the golden sampler (2x2 quads, quad-derivative LOD); optional trace and ground truth");
-  cmd->add_option("--scene", o->scene, "Built-in scene name (see --list) or a scene JSON file")->capture_default_str();
+  cmd->add_option("--scene", o->scene, "Built-in scene name (see --list), a scene JSON file, or oa:MAP[:SPAWN] (an OpenArena level)")
+      ->capture_default_str();
+  cmd->add_option("--game-dir", o->game_dir,
+                  fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
+                              q3::kDefaultOpenArenaDir));
   cmd->add_option("--filter", o->filter,
                   "Override the filter of every mesh's base stage (e.g. trilinear, cubic, edge_preserving_mipmap_linear)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
@@ -107,7 +141,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--width", o->width, "Override the scene's output width (0: keep)");
   cmd->add_option("--height", o->height, "Override the scene's output height (0: keep)");
   cmd->add_flag("--force", o->force, "Overwrite existing output files");
-  cmd->add_flag("--list", o->list, "List the built-in scenes and exit");
+  cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
   cmd->callback([o] { run(*o); });
 }
 
