@@ -100,22 +100,14 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
                   outputs.begin() + static_cast<ptrdiff_t>(job.quads[qi] * 4));
   }
   compose_quad_outputs(scene, render.quad_targets, outputs, res.image);
-  // Sums are right for every counter but cycles (the slowest unit) and the derived rates.
-  const auto n = static_cast<double>(res.requests);
+  // Sums are right for every counter but cycles (the slowest unit's) and the derived rates.
   sim::Stats st;
   for (const auto& [k, v] : res.stats.counters())
     if (k != "cycles") st.add(k, v);
   st.merge(res.stats, false);
   st.add("cycles", res.cycles);
   st.add("units", static_cast<uint64_t>(opt.units));
-  st.set("pixels_per_clock", res.cycles ? n / static_cast<double>(res.cycles) : 0.0);
-  st.set("memory_bytes_per_pixel", n > 0 ? static_cast<double>(st.counter("memory_bytes")) / n : 0.0);
-  const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
-  st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
-  uint64_t lat_sum = 0;
-  if (const auto* lat = st.histogram("latency"))
-    for (size_t c = 0; c < lat->size(); ++c) lat_sum += c * (*lat)[c];
-  st.set("latency_mean", n > 0 ? static_cast<double>(lat_sum) / n : 0.0);
+  derive_rates(st, res.requests, res.cycles);
   res.stats = std::move(st);
   return res;
 }

@@ -170,24 +170,29 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
                                std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
                                                      u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
   st.set_table("stages", std::move(stages));
-  const auto dn = static_cast<double>(n);
-  st.set("pixels_per_clock", out.cycles ? dn / static_cast<double>(out.cycles) : 0.0);
-  st.set("memory_bytes_per_pixel", n ? static_cast<double>(u.mem.bytes_read()) / dn : 0.0);
-  const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
-  st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
-  uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;
-  for (size_t c = 0; c < u.sink.latency.size(); ++c)
-    if (u.sink.latency[c]) {
-      lat_sum += c * u.sink.latency[c];
-      lat_min = std::min<uint64_t>(lat_min, c);
-      lat_max = c;
-    }
-  st.set("latency_mean", n ? static_cast<double>(lat_sum) / dn : 0.0);
-  st.set("latency_min", n ? static_cast<double>(lat_min) : 0.0);
-  st.set("latency_max", static_cast<double>(lat_max));
+  derive_rates(st, n, out.cycles);
 }
 
 }  // namespace
+
+void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
+  const auto n = static_cast<double>(requests);
+  st.set("pixels_per_clock", cycles ? n / static_cast<double>(cycles) : 0.0);
+  st.set("memory_bytes_per_pixel", requests ? static_cast<double>(st.counter("memory_bytes")) / n : 0.0);
+  const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
+  st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
+  uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;
+  if (const std::vector<uint64_t>* lat = st.histogram("latency"))
+    for (size_t c = 0; c < lat->size(); ++c)
+      if ((*lat)[c]) {
+        lat_sum += c * (*lat)[c];
+        lat_min = std::min<uint64_t>(lat_min, c);
+        lat_max = c;
+      }
+  st.set("latency_mean", requests ? static_cast<double>(lat_sum) / n : 0.0);
+  st.set("latency_min", requests ? static_cast<double>(lat_min) : 0.0);
+  st.set("latency_max", static_cast<double>(lat_max));
+}
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd_stream) {
   check_inputs(frame, trace, ucfg);

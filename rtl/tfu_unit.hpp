@@ -44,4 +44,9 @@ struct UnitOutput {
 // that names an unbound descriptor, CheckFailed on deadlock (with every block's state).
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd = nullptr);
 
+// The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
+// the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate and the latency mean,
+// minimum and maximum from the latency histogram.
+void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles);
+
 }  // namespace tfu::rtl

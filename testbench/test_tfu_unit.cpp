@@ -5,6 +5,7 @@
 // blocks against the cmodel functions they implement; config and VCD.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
 #include <sstream>
 
@@ -500,6 +501,15 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
             std::string::npos);
   EXPECT_NE(error("{\"cache\": ").find("malformed"), std::string::npos);
   EXPECT_NE(error("[1]").find("object"), std::string::npos);
+}
+
+TEST(Docs, CycleModelShowsTheConfigFields) {
+  std::ifstream f(std::string(TFU_DOCS_DIR) + "/cycle-model.md");
+  ASSERT_TRUE(f.good());
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_NE(ss.str().find(unit_config_markdown()), std::string::npos)
+      << "docs/cycle-model.md is stale: paste `tfu sim --config-fields` between the generated markers";
 }
 
 TEST(TfuUnit, VcdDumpsEveryChannel) {
