@@ -139,7 +139,7 @@ void TextureDescriptor::validate(const std::string& what) const {
             ? static_cast<uint64_t>((level_width(l) + tile_side() - 1) >> tile_log2) * static_cast<uint64_t>(tile_bytes())
             : static_cast<uint64_t>(level_width(l)) * static_cast<uint64_t>(bytes_per_texel(format));
     if (d.address % kLevelAlign != 0 || d.row_pitch % kLevelAlign != 0 || d.row_pitch < min_pitch ||
-        d.address >= (uint64_t{1} << 40))
+        d.address >= (uint64_t{1} << kAddressBits))
       fail(fmt::format("level {}: address {:#x} / row pitch {} (needs 256-byte alignment, below 2^40, pitch >= {})", l,
                        d.address, d.row_pitch, min_pitch));
   }

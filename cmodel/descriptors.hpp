@@ -95,6 +95,7 @@ enum class TextureContent { Texels, BsplineCoefficients };
 
 inline constexpr int kMaxLevels = 15;          // 16384 x 16384 has 15 levels
 inline constexpr uint64_t kLevelAlign = 256;   // every level (and every linear row) starts on 256 bytes
+inline constexpr int kAddressBits = 40;        // texel memory byte addresses are below 2^40
 
 struct LevelDescriptor {
   uint64_t address = 0;    // byte address of texel (0, 0), a multiple of kLevelAlign
