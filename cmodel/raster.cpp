@@ -301,16 +301,24 @@ void truth_band(const Context& ctx, int band, int y0, int y1) {
           for (size_t i = 0; i < 4; ++i) smp.c[i] = static_cast<float>(c[i]);
         }
   }
-  // Resolve: box average of the 64 samples of each pixel.
+  // Resolve: box average of the 64 samples of each pixel. Samples no triangle covers take the
+  // background in double precision, counted and multiplied (exact for 64 samples), so that a pixel
+  // of background alone rounds to exactly the render's background colour.
   for (int y = 0; y < rows; ++y)
     for (int x = 0; x < W; ++x) {
       std::array<double, 4> sum{};
+      int background = 0;
       for (int k = 0; k < kTruthSamples; ++k) {
         const TruthSample& smp =
             buf[(static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x)) * kTruthSamples +
                 static_cast<size_t>(k)];
+        if (smp.depth == std::numeric_limits<float>::infinity()) {
+          ++background;
+          continue;
+        }
         for (size_t i = 0; i < 4; ++i) sum[i] += smp.c[i];
       }
+      for (size_t i = 0; i < 4; ++i) sum[i] += background * scene.background[i];
       for (double& v : sum) v /= kTruthSamples;
       ctx.result->truth.at(x, y0 + y) = to_rgba8(sum);
     }

@@ -239,5 +239,25 @@ TEST(Raster, IdealPathCloseToFixedPoint) {
   EXPECT_LT(sum / static_cast<double>(fixed.image.texels.size()), 2.0);  // mean |difference| in 8-bit steps
 }
 
+TEST(Raster, TruthBackgroundRoundsLikeTheRender) {
+  // ground_plane's sky (0.55, 0.7, 0.9): 0.7 * 255 = 178.5 and 0.9 * 255 = 229.5 round up in both images
+  // (summing float samples gave 178 and 229). The top-left pixel is background alone.
+  Scene s = load_scene("ground_plane");
+  s.width = 32;
+  s.height = 24;
+  RenderOptions o;
+  o.ground_truth = true;
+  const RenderResult r = render_scene(s, o);
+  const Rgba8 sky = r.image.at(0, 0);
+  EXPECT_EQ(sky.r, 140);
+  EXPECT_EQ(sky.g, 179);
+  EXPECT_EQ(sky.b, 230);
+  const Rgba8 t = r.truth.at(0, 0);
+  EXPECT_EQ(t.r, sky.r);
+  EXPECT_EQ(t.g, sky.g);
+  EXPECT_EQ(t.b, sky.b);
+  EXPECT_EQ(t.a, sky.a);
+}
+
 }  // namespace
 }  // namespace tfu
