@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -26,6 +28,7 @@ struct CompareOptions {
   int scale = 16;
   std::string json;
   bool force = false;
+  std::optional<double> fail_below_psnr;  // exit 1 when PSNR (dB) is below it
 };
 
 struct MontageOptions {
@@ -80,6 +83,8 @@ void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m) 
 
 void run_compare(const CompareOptions& o) {
   if (o.scale < 1) throw InputError(fmt::format("--scale must be >= 1, got {}", o.scale));
+  if (o.fail_below_psnr && !std::isfinite(*o.fail_below_psnr))
+    throw InputError("--fail-below-psnr must be a finite number of dB");
   check_output("--diff", o.diff, o.force);
   check_output("--json", o.json, o.force);
   const Image a = load_image(o.a), b = load_image(o.b);  // InputError naming the file
@@ -93,6 +98,8 @@ void run_compare(const CompareOptions& o) {
     fmt::print(stderr, "tfu compare: wrote {}\n", o.diff);
   }
   if (!o.json.empty()) write_json(o, a, m);
+  if (o.fail_below_psnr && m.psnr_db < *o.fail_below_psnr)
+    throw CheckFailed(fmt::format("PSNR {:.4f} dB is below --fail-below-psnr {}", m.psnr_db, *o.fail_below_psnr));
 }
 
 // IMG[=LABEL]: an argument that names an existing file is taken whole; otherwise it splits at the
@@ -142,6 +149,7 @@ void register_compare(CLI::App& app) {
   cmd->add_option("--diff", o->diff, "Write a heat map of |A - B| (max over RGB) to this image");
   cmd->add_option("--scale", o->scale, "Heat map: difference in levels that saturates to white")->capture_default_str();
   cmd->add_option("--json", o->json, "Also write the metrics as JSON");
+  cmd->add_option("--fail-below-psnr", o->fail_below_psnr, "Exit with status 1 when the PSNR (dB) is below this (as idiff's thresholds)");
   cmd->add_flag("--force", o->force, "Overwrite --diff / --json if they exist");
   cmd->callback([o] { run_compare(*o); });
   register_montage(app);
