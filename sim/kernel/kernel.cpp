@@ -1,6 +1,7 @@
 #include "sim/kernel/kernel.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 
@@ -169,8 +170,14 @@ void Simulator::stop(uint64_t start, uint64_t max_cycles) const {
 Simulator::ProgressBar::ProgressBar(const std::function<uint64_t()>& done, uint64_t total)
     : done_(done), total_(total), t0_(std::chrono::steady_clock::now()), last_(t0_) {}
 
+namespace {
+std::atomic<bool> g_progress_bars{true};
+}  // namespace
+
+void set_progress_bars(bool on) { g_progress_bars = on; }
+
 void Simulator::ProgressBar::update(uint64_t cycle) {
-  if (total_ == 0 || !done_) return;
+  if (total_ == 0 || !done_ || !g_progress_bars) return;
   const auto now = std::chrono::steady_clock::now();
   if (now - t0_ > std::chrono::seconds(2) && now - last_ > std::chrono::milliseconds(500)) {
     std::fprintf(stderr, "\r  simulating: %5.1f %% (cycle %llu)",

@@ -182,6 +182,10 @@ class Stats {
 
 class Simulator;
 
+// Simulator::run's progress bar (stderr, runs over ~2 s) on or off for the whole process: a sweep
+// running many simulations on worker threads shows its own progress instead.
+void set_progress_bars(bool on);
+
 // A hardware block. Modules form a tree; path() is the hierarchical name used in VCD and dumps.
 class Module {
  public:

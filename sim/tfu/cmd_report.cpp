@@ -20,6 +20,8 @@
 #include "cmodel/montage.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_source.hpp"
+#include "sim/sweep/provenance.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -28,7 +30,8 @@ namespace {
 struct ReportOptions {
   std::string out_dir = "out/report";
   std::string markdown;  // empty: no Markdown
-  std::vector<std::string> scenes;  // empty: all built-in
+  std::vector<std::string> scenes;  // empty: all built-in; built-in names, scene files, oa: levels
+  std::string game_dir;             // OpenArena data for oa: scenes
   bool force = false;
   bool quick = false;  // half-size renders (for smoke tests)
 };
@@ -54,8 +57,8 @@ double gradient_energy(const Image& im) {
   return sum / std::max(1, (im.width - 1) * (im.height - 1));
 }
 
-Scene scene_for(const std::string& name, bool quick) {
-  Scene s = load_scene(name);
+Scene scene_for(const std::string& name, bool quick, const std::string& game_dir = {}) {
+  Scene s = open_scene({name, 0, 0, game_dir});
   if (quick) {
     s.width = std::max(16, s.width / 4);
     s.height = std::max(16, s.height / 4);
@@ -95,7 +98,7 @@ void save(const Image& img, const std::filesystem::path& p) { save_image(img, p.
 void run(const ReportOptions& o) {
   namespace fs = std::filesystem;
   const std::vector<std::string> names = o.scenes.empty() ? builtin_scene_names() : o.scenes;
-  for (const auto& n : names) (void)builtin_scene_json(n);  // unknown name -> InputError before any work
+  for (const auto& n : names) (void)scene_for(n, o.quick, o.game_dir);  // unknown scene -> InputError before any work
   if (!o.markdown.empty() && fs::exists(o.markdown) && !o.force)
     throw InputError(fmt::format("--markdown '{}' already exists (use --force to overwrite)", o.markdown));
   if (fs::exists(o.out_dir) && !fs::is_empty(o.out_dir) && !o.force)
@@ -108,8 +111,19 @@ void run(const ReportOptions& o) {
   std::vector<Claim> claims;
   std::map<std::string, std::map<std::string, ModeResult>> table;
   for (const std::string& name : names) {
-    const Scene scene = scene_for(name, o.quick);
-    const fs::path dir = fs::path(o.out_dir) / name;
+    const Scene scene = scene_for(name, o.quick, o.game_dir);
+    RunRecord rec;
+    rec.command = "report";
+    rec.scene = {name, 0, 0, o.game_dir};
+    rec.width = scene.width;
+    rec.height = scene.height;
+    rec.filter = "every mode";
+    rec.textures = scene_texture_names(scene);
+    js["provenance"]["scenes"][name] = provenance_json(rec)["scene"];
+    js["provenance"]["scenes"][name]["width"] = scene.width;
+    js["provenance"]["scenes"][name]["height"] = scene.height;
+    js["provenance"]["scenes"][name]["textures"] = rec.textures;
+    const fs::path dir = fs::path(o.out_dir) / scene_label(name);
     fs::create_directories(dir);
     const RenderResult base = render(scene, std::nullopt, false, true);
     save(base.truth, dir / "truth.png");
@@ -141,7 +155,7 @@ void run(const ReportOptions& o) {
       tiles.push_back(fx);
       labels.push_back(mn);
     }
-    save(montage(tiles, labels, 4), fs::path(o.out_dir) / (name + "_montage.png"));
+    save(montage(tiles, labels, 4), fs::path(o.out_dir) / (scene_label(name) + "_montage.png"));
   }
 
   // ---- The papers' claims, each decided by the numbers above (or extra renders) ----
@@ -207,6 +221,14 @@ void run(const ReportOptions& o) {
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   js["seconds"] = secs;
   {
+    const nlohmann::json scenes = js["provenance"]["scenes"];
+    nlohmann::json p = tool_provenance("report");
+    p["filter"] = "every mode (fixed point and ideal)";
+    p["quick"] = o.quick;
+    p["scenes"] = scenes;
+    js["provenance"] = p;
+  }
+  {
     std::ofstream f(fs::path(o.out_dir) / "results.json");
     f << js.dump(2) << '\n';
   }
@@ -225,7 +247,7 @@ void run(const ReportOptions& o) {
   for (const Claim& c : claims)
     md << fmt::format("| {} | {} | {} | {} |\n", c.text, c.scene, c.evidence, c.confirmed ? "confirmed" : "**refuted**");
   for (const auto& [scene, modes] : table) {
-    md << fmt::format("\n## Scene `{}`\n\nMontage: `{}/{}_montage.png`.\n\n", scene, o.out_dir, scene);
+    md << fmt::format("\n## Scene `{}`\n\nMontage: `{}/{}_montage.png`.\n\n", scene, o.out_dir, scene_label(scene));
     md << "| mode | PSNR fixed (dB) | SSIM fixed | PSNR ideal (dB) | SSIM ideal | fixed vs ideal max | mean | sharpness |\n"
           "|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const FilterMode& m : all_filter_modes()) {
@@ -255,7 +277,8 @@ void register_report(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("report", "Render every scene in every filter mode, montage them, measure quality, check the papers' claims");
   cmd->add_option("--out-dir", o->out_dir, "Directory for the images, montages and results.json");
   cmd->add_option("--markdown", o->markdown, "Also write the Markdown report here (e.g. docs/results.md)");
-  cmd->add_option("--scene", o->scenes, "Only these built-in scenes (repeatable)");
+  cmd->add_option("--scene", o->scenes, "Only these scenes: built-in names, scene JSON files or oa:MAP[:SPAWN] (repeatable)");
+  cmd->add_option("--game-dir", o->game_dir, "OpenArena data directory for oa: scenes");
   cmd->add_flag("--quick", o->quick, "Quarter-size renders (smoke test)");
   cmd->add_flag("--force", o->force, "Overwrite existing outputs");
   cmd->callback([o] { run(*o); });

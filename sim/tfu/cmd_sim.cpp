@@ -20,6 +20,7 @@
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
+#include "sim/sweep/provenance.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
 
@@ -39,7 +40,7 @@ struct SimOptions {
   std::map<std::string, std::string> unit_flags;  // one per unit config field (the flags' storage)
   std::string shape_policy;
   int units = 1;
-  std::string stats, out, vcd;
+  std::string stats, out, vcd, config_out;
   bool force = false, bench = false, config_fields = false;
 };
 
@@ -51,10 +52,11 @@ std::string read_file(const std::string& path, const char* option) {
   return ss.str();
 }
 
-// The unit configuration: the defaults, then --config, then the field flags given.
+// The unit configuration: the defaults, then --config (a unit configuration, or a statistics file
+// whose provenance records one), then the field flags given.
 rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
   rtl::UnitConfig u;
-  if (!o.config.empty()) u = rtl::unit_config_from_json(read_file(o.config, "--config"), o.config);
+  if (!o.config.empty()) u = rtl::unit_config_from_json(unit_config_text(read_file(o.config, "--config")), o.config);
   for (const rtl::UnitField& f : rtl::unit_config_fields()) {
     if (cmd.count(f.flag) == 0) continue;
     try {
@@ -97,17 +99,22 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
 }
 
 // A request trace through the unit and the golden model.
-sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd) {
+sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, RunRecord& rec) {
   if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
   Trace trace = load_trace(o.requests);
   if (!o.shape_policy.empty()) o.smp.values["edge_shape"] = o.shape_policy;
   const Frame frame = frame_for_trace(cmd, o.tex, o.smp, trace, unit.cache.line_bytes);
+  rec.has_scene = false;
+  rec.trace = o.requests;
+  rec.textures = frame_texture_names(frame);
   const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, vcd);
   const GoldenUnit golden(frame);
   const std::string mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   if (!mismatch.empty()) throw CheckFailed(mismatch);
   std::string modes;
   for (const SamplerDescriptor& s : frame.regs.samplers) modes += (modes.empty() ? "" : ", ") + filter_mode_name(s.mode);
+  rec.filter = modes;
+  rec.sampler_overrides = sampler_params_given(cmd, o.smp);
   print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", modes, trace.requests.size(),
                             o.requests, trace.requests.size()),
                 trace.requests.size(), got.cycles, got.stats);
@@ -115,7 +122,7 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
 }
 
 // A scene rendered by the golden model, its trace through the units.
-sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd) {
+sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, RunRecord& rec) {
   const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
@@ -154,6 +161,13 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
     pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
   }
   std::sort(pair_ratio.begin(), pair_ratio.end());
+  rec.scene = {name, o.width, o.height, o.game_dir};
+  rec.width = scene.width;
+  rec.height = scene.height;
+  rec.filter = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene");
+  rec.sampler_overrides = ro.sampler_overrides;
+  rec.units = o.units;
+  rec.textures = frame_texture_names(render.frame->frame);
   if (!res.mismatch.empty()) throw CheckFailed(res.mismatch);
   const std::string mode = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene filters");
   print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
@@ -187,7 +201,12 @@ void run(SimOptions& o, CLI::App& cmd) {
   prepare_output("--stats", o.stats, o.force);
   prepare_output("--out", o.out, o.force);
   prepare_output("--vcd", o.vcd, o.force);
+  prepare_output("--config-out", o.config_out, o.force);
   const rtl::UnitConfig unit = unit_config(o, cmd);
+  if (!o.config_out.empty()) {
+    write_file_atomic(o.config_out, rtl::unit_config_to_json(unit) + "\n", "--config-out");
+    std::cout << "  unit configuration -> " << o.config_out << '\n';
+  }
   if (!o.shape_policy.empty()) edge_shape_from_name(o.shape_policy);
   // Options that do not apply to this kind of run are errors, not silently ignored.
   const auto given = [&cmd](const std::string& name) {
@@ -212,12 +231,13 @@ void run(SimOptions& o, CLI::App& cmd) {
     vcd = std::make_unique<std::ofstream>(o.vcd);
     if (!*vcd) throw InputError(fmt::format("--vcd '{}' cannot be written", o.vcd));
   }
-  const sim::Stats stats = o.requests.empty() ? run_scene(o, cmd, unit, vcd.get()) : run_requests(o, cmd, unit, vcd.get());
+  RunRecord rec;
+  rec.command = "sim";
+  rec.config = &unit;
+  const sim::Stats stats =
+      o.requests.empty() ? run_scene(o, cmd, unit, vcd.get(), rec) : run_requests(o, cmd, unit, vcd.get(), rec);
   if (!o.stats.empty()) {
-    std::ofstream f(o.stats);
-    stats.write_json(f);
-    f.close();
-    if (!f) throw InputError(fmt::format("--stats '{}' cannot be written", o.stats));
+    write_file_atomic(o.stats, stats_document(stats, provenance_json(rec)), "--stats");
     std::cout << "  stats -> " << o.stats << '\n';
   }
   if (vcd) {
@@ -229,7 +249,9 @@ void run(SimOptions& o, CLI::App& cmd) {
 
 // ---- tfu sim-results: the cycle model's measured results (TFU-C item 5) ----
 struct ResultsOptions {
-  int width = 256, height = 192;
+  int width = 256, height = 192;      // 0: each scene's own size
+  std::vector<std::string> scenes;    // empty: every built-in scene
+  std::string config, game_dir;       // unit configuration (default: the defaults); OpenArena data
   std::string markdown = "-", json;
   bool force = false;
 };
@@ -242,15 +264,17 @@ struct ResultRow {
 };
 
 // One scene in one mode (the base stages' filter) with one edge-shape policy and line size.
-ResultRow measure(const Scene& scene, const std::string& scene_name, FilterMode mode, EdgeShape policy, int line_bytes) {
+ResultRow measure(const Scene& scene, const std::string& scene_name, const rtl::UnitConfig& base, FilterMode mode, EdgeShape policy,
+                  int line_bytes) {
   RenderOptions ro;
   ro.trace = true;
   ro.filter = mode;
   ro.line_bytes = line_bytes;
   ro.sampler_overrides["edge_shape"] = edge_shape_name(policy);
   const RenderResult render = render_scene(scene, ro);
-  rtl::UnitConfig u;
+  rtl::UnitConfig u = base;
   u.cache.line_bytes = line_bytes;
+  u.validate();  // InputError if the base configuration does not take this line size
   const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, u, {});
   if (!r.mismatch.empty()) throw CheckFailed(r.mismatch);
   ResultRow row{scene_name, filter_mode_name(mode), mode.base == BaseFilter::EdgePreserving ? edge_shape_name(policy) : "",
@@ -273,39 +297,45 @@ void run_results(const ResultsOptions& o) {
   prepare_output("--json", o.json, o.force);
   std::vector<ResultRow> rows;
   std::string ratio_table;
-  const std::vector<std::string> scenes = builtin_scene_names();
+  const std::vector<std::string> scenes = o.scenes.empty() ? builtin_scene_names() : o.scenes;
+  const rtl::UnitConfig base =
+      o.config.empty() ? rtl::UnitConfig{} : rtl::unit_config_from_json(unit_config_text(read_file(o.config, "--config")), o.config);
+  for (const std::string& name : scenes) (void)open_scene({name, o.width, o.height, o.game_dir});  // bad names fail before any work
   for (size_t si = 0; si < scenes.size(); ++si) {
     const std::string& name = scenes[si];
     std::cerr << fmt::format("sim-results: scene {}/{} {}\n", si + 1, scenes.size(), name);
-    Scene scene = load_scene(name);
-    scene.width = o.width;
-    scene.height = o.height;
+    const Scene scene = open_scene({name, o.width, o.height, o.game_dir});
+    const int line0 = base.cache.line_bytes;
     for (const FilterMode& m : all_filter_modes()) {
       if (m.base == BaseFilter::EdgePreserving) {
-        for (EdgeShape p : {EdgeShape::Static, EdgeShape::CacheAware, EdgeShape::Cross}) rows.push_back(measure(scene, name, m, p, 64));
+        for (EdgeShape p : {EdgeShape::Static, EdgeShape::CacheAware, EdgeShape::Cross}) rows.push_back(measure(scene, name, base, m, p, line0));
       } else {
-        rows.push_back(measure(scene, name, m, EdgeShape::Static, 64));
+        rows.push_back(measure(scene, name, base, m, EdgeShape::Static, line0));
       }
     }
     // Lee & Jen Sec. 3: memory bytes of EDGE_PRESERVING per policy over LINEAR's, 64- and 256-byte lines.
     for (int line : {64, 256}) {
-      const ResultRow lin = measure(scene, name, filter_mode_from_name("LINEAR"), EdgeShape::Static, line);
+      const ResultRow lin = measure(scene, name, base, filter_mode_from_name("LINEAR"), EdgeShape::Static, line);
       const FilterMode edge = filter_mode_from_name("EDGE_PRESERVING");
-      const ResultRow st = measure(scene, name, edge, EdgeShape::Static, line);
-      const ResultRow ca = measure(scene, name, edge, EdgeShape::CacheAware, line);
-      const ResultRow fc = measure(scene, name, edge, EdgeShape::Cross, line);
+      const ResultRow st = measure(scene, name, base, edge, EdgeShape::Static, line);
+      const ResultRow ca = measure(scene, name, base, edge, EdgeShape::CacheAware, line);
+      const ResultRow fc = measure(scene, name, base, edge, EdgeShape::Cross, line);
       const auto ratio = [&](const ResultRow& r) { return static_cast<double>(r.bytes) / static_cast<double>(lin.bytes); };
       ratio_table += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", name, line, lin.bytes, ratio(st), ratio(ca),
                                  ratio(fc));
     }
   }
   std::ostringstream md;
-  md << fmt::format("\n## Cycle model (TFU-C)\n\nGenerated by `scripts/results` (`tfu sim-results`, {}x{} per scene, default unit "
-                    "configuration of docs/cycle-model.md: 16 KiB 4-way cache of 64-byte lines, textures tiled 4x4 (RGBA8), "
-                    "block-parity banks, memory latency 100 cycles and 16 bytes/cycle, one filter lane; every texture of a scene "
-                    "resident in one texel memory, no flush between meshes). Every output of every run below was compared with "
-                    "the golden model bit for bit (all equal). Cycles per pixel include the memory stalls.\n\n",
-                    o.width, o.height);
+  const std::string size = o.width ? fmt::format("{}x{} per scene", o.width, o.height) : std::string("each scene's own size");
+  const std::string unit_text =
+      o.config.empty()
+          ? std::string("default unit configuration of docs/cycle-model.md: 16 KiB 4-way cache of 64-byte lines, textures tiled "
+                        "4x4 (RGBA8), block-parity banks, memory latency 100 cycles and 16 bytes/cycle, one filter lane")
+          : fmt::format("unit configuration of {}: `{}`", o.config, nlohmann::json::parse(rtl::unit_config_to_json(base)).dump());
+  md << fmt::format("\n## Cycle model (TFU-C)\n\nGenerated by `scripts/results` (`tfu sim-results`, {}, {}; every texture of a "
+                    "scene resident in one texel memory, no flush between meshes). Every output of every run below was compared "
+                    "with the golden model bit for bit (all equal). Cycles per pixel include the memory stalls.\n\n",
+                    size, unit_text);
   md << "### Lee & Jen's bandwidth claim: memory bytes of EDGE_PRESERVING / LINEAR, same scene and cache\n\n"
         "| scene | line bytes | LINEAR bytes | static | cache-aware | cross |\n|---|---:|---:|---:|---:|---:|\n"
      << ratio_table
@@ -345,14 +375,19 @@ void run_results(const ResultsOptions& o) {
 void register_sim(CLI::App& app) {
   auto ro = std::make_shared<ResultsOptions>();
   CLI::App* res = app.add_subcommand("sim-results", "Cycle model results for every scene x mode x policy (Markdown, JSON)");
-  res->add_option("--width", ro->width, "Render width per scene");
-  res->add_option("--height", ro->height, "Render height per scene");
+  res->add_option("--scene", ro->scenes, "Built-in scene, scene JSON or oa:MAP[:SPAWN] (repeatable; default: every built-in scene)");
+  res->add_option("--game-dir", ro->game_dir, "OpenArena data directory for oa: scenes");
+  res->add_option("--config", ro->config, "Unit configuration JSON or statistics file (its recorded configuration; the line "
+                                          "size experiment sets cache.line_bytes to 64 and 256)");
+  res->add_option("--width", ro->width, "Render width per scene (0 with --height 0: each scene's own size)")->capture_default_str();
+  res->add_option("--height", ro->height, "Render height per scene")->capture_default_str();
   res->add_option("--markdown", ro->markdown, "Markdown output file, - for stdout (default)");
   res->add_option("--json", ro->json, "JSON output file");
   res->add_flag("--force", ro->force, "Overwrite output files that exist");
   res->callback([ro] {
-    if (ro->width < 2 || ro->height < 2 || ro->width > kMaxRenderSize || ro->height > kMaxRenderSize)
-      throw InputError(fmt::format("--width/--height must be in 2..{}", kMaxRenderSize));
+    const auto bad = [](int v) { return v < 0 || v == 1 || v > kMaxRenderSize; };
+    if (bad(ro->width) || bad(ro->height))
+      throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
     run_results(*ro);
   });
 
@@ -366,7 +401,10 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (docs/traces.md)");
   add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
-  cmd->add_option("--config", o->config, "Unit configuration JSON (docs/cycle-model.md); the flags below override it");
+  cmd->add_option("--config", o->config,
+                  "Unit configuration JSON (docs/cycle-model.md), or a statistics file (--stats) whose recorded "
+                  "configuration to use; the flags below override it");
+  cmd->add_option("--config-out", o->config_out, "Write the effective unit configuration (every field) as JSON");
   for (const rtl::UnitField& f : rtl::unit_config_fields()) cmd->add_option(f.flag, o->unit_flags[f.key], fmt::format("{}: {}", f.key, f.meaning));
   cmd->add_flag("--config-fields", o->config_fields, "Print the unit configuration's fields (Markdown) and exit");
   cmd->add_option("--shape-policy", o->shape_policy,

@@ -10,10 +10,14 @@
 #include <CLI/CLI.hpp>
 
 #include "cmodel/error.hpp"
+#include "sim/sweep/provenance.hpp"
+#include "sim/sweep/version.hpp"
 #include "sim/tfu/commands.hpp"
 
 int main(int argc, char** argv) {
+  tfu::set_command_line(argc, argv);  // recorded in every statistics file (provenance)
   CLI::App app{"tfu: texture filter unit model (golden reference, cycle model, ROM and error tools)"};
+  app.set_version_flag("--version", std::string("tfu ") + tfu::tool_version());
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Print help for every subcommand");
   tfu::cli::register_kernel_error(app);
@@ -26,11 +30,14 @@ int main(int argc, char** argv) {
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
   tfu::cli::register_descriptors(app);
+  tfu::cli::register_sweep(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "tfu: error: %s\n", e.what());

@@ -1,0 +1,108 @@
+#include "sim/sweep/sweep_plot.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+#include "sim/sweep/process.hpp"
+
+namespace tfu::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kPython = "/usr/bin/python3";  // Debian's, with python3-matplotlib (scripts/bootstrap)
+
+size_t distinct(const std::vector<Point>& points, size_t key) {
+  std::set<std::string> v;
+  for (const Point& p : points) v.insert(p.values[key]);
+  return v.size();
+}
+
+bool numeric_key(const Spec& s, size_t k) { return s.keys[k].field && s.keys[k].field->names.empty(); }
+
+}  // namespace
+
+std::string plot_script() {
+  if (const char* env = std::getenv("TFU_PLOT_SCRIPT"); env && *env) return env;
+  return std::string(TFU_SOURCE_DIR) + "/scripts/plot";
+}
+
+void plot(const PlotRequest& r) {
+  const std::string script = plot_script();
+  if (!fs::exists(script)) throw InputError(fmt::format("plot script '{}' not found (set TFU_PLOT_SCRIPT)", script));
+  const fs::path csv = fs::path(r.dir) / "results.csv";
+  if (!fs::exists(csv)) throw InputError(fmt::format("'{}' has no results.csv (run tfu sweep, or tfu sweep --collect)", r.dir));
+  std::vector<std::string> argv = {kPython, script, "--csv", csv.string(), "--x", r.x, "--y", r.y, "--kind", r.kind, "--out", r.out};
+  if (!r.series.empty()) {
+    std::string s;
+    for (const std::string& c : r.series) s += (s.empty() ? "" : ",") + c;
+    argv.insert(argv.end(), {"--series", s});
+  }
+  for (const std::string& w : r.where) argv.insert(argv.end(), {"--where", w});
+  if (!r.series_note.empty()) argv.insert(argv.end(), {"--series-note", r.series_note});
+  if (!r.title.empty()) argv.insert(argv.end(), {"--title", r.title});
+  if (r.log_x) argv.push_back("--log-x");
+  if (r.log_y) argv.push_back("--log-y");
+  if (r.force) argv.push_back("--force");
+  const ProcessResult res = run_process(argv);
+  if (res.status == -1) throw InputError(fmt::format("cannot run {} (scripts/bootstrap installs python3-matplotlib)", kPython));
+  if (res.status != 0) {
+    std::string line = first_line(res.err, 260);
+    if (line.rfind("plot: error: ", 0) == 0) line = line.substr(13);
+    throw InputError(fmt::format("plot: {}", line.empty() ? fmt::format("{} exited with status {}", script, res.status) : line));
+  }
+}
+
+std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& points, const std::string& dir) {
+  std::vector<Plot> plots;
+  size_t xk = spec.keys.size();
+  for (size_t k = 0; k < spec.grid_keys && xk == spec.keys.size(); ++k)
+    if (numeric_key(spec, k) && distinct(points, k) > 1) xk = k;
+  std::vector<std::string> series;
+  if (spec.filters.size() > 1) series.push_back("filter");
+  if (spec.scenes.size() > 1) series.push_back("scene");
+  for (size_t k = 0; k < spec.keys.size(); ++k)
+    if (k != xk && distinct(points, k) > 1) series.push_back(spec.keys[k].name);
+  if (series.empty()) series.push_back("filter");
+  const auto make = [&](PlotRequest r, const std::string& file, const std::string& caption) {
+    r.dir = dir;
+    r.series = series;
+    r.out = (fs::path(dir) / file).string();
+    r.force = true;
+    plot(r);
+    plots.push_back({file, caption});
+  };
+  if (xk < spec.keys.size()) {
+    const std::string& x = spec.keys[xk].name;
+    long long lo = 0, hi = 0;
+    for (const Point& p : points) {
+      const long long v = std::stoll(p.values[xk]);
+      lo = lo == 0 ? v : std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+    const bool log_x = lo > 0 && hi >= 8 * lo;
+    PlotRequest r;
+    r.x = x;
+    r.log_x = log_x;
+    r.y = "bytes_per_pixel";
+    make(r, "plot_bytes_per_pixel.png", fmt::format("Memory bytes per pixel against {}", x));
+    r.y = "pixels_per_clock";
+    make(r, "plot_pixels_per_clock.png", fmt::format("Pixels per clock against {}", x));
+  }
+  PlotRequest area;
+  area.x = "sram_bits";
+  area.y = "bytes_per_pixel";
+  area.log_x = true;
+  area.kind = "line";
+  area.title = "Cost beside benefit: texel cache SRAM against memory traffic";
+  if (series == std::vector<std::string>{"filter"}) area.series_note = "filter_gates";
+  make(area, "plot_area.png", "Area against benefit: texel cache SRAM bits against memory bytes per pixel "
+                              "(legend: the filter datapath's gate equivalents)");
+  return plots;
+}
+
+}  // namespace tfu::sweep

@@ -1,0 +1,198 @@
+#include "sim/sweep/sweep_point.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cmodel/error.hpp"
+#include "cmodel/metrics.hpp"
+#include "cmodel/raster.hpp"
+#include "cmodel/scene_source.hpp"
+#include "rtl/cost_model.hpp"
+#include "rtl/scene_sim.hpp"
+#include "sim/sweep/provenance.hpp"
+
+namespace tfu::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string scene_key(const Spec& s, const Point& p) { return fmt::format("{}\n{}x{}", p.scene_path, s.width, s.height); }
+
+std::string truth_key(const Spec& s, const Point& p) {
+  std::string k = scene_key(s, p);
+  for (const auto& [key, value] : p.sampler) k += fmt::format("\n{}={}", key, value);
+  return k;
+}
+
+// Made once under the cache's lock; other threads wait on the shared future.
+template <typename T, typename Make>
+std::shared_ptr<const T> once(std::mutex& m, std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& map,
+                              const std::string& key, Make&& make) {
+  std::promise<std::shared_ptr<const T>> promise;
+  std::shared_future<std::shared_ptr<const T>> fut;
+  bool mine = false;
+  {
+    const std::lock_guard lock(m);
+    auto it = map.find(key);
+    if (it == map.end()) {
+      fut = promise.get_future().share();
+      map.emplace(key, fut);
+      mine = true;
+    } else {
+      fut = it->second;
+    }
+  }
+  if (mine) {
+    try {
+      promise.set_value(make());
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  }
+  return fut.get();
+}
+
+RenderOptions render_options(const Point& p, bool truth) {
+  RenderOptions ro;
+  ro.threads = 1;  // the sweep's parallelism is across points
+  ro.sampler_overrides = p.sampler;
+  if (truth) {
+    ro.ground_truth = true;
+  } else {
+    ro.trace = true;
+    ro.line_bytes = p.config.cache.line_bytes;
+    if (p.filter != kSceneFilter) ro.filter = filter_mode_from_name(p.filter);
+  }
+  return ro;
+}
+
+nlohmann::json point_json(const Spec& s, const Point& p) {
+  nlohmann::json keys = nlohmann::json::object();
+  for (size_t k = 0; k < s.keys.size(); ++k) keys[s.keys[k].name] = p.values[k];
+  return {{"id", p.id}, {"index", p.index}, {"scene", p.scene}, {"filter", p.filter}, {"keys", keys}};
+}
+
+RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
+  RunRecord r;
+  r.command = "sweep";
+  r.scene = {p.scene_path, s.width, s.height, s.game_dir};
+  r.width = width;
+  r.height = height;
+  r.filter = p.filter;
+  r.sampler_overrides = p.sampler;
+  r.units = s.units;
+  r.config = &p.config;
+  return r;
+}
+
+// The point's figures beside its statistics (what results.csv shows).
+nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Image& truth, const Frame& frame) {
+  const sim::Stats& st = res.stats;
+  nlohmann::json r;
+  r["cycles"] = res.cycles;
+  r["pixels"] = res.requests;
+  r["pixels_per_clock"] = st.value("pixels_per_clock");
+  r["hit_rate"] = st.value("cache_hit_rate");
+  r["bytes_per_pixel"] = st.value("memory_bytes_per_pixel");
+  r["memory_bytes"] = st.counter("memory_bytes");
+  for (const char* c : {"stall_cache_miss", "stall_bank_conflict", "stall_backpressure"}) r[c] = st.counter(c);
+  r["latency_mean"] = st.value("latency_mean");
+  const double psnr = psnr_db(res.image, truth);
+  if (std::isinf(psnr)) {
+    r["psnr"] = "inf";
+  } else {
+    r["psnr"] = psnr;
+  }
+  r["golden_equal"] = res.mismatch.empty();
+  r["mismatch"] = res.mismatch;
+  const rtl::CacheSramBits bits = rtl::texel_cache_sram_bits(p.config.cache);
+  const auto units = static_cast<uint64_t>(s.units);
+  r["sram_bits"] = units * bits.total();
+  r["sram_bits_data"] = units * bits.data;
+  r["sram_bits_tag"] = units * bits.tag;
+  r["sram_bits_valid"] = units * bits.valid;
+  r["sram_bits_lru"] = units * bits.lru;
+  std::vector<FilterMode> modes;
+  for (const SamplerDescriptor& d : frame.regs.samplers) modes.push_back(d.mode);
+  const rtl::FilterGates gates = rtl::filter_datapath_gates(modes);
+  r["filter_gates"] = static_cast<double>(s.units) * gates.ge;
+  r["filter_blocks"] = gates.blocks;
+  return r;
+}
+
+}  // namespace
+
+std::shared_ptr<const Scene> SceneCache::scene(const Spec& s, const Point& p) {
+  return once<Scene>(mutex_, scenes_, scene_key(s, p), [&] {
+    return std::make_shared<const Scene>(open_scene({p.scene_path, s.width, s.height, s.game_dir}));
+  });
+}
+
+std::shared_ptr<const Image> SceneCache::truth(const Spec& s, const Point& p) {
+  const std::shared_ptr<const Scene> sc = scene(s, p);
+  return once<Image>(mutex_, truths_, truth_key(s, p),
+                     [&] { return std::make_shared<const Image>(render_scene(*sc, render_options(p, true)).truth); });
+}
+
+std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTiming* timing) {
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json doc;
+  doc["complete"] = true;
+  doc["point"] = point_json(s, p);
+  double sim_seconds = 0;
+  try {
+    const std::shared_ptr<const Scene> scene = cache.scene(s, p);
+    const std::shared_ptr<const Image> truth = cache.truth(s, p);
+    const auto t1 = std::chrono::steady_clock::now();
+    const RenderResult render = render_scene(*scene, render_options(p, false));
+    rtl::SceneSimOptions so;
+    so.units = s.units;
+    const rtl::SceneSimResult res = rtl::simulate_scene(*scene, render, p.config, so);
+    sim_seconds = seconds_since(t1);
+    RunRecord rec = run_record(s, p, scene->width, scene->height);
+    rec.textures = frame_texture_names(render.frame->frame);
+    const nlohmann::json stats = nlohmann::json::parse(stats_document(res.stats, provenance_json(rec)));
+    for (const auto& [k, v] : stats.items()) doc[k] = v;
+    doc["result"] = result_json(s, p, res, *truth, render.frame->frame);
+  } catch (const InputError& e) {
+    doc["error"] = e.what();
+    doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
+  } catch (const CheckFailed& e) {
+    std::string what = e.what();
+    doc["error"] = what.substr(0, what.find('\n'));
+    doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
+  }
+  std::string text = doc.dump(2) + "\n";
+  if (timing) {
+    timing->seconds = seconds_since(t0);
+    timing->simulation_seconds = sim_seconds;
+  }
+  return text;
+}
+
+std::string point_path(const std::string& dir, const Point& p) { return (fs::path(dir) / "points" / (p.id + ".json")).string(); }
+
+bool point_done(const std::string& dir, const Point& p) {
+  std::ifstream f(point_path(dir, p), std::ios::binary);
+  if (!f) return false;
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  try {
+    const nlohmann::json j = nlohmann::json::parse(ss.str());
+    return j.value("complete", false) && j.at("point").at("id") == p.id;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+}  // namespace tfu::sweep

@@ -1,0 +1,56 @@
+// One sweep point, run in-process: its scene rendered by the golden model with the request trace
+// (textures tiled for the point's line size), the trace through the cycle model with the golden
+// compare (rtl/scene_sim.hpp), PSNR of the cycle model's image against the scene's supersampled
+// ground truth, and the cost model's figures (rtl/cost_model.hpp). The result is the point's file:
+//
+//   {"complete": true, "point": {"id", "index", "scene", "filter", "keys": {KEY: value}},
+//    "result": {"cycles", "pixels", "pixels_per_clock", "hit_rate", "bytes_per_pixel", "memory_bytes",
+//               "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "latency_mean",
+//               "psnr" (dB, or "inf"), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",
+//               "sram_bits_tag", "sram_bits_valid", "sram_bits_lru", "filter_gates", "filter_blocks"},
+//    "provenance", "definitions", "counters", "values", "histograms", "tables"}
+// or, when the point cannot run (an input the point's configuration refuses, a deadlock):
+//   {"complete": true, "point": {...}, "error": "one line", "provenance": {...}}
+// Nothing in it depends on timing or on how many points run at once.
+#pragma once
+
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "cmodel/scene.hpp"
+#include "sim/sweep/sweep_spec.hpp"
+
+namespace tfu::sweep {
+
+// Scenes and ground truths shared by the points of one process, each made once (thread-safe; a
+// second thread asking for one being made waits for it).
+class SceneCache {
+ public:
+  std::shared_ptr<const Scene> scene(const Spec& s, const Point& p);
+  // The ground truth depends on the scene, its size and the base-stage sampler keys (wrap modes,
+  // border), not on the filter or the unit.
+  std::shared_ptr<const Image> truth(const Spec& s, const Point& p);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const Scene>>> scenes_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const Image>>> truths_;
+};
+
+// Wall seconds of run_point, and of the part that is the simulation proper (the golden render
+// with its trace plus the cycle model with the golden compare): the rest is the sweep's overhead.
+struct PointTiming {
+  double seconds = 0, simulation_seconds = 0;
+};
+
+std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTiming* timing = nullptr);
+
+// DIR/points/ID.json
+std::string point_path(const std::string& dir, const Point& p);
+// The file exists, parses, is complete and belongs to this point.
+bool point_done(const std::string& dir, const Point& p);
+
+}  // namespace tfu::sweep

@@ -1,0 +1,231 @@
+#include "sim/sweep/sweep_report.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "cmodel/error.hpp"
+#include "rtl/cost_model.hpp"
+#include "sim/sweep/sweep_point.hpp"
+
+namespace tfu::sweep {
+namespace {
+
+constexpr size_t kSummaryRows = 500;  // summary.md lists at most this many rows (results.csv has all)
+
+// Units of the unit-configuration fields, for axis labels (the field table has their meanings).
+std::string field_unit(const std::string& key) {
+  static const std::map<std::string, std::string> units = {
+      {"cache.line_bytes", "bytes"},   {"cache.capacity_bytes", "bytes"}, {"cache.ways", "ways"},
+      {"cache.banks", "banks"},        {"memory.latency", "cycles"},      {"memory.bytes_per_cycle", "bytes/cycle"},
+      {"channel_depth", "entries"},    {"miss_fifo_depth", "footprints"}, {"filter_lanes", "lanes"}};
+  const auto it = units.find(key);
+  return it == units.end() ? "" : it->second;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// A result value as CSV/Markdown text: integers as they are, reals with fixed decimals.
+std::string number_text(const nlohmann::json& v, int decimals) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_number_integer()) return v.dump();
+  return fmt::format("{:.{}f}", v.get<double>(), decimals);
+}
+
+int decimals_of(const std::string& column) {
+  if (column == "psnr" || column == "latency_mean") return 4;
+  if (column == "filter_gates") return 1;
+  return 6;
+}
+
+// The text of result column `c` of one point file.
+std::string result_text(const nlohmann::json& file, const std::string& c) {
+  if (c == "point") return file.at("point").at("id").get<std::string>();
+  if (c == "error") return file.value("error", "");
+  if (file.contains("error")) return c == "golden_equal" ? "false" : "";
+  const nlohmann::json& r = file.at("result");
+  return r.contains(c) ? number_text(r.at(c), decimals_of(c)) : "";
+}
+
+bool is_failed(const nlohmann::json& f) { return f.contains("error") || !f.at("result").at("golden_equal").get<bool>(); }
+
+double result_number(const nlohmann::json& f, const char* c) {
+  if (f.contains("error")) return 0;
+  const nlohmann::json& v = f.at("result").at(c);
+  return v.is_number() ? v.get<double>() : 0;
+}
+
+}  // namespace
+
+const std::vector<Column>& result_columns() {
+  static const std::vector<Column> cols = {
+      {"cycles", "cycles", "clock cycles of the frame (the slowest unit's)"},
+      {"pixels", "requests", "requests simulated: every pixel of every shaded quad, helper pixels included, per material stage"},
+      {"pixels_per_clock", "pixels/clock", "requests per cycle"},
+      {"hit_rate", "fraction", "texel cache line lookups that hit"},
+      {"bytes_per_pixel", "bytes/pixel", "memory bytes read per request"},
+      {"memory_bytes", "bytes", "memory bytes read"},
+      {"stall_cache_miss", "cycles", "cycles the miss-FIFO head waited for memory (summed over units)"},
+      {"stall_bank_conflict", "cycles", "cycles the tag port was held by a multi-cycle footprint (may overlap the other two)"},
+      {"stall_backpressure", "cycles", "cycles the cache stage's output was full"},
+      {"latency_mean", "cycles", "mean request latency, accept to response"},
+      {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth"},
+      {"golden_equal", "", "every output of the cycle model equals the golden model's"},
+      {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)"},
+      {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)"},
+      {"point", "", "the point's id: its file DIR/points/ID.json"},
+      {"error", "", "why the point could not run (empty when it ran)"},
+  };
+  return cols;
+}
+
+std::vector<Column> csv_columns(const Spec& spec) {
+  std::vector<Column> cols;
+  for (const Key& k : spec.keys)
+    cols.push_back({k.name, k.field ? field_unit(k.name) : "", k.field ? k.field->meaning : "sampler key of every base stage"});
+  cols.push_back({"scene", "", "the scene as the spec names it"});
+  cols.push_back({"filter", "", "the filter of the base stages (\"scene\": the scene's own)"});
+  for (const Column& c : result_columns()) cols.push_back(c);
+  return cols;
+}
+
+std::vector<nlohmann::json> read_point_files(const std::string& dir, const std::vector<Point>& points) {
+  std::vector<nlohmann::json> files;
+  std::vector<std::string> missing;
+  for (const Point& p : points) {
+    nlohmann::json j;
+    if (point_done(dir, p)) {
+      std::ifstream f(point_path(dir, p), std::ios::binary);
+      std::ostringstream ss;
+      ss << f.rdbuf();
+      j = nlohmann::json::parse(ss.str());
+    } else {
+      missing.push_back(fmt::format("{} ({})", p.index, p.id));
+    }
+    files.push_back(std::move(j));
+  }
+  if (!missing.empty()) {
+    std::string list;
+    for (size_t i = 0; i < missing.size() && i < 3; ++i) list += (i ? ", " : "") + missing[i];
+    throw CheckFailed(fmt::format("{} of {} points have no complete result in {}/points (e.g. point {}{})", missing.size(),
+                                  points.size(), dir.substr(0, 100), list, missing.size() > 3 ? ", ..." : ""));
+  }
+  return files;
+}
+
+std::string results_csv(const Spec& spec, const std::vector<Point>& points, const std::vector<nlohmann::json>& files) {
+  std::string out;
+  const std::vector<Column> cols = csv_columns(spec);
+  std::vector<std::string> fields;
+  for (const Column& c : cols) fields.push_back(csv_field(c.name));
+  out += fmt::format("{}\n", fmt::join(fields, ","));
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    fields.clear();
+    for (const std::string& v : p.values) fields.push_back(csv_field(v));
+    fields.push_back(csv_field(p.scene));
+    fields.push_back(csv_field(p.filter));
+    for (const Column& c : result_columns()) fields.push_back(csv_field(result_text(files[i], c.name)));
+    out += fmt::format("{}\n", fmt::join(fields, ","));
+  }
+  return out;
+}
+
+std::string columns_json(const Spec& spec) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const Column& c : csv_columns(spec)) j.push_back({{"name", c.name}, {"unit", c.unit}, {"meaning", c.meaning}});
+  return j.dump(2) + "\n";
+}
+
+size_t failed_points(const std::vector<nlohmann::json>& files) {
+  size_t n = 0;
+  for (const nlohmann::json& f : files) n += is_failed(f) ? 1 : 0;
+  return n;
+}
+
+std::string summary_markdown(const Spec& spec, const std::vector<Point>& points, const std::vector<nlohmann::json>& files,
+                             const std::vector<Plot>& plots) {
+  std::ostringstream md;
+  md << fmt::format("# Sweep `{}`\n\nGenerated by `tfu sweep` (docs/design-space.md). {} points: {} scene(s) x {} filter(s)",
+                    std::filesystem::path(spec.path).filename().string(), points.size(), spec.scenes.size(), spec.filters.size());
+  size_t grid = spec.grid_keys ? 1 : 0;
+  for (const auto& v : spec.grid_values) grid *= v.size();
+  if (grid) md << fmt::format(" x {} grid point(s)", grid);
+  if (!spec.points.empty()) md << fmt::format(", {} explicit point(s)", spec.points.size());
+  md << fmt::format(", at {}, {} unit(s).\n\n", spec.width ? fmt::format("{}x{}", spec.width, spec.height) : "each scene's own size",
+                    spec.units);
+  const size_t failed = failed_points(files);
+  md << (failed == 0 ? fmt::format("**Golden compare: every output of all {} points equals the golden model's.**\n\n", points.size())
+                     : fmt::format("**{} point(s) failed** (golden mismatch or error; see the `golden_equal` and `error` columns).\n\n",
+                                   failed));
+  md << "| key | values |\n|---|---|\n";
+  md << fmt::format("| scenes | {} |\n| filters | {} |\n", fmt::join(spec.scenes, ", "), fmt::join(spec.filters, ", "));
+  for (size_t k = 0; k < spec.grid_keys; ++k) md << fmt::format("| {} | {} |\n", spec.keys[k].name, fmt::join(spec.grid_values[k], ", "));
+  md << fmt::format("\nBase configuration (every point starts from it): `{}`", nlohmann::json::parse(rtl::unit_config_to_json(spec.base)).dump());
+  if (!spec.base_sampler.empty()) md << fmt::format("; base-stage sampler keys: `{}`", nlohmann::json(spec.base_sampler).dump());
+  md << ".\n\nCost columns: `sram_bits` is the texel cache's data, tag, valid and LRU bits (formula in rtl/cost_model.hpp); "
+        "`filter_gates` the Yosys gate equivalents of the filter datapaths the frame's filters need ("
+     << rtl::filter_gate_source() << ").\n";
+  if (!plots.empty()) {
+    md << "\n## Plots\n\n";
+    for (const Plot& pl : plots) md << fmt::format("![{}]({})\n\n*{}*\n\n", pl.caption, pl.file, pl.caption);
+  }
+  // Best points per scene and filter.
+  md << "\n## Best points per scene and filter\n\n| scene | filter | most pixels/clock | at | fewest bytes/pixel | at |\n"
+        "|---|---|---:|---|---:|---|\n";
+  std::map<std::pair<std::string, std::string>, std::pair<size_t, size_t>> best;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (files[i].contains("error")) continue;
+    const auto key = std::make_pair(points[i].scene, points[i].filter);
+    auto it = best.find(key);
+    if (it == best.end()) {
+      best.emplace(key, std::make_pair(i, i));
+      continue;
+    }
+    if (result_number(files[i], "pixels_per_clock") > result_number(files[it->second.first], "pixels_per_clock")) it->second.first = i;
+    if (result_number(files[i], "bytes_per_pixel") < result_number(files[it->second.second], "bytes_per_pixel")) it->second.second = i;
+  }
+  const auto keys_of = [&](size_t i) {
+    std::string s;
+    for (size_t k = 0; k < spec.keys.size(); ++k)
+      if (!points[i].values[k].empty()) s += fmt::format("{}{}={}", s.empty() ? "" : " ", spec.keys[k].name, points[i].values[k]);
+    return s;
+  };
+  for (const auto& [key, b] : best)
+    md << fmt::format("| {} | {} | {} | {} | {} | {} |\n", key.first, key.second, result_text(files[b.first], "pixels_per_clock"),
+                      keys_of(b.first), result_text(files[b.second], "bytes_per_pixel"), keys_of(b.second));
+  // Every row (the first kSummaryRows).
+  const std::vector<Column> cols = csv_columns(spec);
+  md << "\n## Every point\n\n|";
+  for (const Column& c : cols)
+    if (c.name != "point" && c.name != "error") md << ' ' << c.name << (c.unit.empty() ? "" : " (" + c.unit + ")") << " |";
+  md << "\n|";
+  for (const Column& c : cols)
+    if (c.name != "point" && c.name != "error") md << "---|";
+  md << '\n';
+  for (size_t i = 0; i < points.size() && i < kSummaryRows; ++i) {
+    md << '|';
+    for (const std::string& v : points[i].values) md << ' ' << v << " |";
+    md << ' ' << points[i].scene << " | " << points[i].filter << " |";
+    for (const Column& c : result_columns())
+      if (c.name != "point" && c.name != "error") md << ' ' << result_text(files[i], c.name) << " |";
+    md << '\n';
+  }
+  if (points.size() > kSummaryRows) md << fmt::format("\n({} more rows in results.csv.)\n", points.size() - kSummaryRows);
+  for (size_t i = 0; i < points.size(); ++i)
+    if (files[i].contains("error")) md << fmt::format("\nPoint {} ({}): {}\n", i, describe(spec, points[i]), result_text(files[i], "error"));
+  return md.str();
+}
+
+}  // namespace tfu::sweep

@@ -1,0 +1,33 @@
+// The cluster runner (tfu sweep --slurm): one Slurm job array whose tasks run this same binary on
+// their share of the points (point index modulo the task count) into DIR, which must be on a file
+// system every node sees; `tfu sweep --collect DIR` then writes results.csv and summary.md.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace tfu::sweep {
+
+struct SlurmJob {
+  std::string tfu;                        // absolute path of the tfu binary the tasks run
+  std::string dir;                        // absolute sweep directory
+  size_t tasks = 1;                       // array tasks (0 .. tasks-1)
+  int cpus_per_task = 1;                  // each task's worker threads
+  std::vector<std::string> sbatch_args;   // passed to sbatch before the script (e.g. --partition=x)
+};
+
+// The batch script (bash, #SBATCH lines for the array, log files DIR/slurm/task-%a.log and the
+// CPUs per task; the task line runs `tfu sweep --run-task $SLURM_ARRAY_TASK_ID --tasks N --out DIR`).
+std::string batch_script(const SlurmJob& job);
+// sbatch --parsable [sbatch_args...] SCRIPT
+std::vector<std::string> sbatch_command(const SlurmJob& job, const std::string& script_path);
+// Submits: InputError with sbatch's first error line if it fails; returns the job id.
+std::string submit(const SlurmJob& job, const std::string& script_path);
+
+// The absolute path of the running binary (/proc/self/exe).
+std::string self_executable();
+// Single-quoted for bash.
+std::string shell_quote(const std::string& s);
+
+}  // namespace tfu::sweep

@@ -1,0 +1,271 @@
+// Design-space sweep (sim/sweep/, docs/design-space.md): the cost model's SRAM bits derived by hand,
+// the gate table against docs/gates.md, provenance round trips (a stats file's recorded
+// configuration reproduces its statistics), the spec's validation and expansion, and the local
+// runner's results independent of the worker count, with resume.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cmodel/error.hpp"
+#include "cmodel/raster.hpp"
+#include "cmodel/scene_source.hpp"
+#include "rtl/cost_model.hpp"
+#include "rtl/scene_sim.hpp"
+#include "sim/sweep/provenance.hpp"
+#include "sim/sweep/sweep_report.hpp"
+#include "sim/sweep/sweep_run.hpp"
+#include "sim/sweep/sweep_spec.hpp"
+
+namespace tfu {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// ---- cost model ----
+
+TEST(CostModel, SramBitsOfTheDefaultCacheByHand) {
+  // 16 KiB, 4 ways, 64-byte lines: 256 lines in 64 sets; a 40-bit byte address has 34 line-address
+  // bits, 6 of which index the set: 28 tag bits per line; LRU: a 2-bit age per way.
+  const rtl::CacheSramBits b = rtl::texel_cache_sram_bits(rtl::TexelCacheConfig{});
+  EXPECT_EQ(b.tag_bits, 28);
+  EXPECT_EQ(b.data, 16384u * 8);
+  EXPECT_EQ(b.tag, 256u * 28);
+  EXPECT_EQ(b.valid, 256u);
+  EXPECT_EQ(b.lru, 64u * 4 * 2);
+  EXPECT_EQ(b.total(), 131072u + 7168 + 256 + 512);
+}
+
+TEST(CostModel, SramBitsDirectMappedAndFullyAssociative) {
+  rtl::TexelCacheConfig c;
+  c.capacity_bytes = 4096;
+  c.ways = 1;  // 64 sets of one line: no LRU; 34 - 6 = 28 tag bits
+  rtl::CacheSramBits b = rtl::texel_cache_sram_bits(c);
+  EXPECT_EQ(b.tag_bits, 28);
+  EXPECT_EQ(b.lru, 0u);
+  EXPECT_EQ(b.total(), 32768u + 64 * 28 + 64);
+  c.ways = 64;  // one set: the whole 34-bit line address is the tag; 6-bit ages
+  b = rtl::texel_cache_sram_bits(c);
+  EXPECT_EQ(b.tag_bits, 34);
+  EXPECT_EQ(b.lru, 64u * 6);
+}
+
+TEST(CostModel, GateTableMatchesDocsGates) {
+  // The table compiled in from rtl/sv/filter_gates.json must carry the figures docs/gates.md reports.
+  const std::string doc = read_text(fs::path(TFU_DOCS_DIR) / "gates.md");
+  ASSERT_FALSE(rtl::filter_gate_table().empty());
+  for (const rtl::GateBlock& b : rtl::filter_gate_table()) {
+    // "13553.9" in the tables, or rounded with a thousands separator ("59,803") in the prose
+    const auto whole = static_cast<long>(std::lround(b.ge));
+    const std::string decimal = fmt::format("{:.1f}", b.ge), grouped = fmt::format("{},{:03d}", whole / 1000, whole % 1000);
+    EXPECT_TRUE(doc.find(decimal) != std::string::npos || doc.find(grouped) != std::string::npos) << b.block << " " << decimal;
+  }
+}
+
+TEST(CostModel, FilterGatesSumTheBlocksTheModesNeed) {
+  const auto ge_of = [](const std::string& block) {
+    for (const rtl::GateBlock& b : rtl::filter_gate_table())
+      if (b.block == block) return b.ge;
+    ADD_FAILURE() << block;
+    return 0.0;
+  };
+  const auto mode = [](const char* n) { return filter_mode_from_name(n); };
+  EXPECT_DOUBLE_EQ(rtl::filter_datapath_gates({mode("LINEAR")}).ge, ge_of("bilinear_top"));
+  EXPECT_DOUBLE_EQ(rtl::filter_datapath_gates({mode("NEAREST"), mode("LINEAR")}).ge, ge_of("bilinear_top"));
+  EXPECT_DOUBLE_EQ(rtl::filter_datapath_gates({mode("trilinear")}).ge, ge_of("bilinear_top") + ge_of("level_blend"));
+  const rtl::FilterGates g = rtl::filter_datapath_gates({mode("CUBIC_MIPMAP_LINEAR"), mode("EDGE_PRESERVING")});
+  EXPECT_DOUBLE_EQ(g.ge, ge_of("level_blend") + ge_of("cubic_filter") + ge_of("edge_interp_top"));
+  EXPECT_EQ(g.blocks.size(), 3u);
+}
+
+// ---- provenance ----
+
+TEST(Provenance, Fnv1a64KnownValues) {
+  // FNV-1a 64 test vectors (Fowler/Noll/Vo reference): "" and "a".
+  EXPECT_EQ(hex64(fnv1a64("")), "cbf29ce484222325");
+  EXPECT_EQ(hex64(fnv1a64("a")), "af63dc4c8601ec8c");
+}
+
+TEST(Provenance, RecordedConfigurationReproducesTheStatistics) {
+  rtl::UnitConfig u;
+  u.cache.capacity_bytes = 4096;
+  u.cache.ways = 2;
+  u.memory.latency = 37;
+  u.filter_lanes = 2;
+  const Scene scene = open_scene({"ground_plane", 64, 48, ""});
+  const auto run = [&](const rtl::UnitConfig& c) {
+    RenderOptions ro;
+    ro.trace = true;
+    ro.threads = 1;
+    ro.line_bytes = c.cache.line_bytes;
+    ro.filter = filter_mode_from_name("LINEAR_MIPMAP_LINEAR");
+    const RenderResult render = render_scene(scene, ro);
+    const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, c, {});
+    EXPECT_TRUE(r.mismatch.empty());
+    RunRecord rec;
+    rec.command = "sim";
+    rec.scene = {"ground_plane", 64, 48, ""};
+    rec.width = 64;
+    rec.height = 48;
+    rec.filter = "LINEAR_MIPMAP_LINEAR";
+    rec.config = &c;
+    rec.textures = frame_texture_names(render.frame->frame);
+    return stats_document(r.stats, provenance_json(rec));
+  };
+  const std::string first = run(u);
+  const nlohmann::json doc = nlohmann::json::parse(first);
+  const nlohmann::json& p = doc.at("provenance");
+  EXPECT_EQ(p.at("scene").at("kind"), "builtin");
+  EXPECT_EQ(p.at("scene").at("name"), "ground_plane");
+  EXPECT_EQ(p.at("width"), 64);
+  EXPECT_EQ(p.at("filter"), "LINEAR_MIPMAP_LINEAR");
+  EXPECT_EQ(p.at("unit_config").at("memory").at("latency"), 37);
+  EXPECT_EQ(p.at("unit_config").at("channel_depth"), u.channel_depth);  // defaults recorded too
+  EXPECT_FALSE(p.at("textures").empty());
+  ASSERT_TRUE(doc.contains("definitions"));
+  const rtl::UnitConfig back = rtl::unit_config_from_json(unit_config_text(first), "stats");
+  EXPECT_EQ(back, u);
+  const nlohmann::json again = nlohmann::json::parse(run(back));
+  for (const char* k : {"counters", "values", "histograms", "tables"}) EXPECT_EQ(doc.at(k), again.at(k)) << k;
+  EXPECT_NE(doc.at("counters").at("cycles"), nullptr);
+}
+
+TEST(Provenance, UnitConfigTextPassesAConfigurationThrough) {
+  EXPECT_EQ(unit_config_text("{\"cache\": {\"ways\": 2}}"), "{\"cache\": {\"ways\": 2}}");
+  EXPECT_EQ(unit_config_text("not json"), "not json");
+}
+
+TEST(Provenance, SceneLabels) {
+  EXPECT_EQ(scene_label("ground_plane"), "ground_plane");
+  EXPECT_EQ(scene_label("dir/my scene.json"), "my_scene");
+  EXPECT_EQ(scene_label("oa:aggressor:2"), "oa_aggressor_2");
+}
+
+// ---- spec ----
+
+std::string spec_error(const std::string& text) {
+  try {
+    (void)sweep::expand(sweep::parse_spec(text, "s.json"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SweepSpec, BadSpecsNameTheKey) {
+  EXPECT_EQ(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.wayz": [1]}})").find("s.json: grid.cache.wayz: unknown key"), 0u);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": ["4"]}})").find("grid.cache.ways: values must be integers"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": []}})").find("grid.cache.ways: is an empty list"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {}})").find("s.json: grid: empty"), std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": [3]}})").find("grid.cache.ways"), std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["no_such_scene"], "grid": {"cache.ways": [1]}})").find("s.json: scenes:"), std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "filters": ["BOXY"], "grid": {"cache.ways": [1]}})").find("s.json: filters:"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": [1]}, "extra": 1})").find("s.json: extra: unknown key"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "base": {"memory": {"latency": -1}}, "grid": {"cache.ways": [1]}})")
+                .find("memory.latency"),
+            std::string::npos);
+  // A relation between fields that only a point breaks: 64 KiB in 1 way of 64-byte lines is fine,
+  // 128 bytes in 4 ways of 64-byte lines is not.
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"cache.capacity_bytes": [128], "cache.ways": [4]}})").find("point 0"),
+            std::string::npos);
+}
+
+TEST(SweepSpec, ExpansionOrderAndExplicitPoints) {
+  const sweep::Spec s = sweep::parse_spec(
+      R"({"scenes": ["ground_plane"], "filters": ["LINEAR", "bilinear_mipmap_linear"],
+          "grid": {"cache.capacity_bytes": [4096, 16384], "cache.ways": [1, 4]},
+          "points": [{"cache.ways": 16, "filter": "CUBIC"}]})",
+      "s.json");
+  const std::vector<sweep::Point> pts = sweep::expand(s);
+  ASSERT_EQ(pts.size(), 2u * 2 * 2 + 1);
+  EXPECT_EQ(s.filters[1], "LINEAR_MIPMAP_LINEAR");
+  // scenes x filters x grid, last grid key fastest
+  EXPECT_EQ(pts[0].values, (std::vector<std::string>{"4096", "1"}));
+  EXPECT_EQ(pts[1].values, (std::vector<std::string>{"4096", "4"}));
+  EXPECT_EQ(pts[2].values, (std::vector<std::string>{"16384", "1"}));
+  EXPECT_EQ(pts[4].filter, "LINEAR_MIPMAP_LINEAR");
+  EXPECT_EQ(pts[8].filter, "CUBIC");
+  EXPECT_EQ(pts[8].config.cache.ways, 16);
+  EXPECT_EQ(pts[8].values[0], "16384");  // unset keys: the base configuration's value
+  EXPECT_EQ(pts[3].config.cache.capacity_bytes, 16384);
+  // ids: distinct, and the same for the same spec
+  std::set<std::string> ids;
+  for (const auto& p : pts) ids.insert(p.id);
+  EXPECT_EQ(ids.size(), pts.size());
+  EXPECT_EQ(sweep::expand(s)[5].id, pts[5].id);
+}
+
+// ---- the local runner ----
+
+TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
+  const std::string text = R"({"scenes": ["ground_plane"], "filters": ["LINEAR", "EDGE_PRESERVING"], "width": 32, "height": 24,
+                               "grid": {"cache.capacity_bytes": [2048, 8192]}})";
+  const fs::path root = fs::temp_directory_path() / fmt::format("tfu-test-sweep-{}", ::getpid());
+  fs::remove_all(root);
+  fs::create_directories(root);
+  {
+    std::ofstream(root / "spec.json") << text;
+  }
+  const sweep::Spec spec = sweep::load_spec((root / "spec.json").string());
+  const std::vector<sweep::Point> pts = sweep::expand(spec);
+  ASSERT_EQ(pts.size(), 4u);
+  std::vector<std::string> csv;
+  for (int workers : {1, 3}) {
+    const std::string dir = (root / fmt::format("w{}", workers)).string();
+    sweep::prepare_sweep_dir(dir, spec, false);
+    const sweep::RunSummary s = sweep::run_points(spec, pts, dir, {workers, 0, 1, false});
+    EXPECT_EQ(s.ran, 4u);
+    const auto files = sweep::read_point_files(dir, pts);
+    EXPECT_EQ(sweep::failed_points(files), 0u);
+    csv.push_back(sweep::results_csv(spec, pts, files));
+    // resume: nothing left to run
+    const sweep::RunSummary again = sweep::run_points(spec, pts, dir, {workers, 0, 1, false});
+    EXPECT_EQ(again.ran, 0u);
+    EXPECT_EQ(again.skipped, 4u);
+  }
+  EXPECT_EQ(csv[0], csv[1]);
+  // array tasks: two shares make the whole
+  const std::string dir = (root / "tasks").string();
+  sweep::prepare_sweep_dir(dir, spec, false);
+  EXPECT_EQ(sweep::run_points(spec, pts, dir, {1, 0, 2, false}).ran, 2u);
+  EXPECT_THROW((void)sweep::read_point_files(dir, pts), CheckFailed);
+  EXPECT_EQ(sweep::run_points(spec, pts, dir, {1, 1, 2, false}).ran, 2u);
+  EXPECT_EQ(sweep::results_csv(spec, pts, sweep::read_point_files(dir, pts)), csv[0]);
+  // the header and a row, as the issue lists the columns
+  const std::string header = csv[0].substr(0, csv[0].find('\n'));
+  for (const char* c : {"cache.capacity_bytes", "scene", "filter", "cycles", "pixels_per_clock", "hit_rate", "bytes_per_pixel",
+                        "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "psnr", "golden_equal", "sram_bits",
+                        "filter_gates"})
+    EXPECT_NE(header.find(c), std::string::npos) << c;
+  EXPECT_NE(csv[0].find(",ground_plane,EDGE_PRESERVING,"), std::string::npos);
+  // a bigger cache never reads more memory bytes here (same requests, LRU)
+  const nlohmann::json small = nlohmann::json::parse(read_text(sweep::point_path((root / "w1").string(), pts[0])));
+  const nlohmann::json big = nlohmann::json::parse(read_text(sweep::point_path((root / "w1").string(), pts[1])));
+  EXPECT_LE(big.at("result").at("memory_bytes").get<uint64_t>(), small.at("result").at("memory_bytes").get<uint64_t>());
+  EXPECT_EQ(small.at("result").at("sram_bits").get<uint64_t>(),
+            rtl::texel_cache_sram_bits(pts[0].config.cache).total());
+  EXPECT_EQ(small.at("provenance").at("command"), "sweep");
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace tfu
