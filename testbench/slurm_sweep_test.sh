@@ -30,7 +30,7 @@ rm -rf "$work" && mkdir -p "$work"
 chmod 755 "$work"
 work=$(realpath "$work")
 mkdir -p "$work/munge" "$work/slurm/state" "$work/slurm/spool"
-chown munge:munge "$work/munge" && chmod 700 "$work/munge"
+chown munge:munge "$work/munge" && chmod 755 "$work/munge"
 
 cleanup() {
   local rc=$?
