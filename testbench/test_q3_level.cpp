@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include <fmt/format.h>
@@ -230,6 +231,19 @@ TEST_F(TinyGame, LevelAssemblyAndCounts) {
   EXPECT_EQ(c.triangles, 2 + 1 + 128 + 256);          // 3x3 patch: 8 x 8 quads; 5x3: 16 x 8
   EXPECT_EQ(c.vertices, 41 + 81 + 17 * 9);            // BSP vertices + both patch grids
   ASSERT_EQ(l.triangles.size(), 387u);
+  // The same counts as the statistics of `tfu sim` name them.
+  const auto fields = level_count_fields(l);
+  const std::map<std::string, int64_t> stat(fields.begin(), fields.end());
+  EXPECT_EQ(stat.size(), fields.size());  // no name twice
+  EXPECT_EQ(stat.at("faces_polygon"), 4);
+  EXPECT_EQ(stat.at("faces_billboard"), 1);
+  EXPECT_EQ(stat.at("faces_drawn"), 4);
+  EXPECT_EQ(stat.at("skipped_invisible"), 2);
+  EXPECT_EQ(stat.at("skipped_sky"), 1);
+  EXPECT_EQ(stat.at("fallback_faces"), 1);
+  EXPECT_EQ(stat.at("triangles"), 387);
+  EXPECT_EQ(stat.at("lightmaps"), static_cast<int64_t>(l.lightmaps.size()) - 1);
+  EXPECT_EQ(stat.at("spawn_points"), static_cast<int64_t>(l.spawns.size()));
   // Textures: one per BSP entry, classified.
   ASSERT_EQ(l.textures.size(), 8u);
   EXPECT_EQ(l.textures[0].source, "pak0.pk3:textures/test/wall.tga");

@@ -169,6 +169,10 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   rec.units = o.units;
   rec.textures = frame_texture_names(render.frame->frame);
   if (!res.mismatch.empty()) throw CheckFailed(res.mismatch);
+  if (const auto level = requested_level({name, o.width, o.height, o.game_dir})) {
+    std::cout << "tfu sim: " << scene.description << '\n';
+    for (const auto& [field, n] : q3::level_count_fields(*level)) res.stats.add("level_" + field, static_cast<uint64_t>(n));
+  }
   const std::string mode = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene filters");
   print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
                             res.requests, name, scene.width, scene.height, o.units, o.units == 1 ? "" : "s", res.requests),
