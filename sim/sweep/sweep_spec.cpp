@@ -115,8 +115,9 @@ std::string canonical_filter(const std::string& name, const Where& where, const 
   if (name == kSceneFilter) return kSceneFilter;
   try {
     return filter_mode_name(filter_mode_from_name(name));
-  } catch (const InputError& e) {
-    throw where(key, e.what());
+  } catch (const InputError&) {  // its list of every mode would make the line too long
+    throw where(key, fmt::format("unknown filter '{}' (a mode of docs/sampler.md, e.g. LINEAR_MIPMAP_LINEAR, bilinear, "
+                                 "trilinear, or \"scene\")", clip(name, 40)));
   }
 }
 
