@@ -1,5 +1,6 @@
 #include "sim/sweep/sweep_plot.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -99,7 +100,7 @@ std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& poin
   area.log_x = true;
   area.kind = "line";
   area.title = "Cost beside benefit: texel cache SRAM against memory traffic";
-  if (series == std::vector<std::string>{"filter"}) area.series_note = "filter_gates";
+  if (std::find(series.begin(), series.end(), "filter") != series.end()) area.series_note = "filter_gates";
   make(area, "plot_area.png", "Area against benefit: texel cache SRAM bits against memory bytes per pixel "
                               "(legend: the filter datapath's gate equivalents)");
   return plots;
