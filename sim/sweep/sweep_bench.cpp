@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -43,12 +45,17 @@ double single_run(const Spec& s, const Point& p) {
 BenchFigures bench(const Spec& spec, const std::vector<Point>& points, int workers) {
   BenchFigures f;
   f.points = points.size();
+  double load[1] = {0};
+  if (::getloadavg(load, 1) == 1) f.load_before = load[0];
   sim::set_progress_bars(false);
+  const std::clock_t c0 = std::clock();
   for (size_t i = 0; i < points.size(); ++i) {
     f.single_sum += single_run(spec, points[i]);
     std::fprintf(stderr, "\rbench: single runs %zu/%zu (%.1f s)   ", i + 1, points.size(), f.single_sum);
   }
   std::fputc('\n', stderr);
+  const std::clock_t c1 = std::clock();
+  f.single_cpu = static_cast<double>(c1 - c0) / CLOCKS_PER_SEC;
   const fs::path dir = fs::temp_directory_path() / fmt::format("tfu-sweep-bench-{}", ::getpid());
   fs::remove_all(dir);
   RunOptions opt;
@@ -62,6 +69,7 @@ BenchFigures bench(const Spec& spec, const std::vector<Point>& points, int worke
       throw;
     }
   }();
+  f.sweep_cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
   fs::remove_all(dir);
   f.workers = static_cast<int>(std::min<size_t>(points.size(), opt.workers > 0 ? static_cast<size_t>(opt.workers)
                                                                               : std::max(1u, std::thread::hardware_concurrency())));
@@ -78,9 +86,12 @@ std::string bench_report(const BenchFigures& f) {
       "tfu sweep --bench: {} points, {} worker(s), {} hardware thread(s)\n"
       "  single runs, one after the other (as tfu sim, in-process): {:.2f} s in all\n"
       "  the sweep on the local runner: wall {:.2f} s = {:.3f} x the sum of the single runs (target <= 0.6)\n"
-      "  inside the sweep: simulation {:.2f} s, points in all {:.2f} s: overhead beyond the simulation {:.1f} % (target <= 20 %)\n",
+      "  inside the sweep: simulation {:.2f} s, points in all {:.2f} s: overhead beyond the simulation {:.1f} % (target <= 20 %)\n"
+      "  CPU: single runs {:.2f} s, the sweep {:.2f} s ({:.3f} x); the sweep used {:.2f} cores on average; load average {:.2f} "
+      "before the bench (other work on the machine takes cores from both)\n",
       f.points, f.workers, std::thread::hardware_concurrency(), f.single_sum, f.wall, f.wall_ratio(), f.simulation_sum,
-      f.point_sum, 100.0 * f.overhead());
+      f.point_sum, 100.0 * f.overhead(), f.single_cpu, f.sweep_cpu, f.single_cpu > 0 ? f.sweep_cpu / f.single_cpu : 0,
+      f.wall > 0 ? f.sweep_cpu / f.wall : 0, f.load_before);
 }
 
 }  // namespace tfu::sweep

@@ -21,6 +21,9 @@ struct BenchFigures {
   double wall = 0;            // seconds: the sweep's wall time
   double simulation_sum = 0;  // seconds: the points' simulation proper inside the sweep
   double point_sum = 0;       // seconds: the points' whole time inside the sweep (file write included)
+  double single_cpu = 0;      // process CPU seconds of the single runs
+  double sweep_cpu = 0;       // process CPU seconds of the sweep (all workers)
+  double load_before = 0;     // the machine's 1-minute load average when the bench started
   double wall_ratio() const { return single_sum > 0 ? wall / single_sum : 0; }
   double overhead() const { return simulation_sum > 0 ? (point_sum - simulation_sum) / simulation_sum : 0; }
 };

@@ -67,6 +67,9 @@ RenderOptions render_options(const Point& p, bool truth) {
   ro.threads = 1;  // the sweep's parallelism is across points
   ro.sampler_overrides = p.sampler;
   if (truth) {
+    // Every worker that reaches a scene waits for its truth (made once, shared), so it is made
+    // on every core: bands of rows, the same image for any thread count.
+    ro.threads = 0;
     ro.ground_truth = true;
   } else {
     ro.trace = true;
