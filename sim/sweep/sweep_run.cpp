@@ -130,6 +130,16 @@ void prepare_sweep_dir(const std::string& dir, const Spec& spec, bool force) {
   if (fs::exists(d, ec) && !fs::is_directory(d, ec)) throw InputError(fmt::format("--out '{}' exists and is not a directory", dir));
   if (fs::exists(d, ec) && !fs::is_empty(d, ec) && !fs::exists(record, ec) && !force)
     throw InputError(fmt::format("--out '{}' is not empty and holds no sweep.json (use another directory, or --force)", dir));
+  if (fs::exists(record, ec) && !force) {
+    // Resuming is for the same spec: another spec's results.csv and summary.md are not replaced.
+    std::string recorded;
+    try {
+      recorded = load_sweep_dir(dir).text;
+    } catch (const InputError&) {
+    }
+    if (recorded != spec.text)
+      throw InputError(fmt::format("--out '{}' holds a sweep of another spec (use another directory, or --force)", dir));
+  }
   fs::create_directories(d / "points", ec);
   if (ec) throw InputError(fmt::format("--out '{}' cannot be created: {}", dir, ec.message()));
   const fs::path abs = fs::absolute(spec.path, ec).lexically_normal();

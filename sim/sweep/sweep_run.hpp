@@ -34,7 +34,8 @@ RunSummary run_points(const Spec& spec, const std::vector<Point>& points, const 
 
 // The sweep directory: DIR/sweep.json records the spec (its absolute path and text) so that array
 // tasks and --collect expand the same points. A DIR that exists, is not empty and holds no
-// sweep.json is refused unless `force` (InputError naming --out).
+// sweep.json, or holds the sweep of a spec with other text, is refused unless `force` (InputError
+// naming --out); the same spec resumes.
 void prepare_sweep_dir(const std::string& dir, const Spec& spec, bool force);
 Spec load_sweep_dir(const std::string& dir);  // the spec recorded in DIR/sweep.json
 
