@@ -1,6 +1,7 @@
 #include "rtl/cache_stage.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace tfu::rtl {
 
@@ -54,6 +55,14 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   }
   stage_hits[cur.tag.req.stage] += static_cast<uint64_t>(r.hits);
   stage_misses[cur.tag.req.stage] += static_cast<uint64_t>(r.misses);
+  accepted_id_ = cur.tag.id;
+  if (g.used != 0) {
+    const auto cell = static_cast<size_t>(std::countr_zero(static_cast<uint32_t>(g.used)));
+    const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];
+    if (tx >= 0 && ty >= 0) accepted_line_ = cache_.line_of(texture, cur.level, tx, ty);
+  }
+  last_misses_ = r.misses;
+  if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
   uint64_t ready = port_free_ - 1;
   for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));

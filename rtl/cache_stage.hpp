@@ -42,6 +42,13 @@ class CacheStage : public sim::Module {
   void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
   uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.tag.id; }
+  // Waveform probes (no effect on timing): the request id of the footprint last accepted, the line
+  // address (byte address / line bytes, 40 - log2(line) bits) of its first in-texture tap, of the
+  // last line sent to memory, and how many lines that footprint missed.
+  uint32_t accepted_id() const { return accepted_id_; }
+  uint64_t accepted_line() const { return accepted_line_; }
+  uint64_t last_miss_line() const { return last_miss_line_; }
+  int last_misses() const { return last_misses_; }
   // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
   std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
   // Lines found and fetched per material stage (0..3).
@@ -69,6 +76,10 @@ class CacheStage : public sim::Module {
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
+  uint32_t accepted_id_ = 0;               // waveform probes (accepted_id() ...)
+  uint64_t accepted_line_ = 0;
+  uint64_t last_miss_line_ = 0;
+  int last_misses_ = 0;
   sim::Channel<FilterReq>& out_of(const FootprintReq& f) {
     return f.tag.base == BaseFilter::EdgePreserving ? edge_out_ : filter_out_;
   }

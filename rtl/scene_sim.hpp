@@ -13,6 +13,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
@@ -24,6 +25,8 @@ struct SceneSimOptions {
   int units = 1;
   int tile = 32;
   std::ostream* vcd = nullptr;  // VCD of unit 0
+  std::vector<std::ostream*> unit_vcds;  // if not empty: unit k's VCD (nullptr: none); replaces `vcd`
+  uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles dumped, inclusive
 };
 
 struct SceneSimResult {

@@ -1,9 +1,11 @@
 #include "rtl/tfu_unit.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <memory>
 #include <optional>
 #include <ostream>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -109,13 +111,29 @@ struct Unit {
   std::optional<EdgeMerge> e3;
 };
 
-// The waveform probes: every channel's valid / ready / occupancy, the blocks' busy flags, the
-// request at the cache and the pixels retired.
+// The request id a channel's head carries (its pixel's index in the trace), if its payload has one.
+template <typename T>
+constexpr bool kHasId = requires(const T& p) { p.id; } || requires(const T& p) { p.tag.id; };
+template <typename T>
+uint64_t payload_id(const T& p) {
+  if constexpr (requires { p.id; }) {
+    return p.id;
+  } else {
+    return p.tag.id;
+  }
+}
+
+// The waveform probes: the clock, every channel's valid / ready / occupancy and head request id, the
+// blocks' busy flags, the texel cache's request and line addresses, and the pixels retired.
 void add_probes(sim::VcdWriter& vcd, Unit& u) {
+  vcd.add_clock("tfu.clk");
   const auto channel = [&vcd](const auto& ch) {
     vcd.add(fmt::format("tfu.{}.valid", ch.name()), 1, [&ch] { return uint64_t{ch.can_pop()}; });
     vcd.add(fmt::format("tfu.{}.ready", ch.name()), 1, [&ch] { return uint64_t{ch.can_push()}; });
     vcd.add(fmt::format("tfu.{}.count", ch.name()), 8, [&ch] { return uint64_t{ch.size()}; });
+    using Payload = std::remove_cvref_t<decltype(ch.front())>;
+    if constexpr (kHasId<Payload>)
+      vcd.add(fmt::format("tfu.{}.id", ch.name()), 32, [&ch] { return ch.can_pop() ? payload_id(ch.front()) : uint64_t{0}; });
   };
   channel(u.c_quad);
   channel(u.c_pixel);
@@ -131,6 +149,11 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add("tfu.address_gen.busy", 1, [&u] { return uint64_t{u.addr.busy()}; });
   vcd.add("tfu.texel_cache.busy", 1, [&u] { return uint64_t{u.cst.busy()}; });
   vcd.add("tfu.texel_cache.id", 32, [&u] { return uint64_t{u.cst.current_id()}; });
+  const int line_bits = kAddressBits - std::countr_zero(static_cast<unsigned>(u.cache.config().line_bytes));
+  vcd.add("tfu.texel_cache.accepted_id", 32, [&u] { return uint64_t{u.cst.accepted_id()}; });
+  vcd.add("tfu.texel_cache.accepted_line", line_bits, [&u] { return u.cst.accepted_line(); });
+  vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cst.last_miss_line(); });
+  vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cst.last_misses()); });
   vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.sink.retired()}; });
 }
 
@@ -195,6 +218,11 @@ void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
 }
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd_stream) {
+  return run_unit(frame, trace, ucfg, VcdOptions{vcd_stream});
+}
+
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt) {
+  std::ostream* vcd_stream = vcd_opt.out;
   check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
@@ -204,6 +232,7 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
   std::unique_ptr<sim::VcdWriter> vcd;
   if (vcd_stream) {
     vcd = std::make_unique<sim::VcdWriter>(*vcd_stream);
+    vcd->set_window(vcd_opt.from, vcd_opt.to);
     add_probes(*vcd, *unit);
     unit->sim.set_vcd(vcd.get());
   }

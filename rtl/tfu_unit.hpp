@@ -44,6 +44,13 @@ struct UnitOutput {
 // that names an unbound descriptor, CheckFailed on deadlock (with every block's state).
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd = nullptr);
 
+// The waveform of a run (docs/cycle-model.md, "Waveforms"): where it goes and which cycles.
+struct VcdOptions {
+  std::ostream* out = nullptr;  // nullptr: no waveform
+  uint64_t from = 0, to = UINT64_MAX;  // cycles dumped, inclusive
+};
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd);
+
 // The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
 // the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate and the latency mean,
 // minimum and maximum from the latency histogram.

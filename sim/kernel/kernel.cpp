@@ -79,8 +79,23 @@ void VcdWriter::add(const std::string& path, int width, std::function<uint64_t()
   signals_.push_back({path, width, std::move(value), vcd_id(signals_.size()), 0, false});
 }
 
+void VcdWriter::add_clock(const std::string& path) {
+  if (header_done_) throw CheckFailed("VCD clock must be added before the first sample");
+  clock_path_ = path;
+}
+
+void VcdWriter::set_window(uint64_t from, uint64_t to) {
+  if (from > to) throw InputError(fmt::format("VCD window: from cycle {} is after to cycle {}", from, to));
+  from_ = from;
+  to_ = to;
+}
+
 void VcdWriter::header() {
   out_ << "$timescale " << timescale_ << " $end\n";
+  if (!clock_path_.empty()) {  // the clock: a signal with the next id and no value function
+    clock_id_ = vcd_id(signals_.size());
+    signals_.push_back({clock_path_, 1, {}, clock_id_, 0, true});
+  }
   // Scopes from the dotted paths, in order of first appearance (signals sorted by path).
   std::vector<size_t> order(signals_.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -114,12 +129,20 @@ void VcdWriter::header() {
 
 void VcdWriter::sample(uint64_t cycle) {
   if (!header_done_) header();
+  if (cycle < from_ || cycle > to_) return;
+  const bool clocked = !clock_id_.empty();
+  const uint64_t time = clocked ? 2 * cycle : cycle;
   bool stamped = false;
+  if (clocked) {
+    out_ << '#' << time << "\n1" << clock_id_ << '\n';
+    stamped = true;
+  }
   for (Signal& s : signals_) {
+    if (!s.value) continue;  // the clock
     const uint64_t v = s.value();
     if (s.dumped && v == s.last) continue;
     if (!stamped) {
-      out_ << '#' << cycle << '\n';
+      out_ << '#' << time << '\n';
       stamped = true;
     }
     if (s.width == 1) {
@@ -130,6 +153,7 @@ void VcdWriter::sample(uint64_t cycle) {
     s.last = v;
     s.dumped = true;
   }
+  if (clocked) out_ << '#' << time + 1 << "\n0" << clock_id_ << '\n';
 }
 
 void Simulator::reset() {

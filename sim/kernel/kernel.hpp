@@ -224,6 +224,11 @@ class VcdWriter {
   VcdWriter(std::ostream& out, std::string timescale = "1ns") : out_(out), timescale_(std::move(timescale)) {}
   // `path` is hierarchical, separated by '.', e.g. "tfu.lod.valid".
   void add(const std::string& path, int width, std::function<uint64_t()> value);
+  // A 1-bit clock `path`: the dump's time unit becomes half a cycle; cycle c's values are at time
+  // 2c with the clock high, and the clock falls at 2c + 1. Before the first sample.
+  void add_clock(const std::string& path);
+  // Only cycles from..to (inclusive) are dumped; the first of them dumps every signal.
+  void set_window(uint64_t from, uint64_t to);
   void sample(uint64_t cycle);
 
  private:
@@ -240,6 +245,8 @@ class VcdWriter {
   std::string timescale_;
   std::vector<Signal> signals_;
   bool header_done_ = false;
+  std::string clock_path_, clock_id_;  // empty: no clock
+  uint64_t from_ = 0, to_ = UINT64_MAX;
 };
 
 class Simulator {

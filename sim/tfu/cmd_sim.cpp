@@ -3,6 +3,7 @@
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -41,6 +42,7 @@ struct SimOptions {
   std::string shape_policy;
   int units = 1;
   std::string stats, out, vcd, config_out;
+  uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
   bool force = false, bench = false, config_fields = false;
 };
 
@@ -99,7 +101,8 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
 }
 
 // A request trace through the unit and the golden model.
-sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, RunRecord& rec) {
+sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds,
+                        RunRecord& rec) {
   if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
   Trace trace = load_trace(o.requests);
   if (!o.shape_policy.empty()) o.smp.values["edge_shape"] = o.shape_policy;
@@ -107,7 +110,7 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   rec.has_scene = false;
   rec.trace = o.requests;
   rec.textures = frame_texture_names(frame);
-  const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, vcd);
+  const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
   const GoldenUnit golden(frame);
   const std::string mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   if (!mismatch.empty()) throw CheckFailed(mismatch);
@@ -122,7 +125,8 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
 }
 
 // A scene rendered by the golden model, its trace through the units.
-sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, RunRecord& rec) {
+sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds,
+                     RunRecord& rec) {
   const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
@@ -135,7 +139,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   if (!o.shape_policy.empty()) ro.sampler_overrides["edge_shape"] = o.shape_policy;
   rtl::SceneSimOptions so;
   so.units = o.units;
-  so.vcd = vcd;
+  so.unit_vcds = std::move(vcds);
+  so.vcd_from = o.vcd_from;
+  so.vcd_to = o.vcd_to;
   if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
   // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
   // seconds, so that the figures do not depend on other work on the machine; the two alternate
@@ -230,24 +236,39 @@ void run(SimOptions& o, CLI::App& cmd) {
                                      "(--filter and --shape-policy override the base stage's)", flag_of(p.key)));
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
-  std::unique_ptr<std::ofstream> vcd;
+  if (o.vcd_from > o.vcd_to) throw InputError(fmt::format("--vcd-from {} is after --vcd-to {}", o.vcd_from, o.vcd_to));
+  // One waveform per unit: --vcd FILE for unit 0, FILE's name with .unitK before the extension for unit K.
+  std::vector<std::string> vcd_paths;
   if (!o.vcd.empty()) {
-    vcd = std::make_unique<std::ofstream>(o.vcd);
-    if (!*vcd) throw InputError(fmt::format("--vcd '{}' cannot be written", o.vcd));
+    vcd_paths.push_back(o.vcd);
+    const std::filesystem::path p(o.vcd);
+    for (int k = 1; k < (o.requests.empty() ? o.units : 1); ++k) {
+      std::filesystem::path q = p;
+      q.replace_filename(fmt::format("{}.unit{}{}", p.stem().string(), k, p.extension().string()));
+      vcd_paths.push_back(q.string());
+      prepare_output("--vcd", vcd_paths.back(), o.force);
+    }
+  }
+  std::vector<std::unique_ptr<std::ofstream>> vcd_files;
+  std::vector<std::ostream*> vcds;
+  for (const std::string& path : vcd_paths) {
+    vcd_files.push_back(std::make_unique<std::ofstream>(path));
+    if (!*vcd_files.back()) throw InputError(fmt::format("--vcd '{}' cannot be written", path));
+    vcds.push_back(vcd_files.back().get());
   }
   RunRecord rec;
   rec.command = "sim";
   rec.config = &unit;
   const sim::Stats stats =
-      o.requests.empty() ? run_scene(o, cmd, unit, vcd.get(), rec) : run_requests(o, cmd, unit, vcd.get(), rec);
+      o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec) : run_requests(o, cmd, unit, vcds, rec);
   if (!o.stats.empty()) {
     write_file_atomic(o.stats, stats_document(stats, provenance_json(rec)), "--stats");
     std::cout << "  stats -> " << o.stats << '\n';
   }
-  if (vcd) {
-    vcd->close();
-    if (!*vcd) throw InputError(fmt::format("--vcd '{}': write failed", o.vcd));
-    std::cout << "  vcd -> " << o.vcd << '\n';
+  for (size_t k = 0; k < vcd_files.size(); ++k) {
+    vcd_files[k]->close();
+    if (!*vcd_files[k]) throw InputError(fmt::format("--vcd '{}': write failed", vcd_paths[k]));
+    std::cout << "  vcd -> " << vcd_paths[k] << '\n';
   }
 }
 
@@ -416,7 +437,11 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--units", o->units, "Texture filter units, each taking 32x32 screen tiles round-robin (threads)");
   cmd->add_option("--out", o->out, "Write the cycle model's image (scenes) as PNG");
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");
-  cmd->add_option("--vcd", o->vcd, "Write a value-change dump (GTKWave) of the first unit's channels and stages");
+  cmd->add_option("--vcd", o->vcd,
+                  "Write a value-change dump (GTKWave): clock, channels with their request ids, stages, texel cache "
+                  "lines; with --units N also FILE.unitK.vcd per further unit");
+  cmd->add_option("--vcd-from", o->vcd_from, "First cycle the waveform covers")->capture_default_str();
+  cmd->add_option("--vcd-to", o->vcd_to, "Last cycle the waveform covers (default: the end)");
   cmd->add_flag("--bench", o->bench, "Print the simulation speed");
   cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });
