@@ -136,7 +136,29 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
 
 }  // namespace
 
+namespace {
+// A directory `tfu mipmap --out` wrote: level_00.png, level_01.png, ... read in order while they
+// exist; the chain is checked by Texture::validate (sizes by the floor rule).
+Texture load_level_directory(const std::string& dir) {
+  const auto level_path = [&dir](int l) { return (std::filesystem::path(dir) / fmt::format("level_{:02d}.png", l)).string(); };
+  if (!std::filesystem::is_regular_file(level_path(0)))
+    throw InputError(fmt::format("{}: a directory without level_00.png (tfu mipmap --out writes level_NN.png)", dir));
+  Texture tex;
+  bool gray = false;
+  const int max_levels = mip_level_count(kMaxTextureSize, kMaxTextureSize);
+  for (int l = 0; l < max_levels && std::filesystem::is_regular_file(level_path(l)); ++l) {
+    auto in = open_input(level_path(l));
+    tex.levels.push_back(read_level(*in, 0, 0, level_path(l), l == 0 ? &gray : nullptr));
+    in->close();
+  }
+  tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
+  tex.validate(dir);
+  return tex;
+}
+}  // namespace
+
 Texture load_texture(const std::string& path) {
+  if (std::filesystem::is_directory(path)) return load_level_directory(path);
   auto in = open_input(path);
   Texture tex;
   bool gray = false;

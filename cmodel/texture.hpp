@@ -178,6 +178,8 @@ inline void wrap_run(WrapMode m, int64_t start, int n, int size, int* out) {
 // tiled TIFF written by maketx) are kept as they are; otherwise the texture has one level.
 // 1 channel -> L8, 2 channels -> (L, L, L, A) RGBA8, 3 -> RGB with A = 255, 4 -> RGBA8; other
 // pixel types are converted to 8 bits by OpenImageIO (floats clamped to [0, 1] and rounded).
+// A directory is read as the MIP chain `tfu mipmap --out DIR` writes (level_00.png, level_01.png,
+// ...), so that edge-preserving or Gaussian MIP-maps made once can be a scene's texture.
 // Throws InputError naming the file on any failure.
 Texture load_texture(const std::string& path);
 // Writes one level. Refuses to overwrite an existing file unless `overwrite`.
