@@ -2,7 +2,9 @@
 // bit for bit (exit 1 on the first mismatch, naming the request, both values and the cycle), and
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -26,6 +28,8 @@ namespace tfu::cli {
 namespace {
 
 constexpr int kBenchRuns = 7;  // --bench: best of this many runs
+// Sampler keys a scene run takes from the command line for every base stage (besides --filter).
+constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding"};
 
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
@@ -79,6 +83,13 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
                            n ? static_cast<double>(st.counter("memory_bytes")) / dn : 0.0);
   std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", st.counter("stall_cache_miss"),
                            st.counter("stall_bank_conflict"), st.counter("stall_backpressure"));
+  if (const std::vector<uint64_t>* h = st.histogram("aniso_probes")) {
+    std::string hist;
+    for (size_t k = 1; k < h->size(); ++k)
+      if ((*h)[k]) hist += fmt::format("  N={} {}", k, (*h)[k]);
+    std::cout << fmt::format("  anisotropic probes: {} ({:.3f} per pixel); pixels per N:{}\n", st.counter("probes"),
+                             n ? static_cast<double>(st.counter("probes")) / dn : 0.0, hist);
+  }
   if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
     std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", st.counter("shape_cross"), st.counter("shape_T"),
                              st.counter("shape_L"));
@@ -125,6 +136,8 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   ro.line_bytes = unit.cache.line_bytes;
   const Params given = sampler_params_given(cmd, o.smp);
   if (given.contains("filter")) ro.filter = filter_mode_from_name(given.at("filter"));
+  for (const char* key : kSceneSamplerOverrides)
+    if (given.contains(key)) ro.sampler_overrides[key] = given.at(key);
   if (!o.shape_policy.empty()) ro.sampler_overrides["edge_shape"] = o.shape_policy;
   rtl::SceneSimOptions so;
   so.units = o.units;
@@ -171,6 +184,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
         runs, res.requests, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
         res.cycle_seconds / res.golden_seconds, pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back(),
         render_secs, wall, o.units);
+    if (const uint64_t probes = res.stats.counter("probes"); probes != res.requests)
+      std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s\n", probes,
+                               static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6);
   }
   if (!o.out.empty()) {
     save_image(res.image, o.out, true);
@@ -202,9 +218,12 @@ void run(SimOptions& o, CLI::App& cmd) {
     for (const char* key : texture_param_keys())
       if (given(flag_of(key))) throw InputError(fmt::format("{} applies to --requests runs", flag_of(key)));
     for (const SamplerParam& p : sampler_params())
-      if (given(flag_of(p.key)) && std::string(p.key) != "filter")
+      if (given(flag_of(p.key)) && std::string(p.key) != "filter" &&
+          std::find(std::begin(kSceneSamplerOverrides), std::end(kSceneSamplerOverrides), std::string(p.key)) ==
+              std::end(kSceneSamplerOverrides))
         throw InputError(fmt::format("{} applies to --requests runs; a scene's stages carry their own samplers "
-                                     "(--filter and --shape-policy override the base stage's)", flag_of(p.key)));
+                                     "(--filter, --max-aniso, --aniso-rounding and --shape-policy override the base stage's)",
+                                     flag_of(p.key)));
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
   std::unique_ptr<std::ofstream> vcd;
