@@ -9,6 +9,8 @@
 #include "cmodel/error.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "cmodel/mipmap.hpp"
+#include "cmodel/q3_scene.hpp"
+#include "cmodel/scene_source.hpp"
 
 namespace tfu {
 
@@ -179,6 +181,11 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
     return InputError(fmt::format("{}: key '{}': {}", where, key, msg));
   };
   LoadedTexture out;
+  if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
+    if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
+    out.texture = level_texture(spec.source, where);
+    return out;
+  }
   Texture tex;
   const std::string prefix = "proc:";
   if (spec.source.rfind(prefix, 0) == 0) {

@@ -218,7 +218,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
 
 void TexelCache::reset() {
   std::fill(ways_.begin(), ways_.end(), Way{});
-  mru_line_ = ~uint64_t{0};
+  hint_.fill(0);
   std::fill(hits_.begin(), hits_.end(), 0);
   std::fill(misses_.begin(), misses_.end(), 0);
   tick_ = 0;

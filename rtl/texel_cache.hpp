@@ -117,10 +117,12 @@ class TexelCache {
   };
   std::vector<Way> ways_;  // sets * ways
   uint64_t tick_ = 0;
-  // Software memo (not hardware state): the line of the latest lookup and its way, so that a run of
-  // footprints in one block skips the way search. A lookup always leaves its line resident.
-  uint64_t mru_line_ = ~uint64_t{0};
-  size_t mru_way_ = 0;
+  // Software memo (not hardware state): per slot (line address mod kHints) the way of the latest
+  // lookup of a line in that slot, checked against the way's tag before use, so that runs of
+  // footprints in a few lines (of several interleaved textures) skip the way search. Hit, miss and
+  // LRU behaviour are those of the search.
+  static constexpr size_t kHints = 64;
+  std::array<uint32_t, kHints> hint_{};
   std::vector<uint64_t> hits_, misses_;  // per lines_ entry (texture and level)
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   FootprintResult access_quad(size_t l, const TapGrid& g);
@@ -141,8 +143,9 @@ inline size_t TexelCache::set_of(uint64_t line) const {
 
 inline bool TexelCache::lookup(uint64_t line) {
   ++tick_;
-  if (line == mru_line_) {  // the line of the previous lookup is still where it was (a hit)
-    ways_[mru_way_].last_use = tick_;
+  uint32_t& hint = hint_[line & (kHints - 1)];
+  if (ways_[hint].tag == line) {  // the line is still in the way its slot remembers (a hit)
+    ways_[hint].last_use = tick_;
     return true;
   }
   Way* w = &ways_[set_of(line) * static_cast<size_t>(cfg_.ways)];
@@ -150,16 +153,14 @@ inline bool TexelCache::lookup(uint64_t line) {
   for (int i = 0; i < cfg_.ways; ++i) {
     if (w[i].tag == line) {
       w[i].last_use = tick_;
-      mru_line_ = line;
-      mru_way_ = static_cast<size_t>(&w[i] - ways_.data());
+      hint = static_cast<uint32_t>(&w[i] - ways_.data());
       return true;
     }
     if (w[i].last_use < victim->last_use) victim = &w[i];
   }
   victim->tag = line;  // least recently used (an empty way has last_use 0)
   victim->last_use = tick_;
-  mru_line_ = line;
-  mru_way_ = static_cast<size_t>(victim - ways_.data());
+  hint = static_cast<uint32_t>(victim - ways_.data());
   return false;
 }
 

@@ -18,6 +18,7 @@
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_frame.hpp"
+#include "cmodel/scene_source.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 
@@ -56,16 +57,6 @@ void list_levels(std::ostream& os, const std::string& game_dir) {
   }
 }
 
-// oa:MAP[:SPAWN]: the level's single-stage preview at the requested size (the camera needs it).
-Scene load_level_scene(const RenderCliOptions& o) {
-  const q3::LevelSceneSpec spec = q3::parse_level_scene(o.scene);
-  const q3::GameArchives archives(q3::openarena_dir(o.game_dir));
-  q3::TextureCache cache(archives);
-  const q3::Level level = q3::load_level(archives, spec.level, cache);
-  return q3::level_scene(level, spec.spawn, o.width > 0 ? o.width : q3::kLevelSceneWidth,
-                                o.height > 0 ? o.height : q3::kLevelSceneHeight);
-}
-
 void write_trace_file(const Trace& trace, const std::string& path) {
   std::ofstream file(path);
   if (!file) throw InputError(fmt::format("cannot write --trace-out '{}'", path));
@@ -88,9 +79,7 @@ void run(const RenderCliOptions& o) {
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
   const bool level_scene = q3::is_level_scene(o.scene);
-  Scene scene = level_scene ? load_level_scene(o) : load_scene(o.scene);
-  if (o.width > 0) scene.width = o.width;
-  if (o.height > 0) scene.height = o.height;
+  const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir});
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);

@@ -17,6 +17,7 @@
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_source.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
@@ -37,6 +38,7 @@ struct SimOptions {
   TextureOptions tex;
   SamplerOptions smp;
   int width = 0, height = 0;  // 0: the scene's own size
+  std::string game_dir;       // OpenArena data for oa: scenes
   std::string config;
   std::map<std::string, std::string> unit_flags;  // one per unit config field (the flags' storage)
   std::string shape_policy;
@@ -126,11 +128,9 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
 // A scene rendered by the golden model, its trace through the units.
 sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd) {
   const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
-  Scene scene = load_scene(name);
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
-  if (o.width > 0) scene.width = o.width;
-  if (o.height > 0) scene.height = o.height;
+  const Scene scene = open_scene({name, o.width, o.height, o.game_dir});
   RenderOptions ro;
   ro.trace = true;
   ro.line_bytes = unit.cache.line_bytes;
@@ -211,7 +211,7 @@ void run(SimOptions& o, CLI::App& cmd) {
     return opt != nullptr && opt->count() > 0;
   };
   if (!o.requests.empty()) {
-    for (const char* opt : {"--scene", "--width", "--height", "--units"})
+    for (const char* opt : {"--scene", "--width", "--height", "--units", "--game-dir"})
       if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
   } else {
     if (given("--texture")) throw InputError("--texture applies to --requests runs; a scene's stages carry their own textures");
@@ -377,7 +377,9 @@ void register_sim(CLI::App& app) {
 
   auto o = std::make_shared<SimOptions>();
   CLI::App* cmd = app.add_subcommand("sim", "Cycle model vs golden reference: bit-exact compare, cycles, cache and memory statistics");
-  cmd->add_option("--scene", o->scene, "Built-in scene or scene JSON (default: the default scene) whose trace is simulated");
+  cmd->add_option("--scene", o->scene,
+                  "Built-in scene, scene JSON or oa:MAP[:SPAWN] (an OpenArena level; default: the default scene) whose trace is simulated");
+  cmd->add_option("--game-dir", o->game_dir, "OpenArena data directory for oa: scenes (default: $TFU_OPENARENA_DIR or Debian's)");
   cmd->add_option("--width", o->width, "Scene render width (default: the scene's own)");
   cmd->add_option("--height", o->height, "Scene render height (default: the scene's own)");
   cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (docs/traces.md)");
