@@ -150,6 +150,10 @@ Image oiio(const Scene& scene, const RenderResult& r, const std::filesystem::pat
   ts->attribute("automip", 0);
   std::vector<OIIO::TextureSystem::TextureHandle*> handles;
   for (size_t t = 0; t < frame.textures.size(); ++t) {
+    // OIIO reads the decoded levels; only for RGBA8 are they the texels our sampler reads.
+    if (frame.textures[t].texels->format != TexelFormat::RGBA8)
+      throw InputError(fmt::format("aniso-compare: the scene's texture {} is {}; the comparison takes RGBA8 textures only", t,
+                                   texel_format_name(frame.textures[t].texels->format)));
     const std::string path = (dir / fmt::format("texture{}.tif", t)).string();
     write_mip_tiff(*frame.textures[t].texels, path);
     handles.push_back(ts->get_texture_handle(OIIO::ustring(path)));
