@@ -596,6 +596,33 @@ TEST(TfuUnit, AnisotropicScenesBitExact) {
   }
 }
 
+// TFU-G item 3: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
+// so anisotropic EDGE_PRESERVING_MIPMAP_LINEAR probes read exactly the bytes of trilinear probes on
+// the same footprints (the same probes per pixel); the full cross reads more on minified scenes.
+TEST(TfuUnit, AnisotropicStaticEdgeProbesReadExactlyTheTrilinearBytes) {
+  for (const char* scene : {"grazing", "ground_plane"}) {
+    const SceneTrace st = scene_trace(scene, 64, 48);
+    const Mesh& mesh = st.scene.meshes.front();
+    for (int block : {4, 8}) {
+      const UnitConfig u = small_cache(block);
+      SamplerDescriptor cfg = mesh.stages[0].sampler;
+      cfg.max_aniso = 16;
+      cfg.mode = filter_mode_from_name("LINEAR_MIPMAP_LINEAR");
+      const UnitOutput tri = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      cfg.mode = filter_mode_from_name("EDGE_PRESERVING_MIPMAP_LINEAR");
+      cfg.edge_shape = EdgeShape::Static;
+      const UnitOutput edge = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      cfg.edge_shape = EdgeShape::Cross;
+      const UnitOutput cross = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      const std::string what = fmt::format("{} B={}", scene, block);
+      ASSERT_GT(tri.stats.counter("probes"), st.trace.requests.size()) << what;  // anisotropic pixels exist
+      EXPECT_EQ(edge.stats.counter("probes"), tri.stats.counter("probes")) << what;
+      EXPECT_EQ(edge.stats.counter("memory_bytes"), tri.stats.counter("memory_bytes")) << what;
+      EXPECT_GT(cross.stats.counter("memory_bytes"), tri.stats.counter("memory_bytes")) << what;
+    }
+  }
+}
+
 // Degenerate gradients (zero, equal axes, infinite, NaN, a line) through both models.
 TEST(TfuUnit, AnisotropicDegenerateGradients) {
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
