@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
   tfu::cli::register_descriptors(app);
+  tfu::cli::register_aniso_compare(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
