@@ -49,8 +49,8 @@ class CacheStage : public sim::Module {
   uint64_t accepted_line() const { return accepted_line_; }
   uint64_t last_miss_line() const { return last_miss_line_; }
   int last_misses() const { return last_misses_; }
-  // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
-  std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
+  // Kernel shape chosen per pixel, probe and level (edge modes; for the golden compare of cache-aware).
+  std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
   std::array<uint64_t, 4> stage_hits{}, stage_misses{};
 

@@ -18,6 +18,7 @@ void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR,
 void register_sim(CLI::App& app);           // cmd_sim.cpp: cycle model vs golden, statistics
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
 void register_descriptors(CLI::App& app);   // cmd_descriptors.cpp: descriptor register layouts
+void register_aniso_compare(CLI::App& app); // cmd_aniso_compare.cpp: anisotropic filtering vs OpenImageIO
 void register_sweep(CLI::App& app);         // cmd_sweep.cpp: `sweep` (design-space sweeps, Slurm) and `plot`
 
 // Output files: refuses an existing `path` unless `force` (InputError naming `option`) and creates

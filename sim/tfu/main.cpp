@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
   tfu::cli::register_descriptors(app);
+  tfu::cli::register_aniso_compare(app);
   tfu::cli::register_sweep(app);
   try {
     app.parse(argc, argv);
