@@ -38,7 +38,7 @@ FilterMode filter_mode_from_name(const std::string& name) {
     if (filter_mode_name(m) == n) return m;
   std::string list;
   for (const FilterMode& m : all_filter_modes()) list += (list.empty() ? "" : ", ") + filter_mode_name(m);
-  throw InputError(fmt::format("unknown filter '{}' (expected one of {})", name, list));
+  throw InputError(fmt::format("unknown filter '{}' (expected one of {})", quote_input(name), list));
 }
 
 std::string filter_mode_name(FilterMode m) {
@@ -62,6 +62,15 @@ std::vector<std::string> cubic_kernel_names() {
   std::vector<std::string> v = FilterKernel::names();
   v.emplace_back(kBsplineInterp);
   return v;
+}
+
+std::string checked_cubic_kernel_name(const std::string& name) {
+  std::string list;
+  for (const std::string& k : cubic_kernel_names()) {
+    if (k == name) return name;
+    list += (list.empty() ? "" : ", ") + k;
+  }
+  throw InputError(fmt::format("unknown kernel '{}' (valid: {})", quote_input(name), list));
 }
 
 // ---------------------------------------------------------------- B-spline prefilter (offline)

@@ -47,6 +47,8 @@ const std::vector<FilterMode>& all_filter_modes();
 // applied to prefiltered coefficients so that it interpolates; Hadwiger 2004 Sec. 3.x).
 inline constexpr const char* kBsplineInterp = "bspline-interp";
 std::vector<std::string> cubic_kernel_names();
+// `name` if it is one of cubic_kernel_names(), else InputError "unknown kernel 'NAME' (valid: ...)".
+std::string checked_cubic_kernel_name(const std::string& name);
 
 // Which of Lee & Jen's kernel shapes the edge-preserving filter may use (Sec. 3).
 enum class EdgeShapePolicy {

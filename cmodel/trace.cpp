@@ -1,14 +1,14 @@
 #include "cmodel/trace.hpp"
 
-#include <cerrno>
+#include <cctype>
 #include <cstdlib>
-#include <fstream>
 #include <istream>
 #include <ostream>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
 #include "cmodel/lod.hpp"
 
 namespace tfu {
@@ -43,8 +43,36 @@ bool parse_header(const std::string& line, TraceMode* mode, const std::string& w
   if (m == "lod") *mode = TraceMode::Lod;
   else if (m == "grad") *mode = TraceMode::Grad;
   else if (m == "quad") *mode = TraceMode::Quad;
-  else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, m));
+  else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, quote_input(m)));
   return true;
+}
+
+// The number syntax of docs/traces.md: decimal floating point ([+-] digits [. digits] [e [+-] digits],
+// or [+-] . digits ...) or nan / inf / infinity in any case. strtof alone would also take hex floats
+// ("0x1p-1") and stop at a NUL byte ("0.5\0garbage" would read as 0.5).
+bool is_decimal_number(const std::string& f) {
+  size_t i = 0;
+  if (i < f.size() && (f[i] == '+' || f[i] == '-')) ++i;
+  std::string word;
+  for (size_t k = i; k < f.size(); ++k) word += static_cast<char>(std::tolower(static_cast<unsigned char>(f[k])));
+  if (word == "nan" || word == "inf" || word == "infinity") return true;
+  const auto digits = [&] {
+    const size_t start = i;
+    while (i < f.size() && f[i] >= '0' && f[i] <= '9') ++i;
+    return i - start;
+  };
+  size_t mantissa = digits();
+  if (i < f.size() && f[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < f.size() && (f[i] == 'e' || f[i] == 'E')) {
+    ++i;
+    if (i < f.size() && (f[i] == '+' || f[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == f.size();
 }
 
 }  // namespace
@@ -74,11 +102,9 @@ Trace parse_trace(std::istream& in, const std::string& name) {
       const auto comma = s.find(',', pos);
       const std::string field = trim(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
       if (field.empty()) throw InputError(fmt::format("{}: empty field {}", where, v.size() + 1));
-      char* end = nullptr;
-      errno = 0;
-      const float x = std::strtof(field.c_str(), &end);
-      if (end == field.c_str() || *end != '\0')
-        throw InputError(fmt::format("{}: field {} '{}' is not a number", where, v.size() + 1, field));
+      if (!is_decimal_number(field))
+        throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, v.size() + 1, quote_input(field)));
+      const float x = std::strtof(field.c_str(), nullptr);
       v.push_back(x);  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
       if (v.size() > 6) throw InputError(fmt::format("{}: more than 6 fields", where));
       if (comma == std::string::npos) break;
@@ -114,9 +140,8 @@ Trace parse_trace(std::istream& in, const std::string& name) {
 }
 
 Trace load_trace(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(fmt::format("{}: cannot open trace", path));
-  return parse_trace(f, path);
+  InputFile f(path, "trace " + quoted_path(path), kMaxTraceBytes);  // a regular file of bounded size
+  return parse_trace(f.stream(), quote_path(path));
 }
 
 void write_trace(std::ostream& out, const Trace& trace) {

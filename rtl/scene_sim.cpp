@@ -1,13 +1,14 @@
 #include "rtl/scene_sim.hpp"
 
 #include <algorithm>
-#include <thread>
+#include <atomic>
 
 #include <time.h>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/parallel.hpp"
 
 namespace tfu::rtl {
 
@@ -87,21 +88,19 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
       }
     }
   };
-  // One thread per unit (each runs its meshes in order); at most hardware_concurrency at a time.
-  const auto hw = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Units are handed out to up to hardware_threads() workers (each unit runs its meshes in order on
+  // one thread); results do not depend on which worker runs which unit.
   std::vector<std::exception_ptr> errors(static_cast<size_t>(opt.units));
-  for (int first = 0; first < opt.units; first += hw) {
-    std::vector<std::thread> pool;
-    for (int unit = first; unit < std::min(opt.units, first + hw); ++unit)
-      pool.emplace_back([&, unit] {
-        try {
-          for (size_t m = 0; m < nmesh; ++m) run_job(jobs[static_cast<size_t>(unit) * nmesh + m]);
-        } catch (...) {
-          errors[static_cast<size_t>(unit)] = std::current_exception();
-        }
-      });
-    for (std::thread& t : pool) t.join();
-  }
+  std::atomic<int> next_unit{0};
+  run_workers(std::min(opt.units, hardware_threads()), [&](int) {
+    for (int unit = next_unit++; unit < opt.units; unit = next_unit++) {
+      try {
+        for (size_t m = 0; m < nmesh; ++m) run_job(jobs[static_cast<size_t>(unit) * nmesh + m]);
+      } catch (...) {
+        errors[static_cast<size_t>(unit)] = std::current_exception();
+      }
+    }
+  });
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 

@@ -13,12 +13,17 @@ void TexelCacheConfig::validate() const {
   if (block != 4 && block != 8) throw InputError(fmt::format("cache block {} must be 4 or 8 texels", block));
   if (bytes_per_texel != 1 && bytes_per_texel != 4)
     throw InputError(fmt::format("cache bytes_per_texel {} must be 1 or 4", bytes_per_texel));
-  if (ways < 1) throw InputError(fmt::format("cache ways {} must be at least 1", ways));
+  if (ways < 1 || ways > kMaxCacheWays)
+    throw InputError(fmt::format("cache ways {} must be in 1..{}", ways, kMaxCacheWays));
   if (banks != 1 && banks != 4) throw InputError(fmt::format("cache banks {} must be 1 or 4", banks));
-  if (capacity_bytes < line_bytes() * ways)
+  if (capacity_bytes < 1 || capacity_bytes > kMaxCacheBytes)
+    throw InputError(fmt::format("cache capacity {} bytes must be in 1..{}", capacity_bytes, kMaxCacheBytes));
+  // 64-bit products: ways (<= 4096) x line bytes (<= 256) fits an int, but no product here may wrap.
+  const int64_t set_bytes = int64_t{line_bytes()} * int64_t{ways};
+  if (capacity_bytes < set_bytes)
     throw InputError(fmt::format("cache capacity {} bytes is below one set ({} ways x {}-byte lines)", capacity_bytes, ways,
                                  line_bytes()));
-  if (capacity_bytes % (line_bytes() * ways) != 0)
+  if (capacity_bytes % set_bytes != 0)
     throw InputError(fmt::format("cache capacity {} bytes is not a whole number of {}-way sets of {}-byte lines",
                                  capacity_bytes, ways, line_bytes()));
 }

@@ -37,6 +37,9 @@ namespace tfu::rtl {
 
 enum class BankMapping { TexelParity, BlockParity };
 
+inline constexpr int kMaxCacheBytes = 16 << 20;  // 16 MiB: capacity_bytes in 1..kMaxCacheBytes
+inline constexpr int kMaxCacheWays = 4096;       // associativity in 1..kMaxCacheWays
+
 struct TexelCacheConfig {
   int block = 4;               // B: block side in texels (power of two, 4 or 8)
   int bytes_per_texel = 4;     // 1 (L8) or 4
@@ -47,8 +50,8 @@ struct TexelCacheConfig {
   int line_bytes() const { return block * block * bytes_per_texel; }
   int lines() const { return capacity_bytes / line_bytes(); }
   int sets() const { return lines() / ways; }
-  // Throws InputError with one line naming the bad field (capacity below one set, B not a power
-  // of two, zero ways or banks, ...).
+  // Throws InputError with one line naming the bad field (capacity below one set or above
+  // kMaxCacheBytes, B not 4 or 8, ways outside 1..kMaxCacheWays, banks not 1 or 4, ...).
   void validate() const;
 };
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_input.hpp"
 #include "rtl/address_gen.hpp"
 #include "rtl/cache_stage.hpp"
 #include "rtl/edge_datapath.hpp"
@@ -14,6 +15,7 @@
 #include "rtl/lod_unit.hpp"
 #include "rtl/request_fifo.hpp"
 #include "rtl/response.hpp"
+#include "rtl/unit_watchdog.hpp"
 
 namespace tfu::rtl {
 
@@ -29,7 +31,7 @@ const char* shape_policy_name(ShapePolicy p) {
 ShapePolicy shape_policy_from_name(const std::string& name) {
   for (ShapePolicy p : {ShapePolicy::Static, ShapePolicy::CacheAware, ShapePolicy::FullCross})
     if (name == shape_policy_name(p)) return p;
-  throw InputError(fmt::format("unknown kernel-shape policy '{}' (expected static, cache-aware or full-cross)", name));
+  throw InputError(fmt::format("unknown kernel-shape policy '{}' (expected static, cache-aware or full-cross)", quote_input(name)));
 }
 
 void UnitConfig::validate() const {
@@ -50,27 +52,23 @@ using nlohmann::json;
 int get_int(const json& j, const char* key, const std::string& where) {
   const json& v = j.at(key);
   if (!v.is_number_integer()) throw InputError(fmt::format("{}: '{}' must be an integer", where, key));
-  const auto x = v.get<int64_t>();
-  if (x < INT32_MIN || x > INT32_MAX) throw InputError(fmt::format("{}: '{}' is out of range", where, key));
-  return static_cast<int>(x);
+  // An unsigned value above INT64_MAX would read as negative: check it as unsigned first.
+  if (v.is_number_unsigned() ? v.get<uint64_t>() > uint64_t{INT32_MAX} : (v.get<int64_t>() < INT32_MIN || v.get<int64_t>() > INT32_MAX))
+    throw InputError(fmt::format("{}: '{}' value {} is out of range", where, key, json_number_text(v)));
+  return static_cast<int>(v.get<int64_t>());
 }
 
 void check_keys(const json& j, std::initializer_list<const char*> keys, const std::string& where) {
   if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", where));
   for (const auto& [k, v] : j.items())
     if (std::find_if(keys.begin(), keys.end(), [&k = k](const char* x) { return k == x; }) == keys.end())
-      throw InputError(fmt::format("{}: unknown key '{}'", where, k));
+      throw InputError(fmt::format("{}: unknown key '{}'", where, quote_input(k)));
 }
 
 }  // namespace
 
 UnitConfig unit_config_from_json(const std::string& text, const std::string& name) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(fmt::format("{}: malformed JSON (byte {})", name, e.byte));
-  }
+  const json j = parse_json_input(text, name);  // InputError "NAME: line L, column C: malformed JSON: ..."
   UnitConfig c;
   check_keys(j, {"cache", "memory", "channel_depth", "miss_fifo_depth", "filter_lanes", "shape_policy"}, name);
   if (j.contains("cache")) {
@@ -104,7 +102,11 @@ UnitConfig unit_config_from_json(const std::string& text, const std::string& nam
   if (j.contains("filter_lanes")) c.filter_lanes = get_int(j, "filter_lanes", name);
   if (j.contains("shape_policy")) {
     if (!j["shape_policy"].is_string()) throw InputError(fmt::format("{}: 'shape_policy' must be a string", name));
-    c.shape_policy = shape_policy_from_name(j["shape_policy"].get<std::string>());
+    try {
+      c.shape_policy = shape_policy_from_name(j["shape_policy"].get<std::string>());
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: shape_policy: {}", name, e.what()));
+    }
   }
   try {
     c.validate();
@@ -176,7 +178,7 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
   out.pixels.resize(n);
   out.response_cycle.resize(n);
   std::vector<uint64_t> accept(n, 0);
-  sim::Simulator sim(static_cast<uint64_t>(ucfg.memory.latency) * 64 + 10000);
+  sim::Simulator sim(no_progress_limit(ucfg));  // the watchdog; no total-cycle cap (unit_watchdog.hpp)
   const auto depth = static_cast<size_t>(ucfg.channel_depth);
   sim::Channel<QuadReq> c_quad("quad", depth);
   sim::Channel<PixelReq> c_pixel("pixel", depth);
@@ -237,7 +239,7 @@ UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg_in, const Trace
   }
 
   sim.set_idle_skip(ucfg.idle_skip);
-  sim.run([&] { return sink.retired() == n; }, static_cast<uint64_t>(n) * 4096 + 1000000,
+  sim.run([&] { return sink.retired() == n; }, sim::Simulator::kNoCycleLimit,
           [&] { return static_cast<uint64_t>(sink.retired()); }, n);
   out.cycles = sim.cycle();
   out.edge_shapes = std::move(cst.shapes);

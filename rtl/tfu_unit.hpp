@@ -60,7 +60,7 @@ SamplerConfig golden_sampler_config(const SamplerConfig& cfg, const UnitConfig& 
 
 // Runs a trace through the unit (clocked by the simulation kernel). `vcd`, if given, receives a
 // value-change dump of every channel's valid/ready/occupancy and the stages' busy flags. Throws
-// InputError for an invalid configuration, CheckFailed on deadlock (with every block's state).
+// InputError for an invalid configuration, DeadlockError on deadlock (with every block's state).
 UnitOutput run_unit(const Texture& tex, const SamplerConfig& cfg, const Trace& trace, const UnitConfig& ucfg,
                     std::ostream* vcd = nullptr);
 

@@ -1,7 +1,5 @@
 // tfu render: draw a scene (built-in or JSON file) through the golden sampler; optionally write the
 // quad request trace and the supersampled analytic ground truth (docs/renderer.md).
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/trace.hpp"
@@ -35,14 +35,6 @@ void list_scenes(std::ostream& os) {
   }
 }
 
-void write_trace_file(const Trace& trace, const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw InputError(fmt::format("cannot write --trace-out '{}'", path));
-  write_trace(file, trace);
-  file.flush();
-  if (!file) throw InputError(fmt::format("write failed for --trace-out '{}'", path));
-}
-
 void check_size_override(const char* option, int v) {
   if (v < 0 || v > kMaxRenderSize) throw InputError(fmt::format("{} must be in 0..{} (0: the scene's), got {}", option, kMaxRenderSize, v));
 }
@@ -52,7 +44,7 @@ void run(const RenderCliOptions& o) {
     list_scenes(std::cout);
     return;
   }
-  if (o.threads < 0 || o.threads > 1024) throw InputError(fmt::format("--threads must be in 0..1024, got {}", o.threads));
+  checked_thread_count("--threads", o.threads, true);
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
   Scene scene = load_scene(o.scene);
@@ -67,23 +59,20 @@ void run(const RenderCliOptions& o) {
   ro.ground_truth = !o.truth_out.empty();
 
   const std::string out = o.out.empty() ? fmt::format("out/render/{}.png", scene.name) : o.out;
-  if (out == o.trace_out || out == o.truth_out || (!o.trace_out.empty() && o.trace_out == o.truth_out))
-    throw InputError("--out, --trace-out and --truth-out must name different files");
-  prepare_output("--out", out, o.force);
-  prepare_output("--trace-out", o.trace_out, o.force);
-  prepare_output("--truth-out", o.truth_out, o.force);
+  // Every output reserved (distinct files, none overwritten without --force) before the render.
+  OutputFiles outputs(o.force);
+  OutputFile& image_file = outputs.add_image("--out", out);
+  OutputFile* trace_file = ro.trace ? &outputs.add("--trace-out", o.trace_out) : nullptr;
+  OutputFile* truth_file = ro.ground_truth ? &outputs.add_image("--truth-out", o.truth_out) : nullptr;
 
   const RenderResult r = render_scene(scene, ro);
-  save_image(r.image, out, o.force);
+  image_file.write_image(r.image);
+  if (trace_file) write_trace(trace_file->stream(), r.trace);
+  if (truth_file) truth_file->write_image(r.truth);
+  outputs.commit();
   std::cout << out << '\n';
-  if (ro.trace) {
-    write_trace_file(r.trace, o.trace_out);
-    std::cout << o.trace_out << '\n';
-  }
-  if (ro.ground_truth) {
-    save_image(r.truth, o.truth_out, o.force);
-    std::cout << o.truth_out << '\n';
-  }
+  if (trace_file) std::cout << o.trace_out << '\n';
+  if (truth_file) std::cout << o.truth_out << '\n';
   std::cerr << fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels\n",
                            scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
                            r.stats.clipped_away, r.stats.quads, r.stats.pixels);

@@ -1,13 +1,12 @@
 // tfu sample: run a request trace through the golden sampler (one r,g,b,a line per request), or
 // report what the LOD unit / meta MIP-map supplies per request (--query-lod).
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/trace.hpp"
@@ -28,20 +27,15 @@ struct SampleOptions {
 };
 
 void run(const SampleOptions& o) {
-  if (o.out != "-" && std::filesystem::exists(o.out) && !o.force)
-    throw InputError(fmt::format("--out '{}' already exists (use --force to overwrite)", o.out));
+  OutputFiles outputs(o.force);
+  OutputFile* file = o.out == "-" ? nullptr : &outputs.add("--out", o.out);
   const SamplerConfig cfg = sampler_config_from_options(o.smp);
   const Trace tr = load_trace(o.requests);
   const Texture tex = load_texture_from_options(o.tex);
   const Sampler smp(tex, cfg);
   const std::vector<int32_t> lam = trace_lambdas(tr, tex.width(), tex.height());
 
-  std::unique_ptr<std::ofstream> file;
-  if (o.out != "-") {
-    file = std::make_unique<std::ofstream>(o.out);
-    if (!*file) throw InputError(fmt::format("--out '{}' cannot be written", o.out));
-  }
-  std::ostream& os = file ? *file : std::cout;
+  std::ostream& os = file ? file->stream() : std::cout;
   if (o.query_lod) {
     os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
     for (size_t i = 0; i < tr.requests.size(); ++i) {
@@ -49,6 +43,7 @@ void run(const SampleOptions& o) {
       os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0, li.level0,
                         li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale);
     }
+    outputs.commit();
     return;
   }
   for (size_t i = 0; i < tr.requests.size(); ++i) {
@@ -61,9 +56,8 @@ void run(const SampleOptions& o) {
       os << fmt::format("{},{},{},{}\n", c.r, c.g, c.b, c.a);
     }
   }
+  outputs.commit();
   if (file) {
-    file->close();
-    if (!*file) throw InputError(fmt::format("--out '{}': write failed", o.out));
     std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(),
                              trace_mode_name(tr.mode), o.out);
   }

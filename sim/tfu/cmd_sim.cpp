@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
@@ -38,14 +40,6 @@ struct SimOptions {
   bool force = false, bench = false;
 };
 
-std::string read_file(const std::string& path, const char* option) {
-  std::ifstream f(path);
-  if (!f) throw InputError(fmt::format("{} '{}': cannot open", option, path));
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
   const uint64_t hits = st.counter("cache_line_hits"), misses = st.counter("cache_line_misses");
   const auto dn = static_cast<double>(n);
@@ -62,10 +56,14 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
 }
 
 void run(SimOptions& o, CLI::App& cmd) {
-  prepare_output("--stats", o.stats, o.force);
-  prepare_output("--out", o.out, o.force);
-  prepare_output("--vcd", o.vcd, o.force);
-  if (!o.config.empty()) o.unit = rtl::unit_config_from_json(read_file(o.config, "--config"), o.config);
+  // Every output reserved before any work (cmodel/output_files.hpp); written at the end, or not at all.
+  OutputFiles outputs(o.force);
+  OutputFile* stats_file = o.stats.empty() ? nullptr : &outputs.add("--stats", o.stats);
+  OutputFile* out_file = o.out.empty() ? nullptr : &outputs.add_image("--out", o.out);
+  OutputFile* vcd_file = o.vcd.empty() ? nullptr : &outputs.add("--vcd", o.vcd);
+  if (!o.config.empty())
+    o.unit = rtl::unit_config_from_json(read_input_file(o.config, "--config " + quoted_path(o.config), kMaxTextInputBytes),
+                                        o.config);
   // Command-line flags override the config file.
   if (cmd.count("--block")) o.unit.cache.block = static_cast<int>(cmd.get_option("--block")->as<int>());
   if (cmd.count("--cache-bytes")) o.unit.cache.capacity_bytes = cmd.get_option("--cache-bytes")->as<int>();
@@ -74,7 +72,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   if (cmd.count("--latency")) o.unit.memory.latency = cmd.get_option("--latency")->as<int>();
   if (cmd.count("--bandwidth")) o.unit.memory.bytes_per_cycle = cmd.get_option("--bandwidth")->as<int>();
   if (cmd.count("--lanes")) o.unit.filter_lanes = cmd.get_option("--lanes")->as<int>();
-  if (!o.shape_policy.empty()) o.unit.shape_policy = rtl::shape_policy_from_name(o.shape_policy);
+  if (cmd.count("--shape-policy")) o.unit.shape_policy = rtl::shape_policy_from_name(o.shape_policy);
   o.unit.validate();
   // Options that do not apply to this kind of run are errors, not silently ignored.
   const auto given = [&cmd](const char* name) {
@@ -94,30 +92,28 @@ void run(SimOptions& o, CLI::App& cmd) {
         throw InputError(fmt::format("{} applies to --requests runs; a scene's meshes carry their own textures and samplers "
                                      "(only --filter overrides them)", opt));
   }
-  std::unique_ptr<std::ofstream> vcd;
-  if (!o.vcd.empty()) {
-    vcd = std::make_unique<std::ofstream>(o.vcd);
-    if (!*vcd) throw InputError(fmt::format("--vcd '{}' cannot be written", o.vcd));
-  }
+  std::ostream* vcd = vcd_file ? &vcd_file->stream() : nullptr;
   sim::Stats stats;
+  std::string mismatch;  // a golden-compare failure: the outputs are still written (they show it)
   if (!o.requests.empty()) {
     if (o.tex.texture.empty()) throw InputError("--requests needs --texture");
     if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
     const Texture texture = load_texture_from_options(o.tex);
     const SamplerConfig cfg = sampler_config_from_options(o.smp);
     const Trace trace = load_trace(o.requests);
-    const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit, vcd.get());
+    const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit, vcd);
     const Sampler golden(texture, rtl::golden_sampler_config(cfg, o.unit));
     const std::vector<int32_t> lam = trace_lambdas(trace, texture.width(), texture.height());
     for (size_t i = 0; i < trace.requests.size(); ++i) {
       const TraceRequest& r = trace.requests[i];
       const Rgba8 want = rtl::golden_pixel(golden, o.unit, got, r, lam[i], i), have = got.pixels[i];
-      if (want != have)
-        throw CheckFailed(fmt::format("request {} (s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
-                                      i, r.s, r.t, got.response_cycle[i], have.r, have.g, have.b, have.a, want.r, want.g,
-                                      want.b, want.a));
+      if (want != have && mismatch.empty())
+        mismatch = fmt::format("request {} (s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
+                               i, r.s, r.t, got.response_cycle[i], have.r, have.g, have.b, have.a, want.r, want.g,
+                               want.b, want.a);
     }
-    print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", filter_mode_name(cfg.mode),
+    if (mismatch.empty())
+      print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", filter_mode_name(cfg.mode),
                               trace.requests.size(), o.requests, trace.requests.size()),
                   trace.requests.size(), got.cycles, got.stats);
     stats = got.stats;
@@ -133,7 +129,7 @@ void run(SimOptions& o, CLI::App& cmd) {
     rtl::SceneSimOptions so;
     if (cmd.count("--filter")) ro.filter = so.filter = filter_mode_from_name(o.smp.filter);
     so.units = o.units;
-    so.vcd = vcd.get();
+    so.vcd = vcd;
     if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the cost-of-cycle-accuracy ratio
     // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
     // seconds, so that the figures do not depend on other work on the machine; the two alternate
@@ -163,12 +159,13 @@ void run(SimOptions& o, CLI::App& cmd) {
       }
     }
     std::sort(pair_ratio.begin(), pair_ratio.end());
-    if (!res.mismatch.empty()) throw CheckFailed(res.mismatch);
+    mismatch = res.mismatch;
     const std::string mode = so.filter ? filter_mode_name(*so.filter) : std::string("scene filters");
-    print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
+    if (mismatch.empty())
+      print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
                               res.requests, name, o.width, o.height, o.units, o.units == 1 ? "" : "s", res.requests),
                   res.requests, res.cycles, res.stats);
-    if (o.bench) {
+    if (o.bench && mismatch.empty()) {
       const auto n = static_cast<double>(res.requests);
       // The scene end to end: the rasterizer's share of the golden render (its time less the LOD +
       // sampler time) is common to both paths; the cycle model replaces the LOD + sampler.
@@ -187,19 +184,15 @@ void run(SimOptions& o, CLI::App& cmd) {
           scene_cycle_secs / render_secs, secs,
           o.units);
     }
-    if (!o.out.empty()) {
-      save_image(res.image, o.out, true);
-      std::cout << "  image -> " << o.out << '\n';
-    }
+    if (out_file) out_file->write_image(res.image);
     stats = res.stats;
   }
-  if (!o.stats.empty()) {
-    std::ofstream f(o.stats);
-    stats.write_json(f);
-    if (!f) throw InputError(fmt::format("--stats '{}' cannot be written", o.stats));
-    std::cout << "  stats -> " << o.stats << '\n';
-  }
-  if (vcd) std::cout << "  vcd -> " << o.vcd << '\n';
+  if (stats_file) stats.write_json(stats_file->stream());
+  outputs.commit();
+  if (out_file) std::cout << "  image -> " << o.out << '\n';
+  if (stats_file) std::cout << "  stats -> " << o.stats << '\n';
+  if (vcd_file) std::cout << "  vcd -> " << o.vcd << '\n';
+  if (!mismatch.empty()) throw CheckFailed(mismatch);
 }
 
 // ---- tfu sim-results: the cycle model's measured results (TFU-C item 5) ----
@@ -241,8 +234,10 @@ ResultRow measure(const Scene& scene, const RenderResult& render, const std::str
 }
 
 void run_results(const ResultsOptions& o) {
-  if (o.markdown != "-") prepare_output("--markdown", o.markdown, o.force);
-  prepare_output("--json", o.json, o.force);
+  // Checked (and a temporary created) before the long run, so that an unwritable output fails first.
+  OutputFiles outputs(o.force);
+  OutputFile* md_file = o.markdown == "-" ? nullptr : &outputs.add("--markdown", o.markdown);
+  OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   std::vector<ResultRow> rows;
   std::string ratio_table;
   const std::vector<std::string> scenes = builtin_scene_names();
@@ -302,18 +297,10 @@ void run_results(const ResultsOptions& o) {
                   {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
                   {"shape_L", r.l}});
   }
-  if (o.markdown == "-") {
-    std::cout << md.str();
-  } else {
-    std::ofstream f(o.markdown);
-    f << md.str();
-    if (!f) throw InputError(fmt::format("--markdown '{}' cannot be written", o.markdown));
-  }
-  if (!o.json.empty()) {
-    std::ofstream f(o.json);
-    f << js.dump(2) << '\n';
-    if (!f) throw InputError(fmt::format("--json '{}' cannot be written", o.json));
-  }
+  if (md_file) md_file->stream() << md.str();
+  if (json_file) json_file->stream() << js.dump(2) << '\n';
+  outputs.commit();
+  if (!md_file) std::cout << md.str();
 }
 
 }  // namespace

@@ -18,8 +18,7 @@ void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR,
 void register_sim(CLI::App& app);           // cmd_sim.cpp: cycle model vs golden, statistics
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
 
-// Output files: refuses an existing `path` unless `force` (InputError naming `option`) and creates
-// missing parent directories. An empty path is a no-op.
-void prepare_output(const std::string& option, const std::string& path, bool force);
+// Output files go through tfu::OutputFiles (cmodel/output_files.hpp), input files through
+// cmodel/input_file.hpp: one place each for every command.
 
 }  // namespace tfu::cli

@@ -1,7 +1,6 @@
 #include "sim/tfu/sampler_options.hpp"
 
 #include <cmath>
-#include <filesystem>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -11,7 +10,6 @@
 #include "cmodel/mipmap.hpp"
 #include "cmodel/procedural.hpp"
 #include "sim/tfu/choices.hpp"
-#include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
 
@@ -56,10 +54,10 @@ Rgba8 parse_border(const std::string& s) {
       used = 0;
     }
     if (n >= 4 || used != field.size() || x < 0 || x > 255)
-      throw InputError(fmt::format("--border '{}' is not four integers 0..255 separated by commas", s));
+      throw InputError(fmt::format("--border '{}' is not four integers 0..255 separated by commas", quote_input(s)));
     v[n++] = x;
   }
-  if (n != 4) throw InputError(fmt::format("--border '{}' is not four integers 0..255 separated by commas", s));
+  if (n != 4) throw InputError(fmt::format("--border '{}' is not four integers 0..255 separated by commas", quote_input(s)));
   return {static_cast<uint8_t>(v[0]), static_cast<uint8_t>(v[1]), static_cast<uint8_t>(v[2]), static_cast<uint8_t>(v[3])};
 }
 
@@ -85,7 +83,7 @@ Texture load_texture_spec(const std::string& spec) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != sz.size() || sz.empty()) throw InputError(fmt::format("--texture '{}': size '{}' is not an integer", spec, sz));
+    if (used != sz.size() || sz.empty()) throw InputError(fmt::format("--texture '{}': size '{}' is not an integer", quote_input(spec), quote_input(sz)));
     name.resize(colon);
   }
   return make_procedural(name, size).texture;
@@ -122,14 +120,11 @@ SamplerConfig sampler_config_from_options(const SamplerOptions& o) {
   c.lod.bias_q8 = lod_q8("--lod-bias", o.lod_bias);
   c.lod.min_lod_q8 = lod_q8("--min-lod", o.min_lod);
   c.lod.max_lod_q8 = lod_q8("--max-lod", o.max_lod);
-  bool known = false;
-  for (const auto& k : cubic_kernel_names()) known = known || k == o.kernel;
-  if (!known) {
-    std::string list;
-    for (const auto& k : cubic_kernel_names()) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(fmt::format("unknown kernel '{}' (valid: {})", o.kernel, list));
+  try {
+    c.kernel = checked_cubic_kernel_name(o.kernel);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--kernel: {}", e.what()));
   }
-  c.kernel = o.kernel;
   c.cubic_rom.samples = o.rom_samples;
   c.cubic_rom.bits = o.rom_bits;
   c.cubic_rom.validate();
@@ -138,15 +133,6 @@ SamplerConfig sampler_config_from_options(const SamplerOptions& o) {
                                                {{"cross", EdgeShapePolicy::Cross}, {"cache-block", EdgeShapePolicy::CacheBlock}});
   c.edge_cache_block = o.cache_block;
   return c;
-}
-
-void prepare_output(const std::string& option, const std::string& path, bool force) {
-  if (path.empty()) return;
-  if (!force && std::filesystem::exists(path)) throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  if (ec) throw InputError(fmt::format("{} '{}': cannot create directory '{}': {}", option, path, parent.string(), ec.message()));
 }
 
 }  // namespace tfu::cli
