@@ -1,7 +1,9 @@
-// The model under absurd configurations (TFU-I D1-D4): cache configuration products never wrap and
-// every field is range-checked; the rasterizer never runs into undefined behaviour on absurd screen
-// positions; thread counts are checked and a refused thread does not abort; a valid unit
-// configuration never trips the watchdog, whatever its latency and bandwidth.
+// The model under absurd configurations (TFU-I D1-D4, D15): cache configuration products never
+// wrap and every field is range-checked; the rasterizer never runs into undefined behaviour on
+// absurd screen positions; thread counts are checked and a refused thread does not abort; a valid
+// unit configuration never trips the watchdog, whatever its latency and bandwidth; the image does
+// not depend on --units except under cache-aware shapes. Also the fuzzers' findings: the ideal
+// sampler on non-finite coordinates, and the montage size.
 #include <cmath>
 #include <limits>
 
@@ -10,6 +12,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/kernel_error.hpp"
+#include "cmodel/montage.hpp"
 #include "cmodel/parallel.hpp"
 #include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
@@ -181,7 +184,7 @@ TEST(Threads, ARefusedThreadLeavesTheWorkToTheOthers) {
 
 TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
   Scene s = load_scene("text_quad");
-  s.width = s.height = 32;
+  s.width = s.height = 16;
   RenderOptions ro;
   ro.trace = true;
   const RenderResult render = render_scene(s, ro);
@@ -261,6 +264,45 @@ TEST(Units, TheImageDependsOnUnitsOnlyUnderCacheAwareShapes) {
     }
   }
   EXPECT_TRUE(cache_aware_differs);  // the documented exception is real on this scene
+}
+
+}  // namespace
+}  // namespace tfu
+
+namespace tfu {
+namespace {
+
+// Found by the trace fuzzer (corpus/trace/found-nan-inf-ideal-path.txt): the ideal path converted a
+// NaN coordinate to an integer (undefined behaviour). It now treats non-finite coordinates as the
+// datapath does: NaN -> 0, +-Inf saturates.
+TEST(Sampler, IdealPathTakesNonFiniteCoordinates) {
+  Procedural p = make_procedural("checkerboard", 16);
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  for (const char* mode : {"NEAREST", "LINEAR_MIPMAP_LINEAR", "CUBIC", "EDGE_PRESERVING"}) {
+    SamplerConfig cfg;
+    cfg.mode = filter_mode_from_name(mode);
+    const Sampler smp(p.texture, cfg);
+    EXPECT_EQ(smp.sample_ideal(nan, 0.3, 0), smp.sample_ideal(0, 0.3, 0)) << mode;
+    EXPECT_EQ(smp.sample_ideal(0.3, nan, 0), smp.sample_ideal(0.3, 0, 0)) << mode;
+    for (const float v : {inf, -inf}) {
+      const auto c = smp.sample_ideal(v, 0.3, 0);
+      for (double x : c) EXPECT_TRUE(std::isfinite(x)) << mode;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tfu
+
+namespace tfu {
+namespace {
+
+// The montage's size is computed in 64 bits and bounded (many wide images must not wrap an int).
+TEST(Montage, TheLayoutSizeIsBounded) {
+  const std::vector<Image> wide(3, Image(16384, 1));
+  EXPECT_EQ(input_error([&] { montage_layout(wide, 3, 0); }),
+            "montage would be 49168x9 pixels, more than 32768 per side (use fewer or smaller images, or --columns)");
+  EXPECT_EQ(montage_layout(wide, 1, 0).width, 4 + 16384 + 4);
 }
 
 }  // namespace
