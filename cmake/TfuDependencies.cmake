@@ -17,3 +17,7 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 add_library(tfu_oiio INTERFACE)
 target_link_libraries(tfu_oiio INTERFACE PkgConfig::OIIO)
+
+# libzip (Debian libzip-dev): reads the .pk3 (zip) archives of Quake III / OpenArena game data
+# (cmodel/pk3.cpp). Through pkg-config (libzip.pc), like OpenImageIO.
+pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)

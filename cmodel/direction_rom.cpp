@@ -9,8 +9,6 @@
 namespace tfu::lee_jen {
 namespace {
 
-constexpr const TexelPos* kPos = kTexelPos;
-
 const double kRoiAxis = 0.5;                          // horizontal / vertical
 const double kRoiDiag = std::sqrt(2.0) / 4.0;         // all diagonals
 const double kRoi2x1 = 1.0 / (2.0 * std::sqrt(5.0));  // 26.6 / 63.4 degree directions
@@ -32,7 +30,7 @@ const RawDirection kRaw[kDirections] = {
 // Blend axis: the axis on which the endpoints' coordinates are exactly {0, 1}; x wins when both
 // qualify (the two centre diagonals). Cp is the endpoint at 0 on that axis.
 Direction orient(int index, const RawDirection& r) {
-  const TexelPos a = kPos[r.a - 1], b = kPos[r.b - 1];
+  const TexelPos a = texel_pos(r.a), b = texel_pos(r.b);
   const bool x01 = (a.x == 0 && b.x == 1) || (a.x == 1 && b.x == 0);
   const bool y01 = (a.y == 0 && b.y == 1) || (a.y == 1 && b.y == 0);
   if (!x01 && !y01) throw std::logic_error("direction without a {0,1} axis");
@@ -49,14 +47,6 @@ uint8_t weight_code(double w) {
 }
 
 }  // namespace
-
-TexelPos texel_pos(int n) { return kPos[n - 1]; }
-
-int texel_at(int x, int y) {
-  for (int i = 0; i < kTexels; ++i)
-    if (kPos[i].x == x && kPos[i].y == y) return i + 1;
-  return 0;
-}
 
 std::string Direction::name() const {
   const int lo = p < q ? p : q, hi = p < q ? q : p;
@@ -82,7 +72,7 @@ const std::array<Direction, kDirections>& directions() {
 
 double distance_to_direction(int dir, double x, double y) {
   const Direction& d = directions().at(static_cast<size_t>(dir));
-  const TexelPos a = kPos[d.p - 1], b = kPos[d.q - 1];
+  const TexelPos a = texel_pos(d.p), b = texel_pos(d.q);
   const double dx = b.x - a.x, dy = b.y - a.y;
   return std::abs(dy * (x - a.x) - dx * (y - a.y)) / std::sqrt(dx * dx + dy * dy);
 }
@@ -123,7 +113,7 @@ TexelMask rotate_mask(TexelMask m) {
   TexelMask out = 0;
   for (int n = 1; n <= kTexels; ++n)
     if (m & (1u << (n - 1))) {
-      const TexelPos p = kPos[n - 1];
+      const TexelPos p = texel_pos(n);
       out = static_cast<TexelMask>(out | (1u << (texel_at(1 - p.y, p.x) - 1)));
     }
   return out;
@@ -132,9 +122,8 @@ TexelMask rotate_mask(TexelMask m) {
 const std::vector<KernelShape>& kernel_shapes() {
   static const std::vector<KernelShape> kShapes = [] {
     std::vector<KernelShape> v{{ShapeKind::Cross, 0, kAllTexels}};
-    const auto bit = [](int n) { return static_cast<TexelMask>(1u << (n - 1)); };
-    TexelMask t = static_cast<TexelMask>(kAllTexels & ~(bit(1) | bit(2)));                  // Fig. 3a
-    TexelMask l = static_cast<TexelMask>(kAllTexels & ~(bit(1) | bit(2) | bit(3) | bit(7)));  // Fig. 3b
+    TexelMask t = static_cast<TexelMask>(kAllTexels & ~arm(Side::Top).mask);                            // Fig. 3a
+    TexelMask l = static_cast<TexelMask>(kAllTexels & ~(arm(Side::Top).mask | arm(Side::Left).mask));  // Fig. 3b
     for (int r = 0; r < 4; ++r) {
       v.push_back({ShapeKind::T, r, t});
       t = rotate_mask(t);

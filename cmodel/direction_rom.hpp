@@ -17,11 +17,7 @@
 // Blend parameter t of Eq. 3: the axis on which Cp, Cq have coordinates exactly {0, 1} (Cp at 0);
 // x takes precedence for the two centre diagonals.
 //
-// Texel numbering (Eq. 4), x right, y down, C4 at (0,0); the sample point is in [0,1)^2:
-//            C1  C2
-//        C3  C4  C5  C6
-//        C7  C8  C9  C10
-//            C11 C12
+// Texel numbering and the kernel geometry: cmodel/lee_jen_geometry.hpp.
 #pragma once
 
 #include <array>
@@ -29,25 +25,16 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/lee_jen_geometry.hpp"
+
 namespace tfu::lee_jen {
 
-inline constexpr int kTexels = 12;
 inline constexpr int kDirections = 22;
 inline constexpr uint8_t kNeverChoose = 255;
 inline constexpr uint8_t kMaxWeightCode = 254;
 inline constexpr int kWeightFracBits = 4;  // 4.4 fixed point
 // 1 - d/ROI at or below this counts as d >= ROI (Lee & Jen: "a very small threshold").
 inline constexpr double kNeverChooseThreshold = 1e-9;
-
-struct TexelPos {
-  int x, y;
-};
-// Position of texel Cn (n = 1..12): kTexelPos[n - 1].
-inline constexpr TexelPos kTexelPos[kTexels] = {{0, -1}, {1, -1}, {-1, 0}, {0, 0}, {1, 0}, {2, 0},
-                                                {-1, 1}, {0, 1},  {1, 1},  {2, 1}, {0, 2}, {1, 2}};
-TexelPos texel_pos(int n);
-// Texel number at (x, y), or 0 if (x, y) is not part of the 12-texel cross.
-int texel_at(int x, int y);
 
 enum class BlendAxis { X, Y };  // t of Eq. 3 is xf or yf
 
@@ -71,8 +58,6 @@ const std::array<uint8_t, 256>& direction_weight_rom(int dir);
 double decode_weight(uint8_t code);
 
 // ---- Kernel shapes (Sec. 3): which of the 12 texels are available, bit n-1 = texel Cn ----
-using TexelMask = uint16_t;
-inline constexpr TexelMask kAllTexels = 0x0FFF;
 
 enum class ShapeKind { Cross, T, L };
 struct KernelShape {

@@ -9,23 +9,6 @@ namespace tfu::lee_jen {
 
 namespace {
 
-constexpr bool has(TexelMask m, int n) { return (m >> (n - 1)) & 1u; }
-
-// Eq. 4 inputs of the three-point medians of the eight boundary texels (self first).
-struct Boundary {
-  int self, a, b;
-};
-constexpr std::array<Boundary, 8> kBoundary{{
-    {1, 2, 4}, {2, 1, 5}, {3, 4, 7}, {6, 5, 10}, {7, 3, 8}, {10, 6, 9}, {11, 8, 12}, {12, 9, 11}}};
-
-// Eq. 4 five-point medians of the centre texels: self, two centre neighbours, two outer neighbours;
-// `opposite` is the diagonally opposite centre texel that stands in for a missing outer one (Sec. 3).
-struct Centre {
-  int self, c1, c2, o1, o2, opposite;
-};
-constexpr std::array<Centre, 4> kCentre{{
-    {4, 5, 8, 1, 3, 9}, {5, 4, 9, 2, 6, 8}, {8, 4, 9, 7, 11, 5}, {9, 5, 8, 10, 12, 4}}};
-
 // Sort keys of the median network. The fixed-point datapath uses the integer key Y * 16 + n, which
 // is unique, so one comparator decides; the ideal path pairs a real Y with the texel number.
 struct RealKey {
@@ -56,19 +39,19 @@ constexpr K median5(const K& a, const K& b, const K& c, const K& d, const K& e) 
 template <typename K, bool kAll = false>
 std::array<int, kTexels + 1> low_pass(const std::array<K, kTexels + 1>& key, TexelMask available) {
   const auto k = [&](int n) -> const K& { return key[static_cast<size_t>(n)]; };
-  const auto avail = [available](int n) { return kAll || has(available, n); };
+  const auto avail = [available](int n) { return kAll || has_texel(available, n); };
   std::array<int, kTexels + 1> low{};
-  for (const Boundary& b : kBoundary)
-    if (avail(b.self)) low[static_cast<size_t>(b.self)] = texel_of(median3(k(b.self), k(b.a), k(b.b)));
-  for (const Centre& c : kCentre) {
-    const bool h1 = avail(c.o1), h2 = avail(c.o2);
+  for (const BoundaryMedian& b : kBoundaryMedians)
+    if (avail(b.self)) low[static_cast<size_t>(b.self)] = texel_of(median3(k(b.self), k(b.nb[0]), k(b.nb[1])));
+  for (const CentreMedian& c : kCentreMedians) {
+    const bool h1 = avail(c.outer[0]), h2 = avail(c.outer[1]);
     K m;
     if (h1 && h2) {
-      m = median5(k(c.self), k(c.c1), k(c.c2), k(c.o1), k(c.o2));
+      m = median5(k(c.self), k(c.centre[0]), k(c.centre[1]), k(c.outer[0]), k(c.outer[1]));
     } else if (h1 || h2) {
-      m = median5(k(c.self), k(c.c1), k(c.c2), k(h1 ? c.o1 : c.o2), k(c.opposite));
+      m = median5(k(c.self), k(c.centre[0]), k(c.centre[1]), k(h1 ? c.outer[0] : c.outer[1]), k(c.opposite));
     } else {
-      m = median3(k(c.self), k(c.c1), k(c.c2));
+      m = median3(k(c.self), k(c.centre[0]), k(c.centre[1]));
     }
     low[static_cast<size_t>(c.self)] = texel_of(m);
   }
@@ -138,20 +121,20 @@ EdgeDecision select_direction_keyed(const std::array<Texel4, kTexels>& c, const 
 
 TexelMask cache_block_mask(int x4, int x5, int y4, int y8, int block) {
   TexelMask m = kAllTexels;
-  const auto drop = [&m](int a, int b) { m = static_cast<TexelMask>(m & ~((1u << (a - 1)) | (1u << (b - 1)))); };
+  const auto drop = [&m](Side s) { m = static_cast<TexelMask>(m & ~arm(s).mask); };
   const bool same_x = x5 == x4 + 1 && x4 / block == x5 / block;
   const bool same_y = y8 == y4 + 1 && y4 / block == y8 / block;
-  if (same_y && y4 % block == 0) drop(1, 2);              // top arm in the block above
-  if (same_y && y8 % block == block - 1) drop(11, 12);    // bottom arm in the block below
-  if (same_x && x4 % block == 0) drop(3, 7);              // left arm in the block to the left
-  if (same_x && x5 % block == block - 1) drop(6, 10);     // right arm in the block to the right
+  if (same_y && y4 % block == 0) drop(Side::Top);             // top arm in the block above
+  if (same_y && y8 % block == block - 1) drop(Side::Bottom);  // bottom arm in the block below
+  if (same_x && x4 % block == 0) drop(Side::Left);            // left arm in the block to the left
+  if (same_x && x5 % block == block - 1) drop(Side::Right);   // right arm in the block to the right
   return m;
 }
 
 LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, TexelFormat fmt) {
   LumaKeys key{};
   for (int n = 1; n <= kTexels; ++n)
-    if (has(available, n)) key[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt) * 16 + n;
+    if (has_texel(available, n)) key[static_cast<size_t>(n)] = edge_luma(c[static_cast<size_t>(n - 1)], fmt) * 16 + n;
   return key;
 }
 
@@ -185,13 +168,12 @@ Texel4 edge_merge_acc(const std::array<Texel4, kTexels>& c, const LowIndex& low,
   // High-frequency part, bilinear over H4, H5, H8, H9 (Eq. 5).
   const int32_t fx = static_cast<int32_t>(xf), fy = static_cast<int32_t>(yf);
   const std::array<Acc, 4> bw{(256 - fx) * (256 - fy), fx * (256 - fy), (256 - fx) * fy, fx * fy};
-  constexpr std::array<int, 4> centre{4, 5, 8, 9};
   Texel4 out{};
   for (size_t ch = 0; ch < 4; ++ch) {
     const int32_t clow = ((256 - t) * cp[ch] + t * cq[ch] + 128) >> 8;
     Acc hsum = 0;
     for (size_t k = 0; k < 4; ++k) {
-      const int n = centre[k];
+      const int n = kCentreSquare[k];
       const int32_t h = c[static_cast<size_t>(n - 1)][ch] - lowv(n)[ch];
       hsum += Acc{h} * bw[k];
     }
@@ -223,7 +205,7 @@ std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 
                                             TexelMask available, double xf, double yf, TexelFormat fmt) {
   std::array<RealKey, kTexels + 1> y{};
   for (int n = 1; n <= kTexels; ++n)
-    if (has(available, n)) {
+    if (has_texel(available, n)) {
       const auto& v = c[static_cast<size_t>(n - 1)];
       y[static_cast<size_t>(n)] = {fmt == TexelFormat::VS16X2 ? v[0] + v[1] : 0.3125 * v[0] + 0.5625 * v[1] + 0.125 * v[2], n};
     }
@@ -251,12 +233,11 @@ std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 
   const Direction& d = directions()[static_cast<size_t>(best)];
   const double t = d.axis == BlendAxis::X ? xf : yf;
   const std::array<double, 4> bw{(1 - xf) * (1 - yf), xf * (1 - yf), (1 - xf) * yf, xf * yf};
-  constexpr std::array<int, 4> centre{4, 5, 8, 9};
   const double lo = fmt == TexelFormat::VS16X2 ? -1.0 : 0.0;
   std::array<double, 4> out{};
   for (size_t ch = 0; ch < 4; ++ch) {
     double v = (1 - t) * lowv(d.p)[ch] + t * lowv(d.q)[ch];
-    for (size_t k = 0; k < 4; ++k) v += bw[k] * (c[static_cast<size_t>(centre[k] - 1)][ch] - lowv(centre[k])[ch]);
+    for (size_t k = 0; k < 4; ++k) v += bw[k] * (c[static_cast<size_t>(kCentreSquare[k] - 1)][ch] - lowv(kCentreSquare[k])[ch]);
     out[ch] = std::clamp(v, lo, 1.0);
   }
   return out;

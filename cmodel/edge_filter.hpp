@@ -1,6 +1,6 @@
 // Edge-preserving interpolation of Lee & Jen 2003 (Sec. 2.2, 2.3, 3), bit-accurate.
 //
-// Inputs : the 12 cross-kernel texels C1..C12 (texel numbering of direction_rom.hpp), a mask of the
+// Inputs : the 12 cross-kernel texels C1..C12 (numbering of lee_jen_geometry.hpp), a mask of the
 //          texels the cache can supply (cross, T or L shape), the 8-bit fractions xf, yf of the
 //          sample point inside the centre square C4 C5 C8 C9, and the texel format.
 // Output : the interpolated texel (datapath channels, clamped to the format's range).
@@ -82,5 +82,10 @@ std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 
 // Texels that are unavailable at a centre square (x4, y4)-(x5, y8) (wrapped memory coordinates)
 // when only the BxB cache blocks holding the centre square may be read (Sec. 3, Fig. 4).
 TexelMask cache_block_mask(int x4, int x5, int y4, int y8, int block);
+// The same from the wrapped columns and rows -1..2 of the cross's fetch grid (grid_col, grid_row).
+template <typename Grid>
+TexelMask cache_block_mask_of_grid(const Grid& col, const Grid& row, int block) {
+  return cache_block_mask(col[kCentreCols[0]], col[kCentreCols[1]], row[kCentreRows[0]], row[kCentreRows[1]], block);
+}
 
 }  // namespace tfu::lee_jen

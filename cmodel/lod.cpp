@@ -34,37 +34,36 @@ int32_t log2_q8(uint64_t x) {
   return (e << kLodFracBits) + log2_rom()[index];
 }
 
-namespace {
-constexpr int64_t kDerivClamp = (int64_t{1} << 31) - 1;
-int64_t clamp_deriv(int64_t d) {
-  d = d < 0 ? -d : d;
-  return std::min(d, kDerivClamp);
+int32_t lambda_from_length_sq(uint64_t rho2_q32, int32_t log2_div_sq_q8) {
+  if (rho2_q32 == 0) return kLodMinusInfinity;
+  const int32_t l2 = log2_q8(rho2_q32) - (32 << kLodFracBits) - log2_div_sq_q8;  // log2(rho^2 / D^2), Q.8
+  return (l2 + 1) >> 1;                                                           // halve, round half up
 }
-}  // namespace
 
 int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_t dvdy) {
-  const auto sq = [](int64_t d) {
-    const uint64_t m = static_cast<uint64_t>(clamp_deriv(d));
-    return m * m;
-  };
-  const uint64_t lx = sq(dudx) + sq(dvdx);
-  const uint64_t ly = sq(dudy) + sq(dvdy);
-  const uint64_t rho2 = std::max(lx, ly);  // Q.32
-  if (rho2 == 0) return kLodMinusInfinity;
-  const int32_t l2 = log2_q8(rho2) - (32 << kLodFracBits);  // log2(rho^2), Q.8
-  return (l2 + 1) >> 1;                                      // halve, round half up
+  const uint64_t lx = derivative_length_sq(dudx, dvdx);
+  const uint64_t ly = derivative_length_sq(dudy, dvdy);
+  return lambda_from_length_sq(std::max(lx, ly));  // rho^2, Q.32
+}
+
+TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
+  const auto u = [&](int k) { return float_to_fixed_fast(s[k], static_cast<uint32_t>(width), 16); };
+  const auto v = [&](int k) { return float_to_fixed_fast(t[k], static_cast<uint32_t>(height), 16); };
+  return {u(1) - u(0), v(1) - v(0), u(2) - u(0), v(2) - v(0)};
+}
+
+TexelDerivatives derivatives_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {
+  const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
+  return {float_to_fixed_fast(dsdx, w, 16), float_to_fixed_fast(dtdx, h, 16), float_to_fixed_fast(dsdy, w, 16),
+          float_to_fixed_fast(dtdy, h, 16)};
 }
 
 int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
-  const auto u = [&](int k) { return float_to_fixed_fast(s[k], static_cast<uint32_t>(width), 16); };
-  const auto v = [&](int k) { return float_to_fixed_fast(t[k], static_cast<uint32_t>(height), 16); };
-  return lambda_from_derivatives(u(1) - u(0), v(1) - v(0), u(2) - u(0), v(2) - v(0));
+  return lambda_from_derivatives(derivatives_from_quad(s, t, width, height));
 }
 
 int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {
-  const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
-  return lambda_from_derivatives(float_to_fixed_fast(dsdx, w, 16), float_to_fixed_fast(dtdx, h, 16),
-                                 float_to_fixed_fast(dsdy, w, 16), float_to_fixed_fast(dtdy, h, 16));
+  return lambda_from_derivatives(derivatives_from_gradients(dsdx, dtdx, dsdy, dtdy, width, height));
 }
 
 int32_t lambda_explicit(float lod) {

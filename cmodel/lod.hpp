@@ -35,10 +35,38 @@ struct LodParams {
   int32_t bias_q8 = 0;
   int32_t min_lod_q8 = -1000 * 256;
   int32_t max_lod_q8 = 1000 * 256;
+  friend constexpr bool operator==(const LodParams&, const LodParams&) = default;
 };
+
+// Texel-space derivatives of a quad or a gradient request: Q.16 level-0 texels, as the input
+// stage computes them (float_to_fixed_fast of s W, t H; differences for a quad). The anisotropic
+// LOD unit (aniso.hpp) starts from the same values.
+struct TexelDerivatives {
+  int64_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
+};
+TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height);
+TexelDerivatives derivatives_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height);
+
+// |d| clamped to 2^31 - 1 (>= 2^15 texels in Q.16: beyond any level); 31 bits.
+inline constexpr uint32_t kDerivativeClamp = (uint32_t{1} << 31) - 1;
+inline uint32_t derivative_magnitude(int64_t d) {
+  const uint64_t m = d < 0 ? uint64_t{0} - static_cast<uint64_t>(d) : static_cast<uint64_t>(d);
+  return m > kDerivativeClamp ? kDerivativeClamp : static_cast<uint32_t>(m);
+}
+// Squared length of a derivative vector: |du|^2 + |dv|^2 of the clamped magnitudes, Q.32, < 2^63.
+inline uint64_t derivative_length_sq(int64_t du, int64_t dv) {
+  const uint64_t a = derivative_magnitude(du), b = derivative_magnitude(dv);
+  return a * a + b * b;
+}
+// lambda = log2(rho / D) from rho^2 (Q.32) and log2(D^2) in Q.8 (0 for the isotropic D = 1):
+// (log2_q8(rho^2) - 32 * 256 - log2_div_sq_q8 + 1) >> 1; kLodMinusInfinity for rho^2 = 0.
+int32_t lambda_from_length_sq(uint64_t rho2_q32, int32_t log2_div_sq_q8 = 0);
 
 // Texel-space derivative lengths -> lambda (before bias/clamp). Derivatives in Q.16 texels.
 int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_t dvdy);
+inline int32_t lambda_from_derivatives(const TexelDerivatives& d) {
+  return lambda_from_derivatives(d.dudx, d.dvdx, d.dudy, d.dvdy);
+}
 // A 2x2 quad: s[k], t[k] for pixels (0,0), (1,0), (0,1), (1,1). width/height of level 0.
 int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height);
 // textureGrad: explicit derivatives of s and t.
@@ -46,7 +74,7 @@ int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, in
 // textureLod: explicit lambda (nearest Q.8 value).
 int32_t lambda_explicit(float lod);
 // lambda' = clamp(lambda + bias, min_lod, max_lod) (GL Eq. 8.6 order: bias, then clamp).
-inline int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
+constexpr int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
   const int64_t l = int64_t{lambda_q8} + p.bias_q8;
   return static_cast<int32_t>(l < p.min_lod_q8 ? p.min_lod_q8 : (l > p.max_lod_q8 ? p.max_lod_q8 : l));
 }

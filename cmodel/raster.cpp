@@ -13,6 +13,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/parallel.hpp"
+#include "cmodel/texenv.hpp"
 
 namespace tfu {
 namespace {
@@ -25,7 +26,7 @@ int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1)
 // ---- Clipping (Sutherland-Hodgman in homogeneous clip space) ----
 struct ClipVertex {
   glm::dvec4 p;
-  glm::dvec2 uv;
+  std::array<glm::dvec2, 2> uv;  // UV sets 0 and 1
 };
 using Polygon = std::vector<ClipVertex>;
 
@@ -43,7 +44,7 @@ Polygon clip_against(const Polygon& in, const glm::dvec4& plane) {
     if (da >= 0) out.push_back(a);
     if ((da >= 0) != (db >= 0)) {
       const double t = da / (da - db);
-      out.push_back({a.p + t * (b.p - a.p), a.uv + t * (b.uv - a.uv)});
+      out.push_back({a.p + t * (b.p - a.p), {a.uv[0] + t * (b.uv[0] - a.uv[0]), a.uv[1] + t * (b.uv[1] - a.uv[1])}});
     }
   }
   return out;
@@ -66,8 +67,7 @@ ScreenVertex to_screen(const ClipVertex& c, int width, int height) {
   v.y = (1.0 - c.p.y * inv_w) * 0.5 * height;
   v.z = (c.p.z * inv_w + 1.0) * 0.5;
   v.inv_w = inv_w;
-  v.s_w = c.uv.x * inv_w;
-  v.t_w = c.uv.y * inv_w;
+  for (size_t k = 0; k < 2; ++k) v.uv_w[k] = c.uv[k] * inv_w;
   return v;
 }
 
@@ -76,7 +76,9 @@ struct Context {
   const Scene* scene = nullptr;
   const RenderOptions* opts = nullptr;
   int width = 0, height = 0;
-  std::vector<std::unique_ptr<Sampler>> samplers;  // one per mesh
+  const SceneFrame* frame = nullptr;
+  std::unique_ptr<GoldenUnit> golden;
+  std::vector<std::vector<const Sampler*>> samplers;  // per mesh, per stage: the golden unit's sampler
   std::vector<RasterTriangle> triangles;
   std::vector<std::vector<uint32_t>> band_triangles;  // per band: triangle indices in scene order
   RenderResult* result = nullptr;
@@ -94,13 +96,14 @@ Rgba8 to_rgba8(const std::array<double, 4>& c) {
   return {q(c[0]), q(c[1]), q(c[2]), q(c[3])};
 }
 
-// Perspective-correct (s, t) at barycentrics b (Heckbert & Moreton: interpolate s/w, t/w and 1/w).
-glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>& b) {
+// Perspective-correct (s, t) of UV set `set` at barycentrics b (Heckbert & Moreton: interpolate
+// s/w, t/w and 1/w).
+glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>& b, int set) {
   double inv_w = 0, s_w = 0, t_w = 0;
   for (size_t i = 0; i < 3; ++i) {
     inv_w += b[i] * tri.v[i].inv_w;
-    s_w += b[i] * tri.v[i].s_w;
-    t_w += b[i] * tri.v[i].t_w;
+    s_w += b[i] * tri.v[i].uv_w[static_cast<size_t>(set)].x;
+    t_w += b[i] * tri.v[i].uv_w[static_cast<size_t>(set)].y;
   }
   if (!(inv_w > 0)) {
     // A helper pixel extrapolated beyond the horizon: keep the sign sane, the quad's lambda saturates.
@@ -123,11 +126,14 @@ double ideal_lambda(const std::array<glm::dvec2, 4>& st, int w, int h) {
   return rho2 > 0 ? 0.5 * std::log2(rho2) : kLodMinusInfinity / 256.0;
 }
 
-// Shades the quads of one triangle that lie in rows [y0, y1).
+// Shades the quads of one triangle that lie in rows [y0, y1): per quad, every stage of the mesh's
+// material in order (its UV set, lambda from its texture, the golden unit's sampler on the covered
+// pixels), combined by the texture environment.
 // Bands own disjoint rows, so concurrent calls write disjoint parts of the image and depth buffer.
 void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, BandOutput& out) {
-  const Sampler& sampler = *ctx.samplers[static_cast<size_t>(tri.mesh)];
-  const Texture& tex = sampler.texture();
+  const Mesh& mesh = ctx.scene->meshes[static_cast<size_t>(tri.mesh)];
+  const auto& samplers = ctx.samplers[static_cast<size_t>(tri.mesh)];
+  const auto& bindings = ctx.frame->stages[static_cast<size_t>(tri.mesh)];
   RenderResult& res = *ctx.result;
   const int W = ctx.width, H = ctx.height;
   const int qy_first = std::max(tri.ymin, y0) & ~1, qy_last = std::min(tri.ymax, y1 - 1);
@@ -146,48 +152,65 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           mask |= 1u << k;
       }
       if (mask == 0) continue;
-      std::array<glm::dvec2, 4> st;
-      float s[4], t[4];
-      for (size_t k = 0; k < 4; ++k) {
-        st[k] = interpolate_st(tri, b[k]);
-        s[k] = to_float_coord(st[k].x);
-        t[k] = to_float_coord(st[k].y);
+      std::array<Rgba8, 4> colour{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};
+      std::array<std::array<double, 4>, 4> ideal{};
+      ideal.fill({1, 1, 1, 1});
+      std::array<float, 4> s0{}, t0{};  // UV set of stage 0 (kept coordinates)
+      for (size_t st = 0; st < mesh.stages.size(); ++st) {
+        const TextureStage& stage = mesh.stages[st];
+        const Sampler& sampler = *samplers[st];
+        const Texture& tex = sampler.texture();
+        float s[4], t[4];
+        for (size_t k = 0; k < 4; ++k) {
+          const glm::dvec2 uv = interpolate_st(tri, b[k], stage.uv_set);
+          s[k] = to_float_coord(uv.x);
+          t[k] = to_float_coord(uv.y);
+        }
+        if (st == 0) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
+        const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
+        if (ctx.opts->ideal) {
+          // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
+          // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
+          std::array<glm::dvec2, 4> st_if;
+          for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
+          const double lambda_ideal = ideal_lambda(st_if, tex.width(), tex.height());
+          for (size_t k = 0; k < 4; ++k)
+            if (mask >> k & 1u) ideal[k] = combine_stage(ideal[k], sampler.sample_ideal(s[k], t[k], lambda_ideal), stage.combine);
+        } else {
+          // The quad's covered pixels go to the filter unit together (its quad interface).
+          std::array<SampleRequest, 4> reqs;
+          std::array<Rgba8, 4> texel;
+          size_t n = 0;
+          for (size_t k = 0; k < 4; ++k)
+            if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
+          sampler.sample_batch(reqs.data(), n, texel.data());
+          size_t next = 0;
+          for (size_t k = 0; k < 4; ++k)
+            if (mask >> k & 1u) colour[k] = combine_stage(colour[k], texel[next++], stage.combine);
+        }
+        if (ctx.opts->trace) {
+          out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st)});
+          for (size_t k = 0; k < 4; ++k) {
+            TraceRequest r;
+            r.texture = static_cast<uint16_t>(bindings[st].texture);
+            r.sampler = static_cast<uint8_t>(bindings[st].sampler);
+            r.stage = static_cast<uint8_t>(st);
+            r.s = s[k];
+            r.t = t[k];
+            out.trace.push_back(r);
+          }
+        }
       }
-      const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
-      // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
-      // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
-      std::array<glm::dvec2, 4> st_if;
-      for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
-      const double lambda_ideal = ctx.opts->ideal ? ideal_lambda(st_if, tex.width(), tex.height()) : 0.0;
-      // The quad's covered pixels go to the filter unit together (its quad interface).
-      std::array<SampleRequest, 4> reqs;
-      std::array<Rgba8, 4> colour;
-      if (!ctx.opts->ideal) {
-        size_t n = 0;
-        for (size_t k = 0; k < 4; ++k)
-          if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
-        sampler.sample_batch(reqs.data(), n, colour.data());
-      }
-      size_t next = 0;  // index of the next covered pixel's colour
       for (int k = 0; k < 4; ++k) {
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(sampler.sample_ideal(s[k], t[k], lambda_ideal))
-                                                : colour[next++];
+        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(ideal[uk]) : colour[uk];
         ctx.depth[idx] = static_cast<float>(z[uk]);
-        if (ctx.opts->keep_coords) res.coords[idx] = {s[k], t[k]};
+        if (ctx.opts->keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
         ++out.pixels;
       }
       ++out.quads;
-      if (ctx.opts->trace) out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask)});
-      if (ctx.opts->trace)
-        for (size_t k = 0; k < 4; ++k) {
-          TraceRequest r;
-          r.s = s[k];
-          r.t = t[k];
-          out.trace.push_back(r);
-        }
     }
 }
 
@@ -208,12 +231,12 @@ bool wrap_continuous(WrapMode m, double& c) {
   return true;
 }
 
-std::array<double, 4> border_colour(const SamplerConfig& cfg) {
+std::array<double, 4> border_colour(const SamplerDescriptor& cfg) {
   return {cfg.border.r / 255.0, cfg.border.g / 255.0, cfg.border.b / 255.0, cfg.border.a / 255.0};
 }
 
 // File textures have no analytic function: bilinear reconstruction of level 0 in double precision.
-std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerConfig& cfg, double s, double t) {
+std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerDescriptor& cfg, double s, double t) {
   const Image& im = tex.levels.front();
   const double x = s * im.width - 0.5, y = t * im.height - 0.5;
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
@@ -232,10 +255,20 @@ std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerConfig& c
   return out;
 }
 
-std::array<double, 4> truth_colour(const Mesh& mesh, double s, double t) {
-  const SamplerConfig& cfg = mesh.sampler;
+std::array<double, 4> truth_colour(const TextureStage& stage, double s, double t) {
+  const SamplerDescriptor& cfg = stage.sampler;
   if (!wrap_continuous(cfg.wrap_s, s) || !wrap_continuous(cfg.wrap_t, t)) return border_colour(cfg);
-  return mesh.truth ? mesh.truth(s, t) : bilinear_level0(*mesh.texture, cfg, s, t);
+  return stage.truth ? stage.truth(s, t) : bilinear_level0(*stage.texture, cfg, s, t);
+}
+
+// Every stage of the material at barycentrics b, combined in real arithmetic.
+std::array<double, 4> truth_material(const Mesh& mesh, const RasterTriangle& tri, const std::array<double, 3>& b) {
+  std::array<double, 4> c{1, 1, 1, 1};
+  for (const TextureStage& stage : mesh.stages) {
+    const glm::dvec2 st = interpolate_st(tri, b, stage.uv_set);
+    c = combine_stage(c, truth_colour(stage, st.x, st.y), stage.combine);
+  }
+  return c;
 }
 
 struct TruthSample {
@@ -264,8 +297,7 @@ void truth_band(const Context& ctx, int band, int y0, int y1) {
           TruthSample& smp = buf[(static_cast<size_t>(py - y0) * static_cast<size_t>(W) + static_cast<size_t>(px)) *
                                      kTruthSamples + static_cast<size_t>(k)];
           if (!(z < smp.depth)) continue;
-          const glm::dvec2 st = interpolate_st(tri, b);
-          const auto c = truth_colour(mesh, st.x, st.y);
+          const auto c = truth_material(mesh, tri, b);
           smp.depth = z;
           for (size_t i = 0; i < 4; ++i) smp.c[i] = static_cast<float>(c[i]);
         }
@@ -303,7 +335,7 @@ void setup_scene(Context& ctx) {
         continue;
       }
       Polygon poly;
-      for (const Vertex* v : {&a, &b, &c}) poly.push_back({mvp * glm::dvec4(v->pos, 1.0), v->uv});
+      for (const Vertex* v : {&a, &b, &c}) poly.push_back({mvp * glm::dvec4(v->pos, 1.0), {v->uv, v->uv1}});
       poly = clip_polygon(std::move(poly));
       if (poly.empty()) {
         ++st.clipped_away;
@@ -334,11 +366,17 @@ void setup_scene(Context& ctx) {
   }
 }
 
-void make_samplers(Context& ctx) {
-  for (const Mesh& mesh : ctx.scene->meshes) {
-    SamplerConfig cfg = mesh.sampler;
-    if (ctx.opts->filter) cfg.mode = *ctx.opts->filter;
-    ctx.samplers.push_back(std::make_unique<Sampler>(*mesh.texture, cfg));
+// The frame (descriptors, texel memory) and the golden unit's sampler of every stage.
+void make_samplers(Context& ctx, RenderResult& result) {
+  SceneOverrides ov;
+  ov.filter = ctx.opts->filter;
+  ov.sampler = ctx.opts->sampler_overrides;
+  result.frame = std::make_shared<const SceneFrame>(build_scene_frame(*ctx.scene, ov, ctx.opts->line_bytes));
+  ctx.frame = result.frame.get();
+  ctx.golden = std::make_unique<GoldenUnit>(ctx.frame->frame);
+  for (const auto& mesh : ctx.frame->stages) {
+    ctx.samplers.emplace_back();
+    for (const StageBinding& b : mesh) ctx.samplers.back().push_back(&ctx.golden->sampler(b.texture, b.sampler));
   }
 }
 
@@ -453,7 +491,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   ctx.width = scene.width;
   ctx.height = scene.height;
   ctx.result = &result;
-  make_samplers(ctx);
+  make_samplers(ctx, result);
   setup_scene(ctx);
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
@@ -478,6 +516,20 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.quad_targets.insert(result.quad_targets.end(), b.targets.begin(), b.targets.end());
   }
   return result;
+}
+
+void compose_quad_outputs(const Scene& scene, const std::vector<QuadTarget>& targets, const std::vector<Rgba8>& outputs,
+                          Image& image) {
+  std::array<Rgba8, 4> colour{};
+  for (size_t q = 0; q < targets.size(); ++q) {
+    const QuadTarget& t = targets[q];
+    const Mesh& mesh = scene.meshes.at(static_cast<size_t>(t.mesh));
+    if (t.stage == 0) colour.fill(kPrimaryColour);
+    for (size_t k = 0; k < 4; ++k) colour[k] = combine_stage(colour[k], outputs[q * 4 + k], mesh.stages[t.stage].combine);
+    if (t.stage + 1u != mesh.stages.size()) continue;
+    for (int k = 0; k < 4; ++k)
+      if ((t.mask >> k) & 1u) image.at(t.x + (k & 1), t.y + (k >> 1)) = colour[static_cast<size_t>(k)];
+  }
 }
 
 }  // namespace tfu

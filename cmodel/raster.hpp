@@ -27,13 +27,16 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_frame.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
 
@@ -44,10 +47,12 @@ inline constexpr int kBandRows = 16;          // rows per band (a multiple of 2:
 inline constexpr int kTruthSamplesPerAxis = 8;
 inline constexpr double kGuardBand = 8.0;     // clip |x|, |y| <= 8 w
 
-// A vertex after the viewport transform: pixel coordinates (y down), depth in [0, 1], 1/w, s/w, t/w.
+// A vertex after the viewport transform: pixel coordinates (y down), depth in [0, 1], 1/w, and
+// (s/w, t/w) of each UV set.
 struct ScreenVertex {
   double x = 0, y = 0, z = 0;
-  double inv_w = 1, s_w = 0, t_w = 0;
+  double inv_w = 1;
+  std::array<glm::dvec2, 2> uv_w{};
 };
 
 // A triangle ready for scan conversion (counter-clockwise on screen after setup, area > 0).
@@ -75,7 +80,9 @@ glm::dmat4 view_matrix(const Camera& cam);
 glm::dmat4 projection_matrix(const Camera& cam, double aspect);
 
 struct RenderOptions {
-  std::optional<FilterMode> filter;  // replaces every mesh's filter mode
+  std::optional<FilterMode> filter;  // replaces the filter mode of every mesh's base stage
+  Params sampler_overrides;          // further sampler keys of every base stage (bindings.hpp)
+  int line_bytes = 64;               // the unit's cache line: textures are tiled in tiles of it
   bool trace = false;                // record the quad request trace
   bool ground_truth = false;         // also render the supersampled analytic reference
   bool ideal = false;                // Sampler::sample_ideal (double path) instead of sample
@@ -92,13 +99,15 @@ struct RenderStats {
   int64_t pixels = 0;      // sampled pixels (including overdraw)
 };
 
-// Where a traced quad's results go (RenderOptions::trace): the mesh it samples, its top-left pixel
-// and the covered pixels that passed the depth test (bit k = pixel k of the quad). Writing the
-// quads' outputs in trace order reproduces the image.
+// Where a traced quad's results go (RenderOptions::trace): the mesh it samples, its top-left pixel,
+// the covered pixels that passed the depth test (bit k = pixel k of the quad) and the material
+// stage it is. The stages of one shaded quad follow each other; combining their outputs by the
+// stages' texture environments (compose_quad_outputs) reproduces the image.
 struct QuadTarget {
   int mesh = 0;
   int x = 0, y = 0;
   uint8_t mask = 0;
+  uint8_t stage = 0;
 };
 
 struct RenderResult {
@@ -106,10 +115,17 @@ struct RenderResult {
   Image truth;  // empty unless RenderOptions::ground_truth
   Trace trace;  // empty unless RenderOptions::trace
   std::vector<QuadTarget> quad_targets;  // one per traced quad
+  std::shared_ptr<const SceneFrame> frame;  // the descriptors and texel memory the render used
   std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
   RenderStats stats;
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
+
+// Writes the covered pixels of traced quads into `image` from the filtered outputs of their
+// requests (4 per quad target, in target order): each quad's stages combined in order by their
+// texture environments, as the renderer does.
+void compose_quad_outputs(const Scene& scene, const std::vector<QuadTarget>& targets, const std::vector<Rgba8>& outputs,
+                          Image& image);
 
 }  // namespace tfu

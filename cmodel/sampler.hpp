@@ -23,57 +23,13 @@
 #include <vector>
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/descriptors.hpp"
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/weight_rom.hpp"
 
 namespace tfu {
-
-enum class BaseFilter { Nearest, Linear, Cubic, EdgePreserving };
-enum class MipMode { None, Nearest, Linear };
-
-struct FilterMode {
-  BaseFilter base = BaseFilter::Linear;
-  MipMode mip = MipMode::None;
-  friend constexpr bool operator==(const FilterMode&, const FilterMode&) = default;
-};
-// "linear_mipmap_linear", "LINEAR-MIPMAP-LINEAR", "cubic", "edge_preserving_mipmap_linear", ...
-FilterMode filter_mode_from_name(const std::string& name);
-std::string filter_mode_name(FilterMode m);  // canonical upper-case name
-const std::vector<FilterMode>& all_filter_modes();
-
-// Kernel names accepted by CUBIC modes: TFU-A's kernels plus "bspline-interp" (the cubic B-spline
-// applied to prefiltered coefficients so that it interpolates; Hadwiger 2004 Sec. 3.x).
-inline constexpr const char* kBsplineInterp = "bspline-interp";
-std::vector<std::string> cubic_kernel_names();
-// `name` if it is one of cubic_kernel_names(), else InputError "unknown kernel 'NAME' (valid: ...)".
-std::string checked_cubic_kernel_name(const std::string& name);
-
-// Which of Lee & Jen's kernel shapes the edge-preserving filter may use (Sec. 3).
-enum class EdgeShapePolicy {
-  Cross,       // always the 12-texel cross
-  CacheBlock,  // cross / T / L chosen from the centre square's position in BxB cache blocks
-};
-
-struct SamplerConfig {
-  FilterMode mode{};
-  WrapMode wrap_s = WrapMode::Repeat, wrap_t = WrapMode::Repeat;
-  Rgba8 border{0, 0, 0, 0};  // texel word used outside the texture with ClampToBorder
-  LodParams lod{};
-  std::string kernel = "catmull-rom";
-  TileRomSpec cubic_rom{64, 8, SamplePos::Centre, RomRounding::SumPreserving};
-  RomRecon cubic_recon = RomRecon::Nearest;
-  // Hadwiger 2004 Sec. 3.2: fit the kernel to each selected level (true), or keep the level-0
-  // kernel footprint in every level (false, for the quality comparison: the 4-texel-wide kernel then
-  // covers 4 / 2^L texels of level L and degenerates towards nearest).
-  bool cubic_level_adapt = true;
-  // Software speed only (no effect on results): evaluate the CUBIC tile-weight multipliers once per
-  // ROM address pair instead of per sample (nearest reconstruction, R <= 128).
-  bool memoize_cubic_weights = true;
-  EdgeShapePolicy edge_shape = EdgeShapePolicy::Cross;
-  int edge_cache_block = 4;  // B for EdgeShapePolicy::CacheBlock (power of two, 4..64)
-};
 
 // What the LOD unit / meta MIP-map supplies for one pixel (Hadwiger 2004 Sec. 3.2).
 struct LodInfo {
@@ -105,12 +61,14 @@ class Sampler {
  public:
   // Validates the configuration (throws InputError); precomputes ROMs and, for bspline-interp,
   // the prefiltered coefficient levels.
-  Sampler(const Texture& tex, SamplerConfig cfg);
+  // The sampler descriptor's registers over a texture's levels; the texture's layout and tile size
+  // (its texture descriptor's) give the static edge-preserving shapes.
+  Sampler(const Texture& tex, SamplerDescriptor cfg);
   ~Sampler();
   Sampler(const Sampler&) = delete;
   Sampler& operator=(const Sampler&) = delete;
 
-  const SamplerConfig& config() const { return cfg_; }
+  const SamplerDescriptor& descriptor() const { return cfg_; }
   const Texture& texture() const { return tex_; }
 
   LodInfo lod_info(int32_t lambda_q8_unclamped) const;  // applies bias and clamp
@@ -135,11 +93,13 @@ class Sampler {
   const dp::CubicNormalize& cubic_normalize() const;
   const Image& filtered_level(int level) const;
 
-  // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and shape
-  // policy, or with the shape `mask_override` (0..0xFFF) when it is >= 0.
+  // Static edge shapes: the texture's tile side (0: the cross, for EdgeShape::Cross or a linear layout).
+  int static_shape_block() const;
+  // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and static
+  // shape, or with the shape `mask_override` (0..0xFFF) when it is >= 0.
   EdgeFootprint edge_footprint(int level, float s, float t, int mask_override = -1) const;
   // EDGE_PRESERVING modes with the kernel shape of each level given (the cycle model's cache-aware
-  // policy chooses shapes from the cache contents, which the untimed model cannot know).
+  // shapes depend on the cache contents, which the untimed model cannot know).
   Rgba8 sample_edge_masks(float s, float t, int32_t lambda, std::array<lee_jen::TexelMask, 2> masks) const;
 
   // Texel fetch through the wrap unit (level, integer texel coordinates): what the datapath sees.
@@ -148,7 +108,7 @@ class Sampler {
  private:
   struct Impl;
   const Texture& tex_;
-  SamplerConfig cfg_;
+  SamplerDescriptor cfg_;
   std::unique_ptr<Impl> impl_;
   void build_cubic();
   Texel4 sample_level(int level, float s, float t) const;

@@ -43,6 +43,8 @@ class Obj {
     return path.empty() ? fmt::format("{}: {}", source_, msg) : fmt::format("{}: {}: {}", source_, path, msg);
   }
   std::string child(const std::string& key) const { return path_.empty() ? key : fmt::format("{}.{}", path_, key); }
+  // "FILE: PATH" of a key path, the prefix of this object's error messages.
+  std::string location(const std::string& path) const { return path.empty() ? source_ : fmt::format("{}: {}", source_, path); }
   const std::string& source() const { return source_; }
 
   bool has(const std::string& key) const { return j_.contains(key); }
@@ -174,69 +176,104 @@ std::array<double, 4> parse_background(const Obj& scene) {
   return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
 }
 
-// Textures are shared between meshes that name the same procedural texture or file.
-using TextureCache = std::map<std::string, std::pair<std::shared_ptr<const Texture>, ColourFn>>;
+// Textures are shared between stages that name the same source with the same keys.
+using TextureCache = std::map<std::pair<std::string, Params>, LoadedTexture>;
 
-void parse_texture(const Obj& mesh, const std::string& base_dir, TextureCache& cache, Mesh& out) {
-  mesh.require("texture");
-  const Obj o(mesh.raw("texture"), mesh.child("texture"), mesh.source(), {"procedural", "size", "file"});
+// A JSON value as the text a parameter table parses: strings as they are, numbers and booleans as
+// JSON writes them.
+std::string value_text(const Obj& o, const std::string& key) {
+  const json& v = o.raw(key);
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number() || v.is_boolean()) return v.dump();
+  o.fail_key(key, fmt::format("expected a string, number or boolean, got {}", v.type_name()));
+}
+
+void parse_texture(const Obj& stage, const std::string& base_dir, TextureCache& cache, TextureStage& out) {
+  stage.require("texture");
+  std::set<std::string> keys{"procedural", "size", "file"};
+  for (const char* k : texture_param_keys()) keys.insert(k);
+  const Obj o(stage.raw("texture"), stage.child("texture"), stage.source(), keys);
   if (o.has("procedural") == o.has("file")) o.fail("needs exactly one of 'procedural' or 'file'");
   if (o.has("file") && o.has("size")) o.fail_key("size", "only valid with 'procedural'");
-  std::string key;
+  TextureSpec spec;
   if (o.has("procedural")) {
-    const std::string name = o.string("procedural", "");
-    const int size = o.integer("size", 256, 1, 4096);
-    key = fmt::format("procedural:{}@{}", name, size);
-    if (!cache.contains(key)) {
-      try {
-        Procedural p = make_procedural(name, size);
-        generate_mipmaps(p.texture, MipMethod::Box);  // Lee & Jen Eq. 8 box chain
-        cache[key] = {std::make_shared<const Texture>(std::move(p.texture)), std::move(p.eval)};
-      } catch (const InputError& e) {
-        o.fail_key("procedural", e.what());
-      }
-    }
+    spec.source = fmt::format("proc:{}:{}", o.string("procedural", ""), o.integer("size", 256, 1, 4096));
   } else {
     std::filesystem::path path(o.string("file", ""));
     if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-    key = path.string();
-    if (!cache.contains(key)) {
-      Texture tex;
-      try {
-        tex = load_texture(key);
-      } catch (const InputError& e) {
-        o.fail_key("file", e.what());  // the scene file and key, then the texture's own error
-      }
-      if (tex.levels.size() == 1) generate_mipmaps(tex, MipMethod::Box);  // keep a stored chain as it is
-      cache[key] = {std::make_shared<const Texture>(std::move(tex)), ColourFn{}};
-    }
+    spec.source = path.string();
   }
-  out.texture_name = key;
-  out.texture = cache[key].first;
-  out.truth = cache[key].second;
+  for (const char* k : texture_param_keys())
+    if (o.has(k)) spec.params[k] = value_text(o, k);
+  const auto key = std::pair{spec.source, spec.params};
+  if (!cache.contains(key)) cache[key] = load_texture_spec(spec, o.location(o.child(o.has("file") ? "file" : "procedural")));
+  out.spec = spec;
+  out.texture = cache[key].texture;
+  out.truth = cache[key].truth;
 }
 
-SamplerConfig parse_sampler(const Obj& mesh) {
-  SamplerConfig cfg;
-  cfg.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
-  if (!mesh.has("sampler")) return cfg;
-  const Obj o(mesh.raw("sampler"), mesh.child("sampler"), mesh.source(),
-              {"filter", "kernel", "wrap_s", "wrap_t", "lod_bias"});
-  const auto named = [&](const std::string& key, auto&& convert) {
+// A stage's sampler: the keys of the sampler table (bindings.hpp); scenes default to
+// LINEAR_MIPMAP_LINEAR.
+SamplerDescriptor parse_sampler(const Obj& stage) {
+  SamplerDescriptor base;
+  base.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
+  if (!stage.has("sampler")) return base;
+  std::set<std::string> keys;
+  for (const SamplerParam& p : sampler_params()) keys.insert(p.key);
+  const Obj o(stage.raw("sampler"), stage.child("sampler"), stage.source(), keys);
+  for (const SamplerParam& p : sampler_params()) {
+    if (!o.has(p.key)) continue;
     try {
-      return convert(o.string(key, ""));
+      set_sampler_param(base, p.key, value_text(o, p.key));
     } catch (const InputError& e) {
-      o.fail_key(key, e.what());
+      o.fail_key(p.key, e.what());
     }
-  };
-  if (o.has("filter")) cfg.mode = named("filter", [](const std::string& s) { return filter_mode_from_name(s); });
-  if (o.has("wrap_s")) cfg.wrap_s = named("wrap_s", [](const std::string& s) { return wrap_mode_from_name(s); });
-  if (o.has("wrap_t")) cfg.wrap_t = named("wrap_t", [](const std::string& s) { return wrap_mode_from_name(s); });
-  if (o.has("kernel")) cfg.kernel = named("kernel", [](const std::string& s) { return checked_cubic_kernel_name(s); });
-  const double bias = o.number("lod_bias", 0.0);
-  if (std::fabs(bias) > 64) o.fail_key("lod_bias", "must be within +-64 levels");
-  cfg.lod.bias_q8 = static_cast<int32_t>(std::lround(bias * 256.0));
-  return cfg;
+  }
+  try {
+    base.validate();
+  } catch (const InputError& e) {
+    o.fail(e.what());
+  }
+  return base;
+}
+
+TextureStage parse_stage(const Obj& o, const std::string& base_dir, TextureCache& cache, bool first) {
+  TextureStage st;
+  parse_texture(o, base_dir, cache, st);
+  st.sampler = parse_sampler(o);
+  st.uv_set = o.integer("uv_set", 0, 0, 1);
+  st.combine.env = first ? TexEnv::Replace : TexEnv::Modulate;
+  if (o.has("env")) {
+    try {
+      st.combine.env = tex_env_from_name(o.string("env", ""));
+    } catch (const InputError& e) {
+      o.fail_key("env", e.what());
+    }
+  }
+  st.combine.rgb_scale = o.integer("rgb_scale", 1, 1, 4);
+  if (st.combine.rgb_scale == 3) o.fail_key("rgb_scale", "must be 1, 2 or 4");
+  return st;
+}
+
+std::vector<TextureStage> parse_material(const Obj& mesh, const std::string& base_dir, TextureCache& cache) {
+  std::vector<TextureStage> stages;
+  if (mesh.has("stages")) {
+    if (mesh.has("texture") || mesh.has("sampler")) mesh.fail("give either 'stages' or 'texture' and 'sampler', not both");
+    const json& list = mesh.raw("stages");
+    if (!list.is_array() || list.empty() || list.size() > kMaxStages)
+      mesh.fail_key("stages", fmt::format("expected an array of 1..{} stages", kMaxStages));
+    for (size_t k = 0; k < list.size(); ++k) {
+      const Obj o(list[k], fmt::format("{}[{}]", mesh.child("stages"), k), mesh.source(),
+                  {"texture", "sampler", "uv_set", "env", "rgb_scale"});
+      stages.push_back(parse_stage(o, base_dir, cache, k == 0));
+    }
+  } else {
+    stages.push_back(parse_stage(mesh, base_dir, cache, true));
+  }
+  for (size_t k = 0; k < stages.size(); ++k)
+    if (stages.size() > 1 && stages[k].texture->format == TexelFormat::VS16X2)
+      mesh.fail_key("stages", fmt::format("stage {} is vs16x2: signed textures combine only as a single replace stage", k));
+  return stages;
 }
 
 // Primitive-specific keys, in addition to the common ones.
@@ -251,20 +288,22 @@ const std::map<std::string, std::set<std::string>>& primitive_keys() {
   return keys;
 }
 
-Mesh build_primitive(const Obj& o, const std::string& primitive) {
+// The primitive's mesh; with `unit` its UVs are the unit parametrization (no uv / uv_repeat keys).
+Mesh build_primitive(const Obj& o, const std::string& primitive, bool unit) {
   if (primitive == "quad") {
     o.require("corners");
     const auto c = o.points("corners", 4, 3);
     std::array<glm::dvec3, 4> corners;
     for (size_t i = 0; i < 4; ++i) corners[i] = {c[i][0], c[i][1], c[i][2]};
     std::array<glm::dvec2, 4> uv{glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    if (o.has("uv")) {
+    if (o.has("uv") && !unit) {
       const auto u = o.points("uv", 4, 2);
       for (size_t i = 0; i < 4; ++i) uv[i] = {u[i][0], u[i][1]};
     }
     return make_quad_mesh(corners, uv);
   }
-  if (primitive == "plane") return make_plane_mesh(o.vec2("size", {10, 10}), o.vec2("uv_repeat", {1, 1}));
+  const glm::dvec2 repeat = unit ? glm::dvec2{1, 1} : o.vec2("uv_repeat", {1, 1});
+  if (primitive == "plane") return make_plane_mesh(o.vec2("size", {10, 10}), repeat);
   if (primitive == "cube") return make_cube_mesh();
   if (primitive == "sphere") {
     glm::dvec2 seg = o.vec2("segments", {48, 24});
@@ -276,7 +315,7 @@ Mesh build_primitive(const Obj& o, const std::string& primitive) {
   const auto c = o.points("control_points", 16, 3);
   std::array<glm::dvec3, 16> control;
   for (size_t i = 0; i < 16; ++i) control[i] = {c[i][0], c[i][1], c[i][2]};
-  return make_bezier_patch_mesh(control, o.integer("tessellation", 32, 1, 256), o.vec2("uv_repeat", {1, 1}));
+  return make_bezier_patch_mesh(control, o.integer("tessellation", 32, 1, 256), repeat);
 }
 
 Mesh parse_mesh(const json& j, const std::string& path, const std::string& source, const std::string& base_dir,
@@ -285,7 +324,8 @@ Mesh parse_mesh(const json& j, const std::string& path, const std::string& sourc
   std::string primitive;
   if (j.is_object() && j.contains("primitive") && j.at("primitive").is_string()) primitive = j.at("primitive");
   const auto& keys = primitive_keys();
-  std::set<std::string> allowed{"primitive", "transform", "texture", "sampler", "name"};
+  std::set<std::string> allowed{"primitive", "transform", "texture", "sampler", "stages", "uv_set", "env", "rgb_scale",
+                                "uv1_repeat", "uv1_offset", "name"};
   if (keys.contains(primitive)) allowed.insert(keys.at(primitive).begin(), keys.at(primitive).end());
   const Obj o(j, path, source, allowed);
   o.require("primitive");
@@ -294,12 +334,18 @@ Mesh parse_mesh(const json& j, const std::string& path, const std::string& sourc
     o.fail_key("primitive",
                fmt::format("unknown primitive '{}' (valid: quad, plane, cube, sphere, bezier_patch)", primitive));
   o.string("name", "");
-  Mesh mesh = build_primitive(o, primitive);
+  if (o.has("stages"))
+    for (const char* k : {"uv_set", "env", "rgb_scale"})
+      if (o.has(k)) o.fail_key(k, "belongs to a stage of 'stages'");
+  Mesh mesh = build_primitive(o, primitive, false);
+  // UV set 1: the primitive's unit parametrization (its UVs with no repeat), scaled and offset.
+  const Mesh unit = build_primitive(o, primitive, true);
+  const glm::dvec2 rep1 = o.vec2("uv1_repeat", {1, 1}), off1 = o.vec2("uv1_offset", {0, 0});
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i].uv1 = unit.vertices[i].uv * rep1 + off1;
   mesh.primitive = primitive;
   const Transform tr = parse_transform(o);
   for (Vertex& v : mesh.vertices) v.pos = tr.apply(v.pos);
-  parse_texture(o, base_dir, cache, mesh);
-  mesh.sampler = parse_sampler(o);
+  mesh.stages = parse_material(o, base_dir, cache);
   return mesh;
 }
 

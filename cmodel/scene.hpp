@@ -2,7 +2,9 @@
 //
 // A scene is a JSON object: output size, camera, background colour and a list of meshes. Each mesh
 // is generated from a primitive (quad, plane, cube, sphere, bezier_patch), placed by a transform
-// (world = T R_z R_y R_x S p), and carries a texture (procedural or file) and sampler settings.
+// (world = T R_z R_y R_x S p), and carries a material of 1 to 4 texture stages, each a texture
+// (procedural or file), a sampler, a UV set (0, or the second set 1) and a texture environment
+// (texenv.hpp) combining it with the stages before it.
 // Every key is checked: an unknown key or a value of the wrong type throws InputError naming the
 // key path ("scene.json: meshes[1].sampler: unknown key 'filtr'"). Malformed JSON throws
 // InputError "FILE: line L, column C: message".
@@ -18,8 +20,10 @@
 
 #include <glm/glm.hpp>
 
+#include "cmodel/bindings.hpp"
+#include "cmodel/descriptors.hpp"
 #include "cmodel/procedural.hpp"
-#include "cmodel/sampler.hpp"
+#include "cmodel/texenv.hpp"
 #include "cmodel/texture.hpp"
 
 namespace tfu {
@@ -38,17 +42,27 @@ struct Camera {
 
 struct Vertex {
   glm::dvec3 pos{};  // world space (after the mesh transform)
-  glm::dvec2 uv{};   // texture coordinates (s, t)
+  glm::dvec2 uv{};   // texture coordinates (s, t), UV set 0
+  glm::dvec2 uv1{};  // UV set 1 (e.g. a light map's own coordinates)
+};
+
+inline constexpr int kMaxStages = 4;
+
+// One texture stage of a material.
+struct TextureStage {
+  TextureSpec spec;                        // "proc:text:1024" or a file path, with its keys
+  std::shared_ptr<const Texture> texture;  // complete MIP chain (box, Lee & Jen Eq. 8) or the file's
+  ColourFn truth;                          // analytic colour (procedural textures); empty for files
+  SamplerDescriptor sampler;
+  int uv_set = 0;                          // 0: Vertex::uv, 1: Vertex::uv1
+  StageCombine combine{TexEnv::Replace, 1};
 };
 
 struct Mesh {
   std::string primitive;  // "quad", "plane", ...
   std::vector<Vertex> vertices;
   std::vector<std::array<uint32_t, 3>> triangles;
-  std::string texture_name;                // "procedural:text@1024" or the file path
-  std::shared_ptr<const Texture> texture;  // complete MIP chain (box, Lee & Jen Eq. 8) or the file's
-  ColourFn truth;                          // analytic colour (procedural textures); empty for files
-  SamplerConfig sampler;
+  std::vector<TextureStage> stages;  // 1..kMaxStages, applied in order
 };
 
 struct Scene {

@@ -16,8 +16,6 @@ namespace tfu {
 Image::Image(int w, int h, Rgba8 fill)
     : width(w), height(h), texels(static_cast<size_t>(w) * static_cast<size_t>(h), fill) {}
 
-int mip_extent(int size0, int level) { return std::max(1, size0 >> level); }
-
 int mip_level_count(int width, int height) {
   int n = 1;
   for (int m = std::max(width, height); m > 1; m >>= 1) ++n;
@@ -40,8 +38,18 @@ const char* texel_format_name(TexelFormat f) {
   return "?";
 }
 
+MemoryLayout memory_layout_from_name(const std::string& name) {
+  if (name == "linear") return MemoryLayout::Linear;
+  if (name == "tiled") return MemoryLayout::Tiled;
+  throw InputError(fmt::format("unknown memory layout '{}' (expected linear or tiled)", name));
+}
+
+const char* memory_layout_name(MemoryLayout l) { return l == MemoryLayout::Linear ? "linear" : "tiled"; }
+
 void Texture::validate(const std::string& what) const {
   if (levels.empty()) throw InputError(fmt::format("{}: texture has no levels", what));
+  if (!valid_tile_bytes(tile_bytes))
+    throw InputError(fmt::format("{}: tile of {} bytes (expected 64, 256 or 1024)", what, tile_bytes));
   const int w = width(), h = height();
   if (w < 1 || h < 1 || w > kMaxTextureSize || h > kMaxTextureSize)
     throw InputError(fmt::format("{}: size {}x{} outside 1..{} per side", what, w, h, kMaxTextureSize));

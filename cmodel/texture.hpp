@@ -32,6 +32,7 @@ struct Rgba8 {
   uint8_t r = 0, g = 0, b = 0, a = 0;
   friend constexpr bool operator==(const Rgba8&, const Rgba8&) = default;
 };
+static_assert(sizeof(Rgba8) == 4, "a texel word is 4 bytes: R, G, B, A in address order");
 
 enum class TexelFormat { RGBA8, L8, VS16X2 };
 TexelFormat texel_format_from_name(const std::string& name);  // "rgba8", "l8", "vs16x2"
@@ -78,13 +79,36 @@ constexpr Rgba8 encode_texel(const Texel4& c, TexelFormat f) {
           static_cast<uint8_t>(cl(c[3]))};
 }
 
+// How the driver stores a texture in the texel memory (docs/descriptors.md):
+//   Linear : row-major texel rows; each row starts on a 256-byte boundary (row pitch a multiple of 256)
+//   Tiled  : square tiles of `tile_bytes` bytes (one cache line each), tiles row-major over the level,
+//            texels row-major inside a tile; the tile side is sqrt(tile_bytes / bytes_per_texel)
+//            texels (64 bytes: 4x4 RGBA8 or 8x8 L8)
+// Every level starts on a 256-byte boundary.
+enum class MemoryLayout { Linear, Tiled };
+MemoryLayout memory_layout_from_name(const std::string& name);  // "linear", "tiled"
+const char* memory_layout_name(MemoryLayout l);
+inline constexpr int kMinTileBytes = 64, kMaxTileBytes = 1024;  // 64, 256 or 1024 (powers of 4)
+constexpr bool valid_tile_bytes(int b) { return b == 64 || b == 256 || b == 1024; }
+// log2 of the tile side in texels: tile_bytes = 2^(2 k) bytes_per_texel.
+constexpr int tile_side_log2(int tile_bytes, TexelFormat f) {
+  int k = 0;
+  while ((bytes_per_texel(f) << (2 * (k + 1))) <= tile_bytes) ++k;
+  return k;
+}
+
 // Size of level `level` of a W x H texture (GL floor rule).
-int mip_extent(int size0, int level);
+constexpr int mip_extent(int size0, int level) { return (size0 >> level) > 1 ? size0 >> level : 1; }
 int mip_level_count(int width, int height);
 
 struct Texture {
   TexelFormat format = TexelFormat::RGBA8;
   std::vector<Image> levels;  // levels[0] is the base; complete chains end at 1 x 1
+  // Storage in the texel memory (what the texture descriptor records). Tiled in tiles of one
+  // 64-byte cache line unless the driver chooses otherwise.
+  MemoryLayout layout = MemoryLayout::Tiled;
+  int tile_bytes = 64;
+  int tile_side() const { return 1 << tile_side_log2(tile_bytes, format); }
 
   int width() const { return levels.front().width; }
   int height() const { return levels.front().height; }

@@ -1,6 +1,8 @@
 #include "cmodel/trace.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
 #include <istream>
 #include <ostream>
@@ -24,7 +26,27 @@ const char* trace_mode_name(TraceMode m) {
 
 namespace {
 
-int fields_of(TraceMode m) { return m == TraceMode::Lod ? 3 : (m == TraceMode::Grad ? 6 : 2); }
+// The columns of a request line.
+enum class Column { Texture, Sampler, Stage, S, T, Lod, Dsdx, Dtdx, Dsdy, Dtdy };
+constexpr std::pair<const char*, Column> kColumns[] = {
+    {"texture", Column::Texture}, {"sampler", Column::Sampler}, {"stage", Column::Stage}, {"s", Column::S},
+    {"t", Column::T},             {"lod", Column::Lod},         {"dsdx", Column::Dsdx},   {"dtdx", Column::Dtdx},
+    {"dsdy", Column::Dsdy},       {"dtdy", Column::Dtdy}};
+
+std::vector<Column> default_columns(TraceMode m) {
+  switch (m) {
+    case TraceMode::Lod: return {Column::S, Column::T, Column::Lod};
+    case TraceMode::Grad: return {Column::S, Column::T, Column::Dsdx, Column::Dtdx, Column::Dsdy, Column::Dtdy};
+    case TraceMode::Quad: return {Column::S, Column::T};
+  }
+  return {};
+}
+
+const char* column_name(Column c) {
+  for (const auto& [n, k] : kColumns)
+    if (k == c) return n;
+  return "?";
+}
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -33,18 +55,95 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-// Header: "# tfu-trace mode=<m>" (other comment lines are ignored).
-bool parse_header(const std::string& line, TraceMode* mode, const std::string& where) {
-  const std::string key = "# tfu-trace";
-  if (line.rfind(key, 0) != 0) return false;
-  const auto p = line.find("mode=");
-  if (p == std::string::npos) return true;
-  const std::string m = trim(line.substr(p + 5));
-  if (m == "lod") *mode = TraceMode::Lod;
-  else if (m == "grad") *mode = TraceMode::Grad;
-  else if (m == "quad") *mode = TraceMode::Quad;
-  else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, quote_input(m)));
-  return true;
+std::vector<std::string> words(const std::string& s) {
+  std::vector<std::string> w;
+  size_t p = 0;
+  while (true) {
+    p = s.find_first_not_of(" \t", p);
+    if (p == std::string::npos) break;
+    const size_t e = s.find_first_of(" \t", p);
+    w.push_back(s.substr(p, e == std::string::npos ? std::string::npos : e - p));
+    if (e == std::string::npos) break;
+    p = e;
+  }
+  return w;
+}
+
+// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
+std::string clip(const std::string& s) { return quote_input(s); }
+
+struct Header {
+  bool mode_known = false;
+  std::vector<Column> columns;  // empty: the mode's default columns
+};
+
+// "# tfu-trace mode=<m> [fields=a,b,...]"
+void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std::string& where) {
+  for (const std::string& w : words(line.substr(std::string("# tfu-trace").size()))) {
+    const auto eq = w.find('=');
+    const std::string key = w.substr(0, eq), value = eq == std::string::npos ? std::string() : w.substr(eq + 1);
+    if (key == "mode") {
+      if (value == "lod") tr.mode = TraceMode::Lod;
+      else if (value == "grad") tr.mode = TraceMode::Grad;
+      else if (value == "quad") tr.mode = TraceMode::Quad;
+      else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, clip(value)));
+      h.mode_known = true;
+    } else if (key == "fields") {
+      h.columns.clear();
+      size_t p = 0;
+      while (true) {
+        const size_t c = value.find(',', p);
+        const std::string name = value.substr(p, c == std::string::npos ? std::string::npos : c - p);
+        const auto it = std::find_if(std::begin(kColumns), std::end(kColumns), [&](const auto& k) { return name == k.first; });
+        if (it == std::end(kColumns)) throw InputError(fmt::format("{}: unknown field '{}'", where, clip(name)));
+        if (std::find(h.columns.begin(), h.columns.end(), it->second) != h.columns.end())
+          throw InputError(fmt::format("{}: field '{}' twice", where, name));
+        h.columns.push_back(it->second);
+        if (c == std::string::npos) break;
+        p = c + 1;
+      }
+    } else {
+      throw InputError(fmt::format("{}: unknown trace header key '{}'", where, clip(key)));
+    }
+  }
+  if (h.columns.empty()) return;
+  if (!h.mode_known) throw InputError(fmt::format("{}: fields= needs mode=", where));
+  for (Column c : default_columns(tr.mode))
+    if (std::find(h.columns.begin(), h.columns.end(), c) == h.columns.end())
+      throw InputError(fmt::format("{}: a {} trace needs the field '{}'", where, trace_mode_name(tr.mode), column_name(c)));
+  for (Column c : h.columns) {
+    const auto need = default_columns(tr.mode);
+    if (c >= Column::S && std::find(need.begin(), need.end(), c) == need.end())
+      throw InputError(fmt::format("{}: field '{}' is not one of a {} trace", where, column_name(c), trace_mode_name(tr.mode)));
+  }
+}
+
+// "# tfu-texture N SPEC key=value..." / "# tfu-sampler N key=value..."
+TraceBinding parse_binding(const std::string& line, bool texture, const std::string& where) {
+  const std::vector<std::string> w = words(line);
+  TraceBinding b;
+  b.where = where;
+  size_t k = 2;
+  if (w.size() < 3) throw InputError(fmt::format("{}: a binding needs an index{}", where, texture ? " and a texture" : ""));
+  char* end = nullptr;
+  const long idx = std::strtol(w[2].c_str(), &end, 10);
+  const long max_index = texture ? 4095 : 255;
+  if (end == w[2].c_str() || end != w[2].c_str() + w[2].size() || idx < 0 || idx > max_index)
+    throw InputError(fmt::format("{}: index '{}' is not an integer 0..{}", where, clip(w[2]), max_index));
+  b.index = static_cast<int>(idx);
+  k = 3;
+  if (texture) {
+    if (w.size() < 4) throw InputError(fmt::format("{}: texture binding {} names no texture", where, b.index));
+    b.spec = w[3];
+    k = 4;
+  }
+  for (; k < w.size(); ++k) {
+    const auto eq = w[k].find('=');
+    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("{}: '{}' is not key=value", where, clip(w[k])));
+    if (!b.params.emplace(w[k].substr(0, eq), w[k].substr(eq + 1)).second)
+      throw InputError(fmt::format("{}: key '{}' twice", where, clip(w[k].substr(0, eq))));
+  }
+  return b;
 }
 
 // The number syntax of docs/traces.md: decimal floating point ([+-] digits [. digits] [e [+-] digits],
@@ -75,62 +174,89 @@ bool is_decimal_number(const std::string& f) {
   return i == f.size();
 }
 
+float parse_float(const std::string& field, size_t column, const std::string& where) {
+  if (!is_decimal_number(field))
+    throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, column, clip(field)));
+  const float x = std::strtof(field.c_str(), nullptr);
+  return x;  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
+}
+
+int parse_index(const std::string& field, size_t column, long max, const std::string& where) {
+  char* end = nullptr;
+  const long x = std::strtol(field.c_str(), &end, 10);
+  if (end == field.c_str() || end != field.c_str() + field.size() || x < 0 || x > max)  // no stray byte (NUL)
+    throw InputError(fmt::format("{}: field {} '{}' is not an integer 0..{}", where, column, clip(field), max));
+  return static_cast<int>(x);
+}
+
+
 }  // namespace
 
 Trace parse_trace(std::istream& in, const std::string& name) {
   Trace tr;
-  bool mode_known = false;
+  tr.source = name;
+  Header h;
   std::string line;
   size_t lineno = 0;
+  std::vector<std::string> fields;
   while (std::getline(in, line)) {
     ++lineno;
     const std::string where = fmt::format("{}:{}", name, lineno);
     const std::string s = trim(line);
     if (s.empty()) continue;
     if (s[0] == '#') {
-      TraceMode m{};
-      if (parse_header(s, &m, where) && s.find("mode=") != std::string::npos) {
-        if (!tr.requests.empty()) throw InputError(fmt::format("{}: trace header after the first request", where));
-        tr.mode = m;
-        mode_known = true;
-      }
+      const bool header = s.rfind("# tfu-trace", 0) == 0, tex = s.rfind("# tfu-texture", 0) == 0,
+                 smp = s.rfind("# tfu-sampler", 0) == 0;
+      if ((header || tex || smp) && !tr.requests.empty())
+        throw InputError(fmt::format("{}: trace header after the first request", where));
+      if (header) parse_trace_header(s, tr, h, where);
+      if (tex) tr.textures.push_back(parse_binding(s, true, where));
+      if (smp) tr.samplers.push_back(parse_binding(s, false, where));
       continue;
     }
-    std::vector<float> v;
+    fields.clear();
     size_t pos = 0;
     while (true) {
       const auto comma = s.find(',', pos);
-      const std::string field = trim(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-      if (field.empty()) throw InputError(fmt::format("{}: empty field {}", where, v.size() + 1));
-      if (!is_decimal_number(field))
-        throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, v.size() + 1, quote_input(field)));
-      const float x = std::strtof(field.c_str(), nullptr);
-      v.push_back(x);  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
-      if (v.size() > 6) throw InputError(fmt::format("{}: more than 6 fields", where));
+      fields.push_back(trim(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos)));
+      if (fields.back().empty()) throw InputError(fmt::format("{}: empty field {}", where, fields.size()));
+      if (fields.size() > std::size(kColumns)) throw InputError(fmt::format("{}: too many fields", where));
       if (comma == std::string::npos) break;
       pos = comma + 1;
     }
-    if (!mode_known) {
-      if (v.size() == 3) tr.mode = TraceMode::Lod;
-      else if (v.size() == 6) tr.mode = TraceMode::Grad;
-      else if (v.size() == 2) tr.mode = TraceMode::Quad;
-      else throw InputError(fmt::format("{}: {} fields; a request has 2 (quad), 3 (s,t,lod) or 6 (gradients)", where, v.size()));
-      mode_known = true;
+    if (!h.mode_known) {
+      if (fields.size() == 3) tr.mode = TraceMode::Lod;
+      else if (fields.size() == 6) tr.mode = TraceMode::Grad;
+      else if (fields.size() == 2) tr.mode = TraceMode::Quad;
+      else throw InputError(fmt::format("{}: {} fields; a request has 2 (quad), 3 (s,t,lod) or 6 (gradients)", where, fields.size()));
+      h.mode_known = true;
     }
-    if (static_cast<int>(v.size()) != fields_of(tr.mode))
-      throw InputError(fmt::format("{}: {} fields, but this is a {} trace with {} per line", where, v.size(),
-                                   trace_mode_name(tr.mode), fields_of(tr.mode)));
+    if (h.columns.empty()) h.columns = default_columns(tr.mode);
+    if (fields.size() != h.columns.size())
+      throw InputError(fmt::format("{}: {} fields, but this {} trace has {} per line", where, fields.size(),
+                                   trace_mode_name(tr.mode), h.columns.size()));
     if (tr.requests.size() >= kMaxTraceRequests)
       throw InputError(fmt::format("{}: more than {} requests", where, kMaxTraceRequests));
     TraceRequest r;
-    r.s = v[0];
-    r.t = v[1];
-    if (tr.mode == TraceMode::Lod) r.lod = v[2];
-    if (tr.mode == TraceMode::Grad) {
-      r.dsdx = v[2];
-      r.dtdx = v[3];
-      r.dsdy = v[4];
-      r.dtdy = v[5];
+    for (size_t c = 0; c < fields.size(); ++c) {
+      const std::string& f = fields[c];
+      switch (h.columns[c]) {
+        case Column::Texture: r.texture = static_cast<uint16_t>(parse_index(f, c + 1, 4095, where)); break;
+        case Column::Sampler: r.sampler = static_cast<uint8_t>(parse_index(f, c + 1, 255, where)); break;
+        case Column::Stage: r.stage = static_cast<uint8_t>(parse_index(f, c + 1, 3, where)); break;
+        case Column::S: r.s = parse_float(f, c + 1, where); break;
+        case Column::T: r.t = parse_float(f, c + 1, where); break;
+        case Column::Lod: r.lod = parse_float(f, c + 1, where); break;
+        case Column::Dsdx: r.dsdx = parse_float(f, c + 1, where); break;
+        case Column::Dtdx: r.dtdx = parse_float(f, c + 1, where); break;
+        case Column::Dsdy: r.dsdy = parse_float(f, c + 1, where); break;
+        case Column::Dtdy: r.dtdy = parse_float(f, c + 1, where); break;
+      }
+    }
+    if (tr.mode == TraceMode::Quad && tr.requests.size() % 4 != 0) {
+      const TraceRequest& q = tr.requests[tr.requests.size() - tr.requests.size() % 4];
+      if (q.texture != r.texture || q.sampler != r.sampler || q.stage != r.stage)
+        throw InputError(fmt::format("{}: the four pixels of a quad name one texture, sampler and stage", where));
     }
     tr.requests.push_back(r);
   }
@@ -145,8 +271,24 @@ Trace load_trace(const std::string& path) {
 }
 
 void write_trace(std::ostream& out, const Trace& trace) {
-  out << "# tfu-trace mode=" << trace_mode_name(trace.mode) << "\n";
+  bool indexed = !trace.textures.empty() || !trace.samplers.empty();
+  for (const TraceRequest& r : trace.requests) indexed = indexed || r.texture != 0 || r.sampler != 0 || r.stage != 0;
+  out << "# tfu-trace mode=" << trace_mode_name(trace.mode);
+  if (indexed) {
+    out << " fields=texture,sampler,stage";
+    for (Column c : default_columns(trace.mode)) out << ',' << column_name(c);
+  }
+  out << '\n';
+  const auto binding = [&out](const char* kind, const TraceBinding& b) {
+    out << "# " << kind << ' ' << b.index;
+    if (!b.spec.empty()) out << ' ' << b.spec;
+    for (const auto& [k, v] : b.params) out << ' ' << k << '=' << v;
+    out << '\n';
+  };
+  for (const TraceBinding& b : trace.textures) binding("tfu-texture", b);
+  for (const TraceBinding& b : trace.samplers) binding("tfu-sampler", b);
   for (const TraceRequest& r : trace.requests) {
+    if (indexed) out << r.texture << ',' << int{r.sampler} << ',' << int{r.stage} << ',';
     out << fmt::format("{:.9g},{:.9g}", r.s, r.t);
     if (trace.mode == TraceMode::Lod) out << fmt::format(",{:.9g}", r.lod);
     if (trace.mode == TraceMode::Grad) out << fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", r.dsdx, r.dtdx, r.dsdy, r.dtdy);
@@ -154,25 +296,35 @@ void write_trace(std::ostream& out, const Trace& trace) {
   }
 }
 
-std::vector<int32_t> trace_lambdas(const Trace& tr, int width, int height) {
-  std::vector<int32_t> lam(tr.requests.size());
-  for (size_t i = 0; i < tr.requests.size(); ++i) {
-    const TraceRequest& r = tr.requests[i];
-    switch (tr.mode) {
-      case TraceMode::Lod: lam[i] = lambda_explicit(r.lod); break;
-      case TraceMode::Grad: lam[i] = lambda_from_gradients(r.dsdx, r.dtdx, r.dsdy, r.dtdy, width, height); break;
-      case TraceMode::Quad:
-        if (i % 4 == 0) {
-          const float s[4] = {r.s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
-          const float t[4] = {r.t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
-          lam[i] = lambda_from_quad(s, t, width, height);
-        } else {
-          lam[i] = lam[i - i % 4];  // one lambda per quad
-        }
-        break;
+int32_t request_lambda(const Trace& tr, size_t i, int width, int height) {
+  const TraceRequest& r = tr.requests[i];
+  switch (tr.mode) {
+    case TraceMode::Lod: return lambda_explicit(r.lod);
+    case TraceMode::Grad: return lambda_from_gradients(r.dsdx, r.dtdx, r.dsdy, r.dtdy, width, height);
+    case TraceMode::Quad: {
+      const float s[4] = {r.s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
+      const float t[4] = {r.t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
+      return lambda_from_quad(s, t, width, height);
     }
   }
+  return 0;
+}
+
+std::vector<int32_t> trace_lambdas(const Trace& tr, const std::function<std::pair<int, int>(int)>& extent) {
+  std::vector<int32_t> lam(tr.requests.size());
+  for (size_t i = 0; i < tr.requests.size(); ++i) {
+    if (tr.mode == TraceMode::Quad && i % 4 != 0) {
+      lam[i] = lam[i - i % 4];  // one lambda per quad
+      continue;
+    }
+    const auto [w, h] = extent(tr.requests[i].texture);
+    lam[i] = request_lambda(tr, i, w, h);
+  }
   return lam;
+}
+
+std::vector<int32_t> trace_lambdas(const Trace& tr, int width, int height) {
+  return trace_lambdas(tr, [width, height](int) { return std::pair{width, height}; });
 }
 
 }  // namespace tfu

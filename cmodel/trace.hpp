@@ -2,7 +2,11 @@
 // Full description with examples: docs/traces.md.
 //
 //   # comment lines and blank lines are ignored anywhere
-//   # tfu-trace mode=quad          optional header fixing the mode (lod | grad | quad)
+//   # tfu-trace mode=quad [fields=texture,sampler,stage,s,t]
+//                                  optional header fixing the mode (lod | grad | quad) and, with
+//                                  fields=, the columns of a request line by name
+//   # tfu-texture N SPEC [key=value ...]   binds texture descriptor N (docs/traces.md)
+//   # tfu-sampler N key=value ...          binds sampler descriptor N
 //   s,t,lod                        mode lod : explicit LOD (GLSL textureLod)
 //   s,t,dsdx,dtdx,dsdy,dtdy        mode grad: explicit gradients (GLSL textureGrad)
 //   s,t                            mode quad: 4 consecutive lines are the pixels (0,0), (1,0), (0,1),
@@ -11,11 +15,14 @@
 // any case; no hex floats, no stray bytes), read as IEEE binary32 with round-to-nearest (strtof):
 // the unit's interface format. Fields are separated by commas with
 // optional spaces. Without a header the mode follows from the field count of the first request; every
-// line must then have the same count. Errors name the file and line.
+// line must then have the same count. A trace without texture / sampler columns names descriptor 0
+// in every request (old traces read unchanged). Errors name the file and line.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,14 +32,28 @@ enum class TraceMode { Lod, Grad, Quad };
 const char* trace_mode_name(TraceMode m);
 
 struct TraceRequest {
+  uint16_t texture = 0;  // texture descriptor index
+  uint8_t sampler = 0;   // sampler descriptor index
+  uint8_t stage = 0;     // texture stage of the material that issued it (statistics only)
   float s = 0, t = 0;
   float lod = 0;                              // mode lod
   float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;  // mode grad
 };
 
+// A "# tfu-texture N SPEC key=value..." or "# tfu-sampler N key=value..." header line, as written;
+// what the keys mean is docs/traces.md (resolved by cmodel/bindings.hpp).
+struct TraceBinding {
+  int index = 0;
+  std::string spec;                           // textures: file path or proc:NAME[:SIZE]
+  std::map<std::string, std::string> params;  // key=value
+  std::string where;                          // "file:line" for error messages
+};
+
 struct Trace {
   TraceMode mode = TraceMode::Quad;
   std::vector<TraceRequest> requests;  // quad mode: a multiple of 4, in quad order
+  std::vector<TraceBinding> textures, samplers;  // header bindings, in file order
+  std::string source;  // the file it was read from (relative texture paths resolve against its directory)
 };
 
 // Throws InputError "<name>:<line>: ..." on malformed input.
@@ -43,11 +64,14 @@ Trace load_trace(const std::string& path);
 // they read back to the same binary32 value.
 void write_trace(std::ostream& out, const Trace& trace);
 
-// lambda (before bias and clamp) of every request, in order, for a texture whose level 0 is
-// width x height: lod mode -> the explicit LOD, grad mode -> the gradients, quad mode -> one lambda
-// per quad from its coarse derivatives (lod.hpp). The LOD unit of both the golden model and the
-// cycle model computes exactly this.
-std::vector<int32_t> trace_lambdas(const Trace& trace, int width, int height);
+// lambda (before bias and clamp) of one request (quad mode: of the quad starting at request i; i
+// must be a multiple of 4) for a texture whose level 0 is width x height: lod mode -> the explicit
+// LOD, grad mode -> the gradients, quad mode -> the quad's coarse derivatives (lod.hpp). The LOD
+// unit of both the golden model and the cycle model computes exactly this.
+int32_t request_lambda(const Trace& trace, size_t i, int width, int height);
+// lambda of every request, in order; `extent(texture index)` gives the texture's level-0 size.
+std::vector<int32_t> trace_lambdas(const Trace& trace, const std::function<std::pair<int, int>(int)>& extent);
+std::vector<int32_t> trace_lambdas(const Trace& trace, int width, int height);  // every request, one texture
 
 // Largest trace accepted (requests), so that a bad file cannot exhaust memory.
 inline constexpr size_t kMaxTraceRequests = size_t{1} << 26;

@@ -57,6 +57,7 @@ struct TileRomSpec {
   static constexpr int kMinSamples = 16, kMaxSamples = 512;
   static constexpr unsigned kMinBits = 4, kMaxBits = 16;
   void validate() const;  // throws InputError naming the bad field
+  friend constexpr bool operator==(const TileRomSpec&, const TileRomSpec&) = default;
   int entries() const { return pos == SamplePos::Centre ? samples : samples + 1; }
   // Local position (in [0, 1]) that entry k samples.
   double position(int k) const {

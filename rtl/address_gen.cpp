@@ -1,18 +1,13 @@
 #include "rtl/address_gen.hpp"
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/fixed_coord.hpp"
 
 namespace tfu::rtl {
 
-AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Sampler& sm)
-    : Module(s, "address_gen"), in_(i), out_(o), smp_(sm), grid_fn_(&grid_any) {
-  const SamplerConfig& c = sm.config();
-  mipmapped_ = c.mode.mip != MipMode::None;
-  lod_ = sm.lod_info(0);  // a sampler without MIP-mapping: level 0, no blend, whatever lambda
-  if (c.mode.base == BaseFilter::Linear)
-    grid_fn_ = linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)),
-                           std::make_index_sequence<16>());
-}
+AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
+                       const WeightRomBank& roms)
+    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs), roms_(roms) {}
 
 namespace {
 
@@ -27,20 +22,20 @@ uint16_t cells_inside(const TapGrid& g) {
 }
 
 // NEAREST: i = floor(s W) (GL).
-void nearest_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, float s, float t) {
+void nearest_footprint(FootprintReq& f, const SamplerDescriptor& c, int w, int h, float s, float t) {
   TapGrid& g = f.grid;
   g.cols = g.rows = 1;
-  g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(img.width), 0), img.width));
-  g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(img.height), 0), img.height));
+  g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(w), 0), w));
+  g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(h), 0), h));
 }
 
-// T x T taps from column i0 + first and row j0 + first (CUBIC: the
-// ROM's taps; the edge cross: T = 4, first = -1).
-void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img, const dp::LevelCoord& u,
+// T x T taps from column i0 + first and row j0 + first (CUBIC: the ROM's taps; the edge cross:
+// T = 4, first = -1).
+void square_footprint(FootprintReq& f, const SamplerDescriptor& c, int w, int h, const dp::LevelCoord& u,
                       const dp::LevelCoord& v, int first, int taps) {
   std::array<int, 4> col{}, row{};
-  wrap_run(c.wrap_s, u.i0 + first, taps, img.width, col.data());
-  wrap_run(c.wrap_t, v.i0 + first, taps, img.height, row.data());
+  wrap_run(c.wrap_s, u.i0 + first, taps, w, col.data());
+  wrap_run(c.wrap_t, v.i0 + first, taps, h, row.data());
   TapGrid& g = f.grid;
   g.cols = g.rows = taps;
   for (size_t i = 0; i < static_cast<size_t>(taps); ++i) {
@@ -51,20 +46,18 @@ void square_footprint(FootprintReq& f, const SamplerConfig& c, const Image& img,
 
 }  // namespace
 
-void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t) {
-  const SamplerConfig& c = a.smp_.config();
+void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s,
+                          float t) {
   if (c.mode.base == BaseFilter::Nearest) {
-    nearest_footprint(f, c, img, s, t);
+    nearest_footprint(f, c, w, h, s, t);
   } else {
-    const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
+    const dp::LevelCoord u = dp::texel_coord(s, w), v = dp::texel_coord(t, h);
     f.tag.fu = u.f;
     f.tag.fv = v.f;
     switch (c.mode.base) {
-      case BaseFilter::Cubic:
-        square_footprint(f, c, img, u, v, a.smp_.cubic_rom()->first_tap(), a.smp_.cubic_rom()->taps());
-        break;
+      case BaseFilter::Cubic: square_footprint(f, c, w, h, u, v, first_tap, taps); break;
       case BaseFilter::EdgePreserving:  // the cross: columns and rows -1..2 around the centre square
-        square_footprint(f, c, img, u, v, -1, 4);
+        square_footprint(f, c, w, h, u, v, -1, 4);
         f.cross = true;
         break;
       case BaseFilter::Linear:  // grid_linear
@@ -79,13 +72,13 @@ void AddressGen::grid_any(const AddressGen& a, FootprintReq& f, const Image& img
 
 // LINEAR: columns i0, i0 + 1 and rows j0, j0 + 1 through the wrap unit of each axis.
 template <WrapMode kWs, WrapMode kWt>
-void AddressGen::grid_linear(const AddressGen&, FootprintReq& f, const Image& img, float s, float t) {
-  const dp::LevelCoord u = dp::texel_coord(s, img.width), v = dp::texel_coord(t, img.height);
+void AddressGen::grid_linear(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t) {
+  const dp::LevelCoord u = dp::texel_coord(s, w), v = dp::texel_coord(t, h);
   f.tag.fu = u.f;
   f.tag.fv = v.f;
   int col[2], row[2];
-  dp::wrap_taps<kWs, 2>(u.i0, img.width, col);
-  dp::wrap_taps<kWt, 2>(v.i0, img.height, row);
+  dp::wrap_taps<kWs, 2>(u.i0, w, col);
+  dp::wrap_taps<kWt, 2>(v.i0, h, row);
   TapGrid& g = f.grid;
   g.cols = g.rows = 2;
   g.x[0] = static_cast<int16_t>(col[0]);
@@ -99,25 +92,43 @@ void AddressGen::grid_linear(const AddressGen&, FootprintReq& f, const Image& im
 
 template <size_t... k>
 AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence<k...>) {
-  constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
+  static constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
   return kTable[wrap_pair];
 }
 
-void AddressGen::footprint(FootprintReq& f, uint32_t id, int level, float s, float t) const {
-  f.tag = LevelTag{};
-  f.tag.id = id;
+void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level) const {
+  const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
+  const TextureDescriptor& tex = regs_.textures[p.req.texture];
+  LevelTag& tag = f.tag;  // every field written (the output register is reused)
+  tag.id = p.id;
+  tag.req = p.req;
+  tag.base = c.mode.base;
+  tag.format = tex.format;
+  tag.fu = tag.fv = 0;
+  tag.blend = 0;
+  tag.two = tag.second = false;
+  tag.shape = lee_jen::kAllTexels;
   f.level = level;
   f.optional = 0;
   f.cross = false;
-  grid_fn_(*this, f, smp_.texture().levels[static_cast<size_t>(level)], s, t);
+  const int w = tex.level_width(level), h = tex.level_height(level);
+  if (c.mode.base == BaseFilter::Linear) {
+    linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)), std::make_index_sequence<16>())(
+        c, 2, 0, f, w, h, p.s, p.t);
+  } else {
+    const TileWeightRom* rom = roms_.rom(p.req.sampler);
+    grid_any(c, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0, f, w, h, p.s, p.t);
+  }
 }
 
 void AddressGen::evaluate() {
   if (!holding_ && in_.can_pop()) {
     const PixelReq& p = in_.front();
     pixel_ = p;
-    if (mipmapped_) lod_ = smp_.lod_info(p.lambda);  // else level 0 alone (GL), lod_ keeps it
-    count_ = lod_.blend != 0 ? 2 : 1;
+    const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
+    // Without MIP-mapping level 0 alone (GL), whatever lambda.
+    pick_ = c.mode.mip == MipMode::None ? LevelPick{} : select_levels(p.lambda, c, regs_.textures[p.req.texture].levels - 1);
+    count_ = pick_.blend != 0 ? 2 : 1;
     in_.pop();
     holding_ = true;
     sent_ = 0;
@@ -126,11 +137,11 @@ void AddressGen::evaluate() {
   if (holding_ && out_.can_push()) {
     // The footprint is formed straight in the output register (no copy).
     FootprintReq& f = out_.push_slot();
-    footprint(f, pixel_.id, sent_ == 0 ? lod_.level0 : lod_.level1, pixel_.s, pixel_.t);
+    footprint(f, pixel_, sent_ == 0 ? pick_.level0 : pick_.level1);
     if (count_ == 2) {
       f.tag.two = true;
       f.tag.second = sent_ == 1;
-      f.tag.blend = lod_.blend;
+      f.tag.blend = pick_.blend;
     }
     if (++sent_ == count_) holding_ = false;
     sim_.progress();

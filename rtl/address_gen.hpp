@@ -1,12 +1,15 @@
-// address_gen: level selection (Sampler::lod_info: bias, clamp, GL level rules), then per selected
+// address_gen: level selection (select_levels of cmodel/descriptors.hpp: bias, clamp, GL level
+// rules, from the request's sampler descriptor and its texture's level count), then per selected
 // level the integer texel coordinates, the 8-bit fractions and the wrap (dp::texel_coord,
 // wrap_index / wrap_run of cmodel). One level footprint per cycle: a blending MIPMAP_LINEAR pixel
 // takes two cycles.
 //
 // Ports:
-//   in  pixel      PixelReq                                   valid/ready
+//   in  pixel      PixelReq (descriptor indices, s, t, lambda)             valid/ready
 //   out footprint  FootprintReq: level[3:0], grid (columns x[4], rows y[4], cols, rows, used cells),
-//                  cross, fu[7:0] fv[7:0], blend[8:0], two, second
+//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], two, second
+//   in  registers  sampler descriptor (filter mode, wraps, LOD bias and clamps), texture descriptor
+//                  (size, level count, format), the weight ROM's tap count (CUBIC)
 // Footprints per base filter, as a grid of wrapped columns and rows (the cache forms the taps):
 //   NEAREST          1 x 1   (floor(s W), floor(t H))
 //   LINEAR           2 x 2   columns i0, i0 + 1 and rows j0, j0 + 1
@@ -19,38 +22,39 @@
 
 #include <utility>
 
-#include "cmodel/sampler.hpp"
+#include "cmodel/descriptors.hpp"
 #include "rtl/unit_ports.hpp"
+#include "rtl/weight_rom_bank.hpp"
 #include "sim/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 
 class AddressGen : public sim::Module {
  public:
-  AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Sampler& sm);
+  AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
+             const WeightRomBank& roms);
   void evaluate() override;
   std::string state() const override;
   bool busy() const { return holding_; }
   // The footprint of (s, t) on `level` (the combinational part of the block), formed in `f`.
-  void footprint(FootprintReq& f, uint32_t id, int level, float s, float t) const;
+  void footprint(FootprintReq& f, const PixelReq& p, int level) const;
 
  private:
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
-  const Sampler& smp_;
-  // The grid of one footprint (taps, fractions, used cells), chosen at construction: LINEAR has
-  // one function per pair of wrap modes, the other filters share grid_any.
-  using GridFn = void (*)(const AddressGen&, FootprintReq&, const Image&, float, float);
-  GridFn grid_fn_;
-  static void grid_any(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t);
+  const Registers& regs_;
+  const WeightRomBank& roms_;
+  // The grid of one footprint (taps, fractions, used cells): LINEAR has one function per pair of
+  // wrap modes (chosen per request from its sampler), the other filters share grid_any.
+  using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float);
+  static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t);
   template <WrapMode kWs, WrapMode kWt>
-  static void grid_linear(const AddressGen& a, FootprintReq& f, const Image& img, float s, float t);
+  static void grid_linear(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t);
   template <size_t... k>
   static GridFn linear_grid(size_t wrap_pair, std::index_sequence<k...>);
   bool holding_ = false;
   PixelReq pixel_{};
-  LodInfo lod_{};
-  bool mipmapped_ = true;
+  LevelPick pick_{};
   int count_ = 0, sent_ = 0;  // footprints of the held pixel (1, or 2 when blending), sent so far
 };
 

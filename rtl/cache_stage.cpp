@@ -3,28 +3,24 @@
 #include <algorithm>
 
 namespace tfu::rtl {
-namespace {
 
-// The four arms of the cross (Lee & Jen Fig. 4): top C1 C2, bottom C11 C12, left C3 C7, right C6 C10.
-constexpr std::array<std::array<int, 2>, 4> kArms{{{1, 2}, {11, 12}, {3, 7}, {6, 10}}};
-constexpr lee_jen::TexelMask arm_bits(const std::array<int, 2>& a) {
-  return static_cast<lee_jen::TexelMask>((1u << (a[0] - 1)) | (1u << (a[1] - 1)));
-}
-
-}  // namespace
-
-CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& o,
-                       std::vector<const Image*> levels, Rgba8 border, bool edge, TexelCache& c, MemoryModel& m,
-                       int miss_fifo_depth)
+CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
+                       sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
+                       MemoryModel& m, int miss_fifo_depth)
     : Module(s, "texel_cache"),
       in_(i),
-      out_(o),
-      levels_(std::move(levels)),
-      border_(border),
-      edge_(edge),
+      filter_out_(filter),
+      edge_out_(edge),
+      regs_(regs),
+      memory_(memory),
       cache_(c),
       mem_(m),
       fifo_(static_cast<size_t>(miss_fifo_depth)) {
+  for (const SamplerDescriptor& d : regs.samplers) any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
+  for (const TextureDescriptor& d : regs.textures) {
+    first_readout_.push_back(readout_.size());
+    for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
+  }
 }
 
 [[gnu::always_inline]] inline void CacheStage::accept(uint64_t now) {
@@ -33,28 +29,37 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   FootprintReq& cur = entry.f;
   in_.pop();
   const TapGrid& g = cur.grid;
-  if (edge_ && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
-    for (const auto& arm : kArms) {
-      const lee_jen::TexelMask bits = arm_bits(arm);
+  const bool edge = cur.tag.base == BaseFilter::EdgePreserving;
+  const int texture = cur.tag.req.texture;
+  if (edge && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
+    for (const lee_jen::Arm& arm : lee_jen::kArms) {  // the four arms of the cross (Lee & Jen Fig. 4)
+      const lee_jen::TexelMask bits = arm.mask;
       if ((cur.optional & bits) != bits) continue;
       bool resident = true;
-      for (int n : arm) {
+      for (int n : arm.texels) {
         const uint8_t cell = kCrossCell[static_cast<size_t>(n - 1)];
         const size_t i = cell & 3u, j = cell >> 2;
-        if (((g.used >> cell) & 1u) && !cache_.resident(cur.level, g.x[i], g.y[j])) resident = false;
+        if (((g.used >> cell) & 1u) && !cache_.resident(texture, cur.level, g.x[i], g.y[j])) resident = false;
       }
       if (resident) cur.tag.shape = static_cast<lee_jen::TexelMask>(cur.tag.shape | bits);
     }
   }
-  TapGrid lookup = g;  // the taps that read the cache: inside the texture and, for edge, in the shape
-  if (edge_) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
-  const FootprintResult r = cache_.access(cur.level, lookup);
+  FootprintResult r;
+  if (edge) {  // the taps that read the cache: inside the texture and in the shape
+    TapGrid lookup = g;
+    lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
+    r = cache_.access(texture, cur.level, lookup);
+  } else {
+    r = cache_.access(texture, cur.level, g);
+  }
+  stage_hits[cur.tag.req.stage] += static_cast<uint64_t>(r.hits);
+  stage_misses[cur.tag.req.stage] += static_cast<uint64_t>(r.misses);
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
   uint64_t ready = port_free_ - 1;
-  for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes()));
-  if (edge_) {
+  for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));
+  if (edge) {
     int missing_arms = 0;
-    for (const auto& arm : kArms) missing_arms += (cur.tag.shape & arm_bits(arm)) == 0;
+    for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
     if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
     shapes[cur.tag.id][cur.tag.second ? 1 : 0] = cur.tag.shape;
@@ -66,10 +71,12 @@ namespace {
 
 // Texel read-out of an n x n square whose taps are all inside the texture, row-major.
 template <int n>
-void read_square(const TapGrid& g, const Image& img, Rgba8* out) {
+void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
+  size_t col[n];
+  for (size_t i = 0; i < n; ++i) col[i] = level.column(g.x[i]);
   for (size_t j = 0; j < n; ++j) {
-    const Rgba8* row = img.texels.data() + static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width);
-    for (size_t i = 0; i < n; ++i) out[n * j + i] = row[g.x[i]];
+    const size_t row = level.row(g.y[j]);
+    for (size_t i = 0; i < n; ++i) out[n * j + i] = level.at(col[i] + row);
   }
 }
 
@@ -81,32 +88,27 @@ void read_square(const TapGrid& g, const Image& img, Rgba8* out) {
 [[gnu::always_inline]] inline void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
   const TapGrid& g = cur.grid;
-  FilterReq& f = out_.push_slot();
+  FilterReq& f = out_of(cur).push_slot();
   f.tag = cur.tag;
   f.ntaps = cur.ntaps();
-  const Image& img = *levels_[static_cast<size_t>(cur.level)];
-  const auto word = [&](size_t i, size_t j) {
-    return ((g.used >> (4 * j + i)) & 1u)
-               ? img.texels[static_cast<size_t>(g.y[j]) * static_cast<size_t>(img.width) + static_cast<size_t>(g.x[i])]
-               : border_;
+  const LevelReadout& level = readout_[first_readout_[cur.tag.req.texture] + static_cast<size_t>(cur.level)];
+  const auto border = [&] {  // the border word (clamp-to-border taps outside the texture)
+    return regs_.textures[cur.tag.req.texture].content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0}
+                                                                                             : regs_.samplers[cur.tag.req.sampler].border;
   };
+  const auto word = [&](size_t i, size_t j) { return ((g.used >> (4 * j + i)) & 1u) ? level(g.x[i], g.y[j]) : border(); };
   if (cur.cross) {
-    std::array<ptrdiff_t, 4> row;  // offsets of the four texel rows (a row outside is never read)
-    for (size_t j = 0; j < 4; ++j) row[j] = static_cast<ptrdiff_t>(g.y[j]) * static_cast<ptrdiff_t>(img.width);
-    const Rgba8* texels = img.texels.data();
 #pragma GCC unroll 12
     for (size_t k = 0; k < lee_jen::kTexels; ++k) {
       const size_t cell = kCrossCell[k];
-      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0}
-                    : ((g.used >> cell) & 1u)     ? texels[row[cell >> 2] + g.x[cell & 3]]
-                                                  : border_;
+      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0} : word(cell & 3, cell >> 2);
     }
   } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
-      case 1: read_square<1>(g, img, f.texels.data()); break;
-      case 2: read_square<2>(g, img, f.texels.data()); break;
-      case 3: read_square<3>(g, img, f.texels.data()); break;
-      default: read_square<4>(g, img, f.texels.data()); break;
+      case 1: read_square<1>(g, level, f.texels.data()); break;
+      case 2: read_square<2>(g, level, f.texels.data()); break;
+      case 3: read_square<3>(g, level, f.texels.data()); break;
+      default: read_square<4>(g, level, f.texels.data()); break;
     }
   } else {
     size_t k = 0;
@@ -123,7 +125,7 @@ void CacheStage::evaluate() {
   if (!fifo_.empty()) {
     if (now < fifo_.front().ready) {
       ++stall_miss_;
-    } else if (!out_.can_push()) {
+    } else if (!out_of(fifo_.front().f).can_push()) {
       ++stall_back_;
     } else {
       emit();
@@ -151,30 +153,31 @@ void CacheStage::skip_cycles(uint64_t n) {
   // The skipped cycles all lie before wake_cycle(): the same stalls evaluate() would count.
   const uint64_t now = sim_.cycle();
   if (!fifo_.empty() && now < fifo_.front().ready) stall_miss_ += n;
-  else if (!fifo_.empty() && !out_.can_push()) stall_back_ += n;
+  else if (!fifo_.empty() && !out_of(fifo_.front().f).can_push()) stall_back_ += n;
   if (in_.can_pop() && now < port_free_) stall_bank_ += n;
 }
 
 std::string CacheStage::state() const {
-  return fmt::format("{}, {}, miss fifo {}/{}{}", in_.state(), out_.state(), fifo_.size(), fifo_.depth(),
+  return fmt::format("{}, {}, {}, miss fifo {}/{}{}", in_.state(), filter_out_.state(), edge_out_.state(), fifo_.size(), fifo_.depth(),
                      fifo_.empty() ? std::string() : fmt::format(", head ready at {}", fifo_.front().ready));
 }
 
 void CacheStage::publish(sim::Stats& st) const {
   uint64_t hits = 0, misses = 0;
-  for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {  // counted by the cache's tag unit
-    hits += cache_.hits(l);
-    misses += cache_.misses(l);
-    if (cache_.hits(l) + cache_.misses(l) == 0) continue;
-    st.add(fmt::format("cache_line_hits_level{}", l), cache_.hits(l));
-    st.add(fmt::format("cache_line_misses_level{}", l), cache_.misses(l));
+  for (int l = 0; l < kMaxLevels; ++l) {  // counted by the cache's tag unit
+    const uint64_t h = cache_.level_hits(l), m = cache_.level_misses(l);
+    hits += h;
+    misses += m;
+    if (h + m == 0) continue;
+    st.add(fmt::format("cache_line_hits_level{}", l), h);
+    st.add(fmt::format("cache_line_misses_level{}", l), m);
   }
   st.add("cache_line_hits", hits);
   st.add("cache_line_misses", misses);
   st.add("stall_cache_miss", stall_miss_);
   st.add("stall_bank_conflict", stall_bank_);
   st.add("stall_backpressure", stall_back_);
-  if (edge_) {
+  if (any_edge_) {
     st.add("shape_cross", shape_count_[0]);
     st.add("shape_T", shape_count_[1]);
     st.add("shape_L", shape_count_[2]);

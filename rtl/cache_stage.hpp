@@ -5,18 +5,24 @@
 // behind a miss wait in order. The FIFO head leaves, with its texel words, when its lines have
 // arrived. The banks serve one footprint per cycle; a bank conflict holds the tag port for the
 // extra cycles. Simplification: a line is not evicted while a queued footprint still needs it
-// (the paper's reference counters); texel data comes from the level images.
+// (the paper's reference counters); the texel words are read from the texel memory at their
+// addresses (the descriptor's level address, pitch and layout) when the footprint leaves.
 //
 // Ports:
-//   in  footprint  FootprintReq (tap grid, shape, optional arms)     valid/ready
-//   out texels     FilterReq: up to 16 texel words [31:0], shape[11:0]
-//   mem            line read requests (MemoryModel::read), bytes counted there
-// Border taps (clamp-to-border outside the texture) take the border word and no cache access.
+//   in  footprint  FootprintReq (texture, level, tap grid, shape, optional arms)   valid/ready
+//   out filter     FilterReq of NEAREST / LINEAR / CUBIC footprints: up to 16 texel words [31:0]
+//   out edge       FilterReq of EDGE_PRESERVING footprints: 12 texel words, shape[11:0]
+//   mem            line read requests (MemoryModel::read), bytes counted there per texture
+//   in  registers  texture descriptors (addresses, layout), sampler descriptors (border word)
+// Border taps (clamp-to-border outside the texture) take the border word (zero for B-spline
+// coefficients) and no cache access.
 #pragma once
 
 #include <deque>
 #include <vector>
 
+#include "cmodel/descriptors.hpp"
+#include "cmodel/texture_memory.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 #include "rtl/unit_ports.hpp"
@@ -26,10 +32,9 @@ namespace tfu::rtl {
 
 class CacheStage : public sim::Module {
  public:
-  // `levels[l]` is the image the datapath reads for level l (texture or stored coefficients).
-  CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& o,
-             std::vector<const Image*> levels, Rgba8 border, bool edge, TexelCache& c, MemoryModel& m,
-             int miss_fifo_depth);
+  CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
+             sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
+             MemoryModel& m, int miss_fifo_depth);
   void evaluate() override;
   std::string state() const override;
   void publish(sim::Stats& st) const;
@@ -39,13 +44,15 @@ class CacheStage : public sim::Module {
   uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.tag.id; }
   // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
   std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
+  // Lines found and fetched per material stage (0..3).
+  std::array<uint64_t, 4> stage_hits{}, stage_misses{};
 
  private:
   sim::Channel<FootprintReq>& in_;
-  sim::Channel<FilterReq>& out_;
-  std::vector<const Image*> levels_;
-  Rgba8 border_;
-  bool edge_;
+  sim::Channel<FilterReq>& filter_out_;
+  sim::Channel<FilterReq>& edge_out_;
+  const Registers& regs_;
+  const TextureMemory& memory_;
   TexelCache& cache_;
   MemoryModel& mem_;
   struct Entry {
@@ -53,10 +60,18 @@ class CacheStage : public sim::Module {
     uint64_t ready;  // cycle the footprint's lines are all in the cache
   };
   sim::Fifo<Entry> fifo_;  // the miss FIFO
+  // The read-out registers of every level of every texture (decoded from the descriptors once):
+  // texture t's level l is readout_[first_readout_[t] + l].
+  std::vector<LevelReadout> readout_;
+  std::vector<size_t> first_readout_;
   uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
+  bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
+  sim::Channel<FilterReq>& out_of(const FootprintReq& f) {
+    return f.tag.base == BaseFilter::EdgePreserving ? edge_out_ : filter_out_;
+  }
   // The input and output halves of evaluate() (inline: once per cycle each).
   inline void accept(uint64_t now);
   inline void emit();

@@ -90,8 +90,9 @@ void EdgeMedian::evaluate() {
   const FilterReq& r = in_.front();
   EdgeS1& s = out_.push_slot();
   s.tag = r.tag;
-  for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt_);
-  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.tag.shape, fmt_), r.tag.shape);
+  const TexelFormat fmt = r.tag.format;
+  for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt);
+  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.tag.shape, fmt), r.tag.shape);
   in_.pop();
   sim_.progress();
 }
@@ -101,7 +102,7 @@ void EdgeDirection::evaluate() {
   const EdgeS1& s = in_.front();
   EdgeS2& o = out_.push_slot();
   o.s1 = s;
-  o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, fmt_).direction;
+  o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, s.tag.format).direction;
   ++chosen[static_cast<size_t>(o.direction)];
   in_.pop();
   sim_.progress();
@@ -112,12 +113,12 @@ void EdgeMerge::evaluate() {
   const EdgeS2& s = in_.front();
   const LevelTag& tag = s.s1.tag;
   if (tag.emits() && !out_.can_push()) return;
-  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, tag.fu, tag.fv, fmt_);
+  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, tag.fu, tag.fv, tag.format);
   if (tag.holds()) {
     first_ = c;
   } else {
     if (tag.two) c = dp::level_blend(first_, c, tag.blend);
-    out_.push({tag.id, encode_texel(c, fmt_)});
+    out_.push({tag.id, encode_texel(c, tag.format)});
   }
   in_.pop();
   sim_.progress();

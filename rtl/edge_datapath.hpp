@@ -11,7 +11,8 @@
 //                  (Eq. 5), merge and clamp (Eq. 6), trilinear blend, encode
 //
 // Ports (between stages, valid/ready channels of depth 2):
-//   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], fu fv, blend, two, second
+//   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], format[1:0] (each
+//               footprint's own texel format), fu fv, blend, two, second
 //   s1  EdgeS1: tag, 12 texels (datapath channels), low[12] x [3:0]
 //   s2  EdgeS2: s1 + direction[4:0]
 //   out Response: id, rgba[31:0]
@@ -40,21 +41,20 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
 
 class EdgeMedian : public sim::Module {
  public:
-  EdgeMedian(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<EdgeS1>& o, TexelFormat f)
-      : Module(s, "edge_median"), in_(i), out_(o), fmt_(f) {}
+  EdgeMedian(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<EdgeS1>& o)
+      : Module(s, "edge_median"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
 
  private:
   sim::Channel<FilterReq>& in_;
   sim::Channel<EdgeS1>& out_;
-  TexelFormat fmt_;
 };
 
 class EdgeDirection : public sim::Module {
  public:
-  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeS1>& i, sim::Channel<EdgeS2>& o, TexelFormat f)
-      : Module(s, "edge_direction"), in_(i), out_(o), fmt_(f) {}
+  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeS1>& i, sim::Channel<EdgeS2>& o)
+      : Module(s, "edge_direction"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
   std::array<uint64_t, lee_jen::kDirections> chosen{};  // histogram of chosen directions
@@ -62,20 +62,18 @@ class EdgeDirection : public sim::Module {
  private:
   sim::Channel<EdgeS1>& in_;
   sim::Channel<EdgeS2>& out_;
-  TexelFormat fmt_;
 };
 
 class EdgeMerge : public sim::Module {
  public:
-  EdgeMerge(sim::Simulator& s, sim::Channel<EdgeS2>& i, sim::Channel<Response>& o, TexelFormat f)
-      : Module(s, "edge_merge"), in_(i), out_(o), fmt_(f) {}
+  EdgeMerge(sim::Simulator& s, sim::Channel<EdgeS2>& i, sim::Channel<Response>& o)
+      : Module(s, "edge_merge"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
 
  private:
   sim::Channel<EdgeS2>& in_;
   sim::Channel<Response>& out_;
-  TexelFormat fmt_;
   Texel4 first_{};  // level0 result of a blending pixel (register)
 };
 

@@ -4,32 +4,25 @@
 
 namespace tfu::rtl {
 
-FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<Response>& o, const Sampler& smp,
-                       int lanes)
-    : Module(s, "filter"),
-      in_(i),
-      out_(o),
-      smp_(smp),
-      base_(smp.config().mode.base),
-      fmt_(smp.texture().format),
-      // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
-      unpack_fmt_(smp.cubic_rom() && smp.cubic_normalize().prefiltered ? TexelFormat::RGBA8 : smp.texture().format),
-      lanes_(lanes),
-      words8_(base_ == BaseFilter::Linear && unpack_fmt_ != TexelFormat::VS16X2 && fmt_ != TexelFormat::VS16X2) {
+FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<Response>& o, const Registers& regs,
+                       const WeightRomBank& roms, int lanes)
+    : Module(s, "filter"), in_(i), out_(o), regs_(regs), roms_(roms), lanes_(lanes) {
   for (size_t n = 0; n < extra_clocks_.size(); ++n) extra_clocks_[n] = (static_cast<int>(n) + 4 * lanes_ - 1) / (4 * lanes_) - 1;
 }
 
-Texel4 FilterUnit::filter_level(const FilterReq& r) const {
-  const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack_fmt_); };
-  switch (base_) {
+Texel4 FilterUnit::filter_level(const FilterReq& r, TexelFormat unpack) const {
+  const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack); };
+  switch (r.tag.base) {
     case BaseFilter::Nearest: return texel(0);
-    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.tag.fu, r.tag.fv, fmt_);
+    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.tag.fu, r.tag.fv, r.tag.format);
     case BaseFilter::Cubic: {
+      const TileWeightRom& rom = *roms_.rom(r.tag.req.sampler);
       std::array<int32_t, 16> w{};
-      dp::tile_weights_2d(*smp_.cubic_rom(), smp_.config().cubic_recon, r.tag.fu, r.tag.fv, w);
+      dp::tile_weights_2d(rom, regs_.samplers[r.tag.req.sampler].cubic_recon, r.tag.fu, r.tag.fv, w);
       std::array<Texel4, 16> c{};
       for (int k = 0; k < r.ntaps; ++k) c[static_cast<size_t>(k)] = texel(k);
-      return dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps), smp_.cubic_normalize());
+      return dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps),
+                                 cubic_normalize_registers(rom.spec().bits, regs_.textures[r.tag.req.texture]));
     }
     case BaseFilter::EdgePreserving: break;  // its own pipeline (edge_datapath.hpp)
   }
@@ -47,7 +40,8 @@ void FilterUnit::evaluate() {
     return;
   }
   if (r.tag.emits() && !out_.can_push()) return;
-  if (words8_) {  // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8)
+  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2) {
+    // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8)
     const auto& w = r.texels;
     const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.holds()) {
@@ -55,17 +49,16 @@ void FilterUnit::evaluate() {
     } else {
       out_.push_slot() = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
     }
-    in_.pop();
-    remaining_ = -1;
-    sim_.progress();
-    return;
-  }
-  Texel4 c = filter_level(r);
-  if (r.tag.holds()) {
-    first_ = c;
   } else {
-    if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
-    out_.push({r.tag.id, encode_texel(c, fmt_)});
+    // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
+    const bool coeffs = regs_.textures[r.tag.req.texture].content == TextureContent::BsplineCoefficients;
+    Texel4 c = filter_level(r, coeffs ? TexelFormat::RGBA8 : r.tag.format);
+    if (r.tag.holds()) {
+      first_ = c;
+    } else {
+      if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
+      out_.push({r.tag.id, encode_texel(c, r.tag.format)});
+    }
   }
   in_.pop();
   remaining_ = -1;

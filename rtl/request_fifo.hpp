@@ -1,6 +1,7 @@
 // request_fifo: the unit's input. Accepts one request per cycle from the trace: a 2x2 quad (quad
-// traces) or one pixel (lod / grad traces), and stamps each pixel's accept cycle (for the latency
-// histogram).
+// traces) or one pixel (lod / grad traces) with its texture and sampler descriptor indices, and
+// stamps each pixel's accept cycle (for the latency histogram). Requests of different textures
+// and samplers follow each other in any order.
 //
 // Ports:
 //   out quad  QuadReq (unit_ports.hpp)   valid/ready
@@ -30,6 +31,7 @@ class RequestFifo : public sim::Module {
       accept_[next_ + k] = sim_.cycle();
     }
     const TraceRequest& r = trace_.requests[next_];
+    q.req = {r.texture, r.sampler, r.stage};
     q.lod = r.lod;
     q.dsdx = r.dsdx;
     q.dtdx = r.dtdx;

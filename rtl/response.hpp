@@ -1,8 +1,13 @@
-// response: in-order retirement of the unit's outputs; records each pixel's exit cycle and its
-// latency (exit - accept at request_fifo) in a histogram.
+// response: in-order retirement of the unit's outputs. Two paths deliver pixels, the filter
+// (NEAREST / LINEAR / CUBIC) and the edge-preserving pipeline, each in request order; the sink takes
+// the next pixel in request order from whichever path holds it (a two-input in-order merge: the
+// texel_cache stage sends footprints down the paths in order, so the pixel due next is at the head
+// of one of them). Records each pixel's exit cycle and its latency (exit - accept at request_fifo)
+// in a histogram.
 //
 // Ports:
-//   in  response  Response: id[31:0], rgba[31:0]   valid/ready (always ready)
+//   in  filter  Response: id[31:0], rgba[31:0]   valid/ready
+//   in  edge    Response: id[31:0], rgba[31:0]   valid/ready
 #pragma once
 
 #include <vector>
@@ -17,14 +22,20 @@ class ResponseSink : public sim::Module {
  public:
   // `pixels` and `exit_cycle` have one slot per request (sized by the caller); pixel i lands in
   // slot i when it retires.
-  ResponseSink(sim::Simulator& s, sim::Channel<Response>& i, std::vector<Rgba8>& pixels, std::vector<uint64_t>& exit_cycle,
-               const std::vector<uint64_t>& accept_cycle)
-      : Module(s, "response"), in_(i), pixels_(pixels), exit_(exit_cycle), accept_(accept_cycle) {}
+  ResponseSink(sim::Simulator& s, sim::Channel<Response>& filter, sim::Channel<Response>& edge, std::vector<Rgba8>& pixels,
+               std::vector<uint64_t>& exit_cycle, const std::vector<uint64_t>& accept_cycle)
+      : Module(s, "response"), filter_(filter), edge_(edge), pixels_(pixels), exit_(exit_cycle), accept_(accept_cycle) {}
   void evaluate() override {
-    if (!in_.can_pop()) return;
-    const Response& r = in_.front();
-    if (r.id != retired_ || r.id >= pixels_.size())
-      throw CheckFailed(fmt::format("response {} out of order (expected {}) at cycle {}", r.id, retired_, sim_.cycle()));
+    sim::Channel<Response>* in = nullptr;
+    if (filter_.can_pop() && filter_.front().id == retired_) in = &filter_;
+    else if (edge_.can_pop() && edge_.front().id == retired_) in = &edge_;
+    if (!in) {
+      const bool stuck = (filter_.can_pop() && filter_.front().id < retired_) || (edge_.can_pop() && edge_.front().id < retired_);
+      if (stuck) throw CheckFailed(fmt::format("response out of order (expected {}) at cycle {}", retired_, sim_.cycle()));
+      return;
+    }
+    const Response& r = in->front();
+    if (r.id >= pixels_.size()) throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", r.id, sim_.cycle()));
     const uint64_t now = sim_.cycle();
     pixels_[r.id] = r.rgba;
     exit_[r.id] = now;
@@ -32,15 +43,16 @@ class ResponseSink : public sim::Module {
     if (lat >= latency.size()) latency.resize(lat + 1);
     ++latency[lat];
     ++retired_;
-    in_.pop();
+    in->pop();
     sim_.progress();
   }
-  std::string state() const override { return in_.state(); }
+  std::string state() const override { return fmt::format("{}, {}, next {}", filter_.state(), edge_.state(), retired_); }
   size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)
   std::vector<uint64_t> latency;  // histogram: latency[c] = pixels that took c cycles
 
  private:
-  sim::Channel<Response>& in_;
+  sim::Channel<Response>& filter_;
+  sim::Channel<Response>& edge_;
   std::vector<Rgba8>& pixels_;
   std::vector<uint64_t>& exit_;
   const std::vector<uint64_t>& accept_;

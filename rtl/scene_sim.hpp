@@ -1,11 +1,13 @@
 // scene_sim: a rendered scene's request trace through one or several texture filter units and the
-// golden model, pixel for pixel, with the cycle model's image.
+// golden model, request for request, with the cycle model's image.
 //
-// Each traced quad goes to the unit that owns its screen tile (32x32-pixel tiles dealt round-robin
-// over the units) and, within a unit, to the mesh it samples; a unit draws its meshes one after
-// another with the cache flushed between them (a texture switch). Units run on their own threads
-// (the simulation of each is single-threaded and deterministic, so results do not depend on the
-// thread count). Cycles = the slowest unit's; every other statistic is summed over units and meshes.
+// The unit works as a GPU's does: every texture and sampler of the frame is resident (the render's
+// frame: descriptors and one texel memory), and each unit receives, in the order the rasterizer
+// issues them, the requests of every material stage of the quads in its screen tiles (32x32-pixel
+// tiles dealt round-robin over the units). Meshes follow each other in submission order with no
+// cache flush between them. Units run on their own threads (the simulation of each is
+// single-threaded and deterministic, so results do not depend on the thread count). Cycles = the
+// slowest unit's; every other statistic is summed over units.
 #pragma once
 
 #include <optional>
@@ -19,27 +21,26 @@
 namespace tfu::rtl {
 
 struct SceneSimOptions {
-  std::optional<FilterMode> filter;  // replaces every mesh's filter mode
   int units = 1;
   int tile = 32;
-  std::ostream* vcd = nullptr;  // VCD of unit 0's first mesh
+  std::ostream* vcd = nullptr;  // VCD of unit 0
 };
 
 struct SceneSimResult {
-  Image image;             // the cycle model's output written into the rendered frame
+  Image image;             // the cycle model's outputs composed into the rendered frame
   size_t requests = 0;
   uint64_t cycles = 0;     // slowest unit
   sim::Stats stats;        // summed
   std::string mismatch;    // empty when every output equals the golden model's
   // Thread CPU seconds spent in the cycle model and in the golden model (LOD + sampler) on the
-  // same requests, summed over units and meshes.
+  // same requests, summed over units.
   double cycle_seconds = 0, golden_seconds = 0;
 };
 
 // CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID).
 double thread_cpu_seconds();
 
-SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, const UnitConfig& u,
-                              const SceneSimOptions& opt);
+// `render` must come from render_scene(scene, {trace = true, line_bytes = u.cache.line_bytes}).
+SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, const UnitConfig& u, const SceneSimOptions& opt);
 
 }  // namespace tfu::rtl

@@ -10,54 +10,65 @@
 namespace tfu::rtl {
 
 void TexelCacheConfig::validate() const {
-  if (block != 4 && block != 8) throw InputError(fmt::format("cache block {} must be 4 or 8 texels", block));
-  if (bytes_per_texel != 1 && bytes_per_texel != 4)
-    throw InputError(fmt::format("cache bytes_per_texel {} must be 1 or 4", bytes_per_texel));
-  if (ways < 1 || ways > kMaxCacheWays)
-    throw InputError(fmt::format("cache ways {} must be in 1..{}", ways, kMaxCacheWays));
+  const auto set_bytes = static_cast<int64_t>(line_bytes) * ways;  // 64-bit: no overflow for any int fields
+  if (line_bytes != 64 && line_bytes != 256 && line_bytes != 1024)
+    throw InputError(fmt::format("cache line_bytes {} must be 64, 256 or 1024", line_bytes));
+  if (ways < 1) throw InputError(fmt::format("cache ways {} must be at least 1", ways));
   if (banks != 1 && banks != 4) throw InputError(fmt::format("cache banks {} must be 1 or 4", banks));
-  if (capacity_bytes < 1 || capacity_bytes > kMaxCacheBytes)
-    throw InputError(fmt::format("cache capacity {} bytes must be in 1..{}", capacity_bytes, kMaxCacheBytes));
-  // 64-bit products: ways (<= 4096) x line bytes (<= 256) fits an int, but no product here may wrap.
-  const int64_t set_bytes = int64_t{line_bytes()} * int64_t{ways};
   if (capacity_bytes < set_bytes)
     throw InputError(fmt::format("cache capacity {} bytes is below one set ({} ways x {}-byte lines)", capacity_bytes, ways,
-                                 line_bytes()));
+                                 line_bytes));
   if (capacity_bytes % set_bytes != 0)
     throw InputError(fmt::format("cache capacity {} bytes is not a whole number of {}-way sets of {}-byte lines",
-                                 capacity_bytes, ways, line_bytes()));
+                                 capacity_bytes, ways, line_bytes));
 }
 
-TexelCache::TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights)
-    : cfg_(cfg) {
+LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, const std::string& what) {
+  const LevelDescriptor& ld = d.level[static_cast<size_t>(level)];
+  const auto lb = static_cast<uint64_t>(line_bytes);
+  if (ld.address % lb != 0 || ld.row_pitch % lb != 0)
+    throw InputError(fmt::format("{}: level {} (address {:#x}, row pitch {}) is not aligned to the {}-byte cache line", what,
+                                 level, ld.address, ld.row_pitch, line_bytes));
+  LevelLines ll;
+  ll.first = ld.address / lb;
+  ll.stride = ld.row_pitch / lb;
+  if (d.layout == MemoryLayout::Tiled) {
+    if (d.tile_bytes() != line_bytes)
+      throw InputError(fmt::format("{}: its {}-byte tiles are not one {}-byte cache line each", what, d.tile_bytes(), line_bytes));
+    ll.shift_x = ll.shift_y = d.tile_log2;
+  } else {
+    ll.shift_x = std::countr_zero(static_cast<unsigned>(line_bytes / bytes_per_texel(d.format)));
+    ll.shift_y = 0;
+  }
+  return ll;
+}
+
+TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor>& textures) : cfg_(cfg) {
   cfg_.validate();
-  while ((1 << block_shift_) < cfg_.block) ++block_shift_;
   const auto sets = static_cast<uint64_t>(cfg_.sets());
   set_mask_ = (sets & (sets - 1)) == 0 ? sets - 1 : 0;  // power of two: a mask instead of a division
   if (sets == 1) set_mask_ = 0;
-  if (level_widths.size() != level_heights.size() || level_widths.empty())
-    throw InputError("texel cache: level sizes missing");
-  uint64_t base = 0;
-  for (size_t l = 0; l < level_widths.size(); ++l) {
-    const int bx = (level_widths[l] + cfg_.block - 1) / cfg_.block;
-    const int by = (level_heights[l] + cfg_.block - 1) / cfg_.block;
-    blocks_per_row_.push_back(bx);
-    level_base_.push_back(base);
-    base += static_cast<uint64_t>(bx) * static_cast<uint64_t>(by);
+  for (size_t t = 0; t < textures.size(); ++t) {
+    first_level_.push_back(lines_.size());
+    for (int l = 0; l < textures[t].levels; ++l) {
+      lines_.push_back(level_lines(textures[t], l, cfg_.line_bytes, fmt::format("texture {}", t)));
+      level_of_.push_back(l);
+      texture_of_.push_back(static_cast<int>(t));
+    }
   }
+  first_level_.push_back(lines_.size());
   ways_.resize(static_cast<size_t>(cfg_.sets()) * static_cast<size_t>(cfg_.ways));
-  hits_.assign(level_widths.size(), 0);
-  misses_.assign(level_widths.size(), 0);
+  hits_.assign(lines_.size(), 0);
+  misses_.assign(lines_.size(), 0);
 }
 
-uint64_t TexelCache::line_of(int level, int x, int y) const {
-  const auto l = static_cast<size_t>(level);
-  return level_base_[l] + static_cast<uint64_t>(y >> block_shift_) * static_cast<uint64_t>(blocks_per_row_[l]) +
-         static_cast<uint64_t>(x >> block_shift_);
+uint64_t TexelCache::line_of(int texture, int level, int x, int y) const {
+  const LevelLines& ll = lines_[level_index(texture, level)];
+  return ll.first + static_cast<uint64_t>(y >> ll.shift_y) * ll.stride + static_cast<uint64_t>(x >> ll.shift_x);
 }
 
-bool TexelCache::resident(int level, int x, int y) const {
-  const uint64_t line = line_of(level, x, y);
+bool TexelCache::resident(int texture, int level, int x, int y) const {
+  const uint64_t line = line_of(texture, level, x, y);
   const size_t set = set_of(line);
   const Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
   for (int i = 0; i < cfg_.ways; ++i)
@@ -65,21 +76,42 @@ bool TexelCache::resident(int level, int x, int y) const {
   return false;
 }
 
+uint64_t TexelCache::texture_hits(int texture) const {
+  uint64_t n = 0;
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += hits_[l];
+  return n;
+}
+uint64_t TexelCache::texture_misses(int texture) const {
+  uint64_t n = 0;
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += misses_[l];
+  return n;
+}
+uint64_t TexelCache::level_hits(int level) const {
+  uint64_t n = 0;
+  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? hits_[l] : 0;
+  return n;
+}
+uint64_t TexelCache::level_misses(int level) const {
+  uint64_t n = 0;
+  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? misses_[l] : 0;
+  return n;
+}
+
 namespace {
 
 // Column and row groups of a grid, padded to 4 x 4 with column / row 0 (unused cells never read the
-// padding): the distinct values of x >> shift over the columns (vx[0, nx)) and of y >> shift over
-// the rows, in order of first appearance, and per grid column / row the index of its group. With
-// shift = log2 B, taps share a line iff they share both groups; with shift = 0, a texel.
+// padding): the distinct values of x >> shift_x over the columns (vx[0, nx)) and of y >> shift_y
+// over the rows, in order of first appearance, and per grid column / row the index of its group.
+// With the level's line shifts, taps share a line iff they share both groups; with 0, a texel.
 struct GridGroups {
   std::array<int, 4> vx, vy;
   std::array<uint8_t, 4> gx, gy;
   int nx, ny;
-  GridGroups(const TapGrid& g, int shift) {
+  GridGroups(const TapGrid& g, int shift_x, int shift_y) {
     std::array<int, 4> cx, cy;
     for (size_t i = 0; i < 4; ++i) {
-      cx[i] = g.x[i < static_cast<size_t>(g.cols) ? i : 0] >> shift;
-      cy[i] = g.y[i < static_cast<size_t>(g.rows) ? i : 0] >> shift;
+      cx[i] = g.x[i < static_cast<size_t>(g.cols) ? i : 0] >> shift_x;
+      cy[i] = g.y[i < static_cast<size_t>(g.rows) ? i : 0] >> shift_y;
     }
     nx = distinct(cx, vx, gx);
     ny = distinct(cy, vy, gy);
@@ -120,7 +152,8 @@ struct TexelCache::LineSet {
 // groups that hold a used cell, each looked up when the row-major scan of the cells first reaches
 // it, i.e. in order of its lowest used cell.
 void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  const GridGroups b(g, block_shift_);
+  const LevelLines& ll = lines_[l];
+  const GridGroups b(g, ll.shift_x, ll.shift_y);
   std::array<uint16_t, 4> col_cells{}, row_cells{};  // grid cells of each block column / row group
   for (size_t i = 0; i < 4; ++i) col_cells[b.gx[i]] = static_cast<uint16_t>(col_cells[b.gx[i]] | (0x1111u << i));
   for (size_t j = 0; j < 4; ++j) row_cells[b.gy[j]] = static_cast<uint16_t>(row_cells[b.gy[j]] | (0xFu << (4 * j)));
@@ -135,7 +168,7 @@ void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
       for (; m > 0 && key[m - 1] > v; --m) key[m] = key[m - 1];  // insertion by first cell
       key[m] = v;
     }
-  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
+  const uint64_t base = ll.first, row = ll.stride;
   for (size_t m = 0; m < n; ++m) {
     const int bx = b.vx[key[m] & 15u], by = b.vy[(key[m] >> 4) & 15u];
     s.lines[s.n++] = base + static_cast<uint64_t>(by) * row + static_cast<uint64_t>(bx);
@@ -146,9 +179,10 @@ void TexelCache::group_lines(size_t l, const TapGrid& g, LineSet& s) const {
 // Any set of used cells under texel parity: a scan of the used cells in row-major order; the
 // banks count distinct texels.
 void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
-  const GridGroups b(g, block_shift_), t(g, 0);
+  const LevelLines& ll = lines_[l];
+  const GridGroups b(g, ll.shift_x, ll.shift_y), t(g, 0, 0);
   const bool four_banks = cfg_.banks == 4;
-  const uint64_t base = level_base_[l], row = static_cast<uint64_t>(blocks_per_row_[l]);
+  const uint64_t base = ll.first, row = ll.stride;
   uint32_t seen_line = 0, seen_texel = 0;  // bit 4 gy + gx of the block groups, of the texel groups
   for (uint32_t cells = g.used; cells != 0; cells &= cells - 1) {
     const auto c = static_cast<size_t>(std::countr_zero(cells));
@@ -184,7 +218,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
 
 void TexelCache::reset() {
   std::fill(ways_.begin(), ways_.end(), Way{});
-  mru_line_ = ~uint64_t{0};
+  hint_.fill(0);
   std::fill(hits_.begin(), hits_.end(), 0);
   std::fill(misses_.begin(), misses_.end(), 0);
   tick_ = 0;

@@ -1,6 +1,7 @@
 // texel_cache: blocked, set-associative, banked texel cache of the texture filter unit (TFU-C).
 //
 // Ports (per cycle, one footprint request):
+//   in  texture [11:0]  texture descriptor (its level addresses, pitches and layout locate the lines)
 //   in  level   [3:0]   MIP level
 //   in  grid    TapGrid: columns x[4] and rows y[4] (wrapped texel coordinates), cols, rows, and the
 //               used[15:0] grid cells: the footprint's taps (x[i], y[j]) that read the cache
@@ -9,20 +10,26 @@
 //   out cycles  [4:0]   cycles the footprint occupies the banks (>= 1; bank conflicts add cycles)
 //
 // Organisation (docs/texel-cache.md):
-//   * Memory layout: each level is stored in BxB blocks (B = 4 or 8), one block per cache line, so
-//     a line is B*B*bytes_per_texel bytes. Lines of a level are numbered row-major by block.
-//   * Sets: line index modulo the number of sets; `ways` lines per set; LRU replacement.
+//   * Tags are memory line addresses (byte address / line_bytes): one cache holds lines of every
+//     texture of the frame, and nothing is flushed between textures. The descriptor's layout makes
+//     the lines of a level a grid: a tiled texture has one tile per line (line column x >> t, line
+//     row y >> t, t = log2 of the tile side), a linear texture line_bytes / bytes_per_texel texels
+//     of one row per line (column x >> log2(line_bytes / bytes_per_texel), row y); the line address
+//     is the level's first line + row * (row pitch / line_bytes) + column.
+//   * Sets: line address modulo the number of sets; `ways` lines per set; LRU replacement.
 //   * Banks, two mappings (docs/texel-cache.md):
 //       texel parity : texel (x, y) lives in bank (x & 1) + 2 (y & 1), one texel per bank and cycle;
 //                      any 2x2 bilinear footprint reads in one cycle, a 4x4 cubic one in four, the
 //                      12-texel edge cross in three.
-//       block parity : line (bx, by) lives in bank (bx & 1) + 2 (by & 1) and a bank reads a whole
+//       block parity : the line in line column bx, line row by lives in bank (bx & 1) + 2 (by & 1)
+//                      and a bank reads a whole
 //                      line per cycle (Lee & Jen Sec. 3: the filter takes its texels from the
 //                      blocks); the up to 2x2 blocks of any bilinear, cubic or cross footprint read
 //                      in one cycle.
 //     With banks = 1 every texel (texel parity) or line (block parity) is a separate read. A
 //     footprint needs max over banks of (distinct texels or lines in that bank) cycles.
-//   * Misses are counted per level; the memory model (memory_model.hpp) supplies missing lines.
+//   * Hits and misses are counted per texture and per level; the memory model (memory_model.hpp)
+//     supplies missing lines.
 #pragma once
 
 #include <array>
@@ -31,29 +38,37 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/descriptors.hpp"
 #include "rtl/unit_ports.hpp"
 
 namespace tfu::rtl {
 
 enum class BankMapping { TexelParity, BlockParity };
 
-inline constexpr int kMaxCacheBytes = 16 << 20;  // 16 MiB: capacity_bytes in 1..kMaxCacheBytes
-inline constexpr int kMaxCacheWays = 4096;       // associativity in 1..kMaxCacheWays
 
 struct TexelCacheConfig {
-  int block = 4;               // B: block side in texels (power of two, 4 or 8)
-  int bytes_per_texel = 4;     // 1 (L8) or 4
+  int line_bytes = 64;         // 64, 256 or 1024
   int capacity_bytes = 16384;  // total data capacity
   int ways = 4;                // associativity
   int banks = 4;               // 1 or 4
   BankMapping bank_mapping = BankMapping::BlockParity;
-  int line_bytes() const { return block * block * bytes_per_texel; }
-  int lines() const { return capacity_bytes / line_bytes(); }
+  int lines() const { return capacity_bytes / line_bytes; }
   int sets() const { return lines() / ways; }
-  // Throws InputError with one line naming the bad field (capacity below one set or above
-  // kMaxCacheBytes, B not 4 or 8, ways outside 1..kMaxCacheWays, banks not 1 or 4, ...).
+  // Throws InputError with one line naming the bad field (capacity below one set or not a whole
+  // number of sets; products in 64 bits).
   void validate() const;
+  friend bool operator==(const TexelCacheConfig&, const TexelCacheConfig&) = default;
 };
+
+// Where the lines of one level lie: line(x, y) = first + (y >> shift_y) * stride + (x >> shift_x).
+struct LevelLines {
+  uint64_t first = 0;
+  uint64_t stride = 0;
+  int shift_x = 0, shift_y = 0;
+};
+// The line grid of level `level` of a texture for lines of `line_bytes`; InputError (naming the
+// texture) when its tiles are not one line each or a linear row pitch is not whole lines.
+LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, const std::string& what);
 
 struct FootprintResult {
   int hits = 0, misses = 0;
@@ -63,53 +78,62 @@ struct FootprintResult {
 
 class TexelCache {
  public:
-  // level_widths[l] = width of level l in texels (line numbering needs the blocks per row).
-  TexelCache(TexelCacheConfig cfg, std::vector<int> level_widths, std::vector<int> level_heights);
+  // The line grids of every level of every texture in `textures` (the unit's descriptor table).
+  TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor>& textures);
   const TexelCacheConfig& config() const { return cfg_; }
   // Looks up every used tap of one footprint (allocating missed lines, LRU update, lines in the
   // order the taps first reach them, row-major) and reports hits, misses and the bank cycles.
   // Taps that share a line count one access to that line.
-  FootprintResult access(int level, const TapGrid& grid) {
+  FootprintResult access(int texture, int level, const TapGrid& grid) {
+    const size_t l = level_index(texture, level);
     if (cfg_.bank_mapping == BankMapping::BlockParity && grid.cols == 2 && grid.rows == 2 &&
         grid.used == square_cells(2, 2))
-      return access_quad(static_cast<size_t>(level), grid);  // every LINEAR footprint
-    return access_grid(static_cast<size_t>(level), grid);
+      return access_quad(l, grid);  // every LINEAR footprint
+    return access_grid(l, grid);
   }
-  // Line address (unique over all levels) of the block that holds texel (x, y) of `level`.
-  uint64_t line_of(int level, int x, int y) const;
+  // Memory line address of texel (x, y) of `level` of `texture`.
+  uint64_t line_of(int texture, int level, int x, int y) const;
   // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
-  bool resident(int level, int x, int y) const;
-  uint64_t hits(int level) const { return hits_.at(static_cast<size_t>(level)); }
-  uint64_t misses(int level) const { return misses_.at(static_cast<size_t>(level)); }
+  bool resident(int texture, int level, int x, int y) const;
+  // Lines found / fetched, by texture and by level.
+  uint64_t texture_hits(int texture) const;
+  uint64_t texture_misses(int texture) const;
+  uint64_t level_hits(int level) const;
+  uint64_t level_misses(int level) const;
+  int textures() const { return static_cast<int>(first_level_.size()) - 1; }
   void reset();
 
  private:
   TexelCacheConfig cfg_;
-  std::vector<int> blocks_per_row_;
-  int block_shift_ = 2;  // log2(B)
+  std::vector<LevelLines> lines_;    // every level of every texture
+  std::vector<size_t> first_level_;  // texture t's levels: lines_[first_level_[t] ...]
+  std::vector<int> level_of_;        // lines_ entry -> its level number
+  std::vector<int> texture_of_;      // lines_ entry -> its texture
+  size_t level_index(int texture, int level) const { return first_level_[static_cast<size_t>(texture)] + static_cast<size_t>(level); }
   uint64_t set_mask_ = 0;  // sets - 1 when sets is a power of two (> 1), else 0 (use %)
   size_t set_of(uint64_t line) const;
-  std::vector<uint64_t> level_base_;  // first line address of each level
   struct Way {
     uint64_t tag = ~uint64_t{0};
     uint64_t last_use = 0;
   };
   std::vector<Way> ways_;  // sets * ways
   uint64_t tick_ = 0;
-  // Software memo (not hardware state): the line of the latest lookup and its way, so that a run of
-  // footprints in one block skips the way search. A lookup always leaves its line resident.
-  uint64_t mru_line_ = ~uint64_t{0};
-  size_t mru_way_ = 0;
-  std::vector<uint64_t> hits_, misses_;
+  // Software memo (not hardware state): per slot (line address mod kHints) the way of the latest
+  // lookup of a line in that slot, checked against the way's tag before use, so that runs of
+  // footprints in a few lines (of several interleaved textures) skip the way search. Hit, miss and
+  // LRU behaviour are those of the search.
+  static constexpr size_t kHints = 64;
+  std::array<uint32_t, kHints> hint_{};
+  std::vector<uint64_t> hits_, misses_;  // per lines_ entry (texture and level)
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
-  FootprintResult access_quad(size_t level, const TapGrid& g);
-  FootprintResult access_grid(size_t level, const TapGrid& g);
+  FootprintResult access_quad(size_t l, const TapGrid& g);
+  FootprintResult access_grid(size_t l, const TapGrid& g);
   // The lookup tail both share: one line into r's hits or misses; the level's counters.
   void probe(uint64_t line, FootprintResult& r);
-  void tally(size_t level, const FootprintResult& r);
+  void tally(size_t l, const FootprintResult& r);
   struct LineSet;
-  void group_lines(size_t level, const TapGrid& g, LineSet& s) const;
-  void cell_lines(size_t level, const TapGrid& g, LineSet& s) const;
+  void group_lines(size_t l, const TapGrid& g, LineSet& s) const;
+  void cell_lines(size_t l, const TapGrid& g, LineSet& s) const;
 };
 
 // Inline: the tag lookup and the 2x2 path run once per LINEAR pixel.
@@ -120,8 +144,9 @@ inline size_t TexelCache::set_of(uint64_t line) const {
 
 inline bool TexelCache::lookup(uint64_t line) {
   ++tick_;
-  if (line == mru_line_) {  // the line of the previous lookup is still where it was (a hit)
-    ways_[mru_way_].last_use = tick_;
+  uint32_t& hint = hint_[line & (kHints - 1)];
+  if (ways_[hint].tag == line) {  // the line is still in the way its slot remembers (a hit)
+    ways_[hint].last_use = tick_;
     return true;
   }
   Way* w = &ways_[set_of(line) * static_cast<size_t>(cfg_.ways)];
@@ -129,16 +154,14 @@ inline bool TexelCache::lookup(uint64_t line) {
   for (int i = 0; i < cfg_.ways; ++i) {
     if (w[i].tag == line) {
       w[i].last_use = tick_;
-      mru_line_ = line;
-      mru_way_ = static_cast<size_t>(&w[i] - ways_.data());
+      hint = static_cast<uint32_t>(&w[i] - ways_.data());
       return true;
     }
     if (w[i].last_use < victim->last_use) victim = &w[i];
   }
   victim->tag = line;  // least recently used (an empty way has last_use 0)
   victim->last_use = tick_;
-  mru_line_ = line;
-  mru_way_ = static_cast<size_t>(victim - ways_.data());
+  hint = static_cast<uint32_t>(victim - ways_.data());
   return false;
 }
 
@@ -160,10 +183,11 @@ inline void TexelCache::tally(size_t l, const FootprintResult& r) {
 // and of by, so per axis two distinct blocks of equal parity (a wrap over an odd number of blocks)
 // put two lines into every bank touched; with one bank every line is a read.
 inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
-  const int bx0 = g.x[0] >> block_shift_, bx1 = g.x[1] >> block_shift_;
-  const int by0 = g.y[0] >> block_shift_, by1 = g.y[1] >> block_shift_;
-  const auto row = static_cast<uint64_t>(blocks_per_row_[l]);
-  const uint64_t line0 = level_base_[l] + static_cast<uint64_t>(by0) * row + static_cast<uint64_t>(bx0);
+  const LevelLines& ll = lines_[l];
+  const int bx0 = g.x[0] >> ll.shift_x, bx1 = g.x[1] >> ll.shift_x;
+  const int by0 = g.y[0] >> ll.shift_y, by1 = g.y[1] >> ll.shift_y;
+  const uint64_t row = ll.stride;
+  const uint64_t line0 = ll.first + static_cast<uint64_t>(by0) * row + static_cast<uint64_t>(bx0);
   const auto dx = static_cast<uint64_t>(static_cast<int64_t>(bx1 - bx0));  // modulo 2^64
   const uint64_t dy = static_cast<uint64_t>(static_cast<int64_t>(by1 - by0)) * row;
   const bool two_cols = bx1 != bx0, two_rows = by1 != by0;

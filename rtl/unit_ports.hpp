@@ -5,23 +5,35 @@
 #include <array>
 #include <cstdint>
 
+#include "cmodel/descriptors.hpp"
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/texture.hpp"
 
 namespace tfu::rtl {
 
+// The descriptor indices a request names and the material stage it belongs to:
+//   texture[11:0] (texture descriptor), sampler[7:0] (sampler descriptor), stage[1:0] (statistics)
+struct RequestTag {
+  uint16_t texture = 0;
+  uint8_t sampler = 0;
+  uint8_t stage = 0;
+};
+
 // request_fifo -> lod_unit: one 2x2 quad (quad traces) or one pixel (lod / grad traces).
-//   id[31:0], npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32
+//   id[31:0], descriptor indices, npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32
 struct QuadReq {
   uint32_t id = 0;  // index of the first pixel in the trace
+  RequestTag req;
   int npix = 4;
   std::array<float, 4> s{}, t{};
   float lod = 0, dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;
 };
 
-// lod_unit -> address_gen: one pixel per cycle.  id, s t FP32, lambda[15:0] (Q.8, before bias/clamp)
+// lod_unit -> address_gen: one pixel per cycle.  id, descriptor indices, s t FP32, lambda[15:0]
+// (Q.8, before bias/clamp)
 struct PixelReq {
   uint32_t id = 0;
+  RequestTag req;
   float s = 0, t = 0;
   int32_t lambda = 0;
 };
@@ -50,12 +62,14 @@ constexpr uint16_t square_cells(int cols, int rows) {
   return kSquareCells[static_cast<size_t>(cols)][static_cast<size_t>(rows)];
 }
 
-// The edge cross on the 4x4 grid of columns and rows -1..2: texel C(k+1) of Lee & Jen Eq. 4 is
-// cell kCrossCell[k] (the corners are not used); the C order is row-major over the grid.
+// The edge cross on the 4x4 grid of columns and rows -1..2 (lee_jen::grid_col, grid_row): texel
+// C(k+1) of Lee & Jen Eq. 4 is cell kCrossCell[k] (the corners are not used); the C order is
+// row-major over the grid.
 inline constexpr std::array<uint8_t, lee_jen::kTexels> kCrossCell = [] {
+  static_assert(lee_jen::kGridSide == 4);
   std::array<uint8_t, lee_jen::kTexels> c{};
-  for (size_t k = 0; k < c.size(); ++k)
-    c[k] = static_cast<uint8_t>(4 * (lee_jen::kTexelPos[k].y + 1) + lee_jen::kTexelPos[k].x + 1);
+  for (int n = 1; n <= lee_jen::kTexels; ++n)
+    c[static_cast<size_t>(n - 1)] = static_cast<uint8_t>(4 * lee_jen::grid_row(n) + lee_jen::grid_col(n));
   return c;
 }();
 // Grid cells of the cross texels in a shape mask (bit k = C(k+1)): two 64-entry tables.
@@ -73,11 +87,17 @@ constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
 
 // What travels with one level footprint from address_gen to the filter's output, unchanged except
 // for the shape (set by kernel_select, widened by the cache-aware probe):
-//   id[31:0], fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1),
-//   two/second (a blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross:
-//   texels the kernel may use)
+//   id[31:0], descriptor indices, base[1:0] (the sampler's base filter: routes the footprint to
+//   the filter or the edge datapath), format[1:0] (the texture's texel format, for unpack),
+//   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), two/second (a
+//   blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross: texels the
+//   kernel may use)
+// (address_gen::footprint writes every field into the reused output register: keep it in step.)
 struct LevelTag {
   uint32_t id = 0;
+  RequestTag req;
+  BaseFilter base = BaseFilter::Linear;
+  TexelFormat format = TexelFormat::RGBA8;
   uint32_t fu = 0, fv = 0;
   int blend = 0;
   bool two = false, second = false;

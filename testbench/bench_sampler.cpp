@@ -76,8 +76,8 @@ const Workload& workload() {
   return w;
 }
 
-SamplerConfig config(const char* filter, const char* kernel = "catmull-rom") {
-  SamplerConfig c;
+SamplerDescriptor config(const char* filter, const char* kernel = "catmull-rom") {
+  SamplerDescriptor c;
   c.mode = filter_mode_from_name(filter);
   c.kernel = kernel;
   return c;

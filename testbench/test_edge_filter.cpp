@@ -107,7 +107,7 @@ TEST(EdgeFilter, SmoothLightMapStaysCloseToBilinear) {
       const auto c = static_cast<uint8_t>(std::lround(255 * v));
       t.levels[0].at(x, y) = {c, static_cast<uint8_t>(c / 2 + 60), static_cast<uint8_t>(255 - c), 255};
     }
-  SamplerConfig cb, ce;
+  SamplerDescriptor cb, ce;
   cb.mode = {BaseFilter::Linear, MipMode::None};
   ce.mode = {BaseFilter::EdgePreserving, MipMode::None};
   cb.wrap_s = cb.wrap_t = ce.wrap_s = ce.wrap_t = WrapMode::ClampToEdge;

@@ -97,9 +97,9 @@ TEST(ErrorLines, ADeadlockIsOneSummaryLineNamingTheFileWithTheDump) {
 
 // D13: a 3 MB garbage trace line and a 1 MB unknown scene key are not echoed whole.
 TEST(ErrorLines, HugeInputsAreQuotedShortly) {
-  std::istringstream trace(std::string(3 << 20, 'g') + "\n");
+  std::istringstream trace("0.5,0.5\n" + std::string(3 << 20, 'g') + ",1\n");
   const std::string t = input_error([&] { parse_trace(trace, "big.txt"); });
-  EXPECT_EQ(t, "big.txt:1: field 1 '" + std::string(57, 'g') + "...' is not a decimal number");
+  EXPECT_EQ(t, "big.txt:2: field 1 '" + std::string(57, 'g') + "...' is not a decimal number");
   const std::string scene = "{\"" + std::string(1 << 20, 'q') + "\": 1, \"meshes\": []}";
   const std::string s = input_error([&] { parse_scene(scene, "big.json"); });
   EXPECT_EQ(s, "big.json: unknown key '" + std::string(57, 'q') + "...'");
@@ -145,11 +145,12 @@ TEST(ErrorLines, JsonErrorsNameFilePositionAndKey) {
 // D11: every key checked, errors naming the file and the key, values spelled as in the file.
 TEST(ErrorLines, ConfigAndSceneValuesAreCheckedAndNamed) {
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"cache\": {\"ways\": 18446744073709551615}}", "c.json"); }),
-            "c.json: cache: 'ways' value 18446744073709551615 is out of range");
+            "c.json: 'cache.ways' value 18446744073709551615 is out of range");
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"cache\": {\"ways\": 2147483647}}", "c.json"); }),
-            "c.json: cache ways 2147483647 must be in 1..4096");
-  EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"shape_policy\": \"round\"}", "c.json"); }),
-            "c.json: shape_policy: unknown kernel-shape policy 'round' (expected static, cache-aware or full-cross)");
+            "c.json: 'cache.ways' 2147483647 must be in 1..1024");
+  // The kernel-shape policy is a sampler register now (edge_shape): a bad one names file and key.
+  EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"shape_policy\": \"static\"}", "c.json"); }),
+            "c.json: unknown key 'shape_policy'");
   const std::string mesh =
       R"({"meshes": [{"primitive": "cube", "texture": {"procedural": "checkerboard", "size": 8}, "sampler": SAMPLER}]})";
   const auto with_sampler = [&](const std::string& s) {

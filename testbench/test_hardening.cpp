@@ -17,8 +17,10 @@
 #include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/texture_memory.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/unit_config.hpp"
 #include "rtl/unit_watchdog.hpp"
 
 namespace tfu {
@@ -37,45 +39,62 @@ std::string input_error(F&& f) {
 // ---- D1: cache configuration ----
 
 TEST(CacheConfig, ExtremeValuesAreRangeErrorsNotCrashes) {
-  using rtl::TexelCacheConfig;
-  const auto err = [](auto set) {
-    TexelCacheConfig c;
-    set(c);
-    return input_error([&] { c.validate(); });
-  };
   constexpr int kMax = std::numeric_limits<int>::max(), kMin = std::numeric_limits<int>::min();
-  // ways * line_bytes would wrap an int (SIGSEGV / SIGFPE before): now a range error.
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.ways = kMax; }), "cache ways 2147483647 must be in 1..4096");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.ways = 67108864; }), "cache ways 67108864 must be in 1..4096");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.ways = kMin; }), "cache ways -2147483648 must be in 1..4096");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.capacity_bytes = kMax; }), "cache capacity 2147483647 bytes must be in 1..16777216");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.capacity_bytes = 0; }), "cache capacity 0 bytes must be in 1..16777216");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.block = kMax; }), "cache block 2147483647 must be 4 or 8 texels");
-  EXPECT_EQ(err([](TexelCacheConfig& c) { c.banks = kMin; }), "cache banks -2147483648 must be 1 or 4");
-  // The largest valid cache: 16 MiB, 4096 ways of 256-byte lines (16 sets) constructs and works.
-  TexelCacheConfig big;
-  big.block = 8;
-  big.capacity_bytes = rtl::kMaxCacheBytes;
-  big.ways = rtl::kMaxCacheWays;
+  // Through the unit's field table (rtl/unit_config.cpp): every field range-checked before use.
+  const auto err = [](auto set) {
+    rtl::UnitConfig u;
+    set(u);
+    return input_error([&] { u.validate(); });
+  };
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMax; }), "cache.ways: 2147483647 must be in 1..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = 67108864; }), "cache.ways: 67108864 must be in 1..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMin; }), "cache.ways: -2147483648 must be in 1..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.capacity_bytes = kMax; }),
+            "cache.capacity_bytes: 2147483647 must be in 64..1073741824");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.capacity_bytes = 0; }), "cache.capacity_bytes: 0 must be in 64..1073741824");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.line_bytes = kMax; }), "cache.line_bytes: 2147483647 must be one of 64, 256, 1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.banks = kMin; }), "cache.banks: -2147483648 must be one of 1, 4");
+  // The cache's own check forms its products in 64 bits: ways x line bytes = 2^41 does not wrap
+  // (it was `line_bytes() * ways` as int: SIGSEGV / SIGFPE).
+  rtl::TexelCacheConfig c;
+  c.line_bytes = 1024;
+  c.ways = kMax;
+  EXPECT_EQ(input_error([&] { c.validate(); }),
+            "cache capacity 16384 bytes is below one set (2147483647 ways x 1024-byte lines)");
+  c.ways = 67108864;  // x 64 = 2^32: wrapped to 0 as int (SIGFPE in the modulo)
+  c.line_bytes = 64;
+  EXPECT_EQ(input_error([&] { c.validate(); }), "cache capacity 16384 bytes is below one set (67108864 ways x 64-byte lines)");
+  // The largest valid cache: 1 GiB, 1024 ways of 1024-byte lines (1024 sets) constructs and works.
+  rtl::UnitConfig big;
+  big.cache.line_bytes = 1024;
+  big.cache.capacity_bytes = 1 << 30;
+  big.cache.ways = 1024;
   EXPECT_NO_THROW(big.validate());
-  EXPECT_EQ(big.sets(), 16);
-  rtl::TexelCache cache(big, {64}, {64});
+  EXPECT_EQ(big.cache.sets(), 1024);
+  Texture t;
+  t.tile_bytes = 1024;
+  t.levels.emplace_back(64, 64);
+  TextureMemory mem;
+  rtl::TexelCache cache(big.cache, {place_texture(mem, t, 1024)});
   rtl::TapGrid g{};
   g.cols = g.rows = 2;
   g.x = {0, 1, 0, 0};
   g.y = {0, 1, 0, 0};
   g.used = rtl::square_cells(2, 2);
-  EXPECT_EQ(cache.access(0, g).misses, 1);
-  EXPECT_EQ(cache.access(0, g).hits, 1);
+  EXPECT_EQ(cache.access(0, 0, g).misses, 1);  // one 16x16 tile holds all four taps
+  EXPECT_EQ(cache.access(0, 0, g).hits, 1);
 }
 
 TEST(CacheConfig, UnitConfigFieldsAreRangeChecked) {
   const auto err = [](const std::string& json) { return input_error([&] { rtl::unit_config_from_json(json, "u.json"); }); };
-  EXPECT_EQ(err(R"({"memory": {"latency": 1000001}})"), "u.json: memory latency 1000001 must be in 0..1000000 cycles");
-  EXPECT_EQ(err(R"({"memory": {"bytes_per_cycle": 0}})"), "u.json: memory bytes_per_cycle 0 must be in 1..65536");
-  EXPECT_EQ(err(R"({"channel_depth": 65})"), "u.json: channel_depth 65 must be in 1..64");
-  EXPECT_EQ(err(R"({"miss_fifo_depth": -9223372036854775808})"), "u.json: 'miss_fifo_depth' value -9223372036854775808 is out of range");
-  EXPECT_EQ(err(R"({"cache": {"capacity_bytes": 1.5}})"), "u.json: cache: 'capacity_bytes' must be an integer");
+  EXPECT_EQ(err(R"({"memory": {"latency": 1000001}})"), "u.json: 'memory.latency' 1000001 must be in 0..1000000");
+  EXPECT_EQ(err(R"({"memory": {"bytes_per_cycle": 0}})"), "u.json: 'memory.bytes_per_cycle' 0 must be in 1..65536");
+  EXPECT_EQ(err(R"({"channel_depth": 65})"), "u.json: 'channel_depth' 65 must be in 1..64");
+  EXPECT_EQ(err(R"({"cache": {"ways": 2147483648}})"), "u.json: 'cache.ways' 2147483648 must be in 1..1024");
+  EXPECT_EQ(err(R"({"cache": {"ways": 18446744073709551615}})"), "u.json: 'cache.ways' value 18446744073709551615 is out of range");
+  EXPECT_EQ(err(R"({"miss_fifo_depth": -9223372036854775808})"), "u.json: 'miss_fifo_depth' -9223372036854775808 must be in 1..1024");
+  EXPECT_EQ(err(R"({"cache": {"capacity_bytes": 1.5}})"), "u.json: 'cache.capacity_bytes' must be an integer");
+  EXPECT_EQ(err(R"({"memory": {"latency": 1e400}})"), "u.json: line 1, column 28: at memory.latency: number overflow parsing '1e400'");
 }
 
 // ---- D2: the rasterizer ----
@@ -189,27 +208,31 @@ TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
   ro.trace = true;
   const RenderResult render = render_scene(s, ro);
   struct Case {
-    int block, capacity, ways, latency, bandwidth, fifo;
+    int line_bytes, capacity, ways, latency, bandwidth, fifo;
   };
-  for (const Case& c : {Case{4, 64, 1, 5000, 16, 128}, Case{8, 256, 1, 1000000, 1, 1}, Case{8, 256, 1, 1000000, 1, 1024},
-                        Case{4, 16384, 4, 1000000, 65536, 1}}) {
-    rtl::UnitConfig u;
-    u.cache.block = c.block;
-    u.cache.capacity_bytes = c.capacity;
-    u.cache.ways = c.ways;
-    u.memory.latency = c.latency;
-    u.memory.bytes_per_cycle = c.bandwidth;
-    u.miss_fifo_depth = c.fifo;
-    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING", "CUBIC"}) {
-      rtl::SceneSimOptions so;
-      so.filter = filter_mode_from_name(mode);
-      const std::string what = fmt::format("{} B={} cap={} lat={} bw={} fifo={}", mode, c.block, c.capacity, c.latency,
+  for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING", "CUBIC"}) {
+    ro.filter = filter_mode_from_name(mode);
+    ro.line_bytes = 64;
+    const RenderResult render64 = render_scene(s, ro);
+    ro.line_bytes = 256;
+    const RenderResult render256 = render_scene(s, ro);
+    for (const Case& c : {Case{64, 64, 1, 5000, 16, 128}, Case{256, 256, 1, 1000000, 1, 1}, Case{256, 256, 1, 1000000, 1, 1024},
+                          Case{64, 16384, 4, 1000000, 65536, 1}}) {
+      rtl::UnitConfig u;
+      u.cache.line_bytes = c.line_bytes;
+      u.cache.capacity_bytes = c.capacity;
+      u.cache.ways = c.ways;
+      u.memory.latency = c.latency;
+      u.memory.bytes_per_cycle = c.bandwidth;
+      u.miss_fifo_depth = c.fifo;
+      ASSERT_NO_THROW(u.validate());
+      const std::string what = fmt::format("{} line={} cap={} lat={} bw={} fifo={}", mode, c.line_bytes, c.capacity, c.latency,
                                            c.bandwidth, c.fifo);
       rtl::SceneSimResult r;
-      ASSERT_NO_THROW(r = rtl::simulate_scene(s, render, u, so)) << what;
+      ASSERT_NO_THROW(r = rtl::simulate_scene(s, c.line_bytes == 64 ? render64 : render256, u, {})) << what;
       EXPECT_TRUE(r.mismatch.empty()) << what;
-      // Every miss waits at least the latency: the run is long, but far below the old total cap
-      // (requests x 4096 + 10^6) only where the latency is small.
+      // Every miss waits at least the latency: the run is long (the old total cap, requests x 4096
+      // + 10^6, and the old fixed 100,000-cycle watchdog failed the 10^6-cycle latencies).
       EXPECT_GE(r.cycles, static_cast<uint64_t>(c.latency)) << what;
     }
   }
@@ -217,7 +240,7 @@ TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
 
 TEST(Watchdog, TheLimitCoversTheSlowestMemoryResponse) {
   rtl::UnitConfig u;
-  u.cache.block = 8;
+  u.cache.line_bytes = 256;
   u.memory.latency = 1000000;
   u.memory.bytes_per_cycle = 1;
   // 16 lines of 256 bytes at one byte per cycle plus the latency, twice, plus slack.
@@ -244,22 +267,20 @@ TEST(Units, TheImageDependsOnUnitsOnlyUnderCacheAwareShapes) {
   bool cache_aware_differs = false;
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC", "NEAREST_MIPMAP_NEAREST", "EDGE_PRESERVING", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
     ro.filter = filter_mode_from_name(mode);
-    const RenderResult render = render_scene(s, ro);
-    for (rtl::ShapePolicy p : {rtl::ShapePolicy::Static, rtl::ShapePolicy::FullCross, rtl::ShapePolicy::CacheAware}) {
-      rtl::UnitConfig u;
-      u.shape_policy = p;
+    for (const char* policy : {"static", "cross", "cache-aware"}) {
+      ro.sampler_overrides["edge_shape"] = policy;
+      const RenderResult render = render_scene(s, ro);
       rtl::SceneSimOptions so;
-      so.filter = ro.filter;
       so.units = 1;
-      const rtl::SceneSimResult one = rtl::simulate_scene(s, render, u, so);
+      const rtl::SceneSimResult one = rtl::simulate_scene(s, render, rtl::UnitConfig{}, so);
       so.units = 3;
-      const rtl::SceneSimResult three = rtl::simulate_scene(s, render, u, so);
+      const rtl::SceneSimResult three = rtl::simulate_scene(s, render, rtl::UnitConfig{}, so);
       EXPECT_TRUE(one.mismatch.empty() && three.mismatch.empty()) << mode;
       const bool same = one.image.texels == three.image.texels;
-      if (p == rtl::ShapePolicy::CacheAware && ro.filter->base == BaseFilter::EdgePreserving) {
+      if (std::string(policy) == "cache-aware" && ro.filter->base == BaseFilter::EdgePreserving) {
         cache_aware_differs = cache_aware_differs || !same;
       } else {
-        EXPECT_TRUE(same) << mode << " " << rtl::shape_policy_name(p);
+        EXPECT_TRUE(same) << mode << " " << policy;
       }
     }
   }
@@ -279,7 +300,7 @@ TEST(Sampler, IdealPathTakesNonFiniteCoordinates) {
   Procedural p = make_procedural("checkerboard", 16);
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
   for (const char* mode : {"NEAREST", "LINEAR_MIPMAP_LINEAR", "CUBIC", "EDGE_PRESERVING"}) {
-    SamplerConfig cfg;
+    SamplerDescriptor cfg;
     cfg.mode = filter_mode_from_name(mode);
     const Sampler smp(p.texture, cfg);
     EXPECT_EQ(smp.sample_ideal(nan, 0.3, 0), smp.sample_ideal(0, 0.3, 0)) << mode;

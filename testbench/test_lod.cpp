@@ -131,7 +131,7 @@ Texture flat_chain(int size) {
 
 TEST(Lod, GlLevelSelection) {
   const Texture tex = flat_chain(16);  // levels 0..4
-  SamplerConfig c;
+  SamplerDescriptor c;
   c.mode = {BaseFilter::Linear, MipMode::Nearest};
   const Sampler n(tex, c);
   EXPECT_TRUE(n.lod_info(0).magnify);

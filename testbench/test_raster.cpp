@@ -107,9 +107,12 @@ Scene plane_scene(int w, int h) {
   Mesh m = make_quad_mesh({glm::dvec3{-1, 0, -2}, {1, 0, -2}, {1, 0, -6}, {-1, 0, -6}},
                           {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   Procedural p = make_procedural("checkerboard", 64);
-  m.texture = std::make_shared<const Texture>(std::move(p.texture));
-  m.truth = p.eval;
-  m.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  TextureStage st;
+  st.spec = {"proc:checkerboard:64", {{"mipmaps", "none"}}};
+  st.texture = std::make_shared<const Texture>(std::move(p.texture));
+  st.truth = p.eval;
+  st.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  m.stages.push_back(std::move(st));
   s.meshes.push_back(std::move(m));
   return s;
 }
@@ -197,8 +200,7 @@ TEST(Raster, DegenerateTrianglesInASceneAreSkipped) {
   // A quad whose corners are collinear in world space: both triangles have zero area.
   Mesh flat = make_quad_mesh({glm::dvec3{-1, 0.5, -3}, {0, 0.5, -3}, {1, 0.5, -3}, {2, 0.5, -3}},
                              {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
-  flat.texture = scene.meshes[0].texture;
-  flat.sampler = scene.meshes[0].sampler;
+  flat.stages = scene.meshes[0].stages;
   scene.meshes = {flat};
   const RenderResult r = render_scene(scene, RenderOptions{});
   EXPECT_EQ(r.stats.triangles, 2);

@@ -25,8 +25,8 @@ Texture one_level(int w, int h, const std::vector<Rgba8>& texels, TexelFormat f 
   return t;
 }
 
-SamplerConfig cfg(BaseFilter b, MipMode m = MipMode::None, WrapMode w = WrapMode::Repeat) {
-  SamplerConfig c;
+SamplerDescriptor cfg(BaseFilter b, MipMode m = MipMode::None, WrapMode w = WrapMode::Repeat) {
+  SamplerDescriptor c;
   c.mode = {b, m};
   c.wrap_s = c.wrap_t = w;
   return c;
@@ -73,7 +73,7 @@ TEST(Nearest, TexelSelectionAndWrap) {
   const Sampler mir(t, cfg(BaseFilter::Nearest, MipMode::None, WrapMode::MirroredRepeat));
   EXPECT_EQ(mir.sample(1.25f, 0.5f, kMag).r, 20);  // u = 2.5 -> i = 2 -> mirrored to 1
   EXPECT_EQ(mir.sample(1.75f, 0.5f, kMag).r, 10);
-  SamplerConfig b = cfg(BaseFilter::Nearest, MipMode::None, WrapMode::ClampToBorder);
+  SamplerDescriptor b = cfg(BaseFilter::Nearest, MipMode::None, WrapMode::ClampToBorder);
   b.border = {1, 2, 3, 4};
   const Sampler bor(t, b);
   EXPECT_EQ(bor.sample(1.25f, 0.5f, kMag), (Rgba8{1, 2, 3, 4}));
@@ -123,7 +123,7 @@ TEST(Cubic, CatmullRomHalfwayBetweenTexels) {
   EXPECT_EQ(s.sample(0.5f, 0.5f, kMag).r, 130);
   // With corner sampling entry 32 is exactly f = 1/2: 255 (9/16 - 1/16) = 127.5; 8-bit weights
   // (-16, 143, 143, -15 after the sum-preserving rounding) give 127 or 128.
-  SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::ClampToEdge);
+  SamplerDescriptor c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::ClampToEdge);
   c.cubic_rom.pos = SamplePos::Corner;
   const Sampler sc(t, c);
   EXPECT_NEAR(sc.sample(0.5f, 0.5f, kMag).r, 127.5, 0.5);
@@ -156,7 +156,7 @@ TEST(Properties, ConstantTextureGivesConstantInEveryMode) {
       for (const std::string& k : std::vector<std::string>{"catmull-rom", "bspline", "mitchell", "kaiser", "blackman"}) {
         if (m.base != BaseFilter::Cubic && k != "catmull-rom") continue;
         for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge}) {
-          SamplerConfig c = cfg(m.base, m.mip, w);
+          SamplerDescriptor c = cfg(m.base, m.mip, w);
           c.kernel = k;
           const Sampler s(t, c);
           for (int i = 0; i < 300; ++i) {
@@ -171,7 +171,7 @@ TEST(Properties, ConstantTextureGivesConstantInEveryMode) {
 TEST(Properties, InterpolatingKernelsReproduceTexelsAtCentres) {
   const Texture t = random_texture(8, 8, 5);
   for (const char* k : {"catmull-rom", "kaiser", "blackman"}) {
-    SamplerConfig c = cfg(BaseFilter::Cubic);
+    SamplerDescriptor c = cfg(BaseFilter::Cubic);
     c.kernel = k;
     c.cubic_rom.pos = SamplePos::Corner;  // entry 0 holds h(0): exact at f = 0
     const Sampler exact(t, c);
@@ -195,7 +195,7 @@ TEST(Properties, InterpolatingKernelsReproduceTexelsAtCentres) {
       const auto v = static_cast<uint8_t>(std::lround(127.5 + 100 * std::sin(0.3 * x) * std::cos(0.2 * y)));
       smooth.levels[0].at(x, y) = {v, static_cast<uint8_t>(255 - v), 128, 255};
     }
-  SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::MirroredRepeat);
+  SamplerDescriptor c = cfg(BaseFilter::Cubic, MipMode::None, WrapMode::MirroredRepeat);
   c.kernel = kBsplineInterp;
   c.cubic_rom.pos = SamplePos::Corner;
   const Sampler bi(smooth, c);
@@ -254,7 +254,7 @@ TEST(Properties, LinearFastPathEqualsGenericPath) {
   std::uniform_int_distribution<int32_t> lam(-512, 7 * 256);
   for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
     for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
-      SamplerConfig c = cfg(BaseFilter::Linear, m, w);
+      SamplerDescriptor c = cfg(BaseFilter::Linear, m, w);
       c.border = {9, 99, 199, 49};
       const Sampler s(t, c);
       for (int i = 0; i < 5000; ++i) {
@@ -274,7 +274,7 @@ TEST(Properties, CubicWeightMemoChangesNothing) {
   std::uniform_int_distribution<int32_t> lam(-512, 6 * 256);
   for (const char* k : {"catmull-rom", "bspline", "blackman", "bspline-interp"})
     for (SamplePos pos : {SamplePos::Centre, SamplePos::Corner}) {
-      SamplerConfig c = cfg(BaseFilter::Cubic, MipMode::Linear, WrapMode::MirroredRepeat);
+      SamplerDescriptor c = cfg(BaseFilter::Cubic, MipMode::Linear, WrapMode::MirroredRepeat);
       c.kernel = k;
       c.cubic_rom.pos = pos;
       c.cubic_rom.samples = 32;
@@ -374,7 +374,7 @@ TEST(Properties, BatchEqualsSample) {
       for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
         for (WrapMode ws : wraps)
           for (WrapMode wt : wraps) {
-            SamplerConfig c = cfg(b, m);
+            SamplerDescriptor c = cfg(b, m);
             c.wrap_s = ws;
             c.wrap_t = wt;
             c.border = {9, 99, 199, 49};
@@ -410,14 +410,14 @@ TEST(Properties, FastPathsEqualGenericPath) {
   struct Case {
     BaseFilter base;
     const char* kernel;
-    EdgeShapePolicy shape;
+    EdgeShape shape;
   };
-  const Case cases[] = {{BaseFilter::Linear, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "bspline", EdgeShapePolicy::Cross},
-                        {BaseFilter::Cubic, "bspline-interp", EdgeShapePolicy::Cross},
-                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::Cross},
-                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShapePolicy::CacheBlock}};
+  const Case cases[] = {{BaseFilter::Linear, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "bspline", EdgeShape::Cross},
+                        {BaseFilter::Cubic, "bspline-interp", EdgeShape::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShape::Cross},
+                        {BaseFilter::EdgePreserving, "catmull-rom", EdgeShape::Static}};
   const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
   for (const auto& [w, h, f] : {std::tuple{32, 16, TexelFormat::RGBA8}, std::tuple{37, 21, TexelFormat::L8}}) {
     Texture t = random_texture(w, h, 17, f);
@@ -426,7 +426,7 @@ TEST(Properties, FastPathsEqualGenericPath) {
       for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
         for (WrapMode ws : wraps)
           for (WrapMode wt : wraps) {
-            SamplerConfig c = cfg(k.base, m);
+            SamplerDescriptor c = cfg(k.base, m);
             c.wrap_s = ws;
             c.wrap_t = wt;
             c.kernel = k.kernel;
@@ -460,11 +460,15 @@ TEST(Vs16, FiltersSignedNumerators) {
 
 TEST(Config, RejectsBadSettings) {
   const Texture t = random_texture(4, 4, 1);
-  SamplerConfig c = cfg(BaseFilter::Cubic);
+  SamplerDescriptor c = cfg(BaseFilter::Cubic);
   c.kernel = "no-such-kernel";
   EXPECT_THROW(Sampler(t, c), std::exception);
-  c = cfg(BaseFilter::EdgePreserving);
-  c.edge_cache_block = 3;
+  c = cfg(BaseFilter::Linear);
+  c.max_aniso = 17;
+  EXPECT_THROW(Sampler(t, c), std::exception);
+  c = cfg(BaseFilter::Linear);
+  c.lod.min_lod_q8 = 2 * 256;
+  c.lod.max_lod_q8 = 256;
   EXPECT_THROW(Sampler(t, c), std::exception);
   Texture big;
   big.levels.emplace_back(kMaxTextureSize + 1, 1);

@@ -82,7 +82,7 @@ TEST(Scene, WrongTypesAndValuesAreRejectedByName) {
 }
 
 TEST(Scene, EveryBuiltinSceneParsesAndRendersNonTrivially) {
-  const std::set<std::string> want{"magnified", "ground_plane", "text_quad", "object", "text_patch"};
+  const std::set<std::string> want{"magnified", "ground_plane", "text_quad", "object", "text_patch", "lightmapped"};
   EXPECT_EQ(std::set<std::string>(builtin_scene_names().begin(), builtin_scene_names().end()), want);
   for (const std::string& name : builtin_scene_names()) {
     Scene scene = load_scene(name);
@@ -120,19 +120,19 @@ TEST(Scene, LoadSceneFromNameOrPath) {
   EXPECT_EQ(s.name, "mine");
   EXPECT_EQ(s.width, 256);
   ASSERT_EQ(s.meshes.size(), 1u);
-  EXPECT_EQ(s.meshes[0].texture->width(), 64);
-  EXPECT_EQ(s.meshes[0].texture->levels.size(), 7u);  // a complete MIP chain 64 .. 1
-  EXPECT_EQ(s.meshes[0].sampler.mode, (FilterMode{BaseFilter::Cubic, MipMode::None}));
+  EXPECT_EQ(s.meshes[0].stages[0].texture->width(), 64);
+  EXPECT_EQ(s.meshes[0].stages[0].texture->levels.size(), 7u);  // a complete MIP chain 64 .. 1
+  EXPECT_EQ(s.meshes[0].stages[0].sampler.mode, (FilterMode{BaseFilter::Cubic, MipMode::None}));
   std::filesystem::remove_all(dir);
 }
 
-TEST(Scene, SamplerSettingsMapOntoSamplerConfig) {
+TEST(Scene, SamplerSettingsMapOntoSamplerDescriptor) {
   std::string mesh = kMinimalMesh;
   mesh.insert(mesh.size() - 1,
               R"(, "sampler": {"filter": "nearest_mipmap_nearest", "kernel": "bspline", "wrap_s": "mirrored-repeat",
                    "wrap_t": "clamp-to-edge", "lod_bias": -0.5})");
   const Scene s = parse_scene(scene_with_mesh(mesh), "s.json");
-  const SamplerConfig& c = s.meshes.at(0).sampler;
+  const SamplerDescriptor& c = s.meshes.at(0).stages.at(0).sampler;
   EXPECT_EQ(c.mode, (FilterMode{BaseFilter::Nearest, MipMode::Nearest}));
   EXPECT_EQ(c.kernel, "bspline");
   EXPECT_EQ(c.wrap_s, WrapMode::MirroredRepeat);

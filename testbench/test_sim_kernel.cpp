@@ -107,28 +107,6 @@ TEST(SimKernel, WatchdogStopsADeadlockWithAStateDump) {
   }
 }
 
-TEST(SimKernel, RegistersSwapInOneEdge) {
-  Simulator sim;
-  Reg<int> x(1), y(2);
-  struct Swap : Module {
-    Reg<int>& x;
-    Reg<int>& y;
-    Swap(Simulator& s, Reg<int>& a, Reg<int>& b) : Module(s, "swap"), x(a), y(b) {}
-    void evaluate() override {
-      x.d(y.q());
-      y.d(x.q());
-    }
-  } sw(sim, x, y);
-  sim.add_clocked(&x);
-  sim.add_clocked(&y);
-  sim.step();
-  EXPECT_EQ(x.q(), 2);
-  EXPECT_EQ(y.q(), 1);
-  sim.reset();
-  EXPECT_EQ(x.q(), 1);
-  EXPECT_EQ(sim.cycle(), 0u);
-}
-
 TEST(SimKernel, ChannelMisuseIsReported) {
   Channel<int> c("c", 1);
   c.push(1);

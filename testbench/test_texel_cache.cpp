@@ -1,5 +1,5 @@
-// texel_cache and memory_model: blocked line mapping, LRU, bank conflicts, configuration errors,
-// bandwidth and latency.
+// texel_cache and memory_model: line mapping by memory address (tiled and linear layouts, several
+// textures in one cache), LRU, bank conflicts, configuration errors, bandwidth and latency.
 #include <algorithm>
 #include <deque>
 #include <random>
@@ -8,21 +8,39 @@
 #include <gtest/gtest.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/texture_memory.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 
 namespace tfu::rtl {
 namespace {
 
+// B = 4: 64-byte lines (4x4 RGBA8 tiles); B = 8: 256-byte lines (8x8).
 TexelCacheConfig small(int block, int capacity, int ways, int banks = 4,
                        BankMapping mapping = BankMapping::TexelParity) {
   TexelCacheConfig c;
   c.bank_mapping = mapping;
-  c.block = block;
+  c.line_bytes = block * block * 4;
   c.capacity_bytes = capacity;
   c.ways = ways;
   c.banks = banks;
   return c;
+}
+
+// A w x h texture with `levels` levels placed in `mem` (one tile per line of `line_bytes`).
+TextureDescriptor placed(TextureMemory& mem, int w, int h, int levels, int line_bytes = 64,
+                         MemoryLayout layout = MemoryLayout::Tiled, TexelFormat f = TexelFormat::RGBA8) {
+  Texture t;
+  t.format = f;
+  t.layout = layout;
+  t.tile_bytes = line_bytes;
+  for (int l = 0; l < levels; ++l) t.levels.emplace_back(mip_extent(w, l), mip_extent(h, l));
+  return place_texture(mem, t, static_cast<uint64_t>(line_bytes));
+}
+// One texture in a fresh memory.
+std::vector<TextureDescriptor> one(int w, int h, int levels = 1, int line_bytes = 64) {
+  TextureMemory mem;
+  return {placed(mem, w, h, levels, line_bytes)};
 }
 
 // A full grid of the columns xs and rows ys (every tap reads the cache).
@@ -36,7 +54,7 @@ TapGrid grid(std::initializer_list<int> xs, std::initializer_list<int> ys) {
 TapGrid tap(int x, int y) { return grid({x}, {y}); }
 
 TEST(TexelCache, ConfigurationErrorsNameTheField) {
-  EXPECT_THROW(small(6, 4096, 2).validate(), InputError);   // B not 4 or 8
+  EXPECT_THROW(small(6, 4096 * 9, 2).validate(), InputError);  // 144-byte lines
   EXPECT_THROW(small(4, 32, 1).validate(), InputError);     // below one 64-byte line
   EXPECT_THROW(small(4, 4096, 0).validate(), InputError);   // zero ways
   EXPECT_THROW(small(4, 4096, 2, 0).validate(), InputError);  // zero banks
@@ -49,79 +67,116 @@ TEST(TexelCache, ConfigurationErrorsNameTheField) {
   }
 }
 
-TEST(TexelCache, BlockedLineNumbering) {
-  const TexelCache c(small(4, 4096, 2), {16, 8}, {16, 8});
-  EXPECT_EQ(c.line_of(0, 0, 0), 0u);
-  EXPECT_EQ(c.line_of(0, 3, 3), 0u);
-  EXPECT_EQ(c.line_of(0, 4, 0), 1u);
-  EXPECT_EQ(c.line_of(0, 0, 4), 4u);    // 4 blocks per row
-  EXPECT_EQ(c.line_of(1, 0, 0), 16u);   // level 1 starts after level 0's 16 lines
-  EXPECT_EQ(c.line_of(1, 7, 7), 19u);
+TEST(TexelCache, LinesAreMemoryAddresses) {
+  // A 16x16 RGBA8 texture with two levels at 0x1000, tiled 4x4: level 0 is 4 tile rows of 256
+  // bytes (lines 64..79), level 1 (8x8, 2 tiles = 128 bytes per tile row, pitch 256) at 0x1400.
+  const TexelCache c(small(4, 4096, 2), one(16, 16, 2));
+  EXPECT_EQ(c.line_of(0, 0, 0, 0), 0x1000u / 64);
+  EXPECT_EQ(c.line_of(0, 0, 3, 3), 64u);
+  EXPECT_EQ(c.line_of(0, 0, 4, 0), 65u);
+  EXPECT_EQ(c.line_of(0, 0, 0, 4), 68u);   // 4 tiles per row
+  EXPECT_EQ(c.line_of(0, 1, 0, 0), 80u);   // level 1 starts after level 0's 16 lines
+  EXPECT_EQ(c.line_of(0, 1, 7, 7), 85u);   // tile (1, 1): pitch 256 = 4 lines per tile row
+}
+
+// Property: the line of every texel is its byte address / line_bytes, for both layouts, both
+// texel sizes, every line size, odd level sizes, several textures in one memory.
+TEST(TexelCache, LineOfEveryTexelIsItsAddressOverTheLineSize) {
+  for (const int line : {64, 256, 1024})
+    for (const MemoryLayout layout : {MemoryLayout::Tiled, MemoryLayout::Linear}) {
+      TextureMemory mem;
+      std::vector<TextureDescriptor> d{placed(mem, 37, 11, 4, line, layout),
+                                       placed(mem, 50, 70, 3, line, layout, TexelFormat::L8)};
+      TexelCacheConfig cfg = small(4, 1 << 20, 4);
+      cfg.line_bytes = line;
+      const TexelCache c(cfg, d);
+      for (int t = 0; t < 2; ++t)
+        for (int l = 0; l < d[static_cast<size_t>(t)].levels; ++l)
+          for (int y = 0; y < d[static_cast<size_t>(t)].level_height(l); ++y)
+            for (int x = 0; x < d[static_cast<size_t>(t)].level_width(l); ++x)
+              ASSERT_EQ(c.line_of(t, l, x, y), d[static_cast<size_t>(t)].texel_address(l, x, y) / static_cast<uint64_t>(line))
+                  << line << " " << memory_layout_name(layout) << " " << t << " " << l << " " << x << "," << y;
+    }
+}
+
+TEST(TexelCache, TexturesShareTheCacheWithoutFlush) {
+  TextureMemory mem;
+  const std::vector<TextureDescriptor> d{placed(mem, 16, 16, 1), placed(mem, 16, 16, 1)};
+  TexelCache c(small(4, 4096, 4, 4, BankMapping::BlockParity), d);
+  EXPECT_EQ(c.access(0, 0, tap(5, 5)).misses, 1);
+  EXPECT_EQ(c.access(1, 0, tap(5, 5)).misses, 1);  // the same texel of another texture: another line
+  EXPECT_EQ(c.access(0, 0, tap(5, 5)).hits, 1);    // the first texture's line is still there
+  EXPECT_EQ(c.texture_hits(0), 1u);
+  EXPECT_EQ(c.texture_misses(1), 1u);
+  // A tiled texture whose tiles are not one line is refused, naming it.
+  TextureMemory m2;
+  const std::vector<TextureDescriptor> big{placed(m2, 16, 16, 1, 256)};
+  EXPECT_THROW(TexelCache(small(4, 4096, 4), big), InputError);
 }
 
 TEST(TexelCache, BilinearFootprintOneCycleCubicFour) {
-  TexelCache c(small(4, 4096, 2), {16}, {16});
+  TexelCache c(small(4, 4096, 2), one(16, 16));
   const TapGrid quad = grid({5, 6}, {6, 7});
-  FootprintResult r = c.access(0, quad);
+  FootprintResult r = c.access(0, 0, quad);
   EXPECT_EQ(r.cycles, 1);  // one texel per parity bank
   EXPECT_EQ(r.misses, 1);  // all in block (1, 1)
-  EXPECT_EQ(c.access(0, quad).hits, 1);
+  EXPECT_EQ(c.access(0, 0, quad).hits, 1);
   const TapGrid cubic = grid({4, 5, 6, 7}, {4, 5, 6, 7});
-  EXPECT_EQ(c.access(0, cubic).cycles, 4);  // 16 texels over 4 banks
-  TexelCache one_bank(small(4, 4096, 2, 1), {16}, {16});
-  EXPECT_EQ(one_bank.access(0, quad).cycles, 4);
+  EXPECT_EQ(c.access(0, 0, cubic).cycles, 4);  // 16 texels over 4 banks
+  TexelCache one_bank(small(4, 4096, 2, 1), one(16, 16));
+  EXPECT_EQ(one_bank.access(0, 0, quad).cycles, 4);
   // A footprint across a block corner touches four lines.
   const TapGrid corner = grid({3, 4}, {3, 4});
-  const FootprintResult rc = c.access(0, corner);
+  const FootprintResult rc = c.access(0, 0, corner);
   EXPECT_EQ(rc.misses + rc.hits, 4);
 }
 
 TEST(TexelCache, BlockParityBanksReadWholeLines) {
-  TexelCache c(small(4, 4096, 4, 4, BankMapping::BlockParity), {16}, {16});
+  TexelCache c(small(4, 4096, 4, 4, BankMapping::BlockParity), one(16, 16));
   const TapGrid cubic = grid({2, 3, 4, 5}, {2, 3, 4, 5});  // 4x4 over the corner of 4 blocks
-  EXPECT_EQ(c.access(0, cubic).cycles, 1);                   // one line from each bank
+  EXPECT_EQ(c.access(0, 0, cubic).cycles, 1);                   // one line from each bank
   TapGrid cross = grid({4, 5, 6, 7}, {4, 5, 6, 7});
   cross.used = cross_cells(lee_jen::kAllTexels);  // the 12-texel cross inside block (1, 1)
   EXPECT_EQ(cross.used, 0x6FF6);
-  EXPECT_EQ(c.access(0, cross).cycles, 1);
+  EXPECT_EQ(c.access(0, 0, cross).cycles, 1);
   // Blocks (0, 0) and (2, 0) share bank 0: two cycles.
-  EXPECT_EQ(c.access(0, grid({0, 8}, {0})).cycles, 2);
-  TexelCache one(small(4, 4096, 4, 1, BankMapping::BlockParity), {16}, {16});
-  EXPECT_EQ(one.access(0, cubic).cycles, 4);  // four lines through one port
-  EXPECT_EQ(one.access(0, cross).cycles, 1);
+  EXPECT_EQ(c.access(0, 0, grid({0, 8}, {0})).cycles, 2);
+  TexelCache c1(small(4, 4096, 4, 1, BankMapping::BlockParity), one(16, 16));
+  EXPECT_EQ(c1.access(0, 0, cubic).cycles, 4);  // four lines through one port
+  EXPECT_EQ(c1.access(0, 0, cross).cycles, 1);
 }
 
 TEST(TexelCache, ResidencyProbeDoesNotAllocate) {
-  TexelCache c(small(4, 4096, 2), {16}, {16});
-  EXPECT_FALSE(c.resident(0, 5, 5));
-  EXPECT_FALSE(c.resident(0, 5, 5));  // a probe does not allocate
-  c.access(0, tap(5, 5));
-  EXPECT_TRUE(c.resident(0, 4, 7));   // same block
-  EXPECT_FALSE(c.resident(0, 8, 5));
+  TexelCache c(small(4, 4096, 2), one(16, 16));
+  EXPECT_FALSE(c.resident(0, 0, 5, 5));
+  EXPECT_FALSE(c.resident(0, 0, 5, 5));  // a probe does not allocate
+  c.access(0, 0, tap(5, 5));
+  EXPECT_TRUE(c.resident(0, 0, 4, 7));   // same block
+  EXPECT_FALSE(c.resident(0, 0, 8, 5));
 }
 
 TEST(TexelCache, LruEvictsTheLeastRecentlyUsedWay) {
-  // Direct lines 0, 2, 4 all map to set 0 of a 2-set, 2-way cache.
-  TexelCache c(small(4, 256, 2), {64}, {4});  // 4 lines = 2 sets x 2 ways; 16 blocks in one row
+  // Blocks 0, 2, 4 (lines 64, 66, 68) all map to set 0 of a 2-set, 2-way cache.
+  TexelCache c(small(4, 256, 2), one(64, 4));  // 4 lines = 2 sets x 2 ways; 16 blocks in one row
   const auto at = [](int block) { return tap(4 * block, 0); };
-  EXPECT_EQ(c.access(0, at(0)).misses, 1);
-  EXPECT_EQ(c.access(0, at(2)).misses, 1);
-  EXPECT_EQ(c.access(0, at(0)).hits, 1);    // 0 becomes most recent
-  EXPECT_EQ(c.access(0, at(4)).misses, 1);  // evicts 2, the LRU
-  EXPECT_EQ(c.access(0, at(0)).hits, 1);
-  EXPECT_EQ(c.access(0, at(2)).misses, 1);
-  EXPECT_EQ(c.hits(0), 2u);
-  EXPECT_EQ(c.misses(0), 4u);
+  EXPECT_EQ(c.access(0, 0, at(0)).misses, 1);
+  EXPECT_EQ(c.access(0, 0, at(2)).misses, 1);
+  EXPECT_EQ(c.access(0, 0, at(0)).hits, 1);    // 0 becomes most recent
+  EXPECT_EQ(c.access(0, 0, at(4)).misses, 1);  // evicts 2, the LRU
+  EXPECT_EQ(c.access(0, 0, at(0)).hits, 1);
+  EXPECT_EQ(c.access(0, 0, at(2)).misses, 1);
+  EXPECT_EQ(c.level_hits(0), 2u);
+  EXPECT_EQ(c.level_misses(0), 4u);
 }
 
 TEST(TexelCache, ScanlineHitRateOfABlockedCache) {
   // Bilinear footprints along texel rows of a 64x64 texture: each 4x4 block is fetched once per
   // row of blocks when the cache holds a whole row of blocks (16 lines), so misses = 16 x 16.
-  TexelCache c(small(4, 64 * 64, 4), {64}, {64});
+  TexelCache c(small(4, 64 * 64, 4), one(64, 64));
   uint64_t misses = 0;
   for (int y = 0; y < 63; ++y)
     for (int x = 0; x < 63; ++x) {
-      misses += static_cast<uint64_t>(c.access(0, grid({x, x + 1}, {y, y + 1})).misses);
+      misses += static_cast<uint64_t>(c.access(0, 0, grid({x, x + 1}, {y, y + 1})).misses);
     }
   EXPECT_EQ(misses, 256u);
 }
@@ -130,7 +185,8 @@ TEST(TexelCache, ScanlineHitRateOfABlockedCache) {
 // (x[i], y[j]) of the used cells in row-major order, their distinct lines in order of first
 // appearance through an LRU list per set, and the bank cycles counted from distinct lines (block
 // parity) or distinct texels (texel parity). Random grids with repeated columns and rows (clamped
-// or wrapped runs), random used cells, two levels, both mappings, 1 or 4 banks, B = 4 and 8.
+// or wrapped runs), random used cells, two levels of two textures (one tiled, one linear), both
+// mappings, 1 or 4 banks, 64- and 256-byte lines.
 TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
   std::mt19937 rng(5);
   const std::vector<int> widths{40, 20}, heights{24, 12};
@@ -138,10 +194,15 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
     for (const int banks : {1, 4})
       for (const int block : {4, 8}) {
         const TexelCacheConfig cfg = small(block, 8 * block * block * 4, 2, banks, mapping);
-        TexelCache c(cfg, widths, heights);
+        TextureMemory mem;
+        const std::vector<TextureDescriptor> tex{placed(mem, 40, 24, 2, cfg.line_bytes),
+                                                 placed(mem, 40, 24, 2, cfg.line_bytes, MemoryLayout::Linear)};
+        TexelCache c(cfg, tex);
         std::vector<std::deque<uint64_t>> lru(static_cast<size_t>(cfg.sets()));  // front: most recent
         for (int n = 0; n < 3000; ++n) {
-          const int level = static_cast<int>(rng() % 2);
+          const int level = static_cast<int>(rng() % 2), t = static_cast<int>(rng() % 2);
+          // Line columns of `t`: tiles of `block` texels, or line_bytes / 4 texels of a row.
+          const int line_w = t == 0 ? block : cfg.line_bytes / 4, line_h = t == 0 ? block : 1;
           const int w = widths[static_cast<size_t>(level)], h = heights[static_cast<size_t>(level)];
           TapGrid g{};
           const bool quad = n % 4 == 0;  // a full 2x2 grid: the cache's LINEAR fast path
@@ -162,11 +223,11 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
           for (int cell = 0; cell < 16; ++cell) {
             if (!((g.used >> cell) & 1)) continue;
             const int x = g.x[static_cast<size_t>(cell & 3)], y = g.y[static_cast<size_t>(cell >> 2)];
-            const uint64_t line = c.line_of(level, x, y);
+            const uint64_t line = tex[static_cast<size_t>(t)].texel_address(level, x, y) / static_cast<uint64_t>(cfg.line_bytes);
             if (std::find(lines.begin(), lines.end(), line) == lines.end()) {
               lines.push_back(line);
               if (mapping == BankMapping::BlockParity)
-                ++nbank[banks == 4 ? static_cast<size_t>((x / block) % 2 + 2 * ((y / block) % 2)) : 0];
+                ++nbank[banks == 4 ? static_cast<size_t>((x / line_w) % 2 + 2 * ((y / line_h) % 2)) : 0];
             }
             if (mapping == BankMapping::TexelParity &&
                 std::find(texels.begin(), texels.end(), std::pair{x, y}) == texels.end()) {
@@ -188,7 +249,7 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
             }
             set.push_front(line);
           }
-          const FootprintResult r = c.access(level, g);
+          const FootprintResult r = c.access(t, level, g);
           ASSERT_EQ(r.hits, hits) << n;
           ASSERT_EQ(r.misses, static_cast<int>(missed.size())) << n;
           ASSERT_EQ(std::vector<uint64_t>(r.missed_lines.begin(), r.missed_lines.begin() + r.misses), missed) << n;
@@ -198,13 +259,15 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
 }
 
 TEST(MemoryModel, BandwidthAndLatency) {
-  MemoryModel m({100, 16});
-  EXPECT_EQ(m.read(0, 64), 104u);   // 4 cycles on the interface + 100 latency
-  EXPECT_EQ(m.read(0, 64), 108u);   // queued behind the first: outstanding misses overlap latency
-  EXPECT_EQ(m.read(500, 1), 601u);  // idle interface: 1 cycle + latency
+  MemoryModel m({100, 16}, 2);
+  EXPECT_EQ(m.read(0, 64, 0), 104u);   // 4 cycles on the interface + 100 latency
+  EXPECT_EQ(m.read(0, 64, 1), 108u);   // queued behind the first: outstanding misses overlap latency
+  EXPECT_EQ(m.read(500, 1, 1), 601u);  // idle interface: 1 cycle + latency
   EXPECT_EQ(m.bytes_read(), 129u);
+  EXPECT_EQ(m.texture_bytes(0), 64u);
+  EXPECT_EQ(m.texture_bytes(1), 65u);
   EXPECT_EQ(m.requests(), 3u);
-  EXPECT_THROW(MemoryModel({10, 0}), InputError);
+  EXPECT_THROW(MemoryModel({10, 0}, 1), InputError);
 }
 
 }  // namespace

@@ -1,17 +1,23 @@
-// Cycle model (rtl/) against the golden sampler, bit for bit: every scene x every filter mode x two
-// cache block sizes (the CI matrix of TFU-C), every kernel-shape policy, vs16x2, lod and grad
-// traces, every wrap mode; rates, latencies, the Lee & Jen bandwidth claim; the edge datapath's
+// Cycle model (rtl/) against the golden model, bit for bit: every scene x every filter mode x two
+// cache line sizes (the CI matrix of TFU-C), every kernel-shape policy, vs16x2, lod and grad
+// traces, every wrap mode; requests of several textures (formats, layouts) and samplers
+// interleaved at random; rates, latencies, the Lee & Jen bandwidth claim; the edge datapath's
 // blocks against the cmodel functions they implement; config and VCD.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
 #include <sstream>
 
 #include "cmodel/error.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/mipmap.hpp"
+#include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/edge_datapath.hpp"
+#include "rtl/golden_compare.hpp"
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
 
@@ -34,26 +40,47 @@ SceneTrace scene_trace(const std::string& name, int w, int h) {
   return st;
 }
 
+// A frame of one texture and one sampler, tiled for the unit's lines; the trace bound to it.
+struct OneTexture {
+  Frame frame;
+  Trace trace;
+};
+OneTexture one_texture(const Texture& tex, const SamplerDescriptor& cfg, Trace tr, const UnitConfig& u) {
+  FrameBuilder b(u.cache.line_bytes);
+  b.add_texture(std::make_shared<const Texture>(tex), {"test", {}});
+  b.add_sampler(cfg);
+  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
+  bind_requests(b, tr);
+  return {b.finish(), std::move(tr)};
+}
+
+// Checks every output of a run against the golden model.
+void expect_golden(const Frame& frame, const Trace& tr, const UnitOutput& got, const std::string& what) {
+  ASSERT_EQ(got.pixels.size(), tr.requests.size()) << what;
+  const GoldenUnit golden(frame);
+  const std::string mismatch = first_mismatch(tr, golden_outputs(golden, tr, got), got);
+  EXPECT_TRUE(mismatch.empty()) << what << ": " << mismatch;
+}
+
+UnitOutput run_one(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
+                   std::ostream* vcd = nullptr) {
+  const OneTexture one = one_texture(tex, cfg, tr, u);
+  return run_unit(one.frame, one.trace, u, vcd);
+}
+
 // Runs the unit and checks every pixel against the golden model; returns the run.
-UnitOutput run_and_compare(const Texture& tex, const SamplerConfig& cfg, const Trace& tr, const UnitConfig& u,
+UnitOutput run_and_compare(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
                            const std::string& what) {
-  UnitOutput got = run_unit(tex, cfg, tr, u);
-  const Sampler golden(tex, golden_sampler_config(cfg, u));
-  const std::vector<int32_t> lam = trace_lambdas(tr, tex.width(), tex.height());
-  EXPECT_EQ(got.pixels.size(), tr.requests.size()) << what;
-  for (size_t i = 0; i < tr.requests.size() && i < got.pixels.size(); ++i) {
-    const Rgba8 want = golden_pixel(golden, u, got, tr.requests[i], lam[i], i);
-    if (got.pixels[i] != want) {
-      ADD_FAILURE() << what << ": request " << i << " at cycle " << got.response_cycle[i];
-      break;
-    }
-  }
+  const OneTexture one = one_texture(tex, cfg, tr, u);
+  UnitOutput got = run_unit(one.frame, one.trace, u);
+  expect_golden(one.frame, one.trace, got, what);
   return got;
 }
 
+// B = 4: 64-byte lines (4x4 RGBA8 tiles); B = 8: 256-byte lines (8x8).
 UnitConfig small_cache(int block) {
   UnitConfig u;
-  u.cache.block = block;
+  u.cache.line_bytes = block * block * 4;
   u.cache.capacity_bytes = 8192;
   u.cache.ways = 2;
   return u;
@@ -67,10 +94,10 @@ TEST_P(EveryModeAndBlock, BitExactAgainstGolden) {
   const Mesh& mesh = st.scene.meshes.front();
   for (const FilterMode& m : all_filter_modes())
     for (int block : {4, 8}) {
-      SamplerConfig cfg = mesh.sampler;
+      SamplerDescriptor cfg = mesh.stages[0].sampler;
       cfg.mode = m;
       const UnitOutput got =
-          run_and_compare(*mesh.texture, cfg, st.trace, small_cache(block),
+          run_and_compare(*mesh.stages[0].texture, cfg, st.trace, small_cache(block),
                           fmt::format("{} {} B={}", GetParam(), filter_mode_name(m), block));
       EXPECT_GT(got.stats.counter("cache_line_misses"), 0u);
     }
@@ -83,21 +110,21 @@ TEST(TfuUnit, EveryShapePolicyAndBankMapping) {
   const SceneTrace st = scene_trace("text_quad", 64, 48);
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* mode : {"EDGE_PRESERVING", "EDGE_PRESERVING_MIPMAP_LINEAR"})
-    for (ShapePolicy p : {ShapePolicy::Static, ShapePolicy::CacheAware, ShapePolicy::FullCross})
+    for (EdgeShape p : {EdgeShape::Static, EdgeShape::CacheAware, EdgeShape::Cross})
       for (BankMapping b : {BankMapping::TexelParity, BankMapping::BlockParity}) {
-        SamplerConfig cfg = mesh.sampler;
+        SamplerDescriptor cfg = mesh.stages[0].sampler;
         cfg.mode = filter_mode_from_name(mode);
+        cfg.edge_shape = p;
         UnitConfig u = small_cache(4);
-        u.shape_policy = p;
         u.cache.bank_mapping = b;
-        const UnitOutput got = run_and_compare(*mesh.texture, cfg, st.trace, u, fmt::format("{} {}", mode, shape_policy_name(p)));
+        const UnitOutput got = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, u, fmt::format("{} {}", mode, edge_shape_name(p)));
         const uint64_t cross = got.stats.counter("shape_cross"), t = got.stats.counter("shape_T"),
                        l = got.stats.counter("shape_L");
         EXPECT_GT(cross + t + l, 0u);
-        if (p == ShapePolicy::FullCross) {
+        if (p == EdgeShape::Cross) {
           EXPECT_EQ(t + l, 0u);
         }
-        if (p == ShapePolicy::Static) {
+        if (p == EdgeShape::Static) {
           EXPECT_GT(t + l, 0u);  // a 64x64 texture magnified: block edges are common
         }
       }
@@ -106,13 +133,13 @@ TEST(TfuUnit, EveryShapePolicyAndBankMapping) {
 TEST(TfuUnit, CacheAwareShapesContainTheStaticShapes) {
   const SceneTrace st = scene_trace("text_patch", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.stages[0].sampler;
   cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
-  UnitConfig u = small_cache(4);
-  u.shape_policy = ShapePolicy::CacheAware;
-  const UnitOutput aware = run_and_compare(*mesh.texture, cfg, st.trace, u, "cache-aware");
-  u.shape_policy = ShapePolicy::Static;
-  const UnitOutput fixed = run_unit(*mesh.texture, cfg, st.trace, u);
+  const UnitConfig u = small_cache(4);
+  cfg.edge_shape = EdgeShape::CacheAware;
+  const UnitOutput aware = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, u, "cache-aware");
+  cfg.edge_shape = EdgeShape::Static;
+  const UnitOutput fixed = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
   ASSERT_EQ(aware.edge_shapes.size(), fixed.edge_shapes.size());
   size_t wider = 0;
   for (size_t i = 0; i < aware.edge_shapes.size(); ++i) {
@@ -131,14 +158,15 @@ TEST(TfuUnit, StaticShapesReadExactlyTheBilinearBytes) {
     const SceneTrace st = scene_trace(scene, 64, 48);
     const Mesh& mesh = st.scene.meshes.front();
     for (int block : {4, 8}) {
-      UnitConfig u = small_cache(block);
-      SamplerConfig cfg = mesh.sampler;
+      const UnitConfig u = small_cache(block);
+      SamplerDescriptor cfg = mesh.stages[0].sampler;
       cfg.mode = filter_mode_from_name("LINEAR");
-      const uint64_t bilinear = run_unit(*mesh.texture, cfg, st.trace, u).stats.counter("memory_bytes");
+      const uint64_t bilinear = run_one(*mesh.stages[0].texture, cfg, st.trace, u).stats.counter("memory_bytes");
       cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
-      const uint64_t edge = run_unit(*mesh.texture, cfg, st.trace, u).stats.counter("memory_bytes");
-      u.shape_policy = ShapePolicy::FullCross;
-      const uint64_t full = run_unit(*mesh.texture, cfg, st.trace, u).stats.counter("memory_bytes");
+      cfg.edge_shape = EdgeShape::Static;
+      const uint64_t edge = run_one(*mesh.stages[0].texture, cfg, st.trace, u).stats.counter("memory_bytes");
+      cfg.edge_shape = EdgeShape::Cross;
+      const uint64_t full = run_one(*mesh.stages[0].texture, cfg, st.trace, u).stats.counter("memory_bytes");
       EXPECT_EQ(edge, bilinear) << scene << " B=" << block;
       // Full-cross fetches the neighbouring blocks' lines; on a magnified texture (text_quad) the
       // cache keeps them until the bilinear footprint needs them anyway, on the minified plane not.
@@ -156,11 +184,11 @@ TEST(TfuUnit, BitExactForEveryWrapModeAndFilterFamily) {
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR", "NEAREST"})
     for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
-      SamplerConfig cfg = mesh.sampler;
+      SamplerDescriptor cfg = mesh.stages[0].sampler;
       cfg.mode = filter_mode_from_name(mode);
       cfg.wrap_s = cfg.wrap_t = w;
       cfg.border = {10, 200, 30, 255};
-      run_and_compare(*mesh.texture, cfg, st.trace, UnitConfig{}, fmt::format("{} {}", mode, wrap_mode_name(w)));
+      run_and_compare(*mesh.stages[0].texture, cfg, st.trace, UnitConfig{}, fmt::format("{} {}", mode, wrap_mode_name(w)));
     }
 }
 
@@ -168,12 +196,12 @@ TEST(TfuUnit, CubicKernelsRomReconstructionAndBsplineInterp) {
   const SceneTrace st = scene_trace("magnified", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* kernel : {"catmull-rom", "bspline", "mitchell", kBsplineInterp}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.stages[0].sampler;
     cfg.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
     cfg.kernel = kernel;
     for (RomRecon r : {RomRecon::Nearest, RomRecon::Linear}) {
       cfg.cubic_recon = r;
-      run_and_compare(*mesh.texture, cfg, st.trace, UnitConfig{}, kernel);
+      run_and_compare(*mesh.stages[0].texture, cfg, st.trace, UnitConfig{}, kernel);
     }
   }
 }
@@ -190,7 +218,7 @@ TEST(TfuUnit, Vs16x2Textures) {
   generate_mipmaps(tex, MipMethod::Box);
   const SceneTrace st = scene_trace("ground_plane", 48, 32);
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC", "EDGE_PRESERVING_MIPMAP_LINEAR", "NEAREST_MIPMAP_NEAREST"}) {
-    SamplerConfig cfg;
+    SamplerDescriptor cfg;
     cfg.mode = filter_mode_from_name(mode);
     run_and_compare(tex, cfg, st.trace, UnitConfig{}, mode);
   }
@@ -217,10 +245,10 @@ TEST(TfuUnit, LodAndGradTraces) {
     grad.requests.push_back(r);
   }
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_NEAREST", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.stages[0].sampler;
     cfg.mode = filter_mode_from_name(mode);
-    run_and_compare(*mesh.texture, cfg, lod, UnitConfig{}, fmt::format("lod {}", mode));
-    run_and_compare(*mesh.texture, cfg, grad, UnitConfig{}, fmt::format("grad {}", mode));
+    run_and_compare(*mesh.stages[0].texture, cfg, lod, UnitConfig{}, fmt::format("lod {}", mode));
+    run_and_compare(*mesh.stages[0].texture, cfg, grad, UnitConfig{}, fmt::format("grad {}", mode));
   }
 }
 
@@ -235,7 +263,7 @@ UnitConfig hot_cache() {
 
 // Clocks per pixel on hits: the trace twice through a cache that holds the whole texture, minus
 // the trace once (the second pass hits everywhere).
-double clocks_per_pixel_on_hits(const Texture& tex, const SamplerConfig& cfg, const Trace& tr, const UnitConfig& u,
+double clocks_per_pixel_on_hits(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
                                 const std::string& what) {
   Trace twice = tr;
   twice.requests.insert(twice.requests.end(), tr.requests.begin(), tr.requests.end());
@@ -246,11 +274,11 @@ double clocks_per_pixel_on_hits(const Texture& tex, const SamplerConfig& cfg, co
 TEST(TfuUnit, RatesOnHits) {
   const SceneTrace st = scene_trace("magnified", 64, 64);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.stages[0].sampler;
   UnitConfig u = hot_cache();
   const auto rate = [&](const char* mode, const UnitConfig& uc) {
     cfg.mode = filter_mode_from_name(mode);
-    return clocks_per_pixel_on_hits(*mesh.texture, cfg, st.trace, uc, mode);
+    return clocks_per_pixel_on_hits(*mesh.stages[0].texture, cfg, st.trace, uc, mode);
   };
   EXPECT_NEAR(rate("LINEAR", u), 1.0, 0.01);
   EXPECT_NEAR(rate("NEAREST", u), 1.0, 0.01);
@@ -279,12 +307,12 @@ TEST(TfuUnit, LatencyPerMode) {
   r.s = r.t = 6.0f / 64.0f;
   r.lod = -1.0f;
   one.requests.push_back(r);
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.stages[0].sampler;
   const auto latency = [&](const char* mode, int lanes) {
     cfg.mode = filter_mode_from_name(mode);
     UnitConfig u = hot_cache();
     u.filter_lanes = lanes;
-    const UnitOutput o = run_and_compare(*mesh.texture, cfg, one, u, mode);
+    const UnitOutput o = run_and_compare(*mesh.stages[0].texture, cfg, one, u, mode);
     EXPECT_EQ(o.stats.counter("cache_line_misses"), 1u) << mode;
     return o.stats.value("latency_max");
   };
@@ -303,16 +331,16 @@ TEST(TfuUnit, IdleSkippingChangesNothing) {
   const SceneTrace st = scene_trace("text_patch", 48, 32);
   const Mesh& mesh = st.scene.meshes.front();
   for (const char* mode : {"LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
-    SamplerConfig cfg = mesh.sampler;
+    SamplerDescriptor cfg = mesh.stages[0].sampler;
     cfg.mode = filter_mode_from_name(mode);
     UnitConfig u = small_cache(4);
     u.memory.latency = 300;  // memory-bound: long idle stretches
     u.memory.bytes_per_cycle = 4;
     u.miss_fifo_depth = 8;
     u.idle_skip = false;
-    const UnitOutput slow = run_unit(*mesh.texture, cfg, st.trace, u);
+    const UnitOutput slow = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
     u.idle_skip = true;
-    const UnitOutput fast = run_unit(*mesh.texture, cfg, st.trace, u);
+    const UnitOutput fast = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
     EXPECT_EQ(fast.pixels, slow.pixels) << mode;
     EXPECT_EQ(fast.response_cycle, slow.response_cycle) << mode;
     EXPECT_EQ(fast.cycles, slow.cycles) << mode;
@@ -340,15 +368,118 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
   }
 }
 
+// Requests to textures of every format and both layouts, through samplers of all 12 modes (and
+// bspline-interp, cache-aware edge shapes, every wrap mode), interleaved at random in one stream,
+// in quad, lod and grad traces: every output equals the golden model's, and the per-texture
+// statistics add up to the totals.
+TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
+  std::mt19937 rng(77);
+  const auto random_image = [&rng](int w, int h) {
+    Image img(w, h);
+    for (Rgba8& t : img.texels)
+      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+    return img;
+  };
+  std::vector<std::shared_ptr<Texture>> textures;
+  {
+    Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
+    generate_mipmaps(text, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(text)));
+    Texture lum = make_procedural("checkerboard", 32).texture;  // L8, linear rows
+    for (Rgba8& t : lum.levels[0].texels) t = {t.r, t.r, t.r, 255};
+    lum.format = TexelFormat::L8;
+    lum.layout = MemoryLayout::Linear;
+    generate_mipmaps(lum, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(lum)));
+    Texture npot;  // RGBA8 40 x 24, linear rows
+    npot.levels.push_back(random_image(40, 24));
+    npot.layout = MemoryLayout::Linear;
+    generate_mipmaps(npot, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(npot)));
+    Texture vs;  // two signed 16-bit channels, tiled
+    vs.format = TexelFormat::VS16X2;
+    vs.levels.push_back(random_image(32, 32));
+    generate_mipmaps(vs, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(vs)));
+  }
+  std::vector<SamplerDescriptor> samplers;
+  for (const FilterMode& m : all_filter_modes()) {
+    SamplerDescriptor s;
+    s.mode = m;
+    s.wrap_s = static_cast<WrapMode>(rng() % 4);
+    s.wrap_t = static_cast<WrapMode>(rng() % 4);
+    s.border = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), 255};
+    s.lod.bias_q8 = static_cast<int32_t>(rng() % 512) - 256;
+    s.edge_shape = static_cast<EdgeShape>(rng() % 3);
+    samplers.push_back(s);
+  }
+  SamplerDescriptor interp;
+  interp.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
+  interp.kernel = kBsplineInterp;
+  interp.wrap_s = WrapMode::MirroredRepeat;
+  samplers.push_back(interp);
+  for (const int line : {64, 256})
+    for (const TraceMode mode : {TraceMode::Quad, TraceMode::Lod, TraceMode::Grad}) {
+      FrameBuilder b(line);
+      for (const auto& t : textures) b.add_texture(t, {"test", {}});
+      for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+      Trace tr;
+      tr.mode = mode;
+      std::uniform_real_distribution<float> uni(-0.25f, 1.25f), lod(-2.0f, 7.0f), d(-0.08f, 0.08f);
+      const size_t per = mode == TraceMode::Quad ? 4 : 1;
+      for (int n = 0; n < 1200; ++n) {
+        TraceRequest r;
+        do {
+          r.texture = static_cast<uint16_t>(rng() % textures.size());
+          r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+        } while (textures[r.texture]->format == TexelFormat::VS16X2 && samplers[r.sampler].kernel == kBsplineInterp);
+        r.stage = static_cast<uint8_t>(rng() % 2);
+        const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+        for (size_t k = 0; k < per; ++k) {
+          r.s = s0 + static_cast<float>(k & 1) * step;
+          r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+          r.lod = lod(rng);
+          r.dsdx = d(rng), r.dtdx = d(rng), r.dsdy = d(rng), r.dtdy = d(rng);
+          tr.requests.push_back(r);
+        }
+      }
+      bind_requests(b, tr);
+      const Frame frame = b.finish();
+      UnitConfig u = small_cache(line == 64 ? 4 : 8);
+      const UnitOutput got = run_unit(frame, tr, u);
+      expect_golden(frame, tr, got, fmt::format("line {} {}", line, trace_mode_name(mode)));
+      // The per-texture and per-stage tables add up to the totals.
+      uint64_t requests = 0, bytes = 0, stage_bytes = 0, misses = 0;
+      for (const auto& [label, v] : got.stats.table("textures")->rows) {
+        requests += v[1];
+        misses += v[3];
+        bytes += v[4];
+      }
+      for (const auto& [label, v] : got.stats.table("stages")->rows) stage_bytes += v[4];
+      EXPECT_EQ(requests, tr.requests.size());
+      EXPECT_EQ(misses, got.stats.counter("cache_line_misses"));
+      EXPECT_EQ(bytes, got.stats.counter("memory_bytes"));
+      EXPECT_EQ(stage_bytes, got.stats.counter("memory_bytes"));
+      EXPECT_GE(got.stats.table("textures")->rows.size(), 5u);  // four textures and a coefficient texture
+    }
+}
+
 TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
   UnitConfig c;
-  c.cache.block = 8;
+  c.cache.line_bytes = 256;
   c.cache.capacity_bytes = 32768;
   c.cache.bank_mapping = BankMapping::TexelParity;
   c.filter_lanes = 4;
-  c.shape_policy = ShapePolicy::CacheAware;
   const UnitConfig back = unit_config_from_json(unit_config_to_json(c), "cfg");
+  EXPECT_EQ(back, c);
   EXPECT_EQ(unit_config_to_json(back), unit_config_to_json(c));
+  // Every field of the table appears in the JSON, and the JSON of the defaults reads back to them.
+  const std::string j = unit_config_to_json(UnitConfig{});
+  for (const UnitField& f : unit_config_fields()) {
+    const std::string key = f.key;
+    EXPECT_NE(j.find("\"" + key.substr(key.rfind('.') + 1) + "\""), std::string::npos) << key;
+  }
+  EXPECT_EQ(unit_config_from_json(j, "defaults"), UnitConfig{});
   const auto error = [](const std::string& text) {
     try {
       unit_config_from_json(text, "c.json");
@@ -357,23 +488,37 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error("{\"cache\": {\"block\": 6}}").find("block 6"), std::string::npos);
-  EXPECT_NE(error("{\"cache\": {\"capacity_bytes\": 32}}").find("capacity 32"), std::string::npos);
-  EXPECT_NE(error("{\"cache\": {\"banks\": 0}}").find("banks 0"), std::string::npos);
-  EXPECT_NE(error("{\"cache\": {\"size\": 1}}").find("unknown key 'size'"), std::string::npos);
-  EXPECT_NE(error("{\"shape_policy\": \"round\"}").find("round"), std::string::npos);
-  EXPECT_NE(error("{\"filter_lanes\": 3}").find("filter_lanes 3"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"line_bytes\": 6}}").find("c.json: 'cache.line_bytes' 6 must be one of 64, 256, 1024"),
+            std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"capacity_bytes\": 32}}").find("'cache.capacity_bytes' 32 must be in"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"capacity_bytes\": 1000}}").find("not a whole number"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"banks\": 0}}").find("'cache.banks' 0"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"size\": 1}}").find("unknown key 'cache.size'"), std::string::npos);
+  EXPECT_NE(error("{\"shape_policy\": \"static\"}").find("unknown key 'shape_policy'"), std::string::npos);
+  EXPECT_NE(error("{\"filter_lanes\": 3}").find("'filter_lanes' 3"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"ways\": 18446744073709551615}}").find("out of range"), std::string::npos);
+  EXPECT_NE(error("{\"cache\": {\"bank_mapping\": \"odd\"}}").find("'odd' is not one of texel-parity, block-parity"),
+            std::string::npos);
   EXPECT_NE(error("{\"cache\": ").find("malformed"), std::string::npos);
   EXPECT_NE(error("[1]").find("object"), std::string::npos);
+}
+
+TEST(Docs, CycleModelShowsTheConfigFields) {
+  std::ifstream f(std::string(TFU_DOCS_DIR) + "/cycle-model.md");
+  ASSERT_TRUE(f.good());
+  std::stringstream ss;
+  ss << f.rdbuf();
+  EXPECT_NE(ss.str().find(unit_config_markdown()), std::string::npos)
+      << "docs/cycle-model.md is stale: paste `tfu sim --config-fields` between the generated markers";
 }
 
 TEST(TfuUnit, VcdDumpsEveryChannel) {
   const SceneTrace st = scene_trace("magnified", 16, 16);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.stages[0].sampler;
   cfg.mode = filter_mode_from_name("EDGE_PRESERVING");
   std::ostringstream vcd;
-  const UnitOutput o = run_unit(*mesh.texture, cfg, st.trace, UnitConfig{}, &vcd);
+  const UnitOutput o = run_one(*mesh.stages[0].texture, cfg, st.trace, UnitConfig{}, &vcd);
   const std::string v = vcd.str();
   for (const char* sig : {"$scope module tfu", "edge_s1", "texel_cache", "$enddefinitions", "valid", "ready"})
     EXPECT_NE(v.find(sig), std::string::npos) << sig;
@@ -383,13 +528,19 @@ TEST(TfuUnit, VcdDumpsEveryChannel) {
 TEST(TfuUnit, ErrorsAreInputErrors) {
   const SceneTrace st = scene_trace("magnified", 16, 16);
   const Mesh& mesh = st.scene.meshes.front();
-  SamplerConfig cfg = mesh.sampler;
+  SamplerDescriptor cfg = mesh.stages[0].sampler;
   UnitConfig bad;
-  bad.cache.block = 5;
-  EXPECT_THROW(run_unit(*mesh.texture, cfg, st.trace, bad), InputError);
+  bad.cache.line_bytes = 5;
+  EXPECT_THROW(run_one(*mesh.stages[0].texture, cfg, st.trace, bad), InputError);
   Trace odd = st.trace;
   odd.requests.pop_back();
-  EXPECT_THROW(run_unit(*mesh.texture, cfg, odd, UnitConfig{}), InputError);
+  EXPECT_THROW(run_one(*mesh.stages[0].texture, cfg, odd, UnitConfig{}), InputError);
+  // A frame tiled for other lines, a request naming an unbound descriptor.
+  const OneTexture one = one_texture(*mesh.stages[0].texture, cfg, st.trace, UnitConfig{});
+  EXPECT_THROW(run_unit(one.frame, one.trace, small_cache(8)), InputError);
+  Trace stray = one.trace;
+  stray.requests[4].texture = 7;
+  EXPECT_THROW(run_unit(one.frame, stray, UnitConfig{}), InputError);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 //
 // writes into OUTDIR:
 //   tfu_tile_rom.sv   interleaved tile-weight ROM (Hadwiger 2002 Sec. 2, dissertation Fig. 3.10) of
-//                     the default CUBIC configuration (SamplerConfig: catmull-rom, R = 64, b = 8,
+//                     the default CUBIC configuration (SamplerDescriptor: catmull-rom, R = 64, b = 8,
 //                     centre sampling, sum-preserving rounding): `always_comb case`, one row of T
 //                     sign-magnitude words (rom_dump.hpp layout) per address
 //   tfu_log2_rom.sv   the LOD unit's 512 x 9-bit log2 ROM (lod.hpp log2_rom()), `always_comb case`
@@ -63,7 +63,7 @@ std::string tile_rom_sv(const tfu::TileWeightRom& rom) {
   s += fmt::format(
       "// Interleaved tile-weight ROM (Hadwiger et al. 2002 Sec. 2; Hadwiger 2004 Sec. 3.1, Fig. 3.10):\n"
       "// kernel {}, R = {} entries, b = {} magnitude bits, centre sampling, sum-preserving rounding\n"
-      "// (cmodel/weight_rom.hpp TileWeightRom, the default CUBIC ROM of SamplerConfig).\n"
+      "// (cmodel/weight_rom.hpp TileWeightRom, the default CUBIC ROM of SamplerDescriptor).\n"
       "// Ports:\n"
       "//   addr [{}:0]  ROM address (TileWeightRom::nearest_address of the fraction)\n"
       "//   row  [{}:0] the T = {} taps of that address; tap t (texel offset m = {} + t) in bits\n"
@@ -180,7 +180,7 @@ int main(int argc, char** argv) {
     }
     const fs::path out = argv[1];
     fs::create_directories(out);
-    const tfu::SamplerConfig cfg;  // the default CUBIC configuration
+    const tfu::SamplerDescriptor cfg;  // the default CUBIC configuration
     const tfu::TileWeightRom rom(tfu::FilterKernel::by_name(cfg.kernel), cfg.cubic_rom);
     if (rom.taps() != 4) throw std::runtime_error("the SV cubic datapath expects 4 taps per axis");
     write_if_changed(out / "tfu_tile_rom.sv", tile_rom_sv(rom));

@@ -8,12 +8,46 @@
 
 namespace tfu::sim {
 
-void Stats::write_json(std::ostream& os) const {
-  nlohmann::json j;
+std::string Stats::json_text() const {
+  nlohmann::json j = nlohmann::json::object();
   for (const auto& [k, v] : counters_) j["counters"][k] = v;
   for (const auto& [k, v] : values_) j["values"][k] = v;
   for (const auto& [k, v] : histograms_) j["histograms"][k] = v;
-  os << j.dump(2) << '\n';
+  for (const auto& [k, t] : tables_) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& [label, values] : t.rows) {
+      nlohmann::json row;
+      row["name"] = label;
+      for (size_t c = 0; c < t.columns.size() && c < values.size(); ++c) row[t.columns[c]] = values[c];
+      rows.push_back(row);
+    }
+    j["tables"][k] = rows;
+  }
+  return j.dump(2);
+}
+
+void Stats::write_json(std::ostream& os) const { os << json_text() << '\n'; }
+
+void Stats::merge(const Stats& from, bool add_counters) {
+  if (add_counters)
+    for (const auto& [k, v] : from.counters_) counters_[k] += v;
+  for (const auto& [k, h] : from.histograms_) {
+    auto& into = histograms_[k];
+    if (into.size() < h.size()) into.resize(h.size());
+    for (size_t i = 0; i < h.size(); ++i) into[i] += h[i];
+  }
+  for (const auto& [k, t] : from.tables_) {
+    Table& into = tables_[k];
+    if (into.columns.empty()) into.columns = t.columns;
+    for (const auto& [label, values] : t.rows) {
+      auto it = std::find_if(into.rows.begin(), into.rows.end(), [&label = label](const auto& r) { return r.first == label; });
+      if (it == into.rows.end()) {
+        into.rows.emplace_back(label, values);
+      } else {
+        for (size_t c = 0; c < values.size() && c < it->second.size(); ++c) it->second[c] += values[c];
+      }
+    }
+  }
 }
 
 Module::Module(Simulator& sim, std::string name, Module* parent) : sim_(sim), name_(std::move(name)), parent_(parent) {

@@ -2,9 +2,9 @@
 // C++ (FIELD-NOTES: the real SystemC kernel measured ~10x slower for the same pipeline).
 //
 // Two-phase clocking. Every cycle the simulator calls evaluate() on every module, then commit() on
-// every clocked element. evaluate() may read only committed state (Reg::q, Channel::front/can_*)
-// and may write only next state (Reg::d, Channel::push/pop), so the order in which modules are
-// evaluated cannot change any result (tested by evaluating in forward and reverse order).
+// every channel. evaluate() may read of other blocks only committed channel state (front, can_*)
+// and may write only next state (push, pop), so the order in which modules are evaluated cannot
+// change any result (tested by evaluating in forward and reverse order).
 //
 // Channels are FIFOs with skid buffering: can_push() looks at the committed occupancy, so the
 // ready signal is registered and never forms a combinational path across stages. A depth of 2
@@ -37,20 +37,10 @@ class Clocked {
   virtual void reset() = 0;  // synchronous reset: back to the reset value at the next edge
 };
 
-// A register: q() is the value since the last edge, d() sets the value for the next edge
-// (default: hold). Width is documented at the declaration site (T is chosen wide enough).
-template <typename T>
-class Reg : public Clocked {
- public:
-  explicit Reg(T reset_value = T{}) : reset_(reset_value), q_(reset_value), d_(reset_value) {}
-  const T& q() const { return q_; }
-  void d(const T& v) { d_ = v; }
-  void commit() override { q_ = d_; }
-  void reset() override { q_ = d_ = reset_; }
-
- private:
-  T reset_, q_, d_;
-};
+// Blocks talk only through channels: what one block produces for another travels in a channel,
+// whose valid/ready and payload change only at the edge (commit). A block's own state (the pixel it
+// holds, the cache's miss FIFO, its counters) is read and written by that block's evaluate() alone,
+// so it needs no second phase: no other block can observe it within a cycle.
 
 // The occupancy state every channel shares, whatever its payload: the simulator commits all
 // channels in one loop without a virtual call per channel (commit_state() is inline).
@@ -143,9 +133,14 @@ class Fifo {
   size_t head_ = 0, count_ = 0;
 };
 
-// Named counters and histograms, written as JSON.
+// Named counters, values, histograms and tables (rows of counters under a label, e.g. one row per
+// texture), written as JSON.
 class Stats {
  public:
+  struct Table {
+    std::vector<std::string> columns;
+    std::vector<std::pair<std::string, std::vector<uint64_t>>> rows;  // label, one counter per column
+  };
   void add(const std::string& name, uint64_t n = 1) { counters_[name] += n; }
   void set(const std::string& name, double v) { values_[name] = v; }
   void sample(const std::string& histogram, size_t bucket) {
@@ -167,12 +162,22 @@ class Stats {
     return it == counters_.end() ? 0 : it->second;
   }
   const std::map<std::string, uint64_t>& counters() const { return counters_; }
+  void set_table(const std::string& name, Table t) { tables_[name] = std::move(t); }
+  const Table* table(const std::string& name) const {
+    const auto it = tables_.find(name);
+    return it == tables_.end() ? nullptr : &it->second;
+  }
+  // Adds `from`'s counters, histograms and table rows (rows with equal labels summed) into this.
+  void merge(const Stats& from, bool add_counters = true);
   void write_json(std::ostream& os) const;
+  // The same as a JSON object (to embed in a larger document).
+  std::string json_text() const;
 
  private:
   std::map<std::string, uint64_t> counters_;
   std::map<std::string, double> values_;
   std::map<std::string, std::vector<uint64_t>> histograms_;
+  std::map<std::string, Table> tables_;
 };
 
 class Simulator;

@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
-#include "cmodel/output_files.hpp"
 #include "cmodel/mipmap.hpp"
+#include "cmodel/output_files.hpp"
 #include "sim/tfu/commands.hpp"
-#include "sim/tfu/sampler_options.hpp"
 
 namespace tfu::cli {
 namespace {
@@ -30,10 +30,7 @@ void run(const MipmapOptions& o) {
   std::error_code ec;
   if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
     throw InputError(fmt::format("--out '{}' exists and is not a directory", quote_input(o.out)));
-  TextureOptions to;
-  to.texture = o.texture;
-  to.mipmaps = "none";
-  Texture tex = load_texture_from_options(to);
+  Texture tex = *load_texture_spec({o.texture, {{"mipmaps", "none"}}}, "--texture").texture;
   generate_mipmaps(tex, method, o.alpha);
   // Every level file reserved before any is written (cmodel/output_files.hpp): nothing is
   // half-overwritten, and a failed run leaves no files and no new directory.

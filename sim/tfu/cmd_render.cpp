@@ -1,5 +1,6 @@
 // tfu render: draw a scene (built-in or JSON file) through the golden sampler; optionally write the
-// quad request trace and the supersampled analytic ground truth (docs/renderer.md).
+// quad request trace and the supersampled analytic ground truth (docs/renderer.md). Scenes named
+// oa:MAP[:SPAWN] are single-stage previews of OpenArena levels (docs/real-frames.md).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,8 +11,12 @@
 #include "cmodel/error.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/parallel.hpp"
+#include "cmodel/q3_archives.hpp"
+#include "cmodel/q3_scene.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_frame.hpp"
+#include "cmodel/scene_source.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 
@@ -22,6 +27,7 @@ struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out;
+  std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   bool ideal = false, force = false, list = false;
   int threads = 0;
   int width = 0, height = 0;  // 0: the scene's size
@@ -35,6 +41,19 @@ void list_scenes(std::ostream& os) {
   }
 }
 
+// The levels of the game data, as oa:MAP scene names (or why there are none).
+void list_levels(std::ostream& os, const std::string& game_dir) {
+  const std::string dir = q3::openarena_dir(game_dir);
+  try {
+    const q3::GameArchives archives(dir);
+    const auto names = archives.level_names();
+    os << fmt::format("\nOpenArena levels in {} ({}, as --scene oa:MAP[:SPAWN]):\n", dir, names.size());
+    for (const std::string& n : names) os << q3::kLevelScenePrefix << n << '\n';
+  } catch (const InputError& e) {
+    os << fmt::format("\nNo OpenArena levels: {}\n", e.what());
+  }
+}
+
 void check_size_override(const char* option, int v) {
   if (v < 0 || v > kMaxRenderSize) throw InputError(fmt::format("{} must be in 0..{} (0: the scene's), got {}", option, kMaxRenderSize, v));
 }
@@ -42,14 +61,14 @@ void check_size_override(const char* option, int v) {
 void run(const RenderCliOptions& o) {
   if (o.list) {
     list_scenes(std::cout);
+    list_levels(std::cout, o.game_dir);
     return;
   }
   checked_thread_count("--threads", o.threads, true);
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
-  Scene scene = load_scene(o.scene);
-  if (o.width > 0) scene.width = o.width;
-  if (o.height > 0) scene.height = o.height;
+  const bool level_scene = q3::is_level_scene(o.scene);
+  const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir});
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);
@@ -67,7 +86,7 @@ void run(const RenderCliOptions& o) {
 
   const RenderResult r = render_scene(scene, ro);
   image_file.write_image(r.image);
-  if (trace_file) write_trace(trace_file->stream(), r.trace);
+  if (trace_file) write_trace(trace_file->stream(), loadable_trace(r.frame->frame, r.trace));
   if (truth_file) truth_file->write_image(r.truth);
   outputs.commit();
   std::cout << out << '\n';
@@ -76,6 +95,7 @@ void run(const RenderCliOptions& o) {
   std::cerr << fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels\n",
                            scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
                            r.stats.clipped_away, r.stats.quads, r.stats.pixels);
+  if (level_scene) std::cerr << "tfu render: " << scene.description << '\n';
 }
 
 }  // namespace
@@ -84,8 +104,13 @@ void register_render(CLI::App& app) {
   auto o = std::make_shared<RenderCliOptions>();
   auto* cmd = app.add_subcommand(
       "render", "Render a scene through the golden sampler (2x2 quads, quad-derivative LOD); optional trace and ground truth");
-  cmd->add_option("--scene", o->scene, "Built-in scene name (see --list) or a scene JSON file")->capture_default_str();
-  cmd->add_option("--filter", o->filter, "Override every mesh's filter (e.g. linear_mipmap_linear, cubic, edge_preserving)");
+  cmd->add_option("--scene", o->scene, "Built-in scene name (see --list), a scene JSON file, or oa:MAP[:SPAWN] (an OpenArena level)")
+      ->capture_default_str();
+  cmd->add_option("--game-dir", o->game_dir,
+                  fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
+                              q3::kDefaultOpenArenaDir));
+  cmd->add_option("--filter", o->filter,
+                  "Override the filter of every mesh's base stage (e.g. trilinear, cubic, edge_preserving_mipmap_linear)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--truth-out", o->truth_out, "Also write the 8x8-supersampled analytic ground truth image");
@@ -94,7 +119,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--width", o->width, "Override the scene's output width (0: keep)");
   cmd->add_option("--height", o->height, "Override the scene's output height (0: keep)");
   cmd->add_flag("--force", o->force, "Overwrite existing output files");
-  cmd->add_flag("--list", o->list, "List the built-in scenes and exit");
+  cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
   cmd->callback([o] { run(*o); });
 }
 

@@ -72,17 +72,17 @@ RenderResult render(const Scene& s, std::optional<FilterMode> mode, bool ideal, 
   return render_scene(s, o);
 }
 
-// A copy of the scene whose textures use another MIP chain / sampler tweak.
+// A copy of the scene whose base textures use another MIP chain / sampler tweak.
 Scene with_mip_method(Scene s, MipMethod m, double alpha) {
   for (Mesh& mesh : s.meshes) {
-    auto t = std::make_shared<Texture>(*mesh.texture);
+    auto t = std::make_shared<Texture>(*mesh.stages[0].texture);
     generate_mipmaps(*t, m, alpha);
-    mesh.texture = t;
+    mesh.stages[0].texture = t;
   }
   return s;
 }
 Scene without_cubic_adaptation(Scene s) {
-  for (Mesh& mesh : s.meshes) mesh.sampler.cubic_level_adapt = false;
+  for (Mesh& mesh : s.meshes) mesh.stages[0].sampler.cubic_level_adapt = false;
   return s;
 }
 

@@ -1,14 +1,18 @@
-// tfu sample: run a request trace through the golden sampler (one r,g,b,a line per request), or
-// report what the LOD unit / meta MIP-map supplies per request (--query-lod).
+// tfu sample: run a request trace through the golden model (one r,g,b,a line per request), or
+// report what the LOD unit / meta MIP-map supplies per request (--query-lod). The trace's header
+// binds its textures and samplers (docs/traces.md), or the command line describes texture 0 and
+// sampler 0.
+#include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
-#include "cmodel/output_files.hpp"
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/lod.hpp"
-#include "cmodel/sampler.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
@@ -26,29 +30,36 @@ struct SampleOptions {
   bool ideal = false;
 };
 
-void run(const SampleOptions& o) {
+void run(const SampleOptions& o, const CLI::App& cmd) {
+  // Every output checked before any work (cmodel/output_files.hpp); written to a temporary, renamed
+  // into place by commit() only when complete.
   OutputFiles outputs(o.force);
   OutputFile* file = o.out == "-" ? nullptr : &outputs.add("--out", o.out);
-  const SamplerConfig cfg = sampler_config_from_options(o.smp);
-  const Trace tr = load_trace(o.requests);
-  const Texture tex = load_texture_from_options(o.tex);
-  const Sampler smp(tex, cfg);
-  const std::vector<int32_t> lam = trace_lambdas(tr, tex.width(), tex.height());
+  Trace tr = load_trace(o.requests);
+  const std::optional<TextureSpec> spec = texture_spec_given(cmd, o.tex);
+  int line_bytes = 64;  // tiles of --tile-bytes, if given (the static edge shapes follow them)
+  if (spec && spec->params.contains("tile_bytes")) {
+    const std::string& text = spec->params.at("tile_bytes");  // strtol, not atoi: no overflow on any text
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end != text.c_str() + text.size() || text.empty() || !valid_tile_bytes(static_cast<int>(std::clamp(v, 0L, 4096L))))
+      throw InputError(fmt::format("--tile-bytes '{}' must be 64, 256 or 1024", quote_input(text)));
+    line_bytes = static_cast<int>(v);
+  }
+  const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes);
+  const GoldenUnit golden(frame);
+  const std::vector<int32_t> lam = golden.lambdas(tr);
 
   std::ostream& os = file ? file->stream() : std::cout;
-  if (o.query_lod) {
-    os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
-    for (size_t i = 0; i < tr.requests.size(); ++i) {
+  if (o.query_lod) os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
+  for (size_t i = 0; i < tr.requests.size(); ++i) {
+    const TraceRequest& r = tr.requests[i];
+    const Sampler& smp = golden.sampler(r.texture, r.sampler);
+    if (o.query_lod) {
       const LodInfo li = smp.lod_info(lam[i]);
       os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0, li.level0,
                         li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale);
-    }
-    outputs.commit();
-    return;
-  }
-  for (size_t i = 0; i < tr.requests.size(); ++i) {
-    const TraceRequest& r = tr.requests[i];
-    if (o.ideal) {
+    } else if (o.ideal) {
       const auto v = smp.sample_ideal(r.s, r.t, lam[i] / 256.0);
       os << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f}\n", v[0], v[1], v[2], v[3]);
     } else {
@@ -58,8 +69,7 @@ void run(const SampleOptions& o) {
   }
   outputs.commit();
   if (file) {
-    std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(),
-                             trace_mode_name(tr.mode), o.out);
+    std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(), trace_mode_name(tr.mode), o.out);
   }
 }
 
@@ -68,7 +78,7 @@ void run(const SampleOptions& o) {
 void register_sample(CLI::App& app) {
   auto o = std::make_shared<SampleOptions>();
   CLI::App* cmd = app.add_subcommand("sample", "Filter a request trace with the golden reference sampler");
-  add_texture_options(*cmd, o->tex);
+  add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--requests", o->requests, "Request trace (docs/traces.md)")->required();
   cmd->add_option("--out", o->out, "Output: one r,g,b,a line per request ('-' = stdout)")->required();
@@ -76,7 +86,7 @@ void register_sample(CLI::App& app) {
   cmd->add_flag("--query-lod", o->query_lod,
                 "Write the LOD unit's report per request instead: lambda, magnify, levels, blend, level size, kernel scale");
   cmd->add_flag("--ideal", o->ideal, "Write the double-precision ideal result (channels as reals) instead");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] { run(*o, *cmd); });
 }
 
 }  // namespace tfu::cli

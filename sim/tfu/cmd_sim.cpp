@@ -1,8 +1,8 @@
-// tfu sim: run requests through the cycle model (rtl/) and the golden sampler, compare every output
+// tfu sim: run requests through the cycle model (rtl/) and the golden model, compare every output
 // bit for bit (exit 1 on the first mismatch, naming the request, both values and the cycle), and
-// report cycles, cache, memory, shape and latency statistics (docs/cycle-model.md).
+// report cycles, cache, memory, shape and latency statistics, per texture and per stage
+// (docs/cycle-model.md).
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -11,13 +11,16 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/output_files.hpp"
-#include "cmodel/lod.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/scene_source.hpp"
+#include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/unit_config.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
 
@@ -31,14 +34,37 @@ struct SimOptions {
   std::string requests;
   TextureOptions tex;
   SamplerOptions smp;
-  int width = 128, height = 96;  // scene render size for the trace
+  int width = 0, height = 0;  // 0: the scene's own size
+  std::string game_dir;       // OpenArena data for oa: scenes
   std::string config;
-  rtl::UnitConfig unit;
+  std::map<std::string, std::string> unit_flags;  // one per unit config field (the flags' storage)
   std::string shape_policy;
   int units = 1;
   std::string stats, out, vcd;
-  bool force = false, bench = false;
+  bool force = false, bench = false, config_fields = false;
 };
+
+// The unit configuration: the defaults, then --config, then the field flags given.
+rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
+  rtl::UnitConfig u;
+  if (!o.config.empty())
+    u = rtl::unit_config_from_json(read_input_file(o.config, "--config " + quoted_path(o.config), kMaxTextInputBytes),
+                                   quote_path(o.config));
+  for (const rtl::UnitField& f : rtl::unit_config_fields()) {
+    if (cmd.count(f.flag) == 0) continue;
+    try {
+      f.set_text(u, o.unit_flags.at(f.key));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", f.flag, e.what()));
+    }
+  }
+  try {
+    u.validate();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("unit configuration: {}", e.what()));
+  }
+  return u;
+}
 
 void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
   const uint64_t hits = st.counter("cache_line_hits"), misses = st.counter("cache_line_misses");
@@ -53,140 +79,141 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
   if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
     std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", st.counter("shape_cross"), st.counter("shape_T"),
                              st.counter("shape_L"));
+  for (const char* name : {"textures", "stages"}) {
+    const sim::Stats::Table* t = st.table(name);
+    if (!t || t->rows.empty()) continue;
+    std::cout << fmt::format("  per {}: requests, line hit rate, memory bytes\n", name == std::string("textures") ? "texture" : "stage");
+    for (const auto& [label, v] : t->rows) {
+      const uint64_t h = v[2], m = v[3];
+      std::cout << fmt::format("    {:<40} {:>10} {:>8.4f} {:>12}\n", label.size() > 40 ? label.substr(0, 37) + "..." : label,
+                               v[1], h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0, v[4]);
+    }
+  }
+}
+
+// A request trace through the unit and the golden model.
+// A golden-compare failure is returned in `mismatch` (the outputs are still written: they show it).
+sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, std::string& mismatch) {
+  if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
+  Trace trace = load_trace(o.requests);
+  if (!o.shape_policy.empty()) o.smp.values["edge_shape"] = o.shape_policy;
+  const Frame frame = frame_for_trace(cmd, o.tex, o.smp, trace, unit.cache.line_bytes);
+  const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, vcd);
+  const GoldenUnit golden(frame);
+  mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
+  if (!mismatch.empty()) return got.stats;
+  std::string modes;
+  for (const SamplerDescriptor& s : frame.regs.samplers) modes += (modes.empty() ? "" : ", ") + filter_mode_name(s.mode);
+  print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", modes, trace.requests.size(),
+                            o.requests, trace.requests.size()),
+                trace.requests.size(), got.cycles, got.stats);
+  return got.stats;
+}
+
+// A scene rendered by the golden model, its trace through the units.
+sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::ostream* vcd, OutputFile* out_file,
+                     std::string& mismatch) {
+  const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
+  if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
+    throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
+  const Scene scene = open_scene({name, o.width, o.height, o.game_dir});
+  RenderOptions ro;
+  ro.trace = true;
+  ro.line_bytes = unit.cache.line_bytes;
+  const Params given = sampler_params_given(cmd, o.smp);
+  if (given.contains("filter")) ro.filter = filter_mode_from_name(given.at("filter"));
+  if (!o.shape_policy.empty()) ro.sampler_overrides["edge_shape"] = o.shape_policy;
+  rtl::SceneSimOptions so;
+  so.units = o.units;
+  so.vcd = vcd;
+  if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
+  // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
+  // seconds, so that the figures do not depend on other work on the machine; the two alternate
+  // run by run, so that a slow spell of the (virtual) machine falls on both sides of the ratio.
+  const int runs = o.bench ? kBenchRuns : 1;
+  double render_secs = 1e300, wall = 0;
+  RenderResult render;
+  rtl::SceneSimResult res;
+  std::vector<double> pair_ratio;  // cycle model / golden LOD + sampler of each run (the same requests)
+  for (int run = 0; run < runs; ++run) {
+    const double tr = rtl::thread_cpu_seconds();
+    render = render_scene(scene, ro);
+    render_secs = std::min(render_secs, rtl::thread_cpu_seconds() - tr);
+    const auto t0 = std::chrono::steady_clock::now();
+    rtl::SceneSimResult r = rtl::simulate_scene(scene, render, unit, so);
+    if (run == 0) {
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      res = std::move(r);
+    } else {
+      res.cycle_seconds = std::min(res.cycle_seconds, r.cycle_seconds);
+      res.golden_seconds = std::min(res.golden_seconds, r.golden_seconds);
+    }
+    pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
+  }
+  std::sort(pair_ratio.begin(), pair_ratio.end());
+  if (out_file) out_file->write_image(res.image);
+  mismatch = res.mismatch;
+  if (!mismatch.empty()) return res.stats;
+  const std::string mode = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene filters");
+  print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
+                            res.requests, name, scene.width, scene.height, o.units, o.units == 1 ? "" : "s", res.requests),
+                res.requests, res.cycles, res.stats);
+  if (o.bench) {
+    const auto n = static_cast<double>(res.requests);
+    std::cout << fmt::format(
+        "  speed, one thread each, CPU seconds, best of {} runs, on the same {} requests:\n"
+        "    cycle model {:.3f} s = {:.2f} M simulated requests/s\n"
+        "    golden LOD + sampler {:.3f} s = {:.2f} M requests/s\n"
+        "    cost of cycle accuracy: cycle model / golden LOD + sampler = {:.2f}x (per run: median {:.2f}x, range {:.2f}-{:.2f}x)\n"
+        "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
+        "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
+        runs, res.requests, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
+        res.cycle_seconds / res.golden_seconds, pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back(),
+        render_secs, wall, o.units);
+  }
+  return res.stats;
 }
 
 void run(SimOptions& o, CLI::App& cmd) {
+  if (o.config_fields) {
+    std::cout << rtl::unit_config_markdown();
+    return;
+  }
   // Every output reserved before any work (cmodel/output_files.hpp); written at the end, or not at all.
   OutputFiles outputs(o.force);
   OutputFile* stats_file = o.stats.empty() ? nullptr : &outputs.add("--stats", o.stats);
   OutputFile* out_file = o.out.empty() ? nullptr : &outputs.add_image("--out", o.out);
   OutputFile* vcd_file = o.vcd.empty() ? nullptr : &outputs.add("--vcd", o.vcd);
-  if (!o.config.empty())
-    o.unit = rtl::unit_config_from_json(read_input_file(o.config, "--config " + quoted_path(o.config), kMaxTextInputBytes),
-                                        o.config);
-  // Command-line flags override the config file.
-  if (cmd.count("--block")) o.unit.cache.block = static_cast<int>(cmd.get_option("--block")->as<int>());
-  if (cmd.count("--cache-bytes")) o.unit.cache.capacity_bytes = cmd.get_option("--cache-bytes")->as<int>();
-  if (cmd.count("--ways")) o.unit.cache.ways = cmd.get_option("--ways")->as<int>();
-  if (cmd.count("--banks")) o.unit.cache.banks = cmd.get_option("--banks")->as<int>();
-  if (cmd.count("--latency")) o.unit.memory.latency = cmd.get_option("--latency")->as<int>();
-  if (cmd.count("--bandwidth")) o.unit.memory.bytes_per_cycle = cmd.get_option("--bandwidth")->as<int>();
-  if (cmd.count("--lanes")) o.unit.filter_lanes = cmd.get_option("--lanes")->as<int>();
-  if (cmd.count("--shape-policy")) o.unit.shape_policy = rtl::shape_policy_from_name(o.shape_policy);
-  o.unit.validate();
+  const rtl::UnitConfig unit = unit_config(o, cmd);
+  if (cmd.count("--shape-policy") > 0) {  // given, even empty, it must name a policy
+    try {
+      edge_shape_from_name(o.shape_policy);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--shape-policy: {}", e.what()));
+    }
+  }
   // Options that do not apply to this kind of run are errors, not silently ignored.
-  const auto given = [&cmd](const char* name) {
+  const auto given = [&cmd](const std::string& name) {
     const CLI::Option* opt = cmd.get_option_no_throw(name);
     return opt != nullptr && opt->count() > 0;
   };
-  for (const char* opt : {"--edge-shape", "--cache-block"})
-    if (given(opt))
-      throw InputError(fmt::format("{} does not apply to tfu sim: the unit's kernel-shape selector decides (--shape-policy, --block)", opt));
   if (!o.requests.empty()) {
-    for (const char* opt : {"--scene", "--width", "--height", "--units"})
+    for (const char* opt : {"--scene", "--width", "--height", "--units", "--game-dir"})
       if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
   } else {
-    for (const char* opt : {"--texture", "--format", "--mipmaps", "--alpha", "--kernel", "--wrap", "--wrap-s", "--wrap-t",
-                            "--border", "--lod-bias", "--min-lod", "--max-lod", "--rom-samples", "--rom-bits", "--rom-recon"})
-      if (given(opt))
-        throw InputError(fmt::format("{} applies to --requests runs; a scene's meshes carry their own textures and samplers "
-                                     "(only --filter overrides them)", opt));
+    if (given("--texture")) throw InputError("--texture applies to --requests runs; a scene's stages carry their own textures");
+    for (const char* key : texture_param_keys())
+      if (given(flag_of(key))) throw InputError(fmt::format("{} applies to --requests runs", flag_of(key)));
+    for (const SamplerParam& p : sampler_params())
+      if (given(flag_of(p.key)) && std::string(p.key) != "filter")
+        throw InputError(fmt::format("{} applies to --requests runs; a scene's stages carry their own samplers "
+                                     "(--filter and --shape-policy override the base stage's)", flag_of(p.key)));
+    if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
   std::ostream* vcd = vcd_file ? &vcd_file->stream() : nullptr;
-  sim::Stats stats;
-  std::string mismatch;  // a golden-compare failure: the outputs are still written (they show it)
-  if (!o.requests.empty()) {
-    if (o.tex.texture.empty()) throw InputError("--requests needs --texture");
-    if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
-    const Texture texture = load_texture_from_options(o.tex);
-    const SamplerConfig cfg = sampler_config_from_options(o.smp);
-    const Trace trace = load_trace(o.requests);
-    const rtl::UnitOutput got = rtl::run_unit(texture, cfg, trace, o.unit, vcd);
-    const Sampler golden(texture, rtl::golden_sampler_config(cfg, o.unit));
-    const std::vector<int32_t> lam = trace_lambdas(trace, texture.width(), texture.height());
-    for (size_t i = 0; i < trace.requests.size(); ++i) {
-      const TraceRequest& r = trace.requests[i];
-      const Rgba8 want = rtl::golden_pixel(golden, o.unit, got, r, lam[i], i), have = got.pixels[i];
-      if (want != have && mismatch.empty())
-        mismatch = fmt::format("request {} (s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
-                               i, r.s, r.t, got.response_cycle[i], have.r, have.g, have.b, have.a, want.r, want.g,
-                               want.b, want.a);
-    }
-    if (mismatch.empty())
-      print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", filter_mode_name(cfg.mode),
-                              trace.requests.size(), o.requests, trace.requests.size()),
-                  trace.requests.size(), got.cycles, got.stats);
-    stats = got.stats;
-  } else {
-    const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
-    Scene scene = load_scene(name);
-    if (o.width < 2 || o.height < 2 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
-      throw InputError(fmt::format("--width/--height must be in 2..{}", kMaxRenderSize));
-    scene.width = o.width;
-    scene.height = o.height;
-    RenderOptions ro;
-    ro.trace = true;
-    rtl::SceneSimOptions so;
-    if (cmd.count("--filter")) ro.filter = so.filter = filter_mode_from_name(o.smp.filter);
-    so.units = o.units;
-    so.vcd = vcd;
-    if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the cost-of-cycle-accuracy ratio
-    // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
-    // seconds, so that the figures do not depend on other work on the machine; the two alternate
-    // run by run, so that a slow spell of the (virtual) machine falls on both sides of the ratio.
-    // Each render is assigned over the previous result, which keeps the allocator's memory mapped
-    // as in consecutive renders (the simulation allocates in its own threads).
-    const int runs = o.bench ? kBenchRuns : 1;
-    double render_secs = 1e300, secs = 0;
-    RenderResult render;
-    rtl::SceneSimResult res;
-    std::vector<double> pair_ratio;  // cycle model / golden render of each run (adjacent in time)
-    for (int run = 0; run < runs; ++run) {
-      const double tr = rtl::thread_cpu_seconds();
-      render = render_scene(scene, ro);
-      const double this_render = rtl::thread_cpu_seconds() - tr;
-      render_secs = std::min(render_secs, this_render);
-      if (run == 0) {
-        const auto t0 = std::chrono::steady_clock::now();
-        res = rtl::simulate_scene(scene, render, o.unit, so);
-        secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        pair_ratio.push_back(res.cycle_seconds / this_render);
-      } else {
-        const rtl::SceneSimResult again = rtl::simulate_scene(scene, render, o.unit, so);
-        res.cycle_seconds = std::min(res.cycle_seconds, again.cycle_seconds);
-        res.golden_seconds = std::min(res.golden_seconds, again.golden_seconds);
-        pair_ratio.push_back(again.cycle_seconds / this_render);
-      }
-    }
-    std::sort(pair_ratio.begin(), pair_ratio.end());
-    mismatch = res.mismatch;
-    const std::string mode = so.filter ? filter_mode_name(*so.filter) : std::string("scene filters");
-    if (mismatch.empty())
-      print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
-                              res.requests, name, o.width, o.height, o.units, o.units == 1 ? "" : "s", res.requests),
-                  res.requests, res.cycles, res.stats);
-    if (o.bench && mismatch.empty()) {
-      const auto n = static_cast<double>(res.requests);
-      // The scene end to end: the rasterizer's share of the golden render (its time less the LOD +
-      // sampler time) is common to both paths; the cycle model replaces the LOD + sampler.
-      const double raster_secs = std::max(0.0, render_secs - res.golden_seconds);
-      const double scene_cycle_secs = raster_secs + res.cycle_seconds;
-      std::cout << fmt::format(
-          "  speed, one thread each, CPU seconds, best of {} runs: cycle model {:.3f} s = {:.2f} M simulated pixels/s\n"
-          "    golden LOD + sampler on the same requests {:.3f} s = {:.2f} M pixels/s: cycle model / golden sampling = {:.2f}x\n"
-          "    golden render of the scene (raster + LOD + sampler) {:.3f} s: cycle model / golden render = {:.2f}x\n"
-          "      (per run, render and simulation adjacent in time: median {:.2f}x, range {:.2f}-{:.2f}x)\n"
-          "    the scene end to end through the cycle model (raster + cycle model) {:.3f} s: / golden render = {:.2f}x\n"
-          "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
-          runs, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
-          res.cycle_seconds / res.golden_seconds, render_secs, res.cycle_seconds / render_secs, pair_ratio[pair_ratio.size() / 2], pair_ratio.front(),
-          pair_ratio.back(), scene_cycle_secs,
-          scene_cycle_secs / render_secs, secs,
-          o.units);
-    }
-    if (out_file) out_file->write_image(res.image);
-    stats = res.stats;
-  }
+  std::string mismatch;
+  const sim::Stats stats =
+      o.requests.empty() ? run_scene(o, cmd, unit, vcd, out_file, mismatch) : run_requests(o, cmd, unit, vcd, mismatch);
   if (stats_file) stats.write_json(stats_file->stream());
   outputs.commit();
   if (out_file) std::cout << "  image -> " << o.out << '\n';
@@ -204,22 +231,25 @@ struct ResultsOptions {
 
 struct ResultRow {
   std::string scene, mode, policy;
-  int block = 4;
+  int line_bytes = 64;
   double cycles_per_pixel = 0, hit_rate = 0, bytes_per_pixel = 0;
   uint64_t bytes = 0, stall_miss = 0, cross = 0, t = 0, l = 0;
 };
 
-ResultRow measure(const Scene& scene, const RenderResult& render, const std::string& scene_name, FilterMode mode,
-                  rtl::ShapePolicy policy, int block) {
+// One scene in one mode (the base stages' filter) with one edge-shape policy and line size.
+ResultRow measure(const Scene& scene, const std::string& scene_name, FilterMode mode, EdgeShape policy, int line_bytes) {
+  RenderOptions ro;
+  ro.trace = true;
+  ro.filter = mode;
+  ro.line_bytes = line_bytes;
+  ro.sampler_overrides["edge_shape"] = edge_shape_name(policy);
+  const RenderResult render = render_scene(scene, ro);
   rtl::UnitConfig u;
-  u.cache.block = block;
-  u.shape_policy = policy;
-  rtl::SceneSimOptions so;
-  so.filter = mode;
-  const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, u, so);
+  u.cache.line_bytes = line_bytes;
+  const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, u, {});
   if (!r.mismatch.empty()) throw CheckFailed(r.mismatch);
-  ResultRow row{scene_name, filter_mode_name(mode), mode.base == BaseFilter::EdgePreserving ? rtl::shape_policy_name(policy) : "",
-                block};
+  ResultRow row{scene_name, filter_mode_name(mode), mode.base == BaseFilter::EdgePreserving ? edge_shape_name(policy) : "",
+                line_bytes};
   const auto n = static_cast<double>(r.requests);
   row.cycles_per_pixel = static_cast<double>(r.cycles) / n;
   const uint64_t h = r.stats.counter("cache_line_hits"), m = r.stats.counter("cache_line_misses");
@@ -247,43 +277,37 @@ void run_results(const ResultsOptions& o) {
     Scene scene = load_scene(name);
     scene.width = o.width;
     scene.height = o.height;
-    RenderOptions ro;
-    ro.trace = true;
     for (const FilterMode& m : all_filter_modes()) {
-      ro.filter = m;
-      const RenderResult render = render_scene(scene, ro);
       if (m.base == BaseFilter::EdgePreserving) {
-        for (rtl::ShapePolicy p : {rtl::ShapePolicy::Static, rtl::ShapePolicy::CacheAware, rtl::ShapePolicy::FullCross})
-          rows.push_back(measure(scene, render, name, m, p, 4));
+        for (EdgeShape p : {EdgeShape::Static, EdgeShape::CacheAware, EdgeShape::Cross}) rows.push_back(measure(scene, name, m, p, 64));
       } else {
-        rows.push_back(measure(scene, render, name, m, rtl::ShapePolicy::Static, 4));
+        rows.push_back(measure(scene, name, m, EdgeShape::Static, 64));
       }
     }
-    // Lee & Jen Sec. 3: memory bytes of EDGE_PRESERVING per policy over LINEAR's, B = 4 and 8.
-    for (int block : {4, 8}) {
-      ro.filter = filter_mode_from_name("LINEAR");
-      const RenderResult render = render_scene(scene, ro);
-      const ResultRow lin = measure(scene, render, name, *ro.filter, rtl::ShapePolicy::Static, block);
+    // Lee & Jen Sec. 3: memory bytes of EDGE_PRESERVING per policy over LINEAR's, 64- and 256-byte lines.
+    for (int line : {64, 256}) {
+      const ResultRow lin = measure(scene, name, filter_mode_from_name("LINEAR"), EdgeShape::Static, line);
       const FilterMode edge = filter_mode_from_name("EDGE_PRESERVING");
-      const ResultRow st = measure(scene, render, name, edge, rtl::ShapePolicy::Static, block);
-      const ResultRow ca = measure(scene, render, name, edge, rtl::ShapePolicy::CacheAware, block);
-      const ResultRow fc = measure(scene, render, name, edge, rtl::ShapePolicy::FullCross, block);
+      const ResultRow st = measure(scene, name, edge, EdgeShape::Static, line);
+      const ResultRow ca = measure(scene, name, edge, EdgeShape::CacheAware, line);
+      const ResultRow fc = measure(scene, name, edge, EdgeShape::Cross, line);
       const auto ratio = [&](const ResultRow& r) { return static_cast<double>(r.bytes) / static_cast<double>(lin.bytes); };
-      ratio_table += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", name, block, lin.bytes, ratio(st), ratio(ca),
+      ratio_table += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", name, line, lin.bytes, ratio(st), ratio(ca),
                                  ratio(fc));
     }
   }
   std::ostringstream md;
   md << fmt::format("\n## Cycle model (TFU-C)\n\nGenerated by `scripts/results` (`tfu sim-results`, {}x{} per scene, default unit "
-                    "configuration of docs/cycle-model.md: 16 KiB 4-way cache, B = 4, block-parity banks, memory latency 100 "
-                    "cycles and 16 bytes/cycle, one filter lane). Every output of every run below was compared with the golden "
-                    "model bit for bit (all equal). Cycles per pixel include the memory stalls.\n\n",
+                    "configuration of docs/cycle-model.md: 16 KiB 4-way cache of 64-byte lines, textures tiled 4x4 (RGBA8), "
+                    "block-parity banks, memory latency 100 cycles and 16 bytes/cycle, one filter lane; every texture of a scene "
+                    "resident in one texel memory, no flush between meshes). Every output of every run below was compared with "
+                    "the golden model bit for bit (all equal). Cycles per pixel include the memory stalls.\n\n",
                     o.width, o.height);
   md << "### Lee & Jen's bandwidth claim: memory bytes of EDGE_PRESERVING / LINEAR, same scene and cache\n\n"
-        "| scene | B | LINEAR bytes | static | cache-aware | full-cross |\n|---|---:|---:|---:|---:|---:|\n"
+        "| scene | line bytes | LINEAR bytes | static | cache-aware | cross |\n|---|---:|---:|---:|---:|---:|\n"
      << ratio_table
      << "\nWith the `static` policy the edge-preserving filter reads exactly the bytes of bilinear (ratio 1.0000), as Lee & "
-        "Jen Sec. 3 designs it; `full-cross` pays for the neighbouring blocks' lines.\n\n";
+        "Jen Sec. 3 designs it; `cross` pays for the neighbouring tiles' lines.\n\n";
   md << "### Every scene x mode (x kernel-shape policy)\n\n"
         "| scene | mode | policy | cycles/pixel | line hit rate | memory bytes/pixel | miss stall cycles | shapes cross/T/L |\n"
         "|---|---|---|---:|---:|---:|---:|---|\n";
@@ -292,7 +316,7 @@ void run_results(const ResultsOptions& o) {
     md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy, r.cycles_per_pixel,
                       r.hit_rate, r.bytes_per_pixel, r.stall_miss,
                       r.cross + r.t + r.l ? fmt::format("{}/{}/{}", r.cross, r.t, r.l) : std::string());
-    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"block", r.block},
+    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"line_bytes", r.line_bytes},
                   {"cycles_per_pixel", r.cycles_per_pixel}, {"hit_rate", r.hit_rate}, {"bytes_per_pixel", r.bytes_per_pixel},
                   {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
                   {"shape_L", r.l}});
@@ -321,23 +345,19 @@ void register_sim(CLI::App& app) {
 
   auto o = std::make_shared<SimOptions>();
   CLI::App* cmd = app.add_subcommand("sim", "Cycle model vs golden reference: bit-exact compare, cycles, cache and memory statistics");
-  cmd->add_option("--scene", o->scene, "Built-in scene or scene JSON (default: the default scene) whose trace is simulated");
-  cmd->add_option("--width", o->width, "Scene render width for the trace");
-  cmd->add_option("--height", o->height, "Scene render height for the trace");
-  cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (needs --texture)");
-  cmd->add_option("--texture", o->tex.texture, "Texture file or proc:NAME[:SIZE] (with --requests)");
-  cmd->add_option("--mipmaps", o->tex.mipmaps, "MIP levels (with --requests): auto, stored, none, box, gaussian, edge");
+  cmd->add_option("--scene", o->scene,
+                  "Built-in scene, scene JSON or oa:MAP[:SPAWN] (an OpenArena level; default: the default scene) whose trace is simulated");
+  cmd->add_option("--game-dir", o->game_dir, "OpenArena data directory for oa: scenes (default: $TFU_OPENARENA_DIR or Debian's)");
+  cmd->add_option("--width", o->width, "Scene render width (default: the scene's own)");
+  cmd->add_option("--height", o->height, "Scene render height (default: the scene's own)");
+  cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (docs/traces.md)");
+  add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
-  cmd->add_option("--config", o->config, "Unit configuration JSON (docs/cycle-model.md); flags below override it");
-  int dummy = 0;
-  cmd->add_option("--block", dummy, "Cache block side B in texels (4 or 8)");
-  cmd->add_option("--cache-bytes", dummy, "Cache capacity in bytes");
-  cmd->add_option("--ways", dummy, "Cache associativity");
-  cmd->add_option("--banks", dummy, "Cache banks (1 or 4)");
-  cmd->add_option("--latency", dummy, "Memory latency in cycles");
-  cmd->add_option("--bandwidth", dummy, "Memory bandwidth in bytes per cycle");
-  cmd->add_option("--lanes", dummy, "Filter lanes (1, 2 or 4)");
-  cmd->add_option("--shape-policy", o->shape_policy, "Edge kernel shapes: static, cache-aware or full-cross");
+  cmd->add_option("--config", o->config, "Unit configuration JSON (docs/cycle-model.md); the flags below override it");
+  for (const rtl::UnitField& f : rtl::unit_config_fields()) cmd->add_option(f.flag, o->unit_flags[f.key], fmt::format("{}: {}", f.key, f.meaning));
+  cmd->add_flag("--config-fields", o->config_fields, "Print the unit configuration's fields (Markdown) and exit");
+  cmd->add_option("--shape-policy", o->shape_policy,
+                  "Edge kernel shapes of every edge-preserving sampler (a scene: its base stages): static, cache-aware or cross");
   cmd->add_option("--units", o->units, "Texture filter units, each taking 32x32 screen tiles round-robin (threads)");
   cmd->add_option("--out", o->out, "Write the cycle model's image (scenes) as PNG");
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");

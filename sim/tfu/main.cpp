@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_compare(app);
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
+  tfu::cli::register_descriptors(app);
   int code = tfu::kExitSuccess;
   try {
     app.parse(argc, argv);

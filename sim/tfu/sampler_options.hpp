@@ -1,41 +1,44 @@
-// Command-line options that describe a texture and a sampler, shared by `tfu sample` and the cycle
-// simulator's commands: one definition, so both read the same texture and configure the same unit.
+// Command-line options that describe a texture and a sampler, shared by `tfu sample`, `tfu sim`
+// and `tfu mipmap`: one flag per key of the texture and sampler tables of cmodel/bindings.hpp
+// (`--wrap-s` is the key `wrap_s`), so the command line, scene files and trace headers accept the
+// same names and values. Only the flags given count: the rest keep their defaults.
 #pragma once
 
+#include <map>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
-#include "cmodel/sampler.hpp"
-#include "cmodel/texture.hpp"
+#include "cmodel/bindings.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/trace.hpp"
 
 namespace tfu::cli {
 
 struct TextureOptions {
-  std::string texture;            // image file path, or proc:NAME[:SIZE] for a procedural texture
-  std::string format = "auto";    // auto | rgba8 | l8 | vs16x2 (reinterpret the file's bytes)
-  std::string mipmaps = "auto";   // auto (stored levels, else box) | stored | none | box | gaussian | edge
-  double alpha = 0.5;             // edge-preserving MIP blend (Lee & Jen Eq. 7)
+  std::string texture;                        // image file path, or proc:NAME[:SIZE]
+  std::map<std::string, std::string> values;  // one per texture key (the flags' storage)
 };
 
 struct SamplerOptions {
-  std::string filter = "LINEAR";
-  std::string kernel = "catmull-rom";
-  std::string wrap = "repeat";
-  std::string wrap_s, wrap_t;  // override --wrap per axis
-  std::string border = "0,0,0,0";
-  double lod_bias = 0, min_lod = -1000, max_lod = 1000;
-  int rom_samples = 64;
-  unsigned rom_bits = 8;
-  std::string rom_recon = "nearest";
-  std::string edge_shape = "cross";
-  int cache_block = 4;
+  std::map<std::string, std::string> values;  // one per sampler key (the flags' storage)
+  std::string wrap;                           // --wrap: wrap_s and wrap_t at once
 };
 
-void add_texture_options(CLI::App& cmd, TextureOptions& o);
+// `texture_required`: --texture is mandatory (otherwise it may come from a trace's header).
+void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required = true);
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o);
-Texture load_texture_spec(const std::string& spec);  // file path or proc:NAME[:SIZE]
-Texture load_texture_from_options(const TextureOptions& o);
-SamplerConfig sampler_config_from_options(const SamplerOptions& o);
+// The texture the flags describe (the keys given), or nullopt without --texture.
+std::optional<TextureSpec> texture_spec_given(const CLI::App& cmd, const TextureOptions& o);
+// The sampler keys given (--wrap expands to wrap_s and wrap_t unless those are given).
+Params sampler_params_given(const CLI::App& cmd, const SamplerOptions& o);
+// The frame of a request trace (cmodel/frame.hpp): the textures and samplers its header binds, or,
+// when it binds none, texture 0 from --texture and sampler 0 from the sampler flags. Sampler flags
+// given with a trace that binds samplers override those keys of every bound sampler. Textures are
+// tiled for `line_bytes` lines. The trace's requests are bound (bind_requests) in place.
+Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes);
+
+// The command-line flag of a table key: "wrap_s" -> "--wrap-s".
+std::string flag_of(const std::string& key);
 
 }  // namespace tfu::cli

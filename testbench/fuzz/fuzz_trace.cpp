@@ -1,11 +1,13 @@
 // Fuzz target (b): a request trace through the reader; a trace that parses is written back and read
-// again (every field must come back with the same bits, NaN as NaN), and its first 64 requests go
-// through the LOD unit and the golden sampler in three filter families (docs/fuzzing.md).
+// again (every field, descriptor index and binding line must come back the same, floats with the
+// same bits, NaN as NaN), and its first 64 requests go through the LOD unit and the golden sampler
+// in three filter families (docs/fuzzing.md).
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
 
+#include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/procedural.hpp"
@@ -29,8 +31,15 @@ bool same_value(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+bool same_bindings(const std::vector<tfu::TraceBinding>& a, const std::vector<tfu::TraceBinding>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].index != b[i].index || a[i].spec != b[i].spec || a[i].params != b[i].params) return false;
+  return true;
+}
+
 bool same_request(const tfu::TraceRequest& a, const tfu::TraceRequest& b) {
-  return same_value(a.s, b.s) && same_value(a.t, b.t) && same_value(a.lod, b.lod) && same_value(a.dsdx, b.dsdx) &&
+  return a.texture == b.texture && a.sampler == b.sampler && a.stage == b.stage && same_value(a.s, b.s) && same_value(a.t, b.t) && same_value(a.lod, b.lod) && same_value(a.dsdx, b.dsdx) &&
          same_value(a.dtdx, b.dtdx) && same_value(a.dsdy, b.dsdy) && same_value(a.dtdy, b.dtdy);
 }
 
@@ -50,12 +59,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::istringstream back_in(out.str());
   const tfu::Trace back = tfu::parse_trace(back_in, "written.trace");  // must not throw
   if (back.mode != trace.mode || back.requests.size() != trace.requests.size()) std::abort();
+  if (!same_bindings(back.textures, trace.textures) || !same_bindings(back.samplers, trace.samplers)) std::abort();
   for (size_t i = 0; i < trace.requests.size(); ++i)
     if (!same_request(trace.requests[i], back.requests[i])) std::abort();
   if (trace.requests.size() > 64) trace.requests.resize(64);
   const std::vector<int32_t> lambda = tfu::trace_lambdas(trace, texture().width(), texture().height());
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_NEAREST", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
-    tfu::SamplerConfig cfg;
+    tfu::SamplerDescriptor cfg;
     cfg.mode = tfu::filter_mode_from_name(mode);
     cfg.wrap_s = tfu::WrapMode::MirroredRepeat;
     cfg.wrap_t = tfu::WrapMode::ClampToBorder;

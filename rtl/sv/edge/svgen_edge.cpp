@@ -6,12 +6,14 @@
 //
 // writes into OUTDIR (= <build>/rtl/sv/gen, named "gen/<file>" in rtl/sv/edge/blocks.json):
 //   tfu_edge_pkg.sv              package tfu_edge_pkg: the 22 directions of lee_jen::directions()
-//                                (endpoints Cp, Cq and the blend axis of Eq. 3)
+//                                (endpoints Cp, Cq and the blend axis of Eq. 3) and the centre
+//                                square (lee_jen::kCentreSquare)
 //   tfu_edge_dir_rom_NN.sv       NN = 00..21: the direction-weight ROM of direction NN
 //                                (lee_jen::direction_weight_rom), one module each, a case table
 //   tfu_edge_dir_roms.sv         all 22 ROMs side by side on one address
 //   tfu_median_network.sv        the compare-cell network of rtl::median_netlist() with the input
 //                                select of rtl::median_input_select, one tfu_compare_cell per cell
+//                                and one tfu_median3_select per three-point selector
 //   tfu_edge_lowpass_select.sv   low-pass texel select: Cn_low = texel number low[n], muxing only
 //                                the texels whose key can reach Cn's median output in the netlist
 //                                in one of the nine kernel shapes
@@ -69,6 +71,9 @@ std::string edge_pkg_sv() {
   for (const lj::Direction& d : dirs)
     table += fmt::format("//   {:2d}  C{:<2d} C{:<2d}  t = {}f   {}\n", d.index, d.p, d.q, d.axis == lj::BlendAxis::X ? 'x' : 'y',
                          d.family());
+  std::string centre, centre_names;  // MSB first: centre texel 3 .. 0
+  for (int k = 3; k >= 0; --k) centre += fmt::format("4'd{}{}", lj::kCentreSquare[static_cast<size_t>(k)], k ? ", " : "");
+  for (const int n : lj::kCentreSquare) centre_names += fmt::format(" C{}", n);
   std::string s = kBanner;
   s += fmt::format(
       "// The 22 measured directions of Lee & Jen 2003 (Eq. 1-3), in the order of lee_jen::directions()\n"
@@ -78,6 +83,8 @@ std::string edge_pkg_sv() {
       "{}"
       "// DIR_P / DIR_Q: texel number (1..12) of Cp / Cq of direction i at bits [4i +: 4];\n"
       "// DIR_AXIS_Y: bit i = 1 when t = yf.\n"
+      "// CENTRE: texel numbers of the centre square (lee_jen::kCentreSquare:{}), in the order of the\n"
+      "// bilinear weights of Eq. 5 ((1 - xf)(1 - yf), xf (1 - yf), (1 - xf) yf, xf yf), k-th at [4k +: 4].\n"
       "// Not every consumer uses every constant: UNUSEDPARAM is waived for this package only.\n"
       "/* verilator lint_off UNUSEDPARAM */\n"
       "package tfu_edge_pkg;\n"
@@ -85,9 +92,10 @@ std::string edge_pkg_sv() {
       "  localparam logic [4*NDIR-1:0] DIR_P = {{{}}};\n"
       "  localparam logic [4*NDIR-1:0] DIR_Q = {{{}}};\n"
       "  localparam logic [NDIR-1:0] DIR_AXIS_Y = {}'b{};\n"
+      "  localparam logic [15:0] CENTRE = {{{}}};\n"
       "endpackage\n"
       "/* verilator lint_on UNUSEDPARAM */\n",
-      table, lj::kDirections, p, q, lj::kDirections, axis);
+      table, centre_names, lj::kDirections, p, q, lj::kDirections, axis, centre);
   return s;
 }
 
@@ -139,74 +147,63 @@ std::string dir_roms_sv() {
 }
 
 // ------------------------------------------------------------------ median network
-// The Sec. 3 input-select rule, derived from the kernel geometry: a centre texel's two outer
-// neighbours (o1 < o2) and the diagonally opposite centre texel.
-struct CentreOuter {
-  int self, o1, o2, opposite;
-};
-
-std::vector<CentreOuter> centre_outer() {
-  std::vector<CentreOuter> v;
-  for (int n = 1; n <= lj::kTexels; ++n) {
-    const lj::TexelPos p = lj::texel_pos(n);
-    if (p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) continue;  // not a centre texel
-    std::vector<int> outer;
-    for (const auto& [dx, dy] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
-      const int x = p.x + dx, y = p.y + dy;
-      if (x >= 0 && x <= 1 && y >= 0 && y <= 1) continue;  // a centre neighbour
-      if (const int m = lj::texel_at(x, y)) outer.push_back(m);
-    }
-    if (outer.size() != 2) throw std::logic_error("centre texel without two outer neighbours");
-    std::sort(outer.begin(), outer.end());
-    v.push_back({n, outer[0], outer[1], lj::texel_at(1 - p.x, 1 - p.y)});
-  }
-  return v;
-}
-
-// Input select per the rule above, in the C++ key domain (for the check against the model).
-std::array<int32_t, lj::kTexels> derived_input_select(const lj::LumaKeys& key, lj::TexelMask shape,
-                                                      const std::vector<CentreOuter>& co) {
+// The Sec. 3 input-select rule from the kernel geometry (lee_jen::kCentreMedians: a centre texel's
+// two outer neighbours, outer[0] < outer[1], and the diagonally opposite centre texel), in the C++
+// key domain (for the check against the model).
+std::array<int32_t, lj::kTexels> derived_input_select(const lj::LumaKeys& key, lj::TexelMask shape) {
   std::array<int32_t, lj::kTexels> in{};
   for (int n = 1; n <= lj::kTexels; ++n) in[static_cast<size_t>(n - 1)] = key[static_cast<size_t>(n)];
-  const auto has = [shape](int n) { return ((shape >> (n - 1)) & 1u) != 0; };
-  for (const CentreOuter& c : co)
-    for (const auto& [o, other, inf] : {std::tuple{c.o1, c.o2, tfu::rtl::kKeyPlusInfinity}, std::tuple{c.o2, c.o1, tfu::rtl::kKeyMinusInfinity}}) {
+  const auto has = [shape](int n) { return lj::has_texel(shape, n); };
+  for (const lj::CentreMedian& c : lj::kCentreMedians)
+    for (const auto& [o, other, inf] : {std::tuple{c.outer[0], c.outer[1], tfu::rtl::kKeyPlusInfinity},
+                                        std::tuple{c.outer[1], c.outer[0], tfu::rtl::kKeyMinusInfinity}}) {
       if (has(o)) continue;
       in[static_cast<size_t>(o - 1)] = has(other) ? key[static_cast<size_t>(c.opposite)] : inf;
     }
   return in;
 }
 
-void check_input_select(const std::vector<CentreOuter>& co) {
+void check_input_select() {
   lj::LumaKeys key{};
   for (int n = 1; n <= lj::kTexels; ++n) key[static_cast<size_t>(n)] = 1000 + n;
   for (uint32_t m = 0; m <= lj::kAllTexels; ++m) {
     const auto shape = static_cast<lj::TexelMask>(m);
-    if (derived_input_select(key, shape, co) != tfu::rtl::median_input_select(key, shape))
+    if (derived_input_select(key, shape) != tfu::rtl::median_input_select(key, shape))
       throw std::logic_error(fmt::format("derived input select differs from rtl::median_input_select at mask {:#05x}", m));
   }
 }
 
 std::string key_slice(int n) { return fmt::format("key[{} +: {}]", kKeyBits * (n - 1), kKeyBits); }
 
-std::string median_network_sv(const std::vector<CentreOuter>& co) {
+std::string median_network_sv() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
-  // Use of every wire: read by a cell (all bits), by an output (bits [3:0]) or by nothing.
-  std::vector<int> cell_reads(static_cast<size_t>(net.wires), 0), out_reads(static_cast<size_t>(net.wires), 0);
+  // Use of every wire: read by a cell (all bits), by a selector or an output (bits [3:0]) or by
+  // nothing; use of every cell's flag: read by a selector or not.
+  std::vector<int> cell_reads(static_cast<size_t>(net.wires), 0), low_reads(static_cast<size_t>(net.wires), 0);
+  std::vector<int> flag_reads(net.cells.size(), 0);
   for (const tfu::rtl::CompareCell& c : net.cells) {
     ++cell_reads[static_cast<size_t>(c.in_a)];
     ++cell_reads[static_cast<size_t>(c.in_b)];
   }
-  for (int n = 1; n <= lj::kTexels; ++n) ++out_reads[static_cast<size_t>(net.out[static_cast<size_t>(n)])];
-  std::set<int> centre_bits;
-  for (const CentreOuter& c : co) centre_bits.insert(c.self - 1);
+  for (const tfu::rtl::Median3Select& m : net.selects) {
+    for (const int w : {m.a, m.b, m.c}) ++low_reads[static_cast<size_t>(w)];
+    for (const int c : {m.ab, m.ac, m.bc}) ++flag_reads[static_cast<size_t>(c)];
+  }
+  for (int n = 1; n <= lj::kTexels; ++n) ++low_reads[static_cast<size_t>(net.out[static_cast<size_t>(n)])];
+  for (const tfu::rtl::Median3Select& m : net.selects)
+    if (cell_reads[static_cast<size_t>(m.out)] > 0) throw std::logic_error("a compare cell reads a selector output");
+  std::string centre_names;
+  for (const int n : lj::kCentreSquare) centre_names += fmt::format("{}C{}", centre_names.empty() ? "" : " ", n);
 
   std::string s = kBanner;
   s += fmt::format(
       "// The twelve medians of Lee & Jen Eq. 4 with the Sec. 3 adjustments for T and L kernels, as the\n"
-      "// compare-cell network of rtl::median_netlist() (rtl/median_network.hpp): {} compare cells\n"
-      "// (Lee & Jen Fig. 10; 8 x 3 + 4 x 7 = 52 before merging cells on shared inputs; the paper\n"
-      "// reports 40), {} cells on the longest path.\n"
+      "// compare-cell network of rtl::median_netlist() (rtl/median_network.hpp): {} compare cells and {}\n"
+      "// three-point selectors (Lee & Jen Sec. 6, Fig. 10: 8 x 3 + 4 x 7 = 52 cells before merging the\n"
+      "// cells on shared inputs; the paper reports 40), {} cells on the longest path, then a selector.\n"
+      "// A three-point median is three cells in parallel on its input pairs and a selector on their\n"
+      "// flags; a five-point median is two cells on input pairs, the max of their minima and the min of\n"
+      "// their maxima, and the three-point median of those two and its fifth input.\n"
       "// Ports (RGBA8 keys; VS16X2 is not in the SV):\n"
       "//   key   [{}:0] key of Cn = Y * 16 + n (Y = 5R + 9G + 2B, unsigned) at bits [16(n-1) +: 16]\n"
       "//   shape [11:0]  available texels, bit n-1 = Cn (the cross, a T or an L)\n"
@@ -219,7 +216,7 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
       "// Combinational.\n"
       "module tfu_median_network (\n"
       "  input  logic [{}:0] key,\n"
-      "  /* verilator lint_off UNUSEDSIGNAL */  // shape bits of C4 C5 C8 C9\n"
+      "  /* verilator lint_off UNUSEDSIGNAL */  // shape bits of {}\n"
       "  input  logic [11:0]  shape,\n"
       "  /* verilator lint_on UNUSEDSIGNAL */\n"
       "  output logic [47:0]  low\n"
@@ -227,51 +224,64 @@ std::string median_network_sv(const std::vector<CentreOuter>& co) {
       "  localparam logic [{}:0] PLUS_INF = '1;\n"
       "  localparam logic [{}:0] MINUS_INF = '0;\n\n"
       "  // ---- input select: wire n-1 carries the key for texel Cn's position ----\n",
-      net.cells.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, kKeyBits - 1, kKeyBits - 1);
-  if (centre_bits.size() != 4) throw std::logic_error("expected four centre texels");
+      net.cells.size(), net.selects.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, centre_names,
+      kKeyBits - 1, kKeyBits - 1);
   std::vector<std::string> in_expr(lj::kTexels);
   for (int n = 1; n <= lj::kTexels; ++n) in_expr[static_cast<size_t>(n - 1)] = key_slice(n);
-  for (const CentreOuter& c : co)
-    for (const auto& [o, other, inf] : {std::tuple{c.o1, c.o2, "PLUS_INF"}, std::tuple{c.o2, c.o1, "MINUS_INF"}})
+  for (const lj::CentreMedian& c : lj::kCentreMedians)
+    for (const auto& [o, other, inf] : {std::tuple{c.outer[0], c.outer[1], "PLUS_INF"}, std::tuple{c.outer[1], c.outer[0], "MINUS_INF"}})
       in_expr[static_cast<size_t>(o - 1)] =
           fmt::format("shape[{}] ? {} : (shape[{}] ? {} : {})", o - 1, key_slice(o), other - 1, key_slice(c.opposite), inf);
   for (int w = 0; w < lj::kTexels; ++w) {
     s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
     s += fmt::format("  assign w{} = {};\n", w, in_expr[static_cast<size_t>(w)]);
   }
-  s += "\n  // ---- compare cells: lo = min(a, b), hi = max(a, b) ----\n";
-  int k = 0;
-  for (const tfu::rtl::CompareCell& c : net.cells) {
-    for (const int w : {c.lo, c.hi}) {
-      const bool full = cell_reads[static_cast<size_t>(w)] > 0;
-      const bool any = full || out_reads[static_cast<size_t>(w)] > 0;
-      if (full) {
-        s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
-      } else {
-        s += fmt::format("  /* verilator lint_off UNUSEDSIGNAL */  // {}\n", any ? "only bits [3:0] are read (a median output)"
-                                                                                : "the other output of a median's last cell");
-        s += fmt::format("  logic [{}:0] w{};\n", kKeyBits - 1, w);
-        s += "  /* verilator lint_on UNUSEDSIGNAL */\n";
-      }
+  const auto declare = [&s](const std::string& decl, bool read, const char* why_unread) {
+    if (read) {
+      s += fmt::format("  {};\n", decl);
+    } else {
+      s += fmt::format("  /* verilator lint_off UNUSEDSIGNAL */  // {}\n  {};\n  /* verilator lint_on UNUSEDSIGNAL */\n", why_unread,
+                       decl);
     }
-    s += fmt::format("  tfu_compare_cell #(.W({})) u_cell{:02d} (.a(w{}), .b(w{}), .lo(w{}), .hi(w{}));\n", kKeyBits, k, c.in_a,
-                     c.in_b, c.lo, c.hi);
-    ++k;
+  };
+  s += "\n  // ---- compare cells: lo = min(a, b), hi = max(a, b), flag g = a > b ----\n";
+  for (size_t k = 0; k < net.cells.size(); ++k) {
+    const tfu::rtl::CompareCell& c = net.cells[k];
+    for (const int w : {c.lo, c.hi}) {
+      if (low_reads[static_cast<size_t>(w)] > 0 && cell_reads[static_cast<size_t>(w)] == 0)
+        throw std::logic_error("a cell output read only by a selector");
+      declare(fmt::format("logic [{}:0] w{}", kKeyBits - 1, w), cell_reads[static_cast<size_t>(w)] > 0,
+              "a cell of a three-point median: only its flag is read");
+    }
+    declare(fmt::format("logic g{:02d}", k), flag_reads[k] > 0, "a min/max cell of a five-point median: its flag is not read");
+    s += fmt::format("  tfu_compare_cell #(.W({})) u_cell{:02d} (.a(w{}), .b(w{}), .lo(w{}), .hi(w{}), .a_gt_b(g{:02d}));\n", kKeyBits, k,
+                     c.in_a, c.in_b, c.lo, c.hi, k);
+  }
+  s += "\n  // ---- three-point selectors on the cells' flags: the texel number of the median ----\n";
+  for (size_t k = 0; k < net.selects.size(); ++k) {
+    const tfu::rtl::Median3Select& m = net.selects[k];
+    s += fmt::format("  logic [3:0] w{};\n", m.out);
+    s += fmt::format(
+        "  tfu_median3_select #(.W(4)) u_sel{:02d} (.a_gt_b(g{:02d}), .a_gt_c(g{:02d}), .b_gt_c(g{:02d}), .a(w{}[3:0]), .b(w{}[3:0]),\n"
+        "                                       .c(w{}[3:0]), .m(w{}));\n",
+        k, m.ab, m.ac, m.bc, m.a, m.b, m.c, m.out);
   }
   s += "\n  // ---- outputs: texel number of each median ----\n";
   for (int n = 1; n <= lj::kTexels; ++n)
-    s += fmt::format("  assign low[{} +: 4] = w{}[3:0];  // C{}\n", 4 * (n - 1), net.out[static_cast<size_t>(n)], n);
+    s += fmt::format("  assign low[{} +: 4] = w{};  // C{}\n", 4 * (n - 1), net.out[static_cast<size_t>(n)], n);
   s += "endmodule\n";
   return s;
 }
 
 // Texels whose key can reach Cn's median output, over the nine kernel shapes in which Cn is
-// available: the netlist inputs feeding net.out[n], each carrying its own texel or the substitute
-// that the input select drives onto it in that shape (infinities are never a median).
-std::vector<std::vector<int>> lowpass_candidates(const std::vector<CentreOuter>& co) {
+// available: the netlist inputs whose values reach net.out[n] (through cell outputs and selector
+// data inputs; flags carry no value), each carrying its own texel or the substitute that the input
+// select drives onto it in that shape (infinities are never a median).
+std::vector<std::vector<int>> lowpass_candidates() {
   const tfu::rtl::MedianNetlist& net = tfu::rtl::median_netlist();
-  std::vector<std::array<int, 2>> driver(static_cast<size_t>(net.wires), {-1, -1});
+  std::vector<std::vector<int>> driver(static_cast<size_t>(net.wires));
   for (const tfu::rtl::CompareCell& c : net.cells) driver[static_cast<size_t>(c.lo)] = driver[static_cast<size_t>(c.hi)] = {c.in_a, c.in_b};
+  for (const tfu::rtl::Median3Select& m : net.selects) driver[static_cast<size_t>(m.out)] = {m.a, m.b, m.c};
   lj::LumaKeys id{};  // "key" n = texel number n: the input select then tells which texel each wire carries
   for (int n = 1; n <= lj::kTexels; ++n) id[static_cast<size_t>(n)] = n;
   std::vector<std::vector<int>> cand(lj::kTexels + 1);
@@ -279,7 +289,7 @@ std::vector<std::vector<int>> lowpass_candidates(const std::vector<CentreOuter>&
     std::set<int> texels;
     for (const lj::KernelShape& shape : lj::kernel_shapes()) {
       if (!((shape.mask >> (n - 1)) & 1u)) continue;
-      const auto in = derived_input_select(id, shape.mask, co);
+      const auto in = derived_input_select(id, shape.mask);
       std::vector<int> stack{net.out[static_cast<size_t>(n)]};
       std::set<int> seen;
       while (!stack.empty()) {
@@ -351,10 +361,9 @@ int main(int argc, char** argv) {
     write_if_changed(out / "tfu_edge_pkg.sv", edge_pkg_sv());
     for (int i = 0; i < lj::kDirections; ++i) write_if_changed(out / (rom_module_name(i) + ".sv"), dir_rom_sv(i));
     write_if_changed(out / "tfu_edge_dir_roms.sv", dir_roms_sv());
-    const std::vector<CentreOuter> co = centre_outer();
-    check_input_select(co);
-    write_if_changed(out / "tfu_median_network.sv", median_network_sv(co));
-    write_if_changed(out / "tfu_edge_lowpass_select.sv", lowpass_select_sv(lowpass_candidates(co)));
+    check_input_select();
+    write_if_changed(out / "tfu_median_network.sv", median_network_sv());
+    write_if_changed(out / "tfu_edge_lowpass_select.sv", lowpass_select_sv(lowpass_candidates()));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tfu_svgen_edge: error: %s\n", e.what());

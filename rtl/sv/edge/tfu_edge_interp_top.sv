@@ -15,7 +15,7 @@
 // Pipeline, latency 3 clocks (Lee & Jen Sec. 6: "3-clock latency"): a request on the inputs at
 // rising edge n is on out_valid / c after edge n + 2. Inputs feed stage 1's logic directly (the
 // texels arrive from the texel cache's registers).
-//   S1  12 x RGB->Y (carry-save adder trees), keys Y * 16 + n, the 44-cell median network with its
+//   S1  12 x RGB->Y (carry-save adder trees), keys Y * 16 + n, the 40-cell median network with its
 //       T/L input select                        -> R1: texels, shape, xf, yf, low[1..12] (4 bits each)
 //   S2  low-pass texel select (Cn_low), 22 x (|dR| + |dG| + |dB|, weight ROM, w * dP), min tree
 //                                               -> R2: Cn_low (12 x RGBA), C4 C5 C8 C9, direction, xf, yf
@@ -70,6 +70,11 @@ module tfu_edge_interp_top (
   /* verilator lint_on UNUSEDSIGNAL */
   tfu_edge_dir_select u_dirsel (.lowrgb(lowrgb), .shape(shape_1), .xf4(xf_1[7:4]), .yf4(yf_1[7:4]), .dir(dir), .cost(cost));
 
+  logic [127:0] centre_1;  // the centre square (tfu_edge_pkg::CENTRE) in the order of Eq. 5's weights
+  for (genvar k = 0; k < 4; k++) begin : g_centre
+    assign centre_1[32*k +: 32] = texels_1[32*(32'(tfu_edge_pkg::CENTRE[4*k +: 4]) - 1) +: 32];
+  end
+
   logic         v2;
   logic [383:0] lowtex_2;
   logic [127:0] centre_2;
@@ -79,7 +84,7 @@ module tfu_edge_interp_top (
     if (!rst_n) v2 <= 1'b0;
     else v2 <= v1;
     lowtex_2 <= lowtex;
-    centre_2 <= {texels_1[32*8 +: 32], texels_1[32*7 +: 32], texels_1[32*4 +: 32], texels_1[32*3 +: 32]};
+    centre_2 <= centre_1;
     dir_2    <= dir;
     xf_2     <= xf_1;
     yf_2     <= yf_1;

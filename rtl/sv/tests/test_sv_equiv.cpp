@@ -51,9 +51,9 @@ struct Mismatches {
   }
 };
 
-// The default CUBIC ROM of SamplerConfig (what tfu_svgen generates).
+// The default CUBIC ROM of SamplerDescriptor (what tfu_svgen generates).
 const tfu::TileWeightRom& default_rom() {
-  static const tfu::SamplerConfig cfg;
+  static const tfu::SamplerDescriptor cfg;
   static const tfu::TileWeightRom rom(tfu::FilterKernel::by_name(cfg.kernel), cfg.cubic_rom);
   return rom;
 }
@@ -283,7 +283,7 @@ TEST(SvCubicFilter, RandomAndCornersMatchSamplerDatapath) {
 TEST(SvCubicFilter, MatchesGoldenSampler) {
   CubicDut dut;
   std::mt19937_64 rng(kSeed + 2);
-  tfu::SamplerConfig cfg;
+  tfu::SamplerDescriptor cfg;
   cfg.mode = tfu::filter_mode_from_name("cubic");
   cfg.wrap_s = cfg.wrap_t = tfu::WrapMode::ClampToEdge;
   Mismatches bad;
@@ -368,7 +368,7 @@ TEST(SvBilinearLerp, RandomAndCornersMatchDatapath) {
 TEST(SvBilinearLerp, MatchesGoldenSampler) {
   BilinearDut dut;
   std::mt19937_64 rng(kSeed + 4);
-  tfu::SamplerConfig cfg;
+  tfu::SamplerDescriptor cfg;
   cfg.mode = tfu::filter_mode_from_name("linear");
   cfg.wrap_s = cfg.wrap_t = tfu::WrapMode::ClampToEdge;
   Mismatches bad;

@@ -56,10 +56,10 @@ int main(int argc, char** argv) {
     const tfu::Mesh& mesh = scene.meshes.front();
     std::vector<tfu::EdgeFootprint> fps;
     for (const bool blocks : {false, true}) {
-      tfu::SamplerConfig cfg = mesh.sampler;
+      tfu::SamplerDescriptor cfg = mesh.stages[0].sampler;
       cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
-      cfg.edge_shape = blocks ? tfu::EdgeShapePolicy::CacheBlock : tfu::EdgeShapePolicy::Cross;
-      const tfu::Sampler smp(*mesh.texture, cfg);
+      cfg.edge_shape = blocks ? tfu::EdgeShape::Static : tfu::EdgeShape::Cross;
+      const tfu::Sampler smp(*mesh.stages[0].texture, cfg);
       for (const tfu::TraceRequest& q : trace.requests) fps.push_back(smp.edge_footprint(0, q.s, q.t));
     }
     const auto n = static_cast<size_t>(samples);
@@ -113,14 +113,20 @@ int main(int argc, char** argv) {
     {
       // The whole C++ cycle model (rtl/, static 4x4 shapes) on the same scene trace, for scale: it
       // adds the LOD unit, address generation, kernel selection, the cache and the pipeline.
-      tfu::SamplerConfig cfg = mesh.sampler;
+      tfu::SamplerDescriptor cfg = mesh.stages[0].sampler;
       cfg.mode = {tfu::BaseFilter::EdgePreserving, tfu::MipMode::None};
+      cfg.edge_shape = tfu::EdgeShape::Static;
+      tfu::FrameBuilder fb(64);
+      fb.add_texture(mesh.stages[0].texture, mesh.stages[0].spec);
+      fb.add_sampler(cfg);
+      const tfu::Frame frame = fb.finish();
       tfu::Trace big;
       big.mode = trace.mode;
       while (big.requests.size() < n)
         big.requests.insert(big.requests.end(), trace.requests.begin(), trace.requests.end());
       const auto t1 = std::chrono::steady_clock::now();
-      const tfu::rtl::UnitOutput u = tfu::rtl::run_unit(*mesh.texture, cfg, big, tfu::rtl::UnitConfig{});
+      for (tfu::TraceRequest& q : big.requests) q.texture = q.sampler = 0;
+      const tfu::rtl::UnitOutput u = tfu::rtl::run_unit(frame, big, tfu::rtl::UnitConfig{});
       const double t_unit = seconds_since(t1);
       fmt::print("  C++ cycle model rtl::run_unit (whole unit) {:10.3f} M samples/s ({} pixels, {} cycles)\n",
                  static_cast<double>(big.requests.size()) / t_unit * 1e-6, u.pixels.size(), u.cycles);

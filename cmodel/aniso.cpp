@@ -1,0 +1,136 @@
+#include "cmodel/aniso.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+namespace tfu {
+
+namespace {
+
+int clamp_max_aniso(int max_aniso) { return std::clamp(max_aniso, 1, kMaxAniso); }
+
+// n^2 pmin2 >= pmax2, exactly: the product needs up to 71 bits; when it does not fit 64 bits it
+// exceeds every pmax2 (< 2^64).
+bool covers(uint64_t pmin2, uint64_t pmax2, uint64_t n2) {
+  if (pmin2 > std::numeric_limits<uint64_t>::max() / n2) return true;
+  return n2 * pmin2 >= pmax2;
+}
+
+}  // namespace
+
+int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams& p) {
+  int n = 1;
+  while (n <= kMaxAniso && !covers(pmin2_q32, pmax2_q32, static_cast<uint64_t>(n) * static_cast<uint64_t>(n))) ++n;
+  n = std::min(n, clamp_max_aniso(p.max_aniso));  // n = 17 (no n covers) becomes maxAniso
+  if (p.pow2) n = static_cast<int>(std::bit_ceil(static_cast<unsigned>(n)));
+  return n;
+}
+
+const std::array<int32_t, kMaxAniso>& aniso_log2_sq_rom() {
+  // Offline table generation (double precision), the one source of the ROM contents.
+  static const auto rom = [] {
+    std::array<int32_t, kMaxAniso> r{};
+    for (size_t k = 0; k < r.size(); ++k)
+      r[k] = static_cast<int32_t>(std::floor(512.0 * std::log2(static_cast<double>(k + 1)) + 0.5));
+    return r;
+  }();
+  return rom;
+}
+
+int32_t aniso_lambda(uint64_t pmax2_q32, int n) {
+  return lambda_from_length_sq(pmax2_q32, aniso_log2_sq_rom()[static_cast<size_t>(n - 1)]);
+}
+
+AnisoLod aniso_lod(const TexelDerivatives& d, const AnisoParams& p) {
+  AnisoLod a;
+  a.px2_q32 = derivative_length_sq(d.dudx, d.dvdx);
+  a.py2_q32 = derivative_length_sq(d.dudy, d.dvdy);
+  a.major_x = a.px2_q32 >= a.py2_q32;
+  const auto clamp_signed = [](int64_t v) {
+    const auto m = static_cast<int64_t>(derivative_magnitude(v));
+    return v < 0 ? -m : m;
+  };
+  a.major_du_q16 = clamp_signed(a.major_x ? d.dudx : d.dudy);
+  a.major_dv_q16 = clamp_signed(a.major_x ? d.dvdx : d.dvdy);
+  const uint64_t pmax2 = std::max(a.px2_q32, a.py2_q32);
+  const uint64_t pmin2 = std::min(a.px2_q32, a.py2_q32);
+  a.probes = aniso_probe_count(pmax2, pmin2, p);
+  a.lambda_q8 = aniso_lambda(pmax2, a.probes);
+  return a;
+}
+
+uint32_t axis_length_q16(uint64_t len2_q32) {
+  // Digit-by-digit (restoring) square root: one result bit per step, exact floor.
+  uint64_t rem = len2_q32, root = 0;
+  uint64_t bit = uint64_t{1} << 62;
+  while (bit > rem) bit >>= 2;
+  while (bit != 0) {
+    if (rem >= root + bit) {
+      rem -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return static_cast<uint32_t>(root);
+}
+
+const std::array<ProbeRomWord, 1u << kProbeRomAddrBits>& probe_rom() {
+  // Offline table generation in exact integer arithmetic, the one source of the ROM contents.
+  static const auto rom = [] {
+    std::array<ProbeRomWord, 1u << kProbeRomAddrBits> r{};
+    constexpr int kTotal = 1 << kAnisoWeightBits;
+    for (int n = 1; n <= kMaxAniso; ++n) {
+      const int base = kTotal / n, extra = kTotal % n;
+      const bool centre_extra = (n % 2 == 1) && (extra % 2 == 1);
+      const int pairs = extra / 2;  // innermost symmetric pairs that get one more
+      for (int i = 1; i <= n; ++i) {
+        ProbeRomWord& w = r[static_cast<size_t>(probe_rom_address(n, i))];
+        // q = 2^16 (2i - n - 1) / (2 (n + 1)), rounded half away from zero on the magnitude.
+        const int64_t num = int64_t{2 * i - n - 1} << kProbeFracBits, den = 2 * (n + 1);
+        const int64_t mag = (2 * std::llabs(num) + den) / (2 * den);
+        w.frac_q16 = static_cast<int32_t>(num < 0 ? -mag : mag);
+        // Distance from the centre in half probe spacings: 0 (centre, n odd), 1, 2, 3, ...
+        const int k = std::abs(2 * i - n - 1);
+        const int ring = n % 2 == 1 ? k / 2 : (k + 1) / 2;  // 1 = innermost pair
+        const bool plus = k == 0 ? centre_extra : ring <= pairs;
+        w.weight = base + (plus ? 1 : 0);
+      }
+    }
+    return r;
+  }();
+  return rom;
+}
+
+int64_t probe_offset_q16(int64_t major_q16, int n, int i) {
+  const int32_t q = probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16;
+  const uint64_t m = uint64_t{derivative_magnitude(major_q16)} * static_cast<uint64_t>(q < 0 ? -q : q);
+  const auto r = static_cast<int64_t>((m + (uint64_t{1} << (kProbeFracBits - 1))) >> kProbeFracBits);
+  return (major_q16 < 0) != (q < 0) ? -r : r;
+}
+
+ProbeOffset probe_offset(const AnisoLod& a, int i) {
+  return {probe_offset_q16(a.major_du_q16, a.probes, i), probe_offset_q16(a.major_dv_q16, a.probes, i)};
+}
+
+namespace dp {
+
+Texel4 aniso_average(const Texel4* probes, int n) {
+  const auto& rom = probe_rom();
+  std::array<int64_t, 4> acc{};
+  for (int i = 1; i <= n; ++i) {
+    const int64_t w = rom[static_cast<size_t>(probe_rom_address(n, i))].weight;
+    for (size_t ch = 0; ch < 4; ++ch) acc[ch] += w * probes[i - 1][ch];
+  }
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch)
+    out[ch] = static_cast<int32_t>((acc[ch] + (1 << (kAnisoWeightBits - 1))) >> kAnisoWeightBits);
+  return out;
+}
+
+}  // namespace dp
+}  // namespace tfu

@@ -1,0 +1,121 @@
+// Anisotropic LOD unit and probe generator (EXT_texture_filter_anisotropic, Sec. 3.8.5 as changed
+// by the extension; probes along the major axis as in Schilling et al. 1996 "Texram" and McCormack
+// et al. 1999 "Feline"), in fixed point. Pure functions: the golden sampler, the cycle model's LOD
+// unit and address generator and rtl/sv/aniso/ all compute these bits. docs/anisotropic.md.
+//
+// Reference (EXT spec):  Px = |(du/dx, dv/dx)|, Py = |(du/dy, dv/dy)| (texels),
+//   Pmax = max(Px, Py), Pmin = min(Px, Py), N = min(ceil(Pmax / Pmin), maxAniso),
+//   lambda' = log2(Pmax / N), and N samples at u(x - 1/2 + i/(N+1), y), i = 1..N (x major), averaged.
+//
+// Datapath (all integer):
+//   derivatives      Q.16 level-0 texels (lod.hpp TexelDerivatives), magnitudes clamped to 2^31 - 1
+//   Px^2, Py^2       |du|^2 + |dv|^2, Q.32, < 2^63 (lod.hpp derivative_length_sq; no square root)
+//   major axis       x if Px^2 >= Py^2, else y (ties: x)
+//   N                smallest n in 1..16 with n^2 Pmin^2 >= Pmax^2 (exact: 15 compares of 71-bit
+//                    products), 16 + 1 if none, then min(., maxAniso); pow2 mode: rounded UP to a
+//                    power of two (the spec's "round N up to the nearest supported sampling rate")
+//   lambda           (log2_q8(Pmax^2) - 32 * 256 - R[N] + 1) >> 1, R[N] = round(512 log2 N) from a
+//                    16-entry ROM (R[1] = 0: N = 1 is the isotropic lambda bit for bit);
+//                    |lambda - 256 log2(Pmax / N)| <= 0.45 + 0.25 + 0.5 = 1.2 LSB of Q.8 (log2 ROM,
+//                    R ROM, halving); 1.09 measured (test_aniso)
+//   probe offset     o_i = sgn * ((|d| |q(N, i)| + 2^15) >> 16), Q.16 level-0 texels, d the major
+//                    derivative vector (per component), q(N, i) = round-half-away(2^16 (2i - N - 1) /
+//                    (2 (N + 1))) from the probe ROM; sign-magnitude so that the probes stay exactly
+//                    symmetric about the centre
+//   on level L       sgn * ((|o| + 2^(7 + L)) >> (8 + L)): Q.8 texels of level L, added to
+//                    dp::texel_coord's u = floor(s W_L 2^8) - 128
+//   average          c = (sum_i w_i c_i + 128) >> 8 per channel, w_i from the probe ROM, sum w_i = 256
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "cmodel/datapath.hpp"
+#include "cmodel/lod.hpp"
+
+namespace tfu {
+
+inline constexpr int kMaxAniso = 16;          // probes per pixel at most
+inline constexpr int kProbeFracBits = 16;     // probe fraction q(N, i): Q.16, |q| < 2^15
+inline constexpr int kAnisoWeightBits = 8;    // probe weights sum to 2^8
+inline constexpr int kProbeRomAddrBits = 8;   // address {N - 1, i - 1}, 4 + 4 bits
+
+// Sampler-descriptor fields of anisotropic filtering.
+struct AnisoParams {
+  int max_aniso = 1;   // maxAniso, 1..16 (1 = isotropic); values outside are clamped into 1..16
+  bool pow2 = false;   // N rounded up to a power of two (1, 2, 4, 8, 16)
+};
+
+// The anisotropic LOD unit's result for one pixel (or quad).
+struct AnisoLod {
+  uint64_t px2_q32 = 0;        // Px^2 = |du/dx|^2 + |dv/dx|^2, Q.32 level-0 texels^2 (clamped magnitudes)
+  uint64_t py2_q32 = 0;        // Py^2, likewise from du/dy, dv/dy
+  bool major_x = true;         // Px^2 >= Py^2: the probes step along the x derivative
+  int64_t major_du_q16 = 0;    // the major derivative vector (du, dv), Q.16 level-0 texels,
+  int64_t major_dv_q16 = 0;    //   magnitudes clamped to 2^31 - 1, signs kept
+  int probes = 1;              // N, 1..16
+  int32_t lambda_q8 = kLodMinusInfinity;  // log2(Pmax / N) in Q.8, before bias and clamp
+};
+
+// The whole LOD unit: squared axis lengths, major axis, N and lambda.
+AnisoLod aniso_lod(const TexelDerivatives& d, const AnisoParams& p);
+
+// N from the squared axis lengths (pmin2 <= pmax2 expected; any pair is defined): smallest n in
+// 1..16 with n^2 pmin2 >= pmax2 (17 if none, e.g. pmin2 = 0 < pmax2), capped at max_aniso, then
+// rounded up to a power of two in pow2 mode. pmax2 = pmin2 (also both 0) gives 1.
+int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams& p);
+
+// R[N - 1] = round(512 log2 N) = 256 log2(N^2) in Q.8, N = 1..16 (0, 512, 811, 1024, ...).
+const std::array<int32_t, kMaxAniso>& aniso_log2_sq_rom();
+// lambda = log2(Pmax / N) in Q.8: lambda_from_length_sq(pmax2, R[N - 1]); n in 1..16.
+int32_t aniso_lambda(uint64_t pmax2_q32, int n);
+
+// Exact floor(sqrt(x)): Px, Py in Q.16 level-0 texels from their squares (reporting, --query-lod).
+uint32_t axis_length_q16(uint64_t len2_q32);
+
+// Probe ROM word for (N, i): the signed fraction q(N, i) = round-half-away(2^16 (2i - N - 1) /
+// (2 (N + 1))) and the weight w(N, i). Weights: floor(256 / N) each, and the 256 mod N extra ones
+// go one to the centre probe if N is odd and 256 mod N is odd, the rest in pairs to the innermost
+// symmetric pairs; so w(N, i) = w(N, N + 1 - i) and sum_i w(N, i) = 256.
+struct ProbeRomWord {
+  int32_t frac_q16 = 0;  // |q| <= 28,913 (N = 16, i = 1 or 16): 15 bits + sign
+  int32_t weight = 0;    // 1..256 (9 bits; 256 only for N = 1)
+};
+inline constexpr int probe_rom_address(int n, int i) { return ((n - 1) << 4) | (i - 1); }
+// 256 words at {N - 1, i - 1}; words with i > N are zero (never addressed).
+const std::array<ProbeRomWord, 1u << kProbeRomAddrBits>& probe_rom();
+
+// Offset of probe i (1..N) from the footprint centre along the major vector, per component:
+// sgn(d) sgn(q) ((|d| |q(N, i)| + 2^15) >> 16), Q.16 level-0 texels, |result| < 2^30.
+int64_t probe_offset_q16(int64_t major_q16, int n, int i);
+struct ProbeOffset {
+  int64_t du_q16 = 0, dv_q16 = 0;
+};
+ProbeOffset probe_offset(const AnisoLod& a, int i);
+
+namespace dp {
+
+// Address generator: a probe offset (Q.16 level-0 texels) on level L (0..15) in Q.8 texels of
+// that level: sgn(o) ((|o| + 2^(7 + L)) >> (8 + L)) (round half away from zero; the level is taken
+// as 2^L times smaller than level 0, exact for power-of-two textures).
+inline int64_t probe_offset_on_level(int64_t offset_q16, int level) {
+  const uint64_t m = offset_q16 < 0 ? uint64_t{0} - static_cast<uint64_t>(offset_q16) : static_cast<uint64_t>(offset_q16);
+  const auto r = static_cast<int64_t>((m + (uint64_t{1} << (7 + level))) >> (8 + level));
+  return offset_q16 < 0 ? -r : r;
+}
+
+// Probe coordinate on a level: the centre's Q.8 coordinate u = (i0 << 8) + f (texel_coord) plus the
+// level offset, split again into the tap i0 = u >> 8 and the fraction f = u & 255.
+inline LevelCoord probe_texel_coord(LevelCoord centre, int64_t offset_q8) {
+  const int64_t u = centre.i0 * 256 + static_cast<int64_t>(centre.f) + offset_q8;
+  return {u >> 8, static_cast<uint32_t>(u & 255)};
+}
+
+// Probe averaging unit: c = (sum_i w(N, i) c_i + 128) >> 8 per channel (round half up; an arithmetic
+// shift for the signed VS16X2 channels). The weights sum to 256, so the result lies between the
+// smallest and largest probe value of each channel (no clamp) and N = 1 is the identity.
+// Widths: 8-bit channels 17 bits, VS16X2 (|c| <= 32,640) 24 bits signed. probes[0..n-1], n in 1..16.
+Texel4 aniso_average(const Texel4* probes, int n);
+
+}  // namespace dp
+}  // namespace tfu

@@ -1,0 +1,263 @@
+#include "cmodel/bindings.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+#include "cmodel/fixed_coord.hpp"
+#include "cmodel/mipmap.hpp"
+#include "cmodel/q3_scene.hpp"
+#include "cmodel/scene_source.hpp"
+
+namespace tfu {
+
+namespace {
+
+std::string clip(const std::string& s) { return s.size() <= 60 ? s : s.substr(0, 57) + "..."; }
+
+long parse_int(const std::string& v, long lo, long hi) {
+  char* end = nullptr;
+  const long x = std::strtol(v.c_str(), &end, 10);
+  if (v.empty() || end != v.c_str() + v.size() || x < lo || x > hi)
+    throw InputError(fmt::format("'{}' is not an integer {}..{}", clip(v), lo, hi));
+  return x;
+}
+
+// A LOD register value: decimal levels within +-1000, rounded to the nearest 1/256 (Q.8).
+int32_t parse_lod(const std::string& v) {
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(x) || std::abs(x) > 1000.0 ||
+      v.find_first_of("xXpP") != std::string::npos)
+    throw InputError(fmt::format("'{}' is not a decimal number of levels within -1000..1000", clip(v)));
+  return static_cast<int32_t>(float_to_fixed_round(static_cast<float>(x), 1, kLodFracBits));
+}
+std::string lod_string(int32_t q8) { return fmt::format("{:.9g}", q8 / 256.0); }
+
+bool parse_bool(const std::string& v) {
+  if (v == "true" || v == "1") return true;
+  if (v == "false" || v == "0") return false;
+  throw InputError(fmt::format("'{}' is not true or false", clip(v)));
+}
+
+template <class E>
+E pick(const std::string& v, std::initializer_list<std::pair<const char*, E>> choices) {
+  std::string list;
+  for (const auto& [name, e] : choices) {
+    if (v == name) return e;
+    list += (list.empty() ? "" : ", ") + std::string(name);
+  }
+  throw InputError(fmt::format("'{}' is not one of {}", clip(v), list));
+}
+template <class E>
+std::string name_of(E e, std::initializer_list<std::pair<const char*, E>> choices) {
+  for (const auto& [name, x] : choices)
+    if (x == e) return name;
+  return "?";
+}
+
+Rgba8 parse_border(const std::string& s) {
+  int v[4];
+  size_t n = 0, p = 0;
+  while (true) {
+    const size_t c = s.find(',', p);
+    if (n == 4) n = 5;
+    else v[n++] = static_cast<int>(parse_int(s.substr(p, c == std::string::npos ? std::string::npos : c - p), 0, 255));
+    if (c == std::string::npos) break;
+    p = c + 1;
+  }
+  if (n != 4) throw InputError(fmt::format("'{}' is not four integers 0..255 separated by commas", clip(s)));
+  return {static_cast<uint8_t>(v[0]), static_cast<uint8_t>(v[1]), static_cast<uint8_t>(v[2]), static_cast<uint8_t>(v[3])};
+}
+
+const std::initializer_list<std::pair<const char*, RomRecon>> kRecon{{"nearest", RomRecon::Nearest}, {"linear", RomRecon::Linear}};
+const std::initializer_list<std::pair<const char*, SamplePos>> kRomPos{{"centre", SamplePos::Centre}, {"corner", SamplePos::Corner}};
+const std::initializer_list<std::pair<const char*, RomRounding>> kRounding{{"sum-preserving", RomRounding::SumPreserving},
+                                                                           {"nearest", RomRounding::Nearest}};
+const std::initializer_list<std::pair<const char*, AnisoRounding>> kAnisoRounding{{"integer", AnisoRounding::Integer},
+                                                                                  {"pow2", AnisoRounding::PowerOfTwo}};
+
+using SD = SamplerDescriptor;
+const SamplerParam kSamplerParams[] = {
+    {"filter", "filter mode (GL name, or bilinear / trilinear)",
+     [](SD& s, const std::string& v) { s.mode = filter_mode_from_name(v); }, [](const SD& s) { return filter_mode_name(s.mode); }},
+    {"wrap_s", "repeat, mirrored-repeat, clamp-to-edge, clamp-to-border",
+     [](SD& s, const std::string& v) { s.wrap_s = wrap_mode_from_name(v); }, [](const SD& s) { return std::string(wrap_mode_name(s.wrap_s)); }},
+    {"wrap_t", "as wrap_s", [](SD& s, const std::string& v) { s.wrap_t = wrap_mode_from_name(v); },
+     [](const SD& s) { return std::string(wrap_mode_name(s.wrap_t)); }},
+    {"border", "border texel word r,g,b,a (0..255 each)", [](SD& s, const std::string& v) { s.border = parse_border(v); },
+     [](const SD& s) { return fmt::format("{},{},{},{}", s.border.r, s.border.g, s.border.b, s.border.a); }},
+    {"lod_bias", "LOD bias, levels", [](SD& s, const std::string& v) { s.lod.bias_q8 = parse_lod(v); },
+     [](const SD& s) { return lod_string(s.lod.bias_q8); }},
+    {"min_lod", "lower clamp of lambda, levels", [](SD& s, const std::string& v) { s.lod.min_lod_q8 = parse_lod(v); },
+     [](const SD& s) { return lod_string(s.lod.min_lod_q8); }},
+    {"max_lod", "upper clamp of lambda, levels", [](SD& s, const std::string& v) { s.lod.max_lod_q8 = parse_lod(v); },
+     [](const SD& s) { return lod_string(s.lod.max_lod_q8); }},
+    {"kernel", "CUBIC kernel: box, tent, bspline, catmull-rom, mitchell, kaiser, blackman, bspline-interp",
+     [](SD& s, const std::string& v) {
+       cubic_kernel_index(v);
+       s.kernel = v;
+     },
+     [](const SD& s) { return s.kernel; }},
+    {"rom_samples", "CUBIC weight ROM: samples per tile (16..512)",
+     [](SD& s, const std::string& v) { s.cubic_rom.samples = static_cast<int>(parse_int(v, TileRomSpec::kMinSamples, TileRomSpec::kMaxSamples)); },
+     [](const SD& s) { return std::to_string(s.cubic_rom.samples); }},
+    {"rom_bits", "CUBIC weight ROM: magnitude bits (4..16)",
+     [](SD& s, const std::string& v) { s.cubic_rom.bits = static_cast<unsigned>(parse_int(v, TileRomSpec::kMinBits, TileRomSpec::kMaxBits)); },
+     [](const SD& s) { return std::to_string(s.cubic_rom.bits); }},
+    {"rom_pos", "CUBIC weight ROM sample positions: centre or corner",
+     [](SD& s, const std::string& v) { s.cubic_rom.pos = pick(v, kRomPos); }, [](const SD& s) { return name_of(s.cubic_rom.pos, kRomPos); }},
+    {"rom_rounding", "CUBIC weight ROM rounding: sum-preserving or nearest",
+     [](SD& s, const std::string& v) { s.cubic_rom.rounding = pick(v, kRounding); },
+     [](const SD& s) { return name_of(s.cubic_rom.rounding, kRounding); }},
+    {"rom_recon", "CUBIC weights between ROM entries: nearest or linear",
+     [](SD& s, const std::string& v) { s.cubic_recon = pick(v, kRecon); }, [](const SD& s) { return name_of(s.cubic_recon, kRecon); }},
+    {"level_adapt", "CUBIC kernel fitted to each MIP level: true or false",
+     [](SD& s, const std::string& v) { s.cubic_level_adapt = parse_bool(v); },
+     [](const SD& s) { return std::string(s.cubic_level_adapt ? "true" : "false"); }},
+    {"edge_shape", "EDGE_PRESERVING kernel shapes: static, cross or cache-aware",
+     [](SD& s, const std::string& v) { s.edge_shape = edge_shape_from_name(v); },
+     [](const SD& s) { return std::string(edge_shape_name(s.edge_shape)); }},
+    {"max_aniso", "maximum anisotropy, probes per pixel (1..16)",
+     [](SD& s, const std::string& v) { s.max_aniso = static_cast<int>(parse_int(v, 1, 16)); },
+     [](const SD& s) { return std::to_string(s.max_aniso); }},
+    {"aniso_rounding", "probe count: integer or pow2",
+     [](SD& s, const std::string& v) { s.aniso_rounding = pick(v, kAnisoRounding); },
+     [](const SD& s) { return name_of(s.aniso_rounding, kAnisoRounding); }},
+};
+
+constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes"};
+
+}  // namespace
+
+std::span<const SamplerParam> sampler_params() { return kSamplerParams; }
+
+void set_sampler_param(SamplerDescriptor& s, const std::string& key, const std::string& value) {
+  for (const SamplerParam& q : kSamplerParams)
+    if (key == q.key) return q.set(s, value);
+  throw InputError(fmt::format("unknown sampler key '{}'", clip(key)));
+}
+
+SamplerDescriptor sampler_from_params(const Params& params, const std::string& where, SamplerDescriptor s) {
+  for (const auto& [key, value] : params) {
+    try {
+      set_sampler_param(s, key, value);
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      throw InputError(msg.rfind("unknown sampler key", 0) == 0 ? fmt::format("{}: {}", where, msg)
+                                                                 : fmt::format("{}: key '{}': {}", where, key, msg));
+    }
+  }
+  try {
+    s.validate();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", where, e.what()));
+  }
+  return s;
+}
+
+Params sampler_to_params(const SamplerDescriptor& s) {
+  Params p;
+  for (const SamplerParam& q : kSamplerParams) p[q.key] = q.get(s);
+  return p;
+}
+
+std::span<const char* const> texture_param_keys() { return kTextureParamKeys; }
+
+LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir) {
+  for (const auto& [key, value] : spec.params) {
+    bool known = false;
+    for (const char* k : kTextureParamKeys) known = known || key == k;
+    if (!known) throw InputError(fmt::format("{}: unknown texture key '{}'", where, clip(key)));
+  }
+  const auto param = [&spec](const char* key, const char* def) {
+    const auto it = spec.params.find(key);
+    return it == spec.params.end() ? std::string(def) : it->second;
+  };
+  const auto fail = [&where](const std::string& key, const std::string& msg) -> InputError {
+    return InputError(fmt::format("{}: key '{}': {}", where, key, msg));
+  };
+  LoadedTexture out;
+  if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
+    if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
+    out.texture = level_texture(spec.source, where);
+    return out;
+  }
+  Texture tex;
+  const std::string prefix = "proc:";
+  if (spec.source.rfind(prefix, 0) == 0) {
+    std::string name = spec.source.substr(prefix.size());
+    int size = 256;
+    if (const auto colon = name.find(':'); colon != std::string::npos) {
+      try {
+        size = static_cast<int>(parse_int(name.substr(colon + 1), 1, kMaxTextureSize));
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: texture '{}': size {}", where, clip(spec.source), e.what()));
+      }
+      name.resize(colon);
+    }
+    try {
+      Procedural p = make_procedural(name, size);
+      tex = std::move(p.texture);
+      out.truth = std::move(p.eval);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", where, e.what()));
+    }
+  } else {
+    std::filesystem::path path(spec.source);
+    if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
+    tex = load_texture(path.string());  // its errors name the file
+  }
+  const std::string format = param("format", "auto");
+  if (format != "auto") {
+    TexelFormat f{};
+    try {
+      f = texel_format_from_name(format);
+    } catch (const InputError& e) {
+      throw fail("format", e.what());
+    }
+    if (f == TexelFormat::L8)
+      for (Image& l : tex.levels)
+        for (Rgba8& t : l.texels) t = {t.r, t.r, t.r, 255};
+    tex.format = f;
+  }
+  try {
+    tex.layout = memory_layout_from_name(param("layout", "tiled"));
+  } catch (const InputError& e) {
+    throw fail("layout", e.what());
+  }
+  try {
+    tex.tile_bytes = static_cast<int>(parse_int(param("tile_bytes", "64"), 64, 1024));
+  } catch (const InputError& e) {
+    throw fail("tile_bytes", e.what());
+  }
+  if (!valid_tile_bytes(tex.tile_bytes)) throw fail("tile_bytes", "must be 64, 256 or 1024");
+  double alpha = 0.5;
+  if (spec.params.contains("alpha")) {
+    char* end = nullptr;
+    const std::string& a = spec.params.at("alpha");
+    alpha = std::strtod(a.c_str(), &end);
+    if (a.empty() || end != a.c_str() + a.size() || !(alpha >= 0.0 && alpha <= 1.0)) throw fail("alpha", "must be a number in 0..1");
+  }
+  const std::string m = param("mipmaps", "auto");
+  try {
+    if (m == "auto") {
+      if (tex.levels.size() == 1) generate_mipmaps(tex, MipMethod::Box);
+    } else if (m == "stored") {
+      // keep what the file holds
+    } else if (m == "none") {
+      tex.levels.resize(1);
+    } else {
+      generate_mipmaps(tex, mip_method_from_name(m), alpha);
+    }
+  } catch (const InputError& e) {
+    throw fail("mipmaps", e.what());
+  }
+  out.texture = std::make_shared<const Texture>(std::move(tex));
+  return out;
+}
+
+}  // namespace tfu

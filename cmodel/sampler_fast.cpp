@@ -1,0 +1,275 @@
+// Speed-only fast paths of the golden sampler (no effect on results): sample() of LINEAR, CUBIC
+// and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, and LINEAR's
+// sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for bit is
+// sampler.cpp (sample_channels); Properties.FastPathsEqualGenericDatapath and BatchEqualsSample
+// compare them.
+#include <algorithm>
+#include <utility>
+
+#include "cmodel/datapath.hpp"
+#include "cmodel/edge_filter.hpp"
+#include "cmodel/sampler.hpp"
+#include "cmodel/sampler_internal.hpp"
+
+namespace tfu {
+
+using dp::LevelCoord;
+using dp::texel_coord;
+using sampler_detail::WeightMemo;
+
+// ---------------------------------------------------------------- fast paths (software speed only)
+// sample() of LINEAR, CUBIC and EDGE_PRESERVING runs one instantiation per pair of wrap modes, so
+// that the wrap unit and the border select fold away, and reads texel words straight from the
+// level. Same arithmetic, bit for bit, as the generic datapath above (sample_channels), which the
+// tests compare them with.
+namespace {
+
+template <WrapMode kWs, WrapMode kWt>
+inline constexpr bool kMayBorder = kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder;
+
+// What the fast paths read of a level: the base address of its texel words and its extent (a
+// value, so that a batch keeps it in registers: stores of results cannot change it).
+struct LevelView {
+  const Rgba8* texels;
+  int width, height;
+  explicit LevelView(const Image& img) : texels(img.texels.data()), width(img.width), height(img.height) {}
+};
+
+// Texel word at wrapped (x, y); a clamp-to-border tap (x or y = -1) reads the border word.
+template <bool kBorder>
+[[gnu::always_inline]] inline Rgba8 texel_word(LevelView img, int x, int y, Rgba8 border) {
+  if (kBorder && (x | y) < 0) return border;
+  return img.texels[static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x)];
+}
+
+// LINEAR on one level of an 8-bit format: address, wrap and the four texel words of lane k of q,
+// then the same arithmetic as filter_linear (one rounding of the Q.16 sum) in dp::bilinear_lerp8,
+// or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit inputs is always within 0..255.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+  int xs[2], ys[2];
+  dp::wrap_taps<kWs, 2>(u.i0, img.width, xs);
+  dp::wrap_taps<kWt, 2>(v.i0, img.height, ys);
+  constexpr bool kB = kMayBorder<kWs, kWt>;
+  q.a[k] = texel_word<kB>(img, xs[0], ys[0], border);
+  q.b[k] = texel_word<kB>(img, xs[1], ys[0], border);
+  q.c[k] = texel_word<kB>(img, xs[0], ys[1], border);
+  q.d[k] = texel_word<kB>(img, xs[1], ys[1], border);
+  q.fu[k] = u.f;
+  q.fv[k] = v.f;
+}
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
+  dp::Quad8 q;
+  bilinear8_taps<kWs, kWt>(img, border, s, t, q, 0);
+  return dp::bilinear_lerp8(q.a[0], q.b[0], q.c[0], q.d[0], q.fu[0], q.fv[0]);
+}
+
+// CUBIC (4 x 4 taps) on one level of 8-bit texel words with memoized weights: filter_tiled_acc_n
+// with the wrap modes fixed, then the normalise stage.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 cubic8(LevelView img, Rgba8 border, const WeightMemo& memo,
+                                            const dp::CubicNormalize& norm, float s, float t) {
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+  const int32_t* w = memo.weights(u.f, v.f);
+  int col[4], row[4];
+  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
+  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  // (R, B) and (G, A) in signed 32-bit lanes, as in filter_tiled_acc_n: modular arithmetic keeps
+  // x = low + high 2^32 exactly and each lane's true sum is below 2^31 in magnitude.
+  // One row of taps per iteration (kept as a loop: fully unrolled, the compiler spills the 16
+  // addresses and weights).
+  uint64_t arb = 0, aga = 0;
+#pragma GCC unroll 1
+  for (int j = 0; j < 4; ++j) {
+    const int32_t* wr = w + 4 * j;
+    for (int i = 0; i < 4; ++i) {
+      const Rgba8 c = texel_word<kMayBorder<kWs, kWt>>(img, col[i], row[j], border);
+      const auto wt = static_cast<uint64_t>(static_cast<int64_t>(wr[i]));
+      arb += dp::word_lanes_rb(c) * wt;  // (R, B) and (G, A) in 32-bit lanes
+      aga += dp::word_lanes_ga(c) * wt;
+    }
+  }
+  const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };
+  const auto hi = [&lo](uint64_t x) {
+    return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>((x - static_cast<uint64_t>(lo(x))) >> 32)));
+  };
+  const std::array<int64_t, 4> acc{lo(arb), lo(aga), hi(arb), hi(aga)};
+  if (norm.M == 255 && !norm.prefiltered) {
+    // dp::cubic_normalize of the default 8-bit ROM: clamp(floor((2 acc + 255) / 510)) to 0..255; a
+    // negative numerator clamps to 0, so only non-negative ones are divided (truncation = floor).
+    const auto n8 = [](int64_t a) {
+      const int64_t n = 2 * a + 255;
+      return static_cast<uint8_t>(n < 0 ? 0 : std::min<int64_t>(n / 510, 255));
+    };
+    return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
+  }
+  const Texel4 c = dp::cubic_normalize(acc, norm);  // within 0..255
+  return {static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]), static_cast<uint8_t>(c[3])};
+}
+
+// EDGE_PRESERVING on one level of an 8-bit format: the cross footprint (edge_footprint with the
+// wrap modes fixed and no override; texels outside the shape are read but not used), then the
+// Lee & Jen datapath. `block`: the static shapes' tile side, 0 for the cross.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, int block, float s, float t) {
+  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+  int col[lee_jen::kGridSide], row[lee_jen::kGridSide];  // columns and rows -1 .. 2
+  dp::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
+  dp::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
+  const lee_jen::TexelMask mask = block != 0 ? lee_jen::cache_block_mask_of_grid(col, row, block) : lee_jen::kAllTexels;
+  std::array<Texel4, lee_jen::kTexels> c;
+  for (size_t k = 0; k < c.size(); ++k) {
+    const int n = static_cast<int>(k) + 1;
+    const Rgba8 w =
+        texel_word<kMayBorder<kWs, kWt>>(img, col[lee_jen::grid_col(n)], row[lee_jen::grid_row(n)], border);
+    c[k] = ((mask >> k) & 1u) ? Texel4{w.r, w.g, w.b, w.a} : Texel4{0, 0, 0, 0};
+  }
+  return lee_jen::edge_preserving_interpolate(c, mask, u.f, v.f, fmt);
+}
+
+// Trilinear blend unit (dp::level_blend) and output encoding, for the 8-bit paths' texel words
+// (channels within 0..255, so encoding is the identity) and for datapath channels.
+inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::level_blend8(a, b, f); }
+inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
+inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
+inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }
+
+// Level select of the LOD unit and the blend unit around a filter of one level, f(level).
+template <class F>
+[[gnu::always_inline]] inline auto filter_levels(int32_t lambda, const LodParams& lod, MipMode mip, int q, F&& f) {
+  const LevelPick p = select_levels(lambda_bias_clamp(lambda, lod), mip, q);
+  const auto c0 = f(p.level0);
+  if (p.blend == 0) return c0;
+  return blend_levels(c0, f(p.level1), p.blend);
+}
+
+}  // namespace
+
+// The mode's filter on one level.
+template <Sampler::FastPaths::Variant kV>
+[[gnu::always_inline]] inline auto Sampler::FastPaths::filter(const Sampler& sm, int l, float s, float t) {
+  const auto level = static_cast<size_t>(l);
+  const Impl& im = *sm.impl_;
+  if constexpr (kV.path == Path::Linear8) {
+    return bilinear8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, s, t);
+  } else if constexpr (kV.path == Path::Cubic8) {
+    if (im.prefiltered) return cubic8<kV.ws, kV.wt>(LevelView(im.coeffs.codes[level]), Rgba8{}, *im.memo, im.norm, s, t);
+    return cubic8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, *im.memo, im.norm, s, t);
+  } else {
+    return edge8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, sm.tex_.format,
+                               sm.static_shape_block(), s, t);
+  }
+}
+
+// One filtered colour: level select, the filter on one or two levels, blend, encode.
+template <Sampler::FastPaths::Variant kV>
+Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda) {
+  const TexelFormat fmt = sm.tex_.format;
+  if constexpr (!kV.mipmapped) {
+    return output_word(filter<kV>(sm, 0, s, t), fmt);  // GL: no MIP-mapping -> level 0
+  } else {
+    return output_word(filter_levels(lambda, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
+                                     [&](int l) { return filter<kV>(sm, l, s, t); }),
+                       fmt);
+  }
+}
+
+// sample<kV> over a batch, LINEAR on 8-bit formats: the sampler's registers are read once, and four
+// requests at a time share the 4-lane lerp unit (their address, wrap and texel fetch are
+// independent, so the core overlaps them). MIP-mapped, each lane selects its own levels; the
+// second level's lerp runs when some lane blends, and the blend unit only for those lanes (as
+// filter_levels). A remainder of 1..3 requests goes through the scalar units.
+template <Sampler::FastPaths::Variant kV>
+void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
+  static_assert(kV.path == Path::Linear8);
+  const Rgba8 border = sm.cfg_.border;
+  size_t i = 0;
+  if constexpr (!kV.mipmapped) {
+    const LevelView img(sm.tex_.levels[0]);
+    dp::Quad8 q;  // every lane is written before each use
+    for (; i + 4 <= n; i += 4) {
+      for (size_t k = 0; k < 4; ++k) bilinear8_taps<kV.ws, kV.wt>(img, border, req[i + k].s, req[i + k].t, q, k);
+      dp::bilinear_lerp8x4(q, out + i);
+    }
+    for (; i < n; ++i) out[i] = bilinear8<kV.ws, kV.wt>(img, border, req[i].s, req[i].t);
+  } else {
+    const Image* levels = sm.tex_.levels.data();
+    const LodParams lod = sm.cfg_.lod;
+    const MipMode mip = sm.cfg_.mode.mip;
+    const int top = sm.tex_.max_level();
+    dp::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
+    std::array<Rgba8, 4> c1;
+    for (; i + 4 <= n; i += 4) {
+      std::array<int, 4> blend;
+      int any = 0;
+      for (size_t k = 0; k < 4; ++k) {
+        const SampleRequest& r = req[i + k];
+        const LevelPick p = select_levels(lambda_bias_clamp(r.lambda_q8, lod), mip, top);
+        bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level0]), border, r.s, r.t, q0, k);
+        if (p.blend != 0) bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level1]), border, r.s, r.t, q1, k);
+        blend[k] = p.blend;
+        any |= p.blend;
+      }
+      dp::bilinear_lerp8x4(q0, out + i);
+      if (any == 0) continue;
+      dp::bilinear_lerp8x4(q1, c1.data());
+      for (size_t k = 0; k < 4; ++k)
+        if (blend[k] != 0) out[i + k] = dp::level_blend8(out[i + k], c1[k], blend[k]);
+    }
+    for (; i < n; ++i) {
+      const float s = req[i].s, t = req[i].t;
+      out[i] = filter_levels(req[i].lambda_q8, lod, mip, top,
+                             [&](int l) { return bilinear8<kV.ws, kV.wt>(LevelView(levels[l]), border, s, t); });
+    }
+  }
+}
+
+
+// sample<kV> for the 16 pairs of wrap modes, indexed by 4 wrap_s + wrap_t.
+template <Sampler::FastPaths::Path kP, bool kMip, size_t... k>
+constexpr std::array<Sampler::SampleFn, 16> Sampler::FastPaths::wrap_table(std::index_sequence<k...>) {
+  return {&sample<Variant{kP, kMip, static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)}>...};
+}
+
+// batch<kV> of LINEAR for the 16 pairs of wrap modes, indexed by 4 wrap_s + wrap_t.
+template <bool kMip, size_t... k>
+constexpr std::array<Sampler::BatchFn, 16> Sampler::FastPaths::batch_table(std::index_sequence<k...>) {
+  return {&batch<Variant{Path::Linear8, kMip, static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)}>...};
+}
+
+template <Sampler::FastPaths::Path kP>
+Sampler::SampleFn Sampler::FastPaths::pick(bool mipmapped, WrapMode ws, WrapMode wt) {
+  const auto k = static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt));
+  return mipmapped ? wrap_table<kP, true>(std::make_index_sequence<16>())[k]
+                   : wrap_table<kP, false>(std::make_index_sequence<16>())[k];
+}
+
+void Sampler::FastPaths::setup(Sampler& sm) {
+  const Impl& im = *sm.impl_;
+  const WrapMode ws = sm.cfg_.wrap_s, wt = sm.cfg_.wrap_t;
+  const bool mip = sm.cfg_.mode.mip != MipMode::None;
+  const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
+  sm.sample_fn_ = &sample_generic;
+  sm.batch_fn_ = &batch_generic;
+  switch (sm.cfg_.mode.base) {
+    case BaseFilter::Nearest: break;
+    case BaseFilter::Linear:
+      if (bytes) {
+        sm.sample_fn_ = pick<Path::Linear8>(mip, ws, wt);
+        const auto k = static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt));
+        sm.batch_fn_ = mip ? batch_table<true>(std::make_index_sequence<16>())[k]
+                           : batch_table<false>(std::make_index_sequence<16>())[k];
+      }
+      break;
+    case BaseFilter::Cubic:
+      if (bytes && im.memo && im.rom->taps() == 4) sm.sample_fn_ = pick<Path::Cubic8>(mip, ws, wt);
+      break;
+    case BaseFilter::EdgePreserving:
+      if (bytes) sm.sample_fn_ = pick<Path::Edge8>(mip, ws, wt);
+      break;
+  }
+}
+
+}  // namespace tfu

@@ -1,0 +1,120 @@
+// The double-precision "ideal" reference of every filter mode (exact kernel weights, exact lerps,
+// exact log2 fraction; the same texels as the datapath): the quality reference that isolates the
+// datapath's own quantization. Floating point by design; never part of the bit-exact path.
+#include <algorithm>
+#include <cmath>
+
+#include "cmodel/edge_filter.hpp"
+#include "cmodel/sampler.hpp"
+#include "cmodel/sampler_internal.hpp"
+
+namespace tfu {
+
+// ---------------------------------------------------------------- double-precision ideal
+std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) const {
+  // Non-finite coordinates as the datapath treats them (docs/sampler.md): NaN -> 0, +-Inf
+  // saturates (here at +-2^40, far outside any texture, so every index below stays finite).
+  const auto saturate = [](double c) { return std::isnan(c) ? 0.0 : std::clamp(c, -0x1p40, 0x1p40); };
+  s = saturate(s);
+  t = saturate(t);
+  // Same level selection as GL, in real arithmetic.
+  lambda = std::clamp(lambda + cfg_.lod.bias_q8 / 256.0, cfg_.lod.min_lod_q8 / 256.0, cfg_.lod.max_lod_q8 / 256.0);
+  const int q = tex_.max_level();
+  int l0 = 0, l1 = 0;
+  double blend = 0;
+  if (lambda > 0) {
+    if (cfg_.mode.mip == MipMode::Nearest) {
+      l0 = l1 = std::min(lambda <= 0.5 ? 0 : static_cast<int>(std::ceil(lambda + 0.5)) - 1, q);
+    } else if (cfg_.mode.mip == MipMode::Linear) {
+      if (lambda >= q) {
+        l0 = l1 = q;
+      } else {
+        l0 = static_cast<int>(std::floor(lambda));
+        l1 = l0 + 1;
+        blend = lambda - l0;
+      }
+    }
+  }
+  const double sc = impl_->scale;
+  const auto real_texel = [&](int level, int64_t x, int64_t y) {
+    const Texel4 c = fetch(level, static_cast<int>(std::clamp<int64_t>(x, INT32_MIN / 2, INT32_MAX / 2)),
+                           static_cast<int>(std::clamp<int64_t>(y, INT32_MIN / 2, INT32_MAX / 2)));
+    return std::array<double, 4>{c[0] / sc, c[1] / sc, c[2] / sc, c[3] / sc};
+  };
+  const auto level_sample = [&](int level) -> std::array<double, 4> {
+    const Image& img = tex_.levels[static_cast<size_t>(level)];
+    const double u = s * img.width - 0.5, v = t * img.height - 0.5;
+    const double fi = std::floor(u), fj = std::floor(v);
+    const double fu = u - fi, fv = v - fj;
+    const auto i0 = static_cast<int64_t>(std::clamp(fi, -1e15, 1e15));
+    const auto j0 = static_cast<int64_t>(std::clamp(fj, -1e15, 1e15));
+    std::array<double, 4> out{};
+    switch (cfg_.mode.base) {
+      case BaseFilter::Nearest:
+        return real_texel(level, static_cast<int64_t>(std::floor(s * img.width)),
+                          static_cast<int64_t>(std::floor(t * img.height)));
+      case BaseFilter::Linear: {
+        const std::array<double, 4> w{(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
+        const std::array<std::array<double, 4>, 4> c{real_texel(level, i0, j0), real_texel(level, i0 + 1, j0),
+                                                     real_texel(level, i0, j0 + 1), real_texel(level, i0 + 1, j0 + 1)};
+        for (size_t ch = 0; ch < 4; ++ch)
+          for (size_t k = 0; k < 4; ++k) out[ch] += w[k] * c[k][ch];
+        return out;
+      }
+      case BaseFilter::Cubic: {
+        const FilterKernel& h = *impl_->kernel;
+        const int taps = impl_->rom->taps(), m0 = impl_->rom->first_tap();
+        // Without level adaptation the kernel keeps its level-0 footprint: distances in level-L
+        // texels are scaled by 2^L before evaluating h (Hadwiger 2004 Sec. 3.2).
+        const double k = cfg_.cubic_level_adapt ? 1.0 : std::ldexp(1.0, level);
+        double wsum = 0;
+        for (int j = 0; j < taps; ++j)
+          for (int i = 0; i < taps; ++i) {
+            const double w = h(k * (fu - (m0 + i))) * h(k * (fv - (m0 + j)));
+            if (w == 0) continue;
+            wsum += w;
+            std::array<double, 4> c;
+            if (impl_->prefiltered) {
+              const auto& cl = impl_->coeffs.exact[static_cast<size_t>(level)];
+              const int xi = wrap_index(cfg_.wrap_s, i0 + m0 + i, img.width);
+              const int yj = wrap_index(cfg_.wrap_t, j0 + m0 + j, img.height);
+              c = (xi < 0 || yj < 0) ? std::array<double, 4>{}
+                                     : cl[static_cast<size_t>(yj) * static_cast<size_t>(img.width) +
+                                          static_cast<size_t>(xi)];
+            } else {
+              c = real_texel(level, i0 + m0 + i, j0 + m0 + j);
+            }
+            for (size_t ch = 0; ch < 4; ++ch) out[ch] += w * c[ch];
+          }
+        if (!cfg_.cubic_level_adapt && wsum > 0)
+          for (auto& x : out) x /= wsum;  // the unadapted kernel is renormalised (best case for it)
+        const double lo = tex_.format == TexelFormat::VS16X2 ? -1.0 : 0.0;
+        for (auto& x : out) x = std::clamp(x, lo, 1.0);
+        return out;
+      }
+      case BaseFilter::EdgePreserving: {
+        std::array<std::array<double, 4>, lee_jen::kTexels> c{};
+        lee_jen::TexelMask mask = lee_jen::kAllTexels;
+        if (const int block = static_shape_block(); block != 0)
+          mask = lee_jen::cache_block_mask(wrap_index(cfg_.wrap_s, i0, img.width),
+                                           wrap_index(cfg_.wrap_s, i0 + 1, img.width),
+                                           wrap_index(cfg_.wrap_t, j0, img.height),
+                                           wrap_index(cfg_.wrap_t, j0 + 1, img.height), block);
+        for (int n = 1; n <= lee_jen::kTexels; ++n) {
+          const lee_jen::TexelPos p = lee_jen::texel_pos(n);
+          c[static_cast<size_t>(n - 1)] = real_texel(level, i0 + p.x, j0 + p.y);
+        }
+        return lee_jen::edge_preserving_ideal(c, mask, fu, fv, tex_.format);
+      }
+    }
+    return out;
+  };
+  std::array<double, 4> a = level_sample(l0);
+  if (blend > 0) {
+    const std::array<double, 4> b = level_sample(l1);
+    for (size_t ch = 0; ch < 4; ++ch) a[ch] = (1 - blend) * a[ch] + blend * b[ch];
+  }
+  return a;
+}
+
+}  // namespace tfu

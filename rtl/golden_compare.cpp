@@ -1,0 +1,36 @@
+#include "rtl/golden_compare.hpp"
+
+#include <fmt/format.h>
+
+namespace tfu::rtl {
+
+std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, const UnitOutput& out) {
+  std::vector<Rgba8> want(trace.requests.size());
+  const Registers& regs = golden.frame().regs;
+  int32_t lambda = 0;
+  for (size_t i = 0; i < trace.requests.size(); ++i) {
+    const TraceRequest& r = trace.requests[i];
+    if (trace.mode != TraceMode::Quad || i % 4 == 0) lambda = golden.lambda(trace, i);
+    const SamplerDescriptor& s = regs.samplers[r.sampler];
+    const Sampler& smp = golden.sampler(r.texture, r.sampler);
+    if (s.mode.base == BaseFilter::EdgePreserving && s.edge_shape == EdgeShape::CacheAware)
+      want[i] = smp.sample_edge_masks(r.s, r.t, lambda, out.edge_shapes.at(i));
+    else
+      want[i] = smp.sample(r.s, r.t, lambda);
+  }
+  return want;
+}
+
+std::string first_mismatch(const Trace& trace, const std::vector<Rgba8>& want, const UnitOutput& out, const std::string& where) {
+  for (size_t i = 0; i < trace.requests.size(); ++i) {
+    const Rgba8 have = out.pixels[i];
+    if (want[i] == have) continue;
+    const TraceRequest& r = trace.requests[i];
+    return fmt::format("{}{}request {} (texture {}, sampler {}, s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
+                       where, where.empty() ? "" : " ", i, r.texture, int{r.sampler}, r.s, r.t, out.response_cycle[i], have.r,
+                       have.g, have.b, have.a, want[i].r, want[i].g, want[i].b, want[i].a);
+  }
+  return {};
+}
+
+}  // namespace tfu::rtl

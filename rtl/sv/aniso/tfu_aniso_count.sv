@@ -1,0 +1,78 @@
+// Probe count N of the anisotropic LOD unit (EXT_texture_filter_anisotropic:
+// N = min(ceil(Pmax / Pmin), maxAniso), optionally rounded up to a power of two), exactly and
+// without a divider or square root; bit-exact with tfu::aniso_probe_count (cmodel/aniso.hpp).
+// Combinational.
+//
+// Ports:
+//   pmax2      [62:0]  Pmax^2 = max(Px^2, Py^2), Q.32
+//   pmin2      [62:0]  Pmin^2 = min(Px^2, Py^2), Q.32 (pmin2 <= pmax2)
+//   max_aniso  [4:0]   maxAniso of the sampler descriptor, 1..16 (0 acts as 1, 17..31 as 16)
+//   pow2               1: N rounded up to a power of two (the spec's "nearest supported rate")
+//   probes     [4:0]   N, 1..16
+//
+// ceil(Pmax / Pmin) is the smallest k >= 1 with k^2 Pmin^2 >= Pmax^2. The unit compares Pmax^2
+// with all sixteen k^2 Pmin^2 (71 bits) at once; the results form a thermometer code (k^2 Pmin^2
+// grows with k), so 1 + the number of failing compares is min(ceil(Pmax / Pmin), 17) (17: none,
+// e.g. Pmin = 0 < Pmax). The products k^2 Pmin^2 share their adders: nine adders for the 16
+// constants (3, 7, 9, 25, 49, 81, 121, 169, 225; the rest are shifts of these).
+module tfu_aniso_count (
+  input  logic [62:0] pmax2,
+  input  logic [62:0] pmin2,
+  input  logic [4:0]  max_aniso,
+  input  logic        pow2,
+  output logic [4:0]  probes
+);
+  localparam int W = 71;  // 63 + log2(256)
+  logic [W-1:0] x, p3, p7, p9, p25, p49, p81, p121, p169, p225;
+  assign x    = W'(pmin2);
+  assign p3   = (x << 1) + x;
+  assign p7   = (x << 3) - x;
+  assign p9   = (p3 << 1) + p3;
+  assign p25  = (x << 4) + p9;
+  assign p49  = (p3 << 4) + x;
+  assign p81  = (p9 << 3) + p9;
+  assign p121 = (x << 7) - p7;
+  assign p169 = (p9 << 4) + p25;
+  assign p225 = (p9 << 4) + p81;
+
+  logic [W-1:0] sq [16];  // k^2 Pmin^2 for k = 1..16 at index k - 1
+  assign sq[0]  = x;
+  assign sq[1]  = x << 2;
+  assign sq[2]  = p9;
+  assign sq[3]  = x << 4;
+  assign sq[4]  = p25;
+  assign sq[5]  = p9 << 2;
+  assign sq[6]  = p49;
+  assign sq[7]  = x << 6;
+  assign sq[8]  = p81;
+  assign sq[9]  = p25 << 2;
+  assign sq[10] = p121;
+  assign sq[11] = p9 << 4;
+  assign sq[12] = p169;
+  assign sq[13] = p49 << 2;
+  assign sq[14] = p225;
+  assign sq[15] = x << 8;
+
+  logic [15:0] below;  // below[k - 1]: k Pmin < Pmax
+  for (genvar k = 0; k < 16; k++) begin : g_cmp
+    assign below[k] = sq[k] < W'(pmax2);
+  end
+
+  logic [4:0] ratio_ceil;  // min(ceil(Pmax / Pmin), 17)
+  always_comb begin
+    ratio_ceil = 5'd1;
+    for (int k = 0; k < 16; k++) ratio_ceil = ratio_ceil + 5'(below[k]);
+  end
+
+  logic [4:0] cap;
+  assign cap = (max_aniso == 5'd0) ? 5'd1 : (max_aniso > 5'd16) ? 5'd16 : max_aniso;
+
+  logic [4:0] n;
+  assign n = (ratio_ceil < cap) ? ratio_ceil : cap;
+  always_comb begin
+    if (!pow2 || n <= 5'd2) probes = n;
+    else if (n <= 5'd4) probes = 5'd4;
+    else if (n <= 5'd8) probes = 5'd8;
+    else probes = 5'd16;
+  end
+endmodule

@@ -1,0 +1,178 @@
+#include "rtl/unit_config.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cmodel/error.hpp"
+#include "cmodel/json_input.hpp"
+
+namespace tfu::rtl {
+
+namespace {
+
+// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
+std::string clip(const std::string& s) { return quote_input(s); }
+
+#define TFU_INT_FIELD(member) \
+  [](const UnitConfig& c) { return c.member; }, [](UnitConfig& c, int v) { c.member = v; }
+
+const std::vector<UnitField>& fields() {
+  static const std::vector<UnitField> f = {
+      {"cache.line_bytes", "--line-bytes", "bytes per cache line; a tiled texture stores one tile per line (4x4 RGBA8 or 8x8 L8 at 64)",
+       64, 1024, {64, 256, 1024}, {}, TFU_INT_FIELD(cache.line_bytes)},
+      {"cache.capacity_bytes", "--cache-bytes", "data capacity; a whole number of sets", 64, int64_t{1} << 30, {}, {},
+       TFU_INT_FIELD(cache.capacity_bytes)},
+      {"cache.ways", "--ways", "associativity (LRU)", 1, 1024, {}, {}, TFU_INT_FIELD(cache.ways)},
+      {"cache.banks", "--banks", "banks", 1, 4, {1, 4}, {}, TFU_INT_FIELD(cache.banks)},
+      {"cache.bank_mapping", "--bank-mapping",
+       "texel-parity: one texel per bank per clock; block-parity: a bank reads a whole line per clock (docs/texel-cache.md)",
+       0, 1, {}, {"texel-parity", "block-parity"},
+       [](const UnitConfig& c) { return static_cast<int>(c.cache.bank_mapping); },
+       [](UnitConfig& c, int v) { c.cache.bank_mapping = static_cast<BankMapping>(v); }},
+      {"memory.latency", "--latency", "cycles from request to data", 0, 1000000, {}, {},
+       TFU_INT_FIELD(memory.latency)},
+      {"memory.bytes_per_cycle", "--bandwidth", "memory interface bandwidth, bytes per cycle", 1, 65536, {}, {},
+       TFU_INT_FIELD(memory.bytes_per_cycle)},
+      {"channel_depth", "--channel-depth", "skid-buffer depth between blocks", 1, 64, {}, {},
+       TFU_INT_FIELD(channel_depth)},
+      {"miss_fifo_depth", "--miss-fifo-depth", "footprints queued behind outstanding misses (Igehy et al. 1998)", 1, 1024, {}, {},
+       TFU_INT_FIELD(miss_fifo_depth)},
+      {"filter_lanes", "--lanes", "bilinear-equivalent multiplier lanes of the filter", 1, 4, {1, 2, 4}, {},
+       TFU_INT_FIELD(filter_lanes)},
+  };
+  return f;
+}
+#undef TFU_INT_FIELD
+
+std::string valid_text(const UnitField& f) {
+  if (!f.names.empty()) {
+    std::string s;
+    for (const char* n : f.names) s += (s.empty() ? "" : ", ") + std::string(n);
+    return s;
+  }
+  if (!f.allowed.empty()) {
+    std::string s;
+    for (int64_t v : f.allowed) s += (s.empty() ? "" : ", ") + std::to_string(v);
+    return s;
+  }
+  return fmt::format("{}..{}", f.lo, f.hi);
+}
+
+void check_value(const UnitField& f, int64_t v) {
+  const bool ok = f.allowed.empty() ? (v >= f.lo && v <= f.hi)
+                                    : std::find(f.allowed.begin(), f.allowed.end(), v) != f.allowed.end();
+  if (!ok) throw InputError(fmt::format("{} must be {}", v, f.allowed.empty() ? "in " + valid_text(f) : "one of " + valid_text(f)));
+}
+
+}  // namespace
+
+std::span<const UnitField> unit_config_fields() { return fields(); }
+
+const UnitField* find_unit_field(const std::string& key) {
+  for (const UnitField& f : fields())
+    if (key == f.key) return &f;
+  return nullptr;
+}
+
+std::string UnitField::value_text(const UnitConfig& c) const {
+  const int v = get(c);
+  return names.empty() ? std::to_string(v) : fmt::format("\"{}\"", names[static_cast<size_t>(v)]);
+}
+
+void UnitField::set_text(UnitConfig& c, const std::string& text) const {
+  if (!names.empty()) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (text == names[i]) {
+        set(c, static_cast<int>(i));
+        return;
+      }
+    throw InputError(fmt::format("'{}' is not one of {}", clip(text), valid_text(*this)));
+  }
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+    throw InputError(fmt::format("'{}' is not an integer", clip(text)));
+  check_value(*this, v);
+  set(c, static_cast<int>(v));
+}
+
+void UnitConfig::validate() const {
+  for (const UnitField& f : fields()) {
+    try {
+      check_value(f, f.get(*this));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", f.key, e.what()));
+    }
+  }
+  cache.validate();
+  memory.validate();
+}
+
+// Reads the fields of a JSON object (nested objects are the dotted key's groups) into `c`.
+void read_object(const nlohmann::json& obj, const std::string& prefix, UnitConfig& c, const std::string& name) {
+  if (!obj.is_object()) throw InputError(fmt::format("{}: {}expected a JSON object", name, prefix.empty() ? "" : prefix + ": "));
+  for (const auto& item : obj.items()) {
+    const std::string key = prefix.empty() ? item.key() : prefix + "." + item.key();
+    const nlohmann::json& v = item.value();
+    if (v.is_object()) {
+      bool is_group = false;
+      for (const UnitField& f : fields()) is_group = is_group || std::string(f.key).rfind(key + ".", 0) == 0;
+      if (!is_group) throw InputError(fmt::format("{}: unknown key '{}'", name, clip(key)));
+      read_object(v, key, c, name);
+      continue;
+    }
+    const UnitField* f = find_unit_field(key);
+    if (!f) throw InputError(fmt::format("{}: unknown key '{}'", name, clip(key)));
+    try {
+      if (!f->names.empty()) {
+        if (!v.is_string()) throw InputError("must be a string");
+        f->set_text(c, v.get<std::string>());
+      } else {
+        if (!v.is_number_integer()) throw InputError("must be an integer");
+        if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))
+          throw InputError(fmt::format("value {} is out of range", json_number_text(v)));
+        f->set_text(c, std::to_string(v.get<int64_t>()));
+      }
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: '{}' {}", name, key, e.what()));
+    }
+  }
+}
+
+UnitConfig unit_config_from_json(const std::string& text, const std::string& name) {
+  // InputError "NAME: line L, column C: [at KEY: ]..." for malformed JSON and numbers out of range.
+  const nlohmann::json j = parse_json_input(text, name);
+  UnitConfig c;
+  read_object(j, "", c, name);
+  try {
+    c.validate();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", name, e.what()));
+  }
+  return c;
+}
+
+std::string unit_config_to_json(const UnitConfig& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const UnitField& f : fields()) {
+    nlohmann::json* at = &j;
+    std::string key = f.key;
+    for (size_t dot; (dot = key.find('.')) != std::string::npos; key = key.substr(dot + 1)) at = &(*at)[key.substr(0, dot)];
+    (*at)[key] = nlohmann::json::parse(f.value_text(c));
+  }
+  return j.dump(2);
+}
+
+std::string unit_config_markdown() {
+  const UnitConfig def;
+  std::string md = "| field | flag | valid | default | meaning |\n|---|---|---|---:|---|\n";
+  for (const UnitField& f : fields())
+    md += fmt::format("| `{}` | `{}` | {} | {} | {} |\n", f.key, f.flag, valid_text(f), f.value_text(def), f.meaning);
+  return md;
+}
+
+}  // namespace tfu::rtl

@@ -1,0 +1,54 @@
+// The unit's architectural parameters (the hardware, not its programming: descriptors are in
+// cmodel/descriptors.hpp). One field table, unit_config_fields(), drives the struct's JSON reader
+// and writer, the command-line overrides of `tfu sim` (and the sweep's dotted grid keys), and the
+// table in docs/cycle-model.md (`tfu sim --config-fields`).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rtl/memory_model.hpp"
+#include "rtl/texel_cache.hpp"
+
+namespace tfu::rtl {
+
+struct UnitConfig {
+  TexelCacheConfig cache{};
+  MemoryConfig memory{};
+  int channel_depth = 2;      // skid buffers between blocks
+  int miss_fifo_depth = 128;  // footprints queued in the texel cache behind outstanding misses
+  int filter_lanes = 1;       // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)
+  // Simulation option, not architecture (not in the JSON): jump over cycles in which no block can
+  // act (sim::Simulator::set_idle_skip). Results and statistics are the same either way.
+  bool idle_skip = true;
+  void validate() const;  // every field's range, then the relations between fields; InputError naming the field
+  friend bool operator==(const UnitConfig&, const UnitConfig&) = default;
+};
+
+// One field: its dotted JSON key, its command-line flag, what it means, and its valid values: an
+// integer range [lo, hi], a set of integers, or names (stored as the index into `names`).
+struct UnitField {
+  const char* key;   // "cache.capacity_bytes"
+  const char* flag;  // "--cache-bytes"
+  const char* meaning;
+  int64_t lo, hi;                   // integer range (names: 0 .. names.size() - 1)
+  std::vector<int64_t> allowed;     // if not empty: the only valid integers
+  std::vector<const char*> names;   // if not empty: a named choice
+  int (*get)(const UnitConfig& c);
+  void (*set)(UnitConfig& c, int value);
+  std::string value_text(const UnitConfig& c) const;  // the value as JSON text
+  // Parses `text` (an integer, or one of `names`) into the field; InputError without the key.
+  void set_text(UnitConfig& c, const std::string& text) const;
+};
+std::span<const UnitField> unit_config_fields();
+const UnitField* find_unit_field(const std::string& key);  // nullptr if unknown
+
+// Parses a config JSON object; unknown keys and bad values are InputErrors naming file and key.
+UnitConfig unit_config_from_json(const std::string& text, const std::string& name);
+std::string unit_config_to_json(const UnitConfig& c);
+// The field table as Markdown (key, flag, valid values, default, meaning).
+std::string unit_config_markdown();
+
+}  // namespace tfu::rtl
