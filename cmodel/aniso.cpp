@@ -25,7 +25,7 @@ int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams&
   int n = 1;
   while (n <= kMaxAniso && !covers(pmin2_q32, pmax2_q32, static_cast<uint64_t>(n) * static_cast<uint64_t>(n))) ++n;
   n = std::min(n, clamp_max_aniso(p.max_aniso));  // n = 17 (no n covers) becomes maxAniso
-  if (p.pow2) n = static_cast<int>(std::bit_ceil(static_cast<unsigned>(n)));
+  if (p.aniso_rounding == AnisoRounding::PowerOfTwo) n = static_cast<int>(std::bit_ceil(static_cast<unsigned>(n)));
   return n;
 }
 
@@ -119,17 +119,22 @@ ProbeOffset probe_offset(const AnisoLod& a, int i) {
 
 namespace dp {
 
-Texel4 aniso_average(const Texel4* probes, int n) {
-  const auto& rom = probe_rom();
-  std::array<int64_t, 4> acc{};
-  for (int i = 1; i <= n; ++i) {
-    const int64_t w = rom[static_cast<size_t>(probe_rom_address(n, i))].weight;
-    for (size_t ch = 0; ch < 4; ++ch) acc[ch] += w * probes[i - 1][ch];
-  }
+void AnisoAccumulator::add(const Texel4& c, int n, int i) {
+  const int64_t w = probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].weight;
+  for (size_t ch = 0; ch < 4; ++ch) acc[ch] += w * c[ch];
+}
+
+Texel4 AnisoAccumulator::result() const {
   Texel4 out{};
   for (size_t ch = 0; ch < 4; ++ch)
     out[ch] = static_cast<int32_t>((acc[ch] + (1 << (kAnisoWeightBits - 1))) >> kAnisoWeightBits);
   return out;
+}
+
+Texel4 aniso_average(const Texel4* probes, int n) {
+  AnisoAccumulator a;
+  for (int i = 1; i <= n; ++i) a.add(probes[i - 1], n, i);
+  return a.result();
 }
 
 }  // namespace dp

@@ -12,8 +12,8 @@
 //   Px^2, Py^2       |du|^2 + |dv|^2, Q.32, < 2^63 (lod.hpp derivative_length_sq; no square root)
 //   major axis       x if Px^2 >= Py^2, else y (ties: x)
 //   N                smallest n in 1..16 with n^2 Pmin^2 >= Pmax^2 (exact: 15 compares of 71-bit
-//                    products), 16 + 1 if none, then min(., maxAniso); pow2 mode: rounded UP to a
-//                    power of two (the spec's "round N up to the nearest supported sampling rate")
+//                    products), 16 + 1 if none, then min(., maxAniso); aniso_rounding
+//                    PowerOfTwo: rounded UP to a power of two (the spec's "round N up to the nearest supported sampling rate")
 //   lambda           (log2_q8(Pmax^2) - 32 * 256 - R[N] + 1) >> 1, R[N] = round(512 log2 N) from a
 //                    16-entry ROM (R[1] = 0: N = 1 is the isotropic lambda bit for bit);
 //                    |lambda - 256 log2(Pmax / N)| <= 0.45 + 0.25 + 0.5 = 1.2 LSB of Q.8 (log2 ROM,
@@ -40,10 +40,16 @@ inline constexpr int kProbeFracBits = 16;     // probe fraction q(N, i): Q.16, |
 inline constexpr int kAnisoWeightBits = 8;    // probe weights sum to 2^8
 inline constexpr int kProbeRomAddrBits = 8;   // address {N - 1, i - 1}, 4 + 4 bits
 
-// Sampler-descriptor fields of anisotropic filtering.
+// How the probe count is rounded (sampler-descriptor field aniso_rounding): any integer 1..maxAniso,
+// or up to a power of two (1, 2, 4, 8, 16; the spec's "round N up to the nearest supported
+// sampling rate").
+enum class AnisoRounding { Integer, PowerOfTwo };
+
+// The sampler-descriptor fields of anisotropic filtering (SamplerDescriptor::aniso() hands them to
+// the LOD unit; a sampler without MIP-mapping gives max_aniso 1: it has no lambda to lower).
 struct AnisoParams {
-  int max_aniso = 1;   // maxAniso, 1..16 (1 = isotropic); values outside are clamped into 1..16
-  bool pow2 = false;   // N rounded up to a power of two (1, 2, 4, 8, 16)
+  int max_aniso = 1;  // maxAniso, 1..16 (1 = isotropic); values outside are clamped into 1..16
+  AnisoRounding aniso_rounding = AnisoRounding::Integer;
 };
 
 // The anisotropic LOD unit's result for one pixel (or quad).
@@ -57,12 +63,20 @@ struct AnisoLod {
   int32_t lambda_q8 = kLodMinusInfinity;  // log2(Pmax / N) in Q.8, before bias and clamp
 };
 
+// The LOD result of a request without derivatives (a lod-mode trace, textureLod) or of an
+// isotropic sampler: one probe at the centre, the given lambda; Px, Py and the major vector 0.
+constexpr AnisoLod isotropic_lod(int32_t lambda_q8) {
+  AnisoLod a;
+  a.lambda_q8 = lambda_q8;
+  return a;
+}
+
 // The whole LOD unit: squared axis lengths, major axis, N and lambda.
 AnisoLod aniso_lod(const TexelDerivatives& d, const AnisoParams& p);
 
 // N from the squared axis lengths (pmin2 <= pmax2 expected; any pair is defined): smallest n in
 // 1..16 with n^2 pmin2 >= pmax2 (17 if none, e.g. pmin2 = 0 < pmax2), capped at max_aniso, then
-// rounded up to a power of two in pow2 mode. pmax2 = pmin2 (also both 0) gives 1.
+// rounded up to a power of two with AnisoRounding::PowerOfTwo. pmax2 = pmin2 (also both 0) gives 1.
 int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams& p);
 
 // R[N - 1] = round(512 log2 N) = 256 log2(N^2) in Q.8, N = 1..16 (0, 512, 811, 1024, ...).
@@ -110,6 +124,25 @@ inline LevelCoord probe_texel_coord(LevelCoord centre, int64_t offset_q8) {
   const int64_t u = centre.i0 * 256 + static_cast<int64_t>(centre.f) + offset_q8;
   return {u >> 8, static_cast<uint32_t>(u & 255)};
 }
+
+// NEAREST probe tap on a level: floor(s W_L + o / 256) for the probe offset o (Q.8 texels of the
+// level), formed as the centre's tap floor(s W_L) (`centre_tap`, float_to_fixed with 0 fraction
+// bits, as the isotropic NEAREST filter) plus the carry of the offset into the centre's subtexel
+// position U & 255, U = floor(s W_L 2^8) = texel_coord's u + 128. An offset of 0 (N = 1, the centre
+// probe of odd N) gives exactly the isotropic tap, also where the conversions saturate.
+inline int64_t probe_nearest_tap(int64_t centre_tap, LevelCoord centre, int64_t offset_q8) {
+  return centre_tap + ((static_cast<int64_t>((centre.f + 128u) & 255u) + offset_q8) >> 8);
+}
+
+// The probe accumulator register of the averaging unit: acc += w(N, i) c_i per channel as the
+// probes of a pixel arrive (one per clock), then (acc + 128) >> 8. dp::aniso_average is this unit
+// over an array; the cycle model's filter and edge_merge hold one.
+struct AnisoAccumulator {
+  std::array<int64_t, 4> acc{};
+  void add(const Texel4& c, int n, int i);  // probe i (1..n) of n
+  Texel4 result() const;                    // (acc + 128) >> 8 per channel
+  void clear() { acc = {}; }
+};
 
 // Probe averaging unit: c = (sum_i w(N, i) c_i + 128) >> 8 per channel (round half up; an arithmetic
 // shift for the signed VS16X2 channels). The weights sum to 256, so the result lies between the

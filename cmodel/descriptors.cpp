@@ -285,7 +285,7 @@ const std::vector<Codec<SD>>& sampler_codecs() {
       {{"max_aniso_m1", 5, 0, 4, 1, 0, "maximum anisotropy minus 1 (probes per pixel, 1..16)"},
        [](const SD& d, int) { return static_cast<uint32_t>(d.max_aniso - 1); },
        [](SD& d, int, uint32_t b) { d.max_aniso = static_cast<int>(b) + 1; }},
-      {{"aniso_pow2", 5, 4, 1, 1, 0, "probe count: 0 any integer, 1 rounded down to a power of two"},
+      {{"aniso_rounding", 5, 4, 1, 1, 0, "probe count N: 0 any integer, 1 rounded up to a power of two"},
        [](const SD& d, int) { return u(d.aniso_rounding); },
        [](SD& d, int, uint32_t b) { d.aniso_rounding = static_cast<AnisoRounding>(b); }},
   };

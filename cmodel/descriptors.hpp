@@ -23,6 +23,7 @@
 
 #include <memory>
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/texture.hpp"
@@ -63,9 +64,6 @@ enum class EdgeShape { Cross, Static, CacheAware };
 EdgeShape edge_shape_from_name(const std::string& name);  // "cross" (also "full-cross"), "static", "cache-aware"
 const char* edge_shape_name(EdgeShape s);
 
-// Anisotropic probe count rounding (TFU-G): any integer 1..max_aniso, or down to a power of two.
-enum class AnisoRounding { Integer, PowerOfTwo };
-
 struct SamplerDescriptor {
   FilterMode mode{};
   WrapMode wrap_s = WrapMode::Repeat, wrap_t = WrapMode::Repeat;
@@ -79,13 +77,20 @@ struct SamplerDescriptor {
   // covers 4 / 2^L texels of level L and degenerates towards nearest).
   bool cubic_level_adapt = true;
   EdgeShape edge_shape = EdgeShape::Static;
-  int max_aniso = 1;  // 1..16; 1 = isotropic
+  // Anisotropic filtering (docs/anisotropic.md): probes per pixel at most, 1..16 (1 = isotropic),
+  // and the rounding of the probe count N (any integer, or up to a power of two).
+  int max_aniso = 1;
   AnisoRounding aniso_rounding = AnisoRounding::Integer;
   // Model option, not a register (no effect on results): evaluate the CUBIC tile-weight multipliers
   // once per ROM address pair instead of per sample (nearest reconstruction, R <= 128).
   bool memoize_cubic_weights = true;
 
   void validate() const;  // throws InputError naming the field
+  // Anisotropic: max_aniso > 1 on a MIP-mapped mode. A mode without MIP-mapping has no lambda to
+  // lower (GL: level 0 whatever the footprint), so it ignores max_aniso and filters isotropically.
+  bool anisotropic() const { return max_aniso > 1 && mode.mip != MipMode::None; }
+  // What the LOD unit reads: max_aniso (1 unless anisotropic()) and aniso_rounding.
+  AnisoParams aniso() const { return {anisotropic() ? max_aniso : 1, aniso_rounding}; }
   friend bool operator==(const SamplerDescriptor&, const SamplerDescriptor&) = default;
 };
 

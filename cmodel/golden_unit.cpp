@@ -32,6 +32,15 @@ int32_t GoldenUnit::lambda(const Trace& trace, size_t i) const {
   return request_lambda(trace, first, d.width, d.height);
 }
 
+AnisoLod GoldenUnit::lod(const Trace& trace, size_t i) const {
+  const size_t first = trace.mode == TraceMode::Quad ? i - i % 4 : i;
+  const TraceRequest& r = trace.requests[first];
+  const SamplerDescriptor& s = frame_.regs.samplers.at(r.sampler);
+  const TextureDescriptor& d = frame_.regs.textures.at(r.texture);
+  if (!s.anisotropic()) return isotropic_lod(request_lambda(trace, first, d.width, d.height));
+  return request_lod(trace, first, d.width, d.height, s.aniso());
+}
+
 std::vector<int32_t> GoldenUnit::lambdas(const Trace& trace) const {
   return trace_lambdas(trace, [this](int t) {
     const TextureDescriptor& d = frame_.regs.textures.at(static_cast<size_t>(t));

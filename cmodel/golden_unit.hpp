@@ -2,7 +2,8 @@
 // by the golden sampler (sampler.hpp) over the frame's registers. Untimed; what the cycle model must
 // equal bit for bit on every request.
 //
-//   lambda  the LOD unit of the request's texture (level-0 size from its descriptor), trace.hpp
+//   lambda  the LOD unit of the request's texture (level-0 size from its descriptor), trace.hpp;
+//   lod     with an anisotropic sampler also the probe count and major axis (aniso.hpp)
 //   sample  the Sampler of (texture, sampler): built once per pair on first use (thread-safe)
 // A bspline-interp request names the coefficient texture the driver made (FrameBuilder::bind); the
 // golden sampler prefilters the source texels itself with the same function and must arrive at the
@@ -33,7 +34,12 @@ class GoldenUnit {
   // lambda of request i (quad mode: of its quad) before bias and clamp.
   int32_t lambda(const Trace& trace, size_t i) const;
   std::vector<int32_t> lambdas(const Trace& trace) const;
+  // The LOD unit's whole result for request i (quad mode: of its quad) under its sampler: for an
+  // anisotropic sampler (SamplerDescriptor::anisotropic()) request_lod with the sampler's fields,
+  // else isotropic_lod(lambda(trace, i)) (the same lambda; one probe).
+  AnisoLod lod(const Trace& trace, size_t i) const;
   Rgba8 sample(const TraceRequest& r, int32_t lambda) const { return sampler(r.texture, r.sampler).sample(r.s, r.t, lambda); }
+  Rgba8 sample(const TraceRequest& r, const AnisoLod& lod) const { return sampler(r.texture, r.sampler).sample(r.s, r.t, lod); }
 
  private:
   const Frame& frame_;

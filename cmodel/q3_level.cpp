@@ -245,4 +245,24 @@ std::string level_summary(const Level& level) {
       level.spawn_class.empty() ? "none" : level.spawn_class);
 }
 
+std::vector<std::pair<std::string, int64_t>> level_count_fields(const Level& level) {
+  const LevelCounts& c = level.counts;
+  return {{"faces_polygon", c.faces_by_type[1]},
+          {"faces_patch", c.faces_by_type[2]},
+          {"faces_mesh", c.faces_by_type[3]},
+          {"faces_billboard", c.faces_by_type[4]},
+          {"faces_drawn", c.faces_drawn},
+          {"skipped_invisible", c.skipped_invisible},
+          {"skipped_sky", c.skipped_sky},
+          {"fallback_faces", c.fallback_faces},
+          {"fallback_textures", c.fallback_textures},
+          {"resolved_textures", c.resolved_textures},
+          {"patches", c.patches},
+          {"vertex_lit_faces", c.vertex_lit_faces},
+          {"triangles", c.triangles},
+          {"vertices", c.vertices},
+          {"lightmaps", static_cast<int64_t>(level.lightmaps.size()) - 1},
+          {"spawn_points", static_cast<int64_t>(level.spawns.size())}};
+}
+
 }  // namespace tfu::q3

@@ -115,4 +115,10 @@ std::vector<SpawnPoint> spawn_points(const std::vector<Entity>& entities, const 
 // One line for logs and the render summary: faces by type, skipped, fallbacks, triangles.
 std::string level_summary(const Level& level);
 
+// The counts as (name, value) pairs, for the statistics of `tfu sim` ("level_" + name):
+// faces_polygon, faces_patch, faces_mesh, faces_billboard, faces_drawn, skipped_invisible,
+// skipped_sky (billboards: faces_billboard, all skipped), fallback_faces, fallback_textures, resolved_textures, patches,
+// vertex_lit_faces, triangles, vertices, lightmaps, spawn_points.
+std::vector<std::pair<std::string, int64_t>> level_count_fields(const Level& level);
+
 }  // namespace tfu::q3

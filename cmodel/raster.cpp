@@ -118,6 +118,11 @@ double interpolate_z(const RasterTriangle& tri, const std::array<double, 3>& b) 
 
 float to_float_coord(double v) { return static_cast<float>(std::clamp(v, -1e30, 1e30)); }
 
+// Real-valued texel-space derivatives of the quad (du/dx, dv/dx, du/dy, dv/dy; the ideal path).
+std::array<double, 4> ideal_derivatives(const std::array<glm::dvec2, 4>& st, int w, int h) {
+  return {(st[1].x - st[0].x) * w, (st[1].y - st[0].y) * h, (st[2].x - st[0].x) * w, (st[2].y - st[0].y) * h};
+}
+
 // Real-valued lambda of the quad (for the ideal path): log2 of the longer texel-space derivative.
 double ideal_lambda(const std::array<glm::dvec2, 4>& st, int w, int h) {
   const double dudx = (st[1].x - st[0].x) * w, dvdx = (st[1].y - st[0].y) * h;
@@ -167,16 +172,26 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           t[k] = to_float_coord(uv.y);
         }
         if (st == 0) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
-        const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
+        const bool aniso = sampler.descriptor().anisotropic();
         if (ctx.opts->ideal) {
           // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
           // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
           std::array<glm::dvec2, 4> st_if;
           for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
           const double lambda_ideal = ideal_lambda(st_if, tex.width(), tex.height());
+          const std::array<double, 4> d = ideal_derivatives(st_if, tex.width(), tex.height());
           for (size_t k = 0; k < 4; ++k)
-            if (mask >> k & 1u) ideal[k] = combine_stage(ideal[k], sampler.sample_ideal(s[k], t[k], lambda_ideal), stage.combine);
+            if (mask >> k & 1u)
+              ideal[k] = combine_stage(ideal[k], aniso ? sampler.sample_ideal_aniso(s[k], t[k], d) : sampler.sample_ideal(s[k], t[k], lambda_ideal),
+                                       stage.combine);
+        } else if (aniso) {
+          // Anisotropic: the LOD unit's whole result for the quad (N, lambda, major axis), then the
+          // covered pixels' probes.
+          const AnisoLod lod = aniso_lod(derivatives_from_quad(s, t, tex.width(), tex.height()), sampler.descriptor().aniso());
+          for (size_t k = 0; k < 4; ++k)
+            if (mask >> k & 1u) colour[k] = combine_stage(colour[k], sampler.sample(s[k], t[k], lod), stage.combine);
         } else {
+          const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
           // The quad's covered pixels go to the filter unit together (its quad interface).
           std::array<SampleRequest, 4> reqs;
           std::array<Rgba8, 4> texel;

@@ -129,17 +129,20 @@ Texel4 filter_nearest(const LevelReader& rd, float s, float t) {
             float_to_fixed(t, static_cast<uint32_t>(rd.img.height), 0));
 }
 
-Texel4 filter_linear(const LevelReader& rd, float s, float t) {
-  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
+// The bilinear filter at a level coordinate (u, v): taps i0, i0 + 1 and j0, j0 + 1.
+Texel4 filter_linear_at(const LevelReader& rd, LevelCoord u, LevelCoord v) {
   const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
   return dp::bilinear_lerp({rd.at(x0, y0), rd.at(x1, y0), rd.at(x0, y1), rd.at(x1, y1)}, u.f, v.f, rd.fmt);
+}
+
+Texel4 filter_linear(const LevelReader& rd, float s, float t) {
+  return filter_linear_at(rd, texel_coord(s, rd.img.width), texel_coord(t, rd.img.height));
 }
 
 // Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
 template <int taps>
 std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                          const sampler_detail::WeightMemo* memo, float s, float t) {
-  const LevelCoord u = texel_coord(s, rd.img.width), v = texel_coord(t, rd.img.height);
+                                          const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
   const int m0 = rom.first_tap();
   std::array<int32_t, 16> w2_local;
   const int32_t* w2;
@@ -191,10 +194,16 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
   return acc;
 }
 
+// The cubic datapath's sum at a level coordinate (u, v).
 std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                        const sampler_detail::WeightMemo* memo, float s, float t) {
-  return rom.taps() == 4 ? filter_tiled_acc_n<4>(rd, rom, recon, memo, s, t)
-                         : filter_tiled_acc_n<2>(rd, rom, recon, memo, s, t);
+                                        const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
+  return rom.taps() == 4 ? filter_tiled_acc_n<4>(rd, rom, recon, memo, u, v)
+                         : filter_tiled_acc_n<2>(rd, rom, recon, memo, u, v);
+}
+
+// Probe i's coordinate on a level: the centre's texel_coord plus the probe offset on that level.
+LevelCoord probe_coord(float s, int size, int64_t offset_q16, int level) {
+  return dp::probe_texel_coord(texel_coord(s, size), dp::probe_offset_on_level(offset_q16, level));
 }
 
 }  // namespace
@@ -206,15 +215,45 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     case BaseFilter::Nearest: return filter_nearest(rd, s, t);
     case BaseFilter::Linear: return filter_linear(rd, s, t);
     case BaseFilter::Cubic: {
+      const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
       if (impl_->prefiltered) {
         const LevelReader cr{impl_->coeffs.codes[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
                              TexelFormat::RGBA8, {}};
-        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t), impl_->norm);
+        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
       }
-      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), s, t), impl_->norm);
+      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
     }
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint(level, s, t);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+    }
+  }
+  return {};
+}
+
+Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& o, int mask_override) const {
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  const LevelCoord u = probe_coord(s, img.width, o.du_q16, level), v = probe_coord(t, img.height, o.dv_q16, level);
+  switch (f) {
+    case BaseFilter::Nearest: {
+      const auto tap = [level](float x, int size, int64_t offset_q16) {
+        return dp::probe_nearest_tap(float_to_fixed(x, static_cast<uint32_t>(size), 0), texel_coord(x, size),
+                                     dp::probe_offset_on_level(offset_q16, level));
+      };
+      return rd(tap(s, img.width, o.du_q16), tap(t, img.height, o.dv_q16));
+    }
+    case BaseFilter::Linear: return filter_linear_at(rd, u, v);
+    case BaseFilter::Cubic: {
+      if (impl_->prefiltered) {
+        const LevelReader cr{impl_->coeffs.codes[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
+                             TexelFormat::RGBA8, {}};
+        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
+      }
+      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
+    }
+    case BaseFilter::EdgePreserving: {
+      const EdgeFootprint fp = edge_footprint_at(level, u, v, mask_override);
       return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
     }
   }
@@ -229,8 +268,12 @@ const Image& Sampler::filtered_level(int level) const {
 
 EdgeFootprint Sampler::edge_footprint(int level, float s, float t, int mask_override) const {
   const Image& img = tex_.levels[static_cast<size_t>(level)];
+  return edge_footprint_at(level, texel_coord(s, img.width), texel_coord(t, img.height), mask_override);
+}
+
+EdgeFootprint Sampler::edge_footprint_at(int level, LevelCoord u, LevelCoord v, int mask_override) const {
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
-  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
   EdgeFootprint fp;
   fp.xf = u.f;
   fp.yf = v.f;
@@ -250,16 +293,9 @@ EdgeFootprint Sampler::edge_footprint(int level, float s, float t, int mask_over
   return fp;
 }
 
-Rgba8 Sampler::sample_edge_masks(float s, float t, int32_t lambda, std::array<lee_jen::TexelMask, 2> masks) const {
+Rgba8 Sampler::sample_edge_masks(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const {
   if (cfg_.mode.base != BaseFilter::EdgePreserving) throw InputError("sample_edge_masks needs an EDGE_PRESERVING mode");
-  const LodInfo li = lod_info(lambda);
-  const auto level = [&](int l, lee_jen::TexelMask m) {
-    const EdgeFootprint fp = edge_footprint(l, s, t, m);
-    return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
-  };
-  Texel4 c = level(li.level0, masks[0]);
-  if (li.blend != 0) c = dp::level_blend(c, level(li.level1, masks[1]), li.blend);
-  return encode_texel(c, tex_.format);
+  return encode_texel(probes_channels(s, t, lod, masks), tex_.format);
 }
 
 Texel4 Sampler::sample_level(int level, float s, float t) const {
@@ -274,8 +310,29 @@ Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
   return dp::level_blend(c0, c1, li.blend);
 }
 
+// The probe datapath: N probes (each its levels and their blend), the averaging unit.
+Texel4 Sampler::probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const {
+  const LodInfo li = lod_info(lod.lambda_q8);
+  const int n = lod.probes;
+  dp::AnisoAccumulator acc;
+  for (int i = 1; i <= n; ++i) {
+    const ProbeOffset o = probe_offset(lod, i);
+    const auto mask = [&](int k) { return masks ? int{masks[2 * (i - 1) + k]} : -1; };
+    Texel4 c = probe_level_filter(cfg_.mode.base, li.level0, s, t, o, mask(0));
+    if (li.blend != 0) c = dp::level_blend(c, probe_level_filter(cfg_.mode.base, li.level1, s, t, o, mask(1)), li.blend);
+    acc.add(c, n, i);
+  }
+  return acc.result();
+}
+
+Texel4 Sampler::sample_channels(float s, float t, const AnisoLod& lod) const { return probes_channels(s, t, lod, nullptr); }
+
 Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambda) {
   return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
+}
+
+Rgba8 Sampler::aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod) {
+  return encode_texel(sm.sample_channels(s, t, lod), sm.tex_.format);
 }
 
 void Sampler::batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {

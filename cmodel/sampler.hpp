@@ -2,6 +2,9 @@
 //
 // Interface: sample(s, t, lambda) with s, t as FP32 and lambda from the LOD unit (lod.hpp, Q.8);
 // sample_batch(requests) gives the same for a quad's (or any number of) requests at once.
+// Anisotropic samplers (SamplerDescriptor::anisotropic()) take the LOD unit's whole result instead,
+// sample(s, t, AnisoLod) (aniso.hpp: lambda, the probe count N and the major derivative vector):
+// N probes of the mode along the major axis, averaged (docs/anisotropic.md).
 // Datapath widths and rounding, per mode, are listed in docs/filters.md; the short version:
 //   texel coordinate  u = floor(s W_L 2^8) - 128 (Q.8, texel centres at integers): i0 = u >> 8, fu = u & 255
 //   NEAREST           i = floor(s W_L) (GL)
@@ -22,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/descriptors.hpp"
 #include "cmodel/direction_rom.hpp"
@@ -82,6 +86,25 @@ class Sampler {
   void sample_batch(const SampleRequest* req, size_t n, Rgba8* out) const { batch_fn_(*this, req, n, out); }
   // The same in datapath channels (before encoding).
   Texel4 sample_channels(float s, float t, int32_t lambda_q8_unclamped) const;
+  // Anisotropic filtering (docs/anisotropic.md): `lod` is the LOD unit's result for the pixel
+  // (aniso_lod of its quad's or gradients' derivatives with descriptor().aniso(), or isotropic_lod).
+  // N = lod.probes probes at lambda = lod.lambda_q8, probe i at the centre's Q.8 coordinate on each
+  // level plus probe_offset(lod, i) (dp::probe_offset_on_level, dp::probe_texel_coord; NEAREST taps
+  // by dp::probe_nearest_tap), each a full sample of the mode (both levels and their blend, static
+  // edge shapes from the probe's own footprint), averaged by dp::aniso_average, encoded once.
+  // N = 1 gives sample(s, t, lod.lambda_q8) bit for bit (the tests check the probe datapath against
+  // the isotropic one over a derivative grid); N > 1 on a sampler without MIP-mapping is not
+  // issued (its LOD unit gives N = 1: SamplerDescriptor::aniso()).
+  Rgba8 sample(float s, float t, const AnisoLod& lod) const {
+    return lod.probes == 1 ? sample_fn_(*this, s, t, lod.lambda_q8) : aniso_fn_(*this, s, t, lod);
+  }
+  // The plain probe datapath for any N, 1 included (what sample(s, t, lod) equals), in channels.
+  Texel4 sample_channels(float s, float t, const AnisoLod& lod) const;
+  // The double-precision ideal of anisotropic filtering: N, lambda and the probe positions from
+  // real-valued level-0 texel derivatives (du/dx, dv/dx, du/dy, dv/dy) by the EXT spec's formulas
+  // (exact square roots and ceil; N capped and rounded as descriptor().aniso()), each probe
+  // sample_ideal, the plain mean.
+  std::array<double, 4> sample_ideal_aniso(double s, double t, const std::array<double, 4>& texel_derivs) const;
   // Double-precision "ideal" reference of the same mode (exact kernel weights, exact lerps,
   // exact log2 fraction; same texels): channels in [0, 1] (or [-1, 1] for VS16X2).
   std::array<double, 4> sample_ideal(double s, double t, double lambda) const;
@@ -98,9 +121,10 @@ class Sampler {
   // The edge-preserving footprint of (s, t) on `level` under this sampler's wrap modes and static
   // shape, or with the shape `mask_override` (0..0xFFF) when it is >= 0.
   EdgeFootprint edge_footprint(int level, float s, float t, int mask_override = -1) const;
-  // EDGE_PRESERVING modes with the kernel shape of each level given (the cycle model's cache-aware
-  // shapes depend on the cache contents, which the untimed model cannot know).
-  Rgba8 sample_edge_masks(float s, float t, int32_t lambda, std::array<lee_jen::TexelMask, 2> masks) const;
+  // EDGE_PRESERVING modes with the kernel shape of each probe and level given (the cycle model's
+  // cache-aware shapes depend on the cache contents, which the untimed model cannot know):
+  // masks[2 (i - 1) + k] is probe i's shape on level0 (k = 0) and level1 (k = 1).
+  Rgba8 sample_edge_masks(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
 
   // Texel fetch through the wrap unit (level, integer texel coordinates): what the datapath sees.
   Texel4 fetch(int level, int x, int y) const;
@@ -113,17 +137,27 @@ class Sampler {
   void build_cubic();
   Texel4 sample_level(int level, float s, float t) const;
   Texel4 sample_level_filter(BaseFilter f, int level, float s, float t) const;
+  // One probe on one level: the mode's filter at the centre's coordinate plus the probe's offset
+  // (`offset`: probe_offset, Q.16 level-0 texels); mask_override as edge_footprint.
+  Texel4 probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& offset, int mask_override = -1) const;
+  Texel4 probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
+  EdgeFootprint edge_footprint_at(int level, dp::LevelCoord u, dp::LevelCoord v, int mask_override) const;
   // sample() dispatches once, at construction, to the generic datapath or to a fast path of the
   // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
   // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
   // sampler.cpp.
   // sample_batch() dispatches the same way: LINEAR's fast paths have a batch variant, every other
   // configuration loops over sample_fn_.
+  // aniso_fn_ (N > 1) likewise: a fast path of LINEAR, CUBIC and EDGE_PRESERVING MIP-mapped modes
+  // on 8-bit formats, else the plain probe datapath.
   using SampleFn = Rgba8 (*)(const Sampler&, float, float, int32_t);
   using BatchFn = void (*)(const Sampler&, const SampleRequest*, size_t, Rgba8*);
+  using AnisoFn = Rgba8 (*)(const Sampler&, float, float, const AnisoLod&);
   SampleFn sample_fn_ = nullptr;
   BatchFn batch_fn_ = nullptr;
+  AnisoFn aniso_fn_ = nullptr;
   static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
+  static Rgba8 aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod);
   static void batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
   struct FastPaths;
 };

@@ -1,6 +1,6 @@
 // Speed-only fast paths of the golden sampler (no effect on results): sample() of LINEAR, CUBIC
-// and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, and LINEAR's
-// sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for bit is
+// and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, their anisotropic
+// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for bit is
 // sampler.cpp (sample_channels); Properties.FastPathsEqualGenericDatapath and BatchEqualsSample
 // compare them.
 #include <algorithm>
@@ -46,8 +46,8 @@ template <bool kBorder>
 // then the same arithmetic as filter_linear (one rounding of the Q.16 sum) in dp::bilinear_lerp8,
 // or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit inputs is always within 0..255.
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
-  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+[[gnu::always_inline]] inline void bilinear8_taps_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v, dp::Quad8& q,
+                                                     size_t k) {
   int xs[2], ys[2];
   dp::wrap_taps<kWs, 2>(u.i0, img.width, xs);
   dp::wrap_taps<kWt, 2>(v.i0, img.height, ys);
@@ -60,18 +60,25 @@ template <WrapMode kWs, WrapMode kWt>
   q.fv[k] = v.f;
 }
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
+[[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
+  bilinear8_taps_at<kWs, kWt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height), q, k);
+}
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 bilinear8_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
   dp::Quad8 q;
-  bilinear8_taps<kWs, kWt>(img, border, s, t, q, 0);
+  bilinear8_taps_at<kWs, kWt>(img, border, u, v, q, 0);
   return dp::bilinear_lerp8(q.a[0], q.b[0], q.c[0], q.d[0], q.fu[0], q.fv[0]);
+}
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
+  return bilinear8_at<kWs, kWt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height));
 }
 
 // CUBIC (4 x 4 taps) on one level of 8-bit texel words with memoized weights: filter_tiled_acc_n
 // with the wrap modes fixed, then the normalise stage.
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 cubic8(LevelView img, Rgba8 border, const WeightMemo& memo,
-                                            const dp::CubicNormalize& norm, float s, float t) {
-  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+                                            const dp::CubicNormalize& norm, LevelCoord u, LevelCoord v) {
   const int32_t* w = memo.weights(u.f, v.f);
   int col[4], row[4];
   dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
@@ -113,8 +120,7 @@ template <WrapMode kWs, WrapMode kWt>
 // wrap modes fixed and no override; texels outside the shape are read but not used), then the
 // Lee & Jen datapath. `block`: the static shapes' tile side, 0 for the cross.
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, int block, float s, float t) {
-  const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
+[[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, int block, LevelCoord u, LevelCoord v) {
   int col[lee_jen::kGridSide], row[lee_jen::kGridSide];  // columns and rows -1 .. 2
   dp::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
   dp::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
@@ -135,6 +141,9 @@ inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::level_blend8(a, 
 inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
 inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
 inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }
+// A probe's result as the averaging unit's input channels.
+inline Texel4 probe_channels(Rgba8 c) { return {c.r, c.g, c.b, c.a}; }
+inline Texel4 probe_channels(const Texel4& c) { return c; }
 
 // Level select of the LOD unit and the blend unit around a filter of one level, f(level).
 template <class F>
@@ -147,20 +156,27 @@ template <class F>
 
 }  // namespace
 
-// The mode's filter on one level.
+// The mode's filter on one level at a level coordinate (u, v).
 template <Sampler::FastPaths::Variant kV>
-[[gnu::always_inline]] inline auto Sampler::FastPaths::filter(const Sampler& sm, int l, float s, float t) {
+[[gnu::always_inline]] inline auto Sampler::FastPaths::filter_at(const Sampler& sm, int l, LevelCoord u, LevelCoord v) {
   const auto level = static_cast<size_t>(l);
   const Impl& im = *sm.impl_;
   if constexpr (kV.path == Path::Linear8) {
-    return bilinear8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, s, t);
+    return bilinear8_at<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, u, v);
   } else if constexpr (kV.path == Path::Cubic8) {
-    if (im.prefiltered) return cubic8<kV.ws, kV.wt>(LevelView(im.coeffs.codes[level]), Rgba8{}, *im.memo, im.norm, s, t);
-    return cubic8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, *im.memo, im.norm, s, t);
+    if (im.prefiltered) return cubic8<kV.ws, kV.wt>(LevelView(im.coeffs.codes[level]), Rgba8{}, *im.memo, im.norm, u, v);
+    return cubic8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, *im.memo, im.norm, u, v);
   } else {
     return edge8<kV.ws, kV.wt>(LevelView(sm.tex_.levels[level]), sm.cfg_.border, sm.tex_.format,
-                               sm.static_shape_block(), s, t);
+                               sm.static_shape_block(), u, v);
   }
+}
+
+// The mode's filter on one level at (s, t).
+template <Sampler::FastPaths::Variant kV>
+[[gnu::always_inline]] inline auto Sampler::FastPaths::filter(const Sampler& sm, int l, float s, float t) {
+  const Image& img = sm.tex_.levels[static_cast<size_t>(l)];
+  return filter_at<kV>(sm, l, texel_coord(s, img.width), texel_coord(t, img.height));
 }
 
 // One filtered colour: level select, the filter on one or two levels, blend, encode.
@@ -174,6 +190,34 @@ Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t la
                                      [&](int l) { return filter<kV>(sm, l, s, t); }),
                        fmt);
   }
+}
+
+// N > 1 probes (MIP-mapped variants): the levels are selected once (every probe has the same
+// lambda) and the centre's coordinate on each level formed once; per probe its offset on each level
+// (probe_offset, dp::probe_offset_on_level, dp::probe_texel_coord), the mode's filter, the blend,
+// and the averaging unit (dp::AnisoAccumulator); encoded once. The same arithmetic as the plain
+// probe datapath (Sampler::sample_channels(s, t, lod)), which the tests compare it with.
+template <Sampler::FastPaths::Variant kV>
+Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const AnisoLod& lod) {
+  static_assert(kV.mipmapped);
+  const LevelPick p = select_levels(lambda_bias_clamp(lod.lambda_q8, sm.cfg_.lod), sm.cfg_.mode.mip, sm.tex_.max_level());
+  const Image& i0 = sm.tex_.levels[static_cast<size_t>(p.level0)];
+  const Image& i1 = sm.tex_.levels[static_cast<size_t>(p.level1)];
+  const LevelCoord u0 = texel_coord(s, i0.width), v0 = texel_coord(t, i0.height);
+  const LevelCoord u1 = texel_coord(s, i1.width), v1 = texel_coord(t, i1.height);
+  const int n = lod.probes;
+  dp::AnisoAccumulator acc;
+  for (int i = 1; i <= n; ++i) {
+    const ProbeOffset o = probe_offset(lod, i);
+    const auto at = [&](int level, LevelCoord u, LevelCoord v) {
+      return filter_at<kV>(sm, level, dp::probe_texel_coord(u, dp::probe_offset_on_level(o.du_q16, level)),
+                           dp::probe_texel_coord(v, dp::probe_offset_on_level(o.dv_q16, level)));
+    };
+    auto c = at(p.level0, u0, v0);
+    if (p.blend != 0) c = blend_levels(c, at(p.level1, u1, v1), p.blend);
+    acc.add(probe_channels(c), n, i);
+  }
+  return encode_texel(acc.result(), sm.tex_.format);
 }
 
 // sample<kV> over a batch, LINEAR on 8-bit formats: the sampler's registers are read once, and four
@@ -239,6 +283,18 @@ constexpr std::array<Sampler::BatchFn, 16> Sampler::FastPaths::batch_table(std::
   return {&batch<Variant{Path::Linear8, kMip, static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)}>...};
 }
 
+// aniso<kV> for the 16 pairs of wrap modes (MIP-mapped), indexed by 4 wrap_s + wrap_t.
+template <Sampler::FastPaths::Path kP, size_t... k>
+constexpr std::array<Sampler::AnisoFn, 16> Sampler::FastPaths::aniso_table(std::index_sequence<k...>) {
+  return {&aniso<Variant{kP, true, static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)}>...};
+}
+
+template <Sampler::FastPaths::Path kP>
+Sampler::AnisoFn Sampler::FastPaths::pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt) {
+  if (!mipmapped) return &aniso_generic;  // never issued with N > 1 (SamplerDescriptor::aniso())
+  return aniso_table<kP>(std::make_index_sequence<16>())[static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt))];
+}
+
 template <Sampler::FastPaths::Path kP>
 Sampler::SampleFn Sampler::FastPaths::pick(bool mipmapped, WrapMode ws, WrapMode wt) {
   const auto k = static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt));
@@ -253,21 +309,29 @@ void Sampler::FastPaths::setup(Sampler& sm) {
   const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
   sm.sample_fn_ = &sample_generic;
   sm.batch_fn_ = &batch_generic;
+  sm.aniso_fn_ = &aniso_generic;
   switch (sm.cfg_.mode.base) {
     case BaseFilter::Nearest: break;
     case BaseFilter::Linear:
       if (bytes) {
         sm.sample_fn_ = pick<Path::Linear8>(mip, ws, wt);
+        sm.aniso_fn_ = pick_aniso<Path::Linear8>(mip, ws, wt);
         const auto k = static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt));
         sm.batch_fn_ = mip ? batch_table<true>(std::make_index_sequence<16>())[k]
                            : batch_table<false>(std::make_index_sequence<16>())[k];
       }
       break;
     case BaseFilter::Cubic:
-      if (bytes && im.memo && im.rom->taps() == 4) sm.sample_fn_ = pick<Path::Cubic8>(mip, ws, wt);
+      if (bytes && im.memo && im.rom->taps() == 4) {
+        sm.sample_fn_ = pick<Path::Cubic8>(mip, ws, wt);
+        sm.aniso_fn_ = pick_aniso<Path::Cubic8>(mip, ws, wt);
+      }
       break;
     case BaseFilter::EdgePreserving:
-      if (bytes) sm.sample_fn_ = pick<Path::Edge8>(mip, ws, wt);
+      if (bytes) {
+        sm.sample_fn_ = pick<Path::Edge8>(mip, ws, wt);
+        sm.aniso_fn_ = pick_aniso<Path::Edge8>(mip, ws, wt);
+      }
       break;
   }
 }

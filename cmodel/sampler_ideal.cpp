@@ -117,4 +117,32 @@ std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) c
   return a;
 }
 
+// ---------------------------------------------------------------- anisotropic ideal
+// EXT_texture_filter_anisotropic in real arithmetic: Px, Py exact lengths, N = min(ceil(Pmax /
+// Pmin), maxAniso) (rounded up to a power of two with AnisoRounding::PowerOfTwo), lambda =
+// log2(Pmax / N), probe i at the centre + (-1/2 + i / (N + 1)) times the major derivative vector,
+// each probe the ideal sample of the mode, the plain mean.
+std::array<double, 4> Sampler::sample_ideal_aniso(double s, double t, const std::array<double, 4>& d) const {
+  const double px = std::hypot(d[0], d[1]), py = std::hypot(d[2], d[3]);
+  const bool major_x = px >= py;
+  const double pmax = std::max(px, py), pmin = std::min(px, py);
+  const AnisoParams ap = cfg_.aniso();
+  const int cap = std::clamp(ap.max_aniso, 1, kMaxAniso);
+  int n = 1;
+  if (pmax > 0 && std::isfinite(pmax)) n = pmin > 0 ? static_cast<int>(std::min<double>(cap, std::ceil(pmax / pmin))) : cap;
+  if (ap.aniso_rounding == AnisoRounding::PowerOfTwo)
+    while ((n & (n - 1)) != 0) ++n;
+  const double lambda = pmax > 0 ? std::log2(pmax / n) : kLodMinusInfinity / 256.0;
+  // The major vector in (s, t) units.
+  const double ds = (major_x ? d[0] : d[2]) / tex_.width(), dt = (major_x ? d[1] : d[3]) / tex_.height();
+  std::array<double, 4> sum{};
+  for (int i = 1; i <= n; ++i) {
+    const double f = -0.5 + static_cast<double>(i) / (n + 1);
+    const std::array<double, 4> c = sample_ideal(s + f * ds, t + f * dt, lambda);
+    for (size_t ch = 0; ch < 4; ++ch) sum[ch] += c[ch];
+  }
+  for (double& x : sum) x /= n;
+  return sum;
+}
+
 }  // namespace tfu

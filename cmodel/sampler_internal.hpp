@@ -49,7 +49,11 @@ struct Sampler::FastPaths {
     WrapMode ws, wt;
   };
   template <Variant kV>
+  static auto filter_at(const Sampler& sm, int level, dp::LevelCoord u, dp::LevelCoord v);
+  template <Variant kV>
   static auto filter(const Sampler& sm, int level, float s, float t);
+  template <Variant kV>
+  static Rgba8 aniso(const Sampler& sm, float s, float t, const AnisoLod& lod);  // MIP-mapped variants, N > 1
   template <Variant kV>
   static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda);
   template <Variant kV>
@@ -58,8 +62,12 @@ struct Sampler::FastPaths {
   static constexpr std::array<SampleFn, 16> wrap_table(std::index_sequence<k...>);
   template <bool kMip, size_t... k>
   static constexpr std::array<BatchFn, 16> batch_table(std::index_sequence<k...>);
+  template <Path kP, size_t... k>
+  static constexpr std::array<AnisoFn, 16> aniso_table(std::index_sequence<k...>);
   template <Path kP>
   static SampleFn pick(bool mipmapped, WrapMode ws, WrapMode wt);
+  template <Path kP>
+  static AnisoFn pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt);
   // Chooses sample()'s path once the configuration is known: the fast path where one exists
   // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the generic datapath;
   // and sample_batch()'s: LINEAR's batch variant where sample() has the LINEAR fast path, else a

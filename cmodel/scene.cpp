@@ -223,8 +223,9 @@ SamplerDescriptor parse_sampler(const Obj& stage) {
   const Obj o(stage.raw("sampler"), stage.child("sampler"), stage.source(), keys);
   for (const SamplerParam& p : sampler_params()) {
     if (!o.has(p.key)) continue;
+    const std::string text = value_text(o, p.key);  // names the key itself when the value is no scalar
     try {
-      set_sampler_param(base, p.key, value_text(o, p.key));
+      set_sampler_param(base, p.key, text);
     } catch (const InputError& e) {
       o.fail_key(p.key, e.what());
     }

@@ -43,6 +43,11 @@ std::shared_ptr<const q3::Level> cached_level(const std::string& game_dir, const
   return level;
 }
 
+std::shared_ptr<const q3::Level> requested_level(const SceneRequest& r) {
+  if (!q3::is_level_scene(r.name)) return nullptr;
+  return cached_level(r.game_dir, q3::parse_level_scene(r.name).level);
+}
+
 Scene open_scene(const SceneRequest& r) {
   if (r.width < 0 || r.height < 0 || r.width > kMaxRenderSize || r.height > kMaxRenderSize)
     throw InputError(fmt::format("render size {}x{} outside 1..{} (0: the scene's own)", r.width, r.height, kMaxRenderSize));

@@ -24,6 +24,9 @@ struct SceneRequest {
 
 Scene open_scene(const SceneRequest& request);
 
+// The level of an "oa:MAP[:SPAWN]" request (loaded once, cached), null for any other scene.
+std::shared_ptr<const q3::Level> requested_level(const SceneRequest& request);
+
 // The level MAP of the game data in `game_dir` (cached for the process; thread-safe).
 std::shared_ptr<const q3::Level> cached_level(const std::string& game_dir, const std::string& map);
 

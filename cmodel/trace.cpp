@@ -310,6 +310,25 @@ int32_t request_lambda(const Trace& tr, size_t i, int width, int height) {
   return 0;
 }
 
+std::optional<TexelDerivatives> request_derivatives(const Trace& tr, size_t i, int width, int height) {
+  const TraceRequest& r = tr.requests[i];
+  switch (tr.mode) {
+    case TraceMode::Lod: return std::nullopt;
+    case TraceMode::Grad: return derivatives_from_gradients(r.dsdx, r.dtdx, r.dsdy, r.dtdy, width, height);
+    case TraceMode::Quad: {
+      const float s[4] = {r.s, tr.requests[i + 1].s, tr.requests[i + 2].s, tr.requests[i + 3].s};
+      const float t[4] = {r.t, tr.requests[i + 1].t, tr.requests[i + 2].t, tr.requests[i + 3].t};
+      return derivatives_from_quad(s, t, width, height);
+    }
+  }
+  return std::nullopt;
+}
+
+AnisoLod request_lod(const Trace& tr, size_t i, int width, int height, const AnisoParams& p) {
+  const std::optional<TexelDerivatives> d = request_derivatives(tr, i, width, height);
+  return d ? aniso_lod(*d, p) : isotropic_lod(lambda_explicit(tr.requests[i].lod));
+}
+
 std::vector<int32_t> trace_lambdas(const Trace& tr, const std::function<std::pair<int, int>(int)>& extent) {
   std::vector<int32_t> lam(tr.requests.size());
   for (size_t i = 0; i < tr.requests.size(); ++i) {

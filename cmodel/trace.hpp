@@ -23,8 +23,12 @@
 #include <functional>
 #include <iosfwd>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "cmodel/aniso.hpp"
+#include "cmodel/lod.hpp"
 
 namespace tfu {
 
@@ -69,6 +73,15 @@ void write_trace(std::ostream& out, const Trace& trace);
 // LOD, grad mode -> the gradients, quad mode -> the quad's coarse derivatives (lod.hpp). The LOD
 // unit of both the golden model and the cycle model computes exactly this.
 int32_t request_lambda(const Trace& trace, size_t i, int width, int height);
+// The texel-space derivatives of one request (quad mode: of the quad starting at request i) for a
+// texture whose level 0 is width x height: grad mode -> derivatives_from_gradients, quad mode ->
+// derivatives_from_quad (lod.hpp); nullopt in lod mode (textureLod has no derivatives).
+std::optional<TexelDerivatives> request_derivatives(const Trace& trace, size_t i, int width, int height);
+// The LOD unit's whole result for one request (as request_lambda): aniso_lod of its derivatives
+// with the sampler's anisotropy fields `p` (SamplerDescriptor::aniso()); a lod-mode request has no
+// derivatives and gets one probe at its explicit lambda (isotropic_lod). With p.max_aniso = 1,
+// lambda_q8 is request_lambda's, bit for bit (docs/anisotropic.md).
+AnisoLod request_lod(const Trace& trace, size_t i, int width, int height, const AnisoParams& p);
 // lambda of every request, in order; `extent(texture index)` gives the texture's level-0 size.
 std::vector<int32_t> trace_lambdas(const Trace& trace, const std::function<std::pair<int, int>(int)>& extent);
 std::vector<int32_t> trace_lambdas(const Trace& trace, int width, int height);  // every request, one texture

@@ -1,5 +1,6 @@
 #include "rtl/address_gen.hpp"
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/fixed_coord.hpp"
 
@@ -11,6 +12,13 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
 
 namespace {
 
+// The centre's level coordinate (dp::texel_coord), plus an anisotropic probe's offset on the
+// level (dp::probe_texel_coord) when there is one.
+[[gnu::always_inline]] inline dp::LevelCoord probe_coord(float s, int size, const ProbeLevelOffset* o, int64_t offset_q8) {
+  const dp::LevelCoord c = dp::texel_coord(s, size);
+  return o ? dp::probe_texel_coord(c, offset_q8) : c;
+}
+
 // Grid cells whose column or row lies outside the texture (clamp-to-border: -1) read the border.
 uint16_t cells_inside(const TapGrid& g) {
   uint16_t out = 0xFFFF;
@@ -21,12 +29,17 @@ uint16_t cells_inside(const TapGrid& g) {
   return out;
 }
 
-// NEAREST: i = floor(s W) (GL).
-void nearest_footprint(FootprintReq& f, const SamplerDescriptor& c, int w, int h, float s, float t) {
+// NEAREST: i = floor(s W) (GL); an anisotropic probe: the probe offset's carry into it
+// (dp::probe_nearest_tap).
+int64_t nearest_tap(float s, int size, const ProbeLevelOffset* o, int64_t offset_q8) {
+  const int64_t centre = float_to_fixed(s, static_cast<uint32_t>(size), 0);
+  return o ? dp::probe_nearest_tap(centre, dp::texel_coord(s, size), offset_q8) : centre;
+}
+void nearest_footprint(FootprintReq& f, const SamplerDescriptor& c, int w, int h, float s, float t, const ProbeLevelOffset* o) {
   TapGrid& g = f.grid;
   g.cols = g.rows = 1;
-  g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, float_to_fixed(s, static_cast<uint32_t>(w), 0), w));
-  g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, float_to_fixed(t, static_cast<uint32_t>(h), 0), h));
+  g.x[0] = static_cast<int16_t>(wrap_index(c.wrap_s, nearest_tap(s, w, o, o ? o->du_q8 : 0), w));
+  g.y[0] = static_cast<int16_t>(wrap_index(c.wrap_t, nearest_tap(t, h, o, o ? o->dv_q8 : 0), h));
 }
 
 // T x T taps from column i0 + first and row j0 + first (CUBIC: the ROM's taps; the edge cross:
@@ -47,11 +60,11 @@ void square_footprint(FootprintReq& f, const SamplerDescriptor& c, int w, int h,
 }  // namespace
 
 void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s,
-                          float t) {
+                          float t, const ProbeLevelOffset* o) {
   if (c.mode.base == BaseFilter::Nearest) {
-    nearest_footprint(f, c, w, h, s, t);
+    nearest_footprint(f, c, w, h, s, t, o);
   } else {
-    const dp::LevelCoord u = dp::texel_coord(s, w), v = dp::texel_coord(t, h);
+    const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
     f.tag.fu = u.f;
     f.tag.fv = v.f;
     switch (c.mode.base) {
@@ -72,8 +85,9 @@ void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, F
 
 // LINEAR: columns i0, i0 + 1 and rows j0, j0 + 1 through the wrap unit of each axis.
 template <WrapMode kWs, WrapMode kWt>
-void AddressGen::grid_linear(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t) {
-  const dp::LevelCoord u = dp::texel_coord(s, w), v = dp::texel_coord(t, h);
+void AddressGen::grid_linear(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
+                             const ProbeLevelOffset* o) {
+  const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
   f.tag.fu = u.f;
   f.tag.fv = v.f;
   int col[2], row[2];
@@ -96,7 +110,7 @@ AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence
   return kTable[wrap_pair];
 }
 
-void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level) const {
+void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o) const {
   const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
   const TextureDescriptor& tex = regs_.textures[p.req.texture];
   LevelTag& tag = f.tag;  // every field written (the output register is reused)
@@ -108,17 +122,25 @@ void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level) const 
   tag.blend = 0;
   tag.two = tag.second = false;
   tag.shape = lee_jen::kAllTexels;
+  tag.probes = 1;
+  tag.probe = 0;
   f.level = level;
   f.optional = 0;
   f.cross = false;
   const int w = tex.level_width(level), h = tex.level_height(level);
   if (c.mode.base == BaseFilter::Linear) {
     linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)), std::make_index_sequence<16>())(
-        c, 2, 0, f, w, h, p.s, p.t);
+        c, 2, 0, f, w, h, p.s, p.t, o);
   } else {
     const TileWeightRom* rom = roms_.rom(p.req.sampler);
-    grid_any(c, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0, f, w, h, p.s, p.t);
+    grid_any(c, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0, f, w, h, p.s, p.t, o);
   }
+}
+
+void AddressGen::next_probe() {
+  ++probe_;
+  offset_ = {probe_offset_q16(pixel_.major_du_q16, pixel_.probes, probe_ + 1),
+             probe_offset_q16(pixel_.major_dv_q16, pixel_.probes, probe_ + 1)};
 }
 
 void AddressGen::evaluate() {
@@ -132,20 +154,48 @@ void AddressGen::evaluate() {
     in_.pop();
     holding_ = true;
     sent_ = 0;
+    probe_ = -1;
+    ++probe_hist_[static_cast<size_t>(pixel_.probes)];
+    if (pixel_.probes > 1) next_probe();
     sim_.progress();
   }
   if (holding_ && out_.can_push()) {
     // The footprint is formed straight in the output register (no copy).
     FootprintReq& f = out_.push_slot();
-    footprint(f, pixel_, sent_ == 0 ? pick_.level0 : pick_.level1);
+    const int level = sent_ == 0 ? pick_.level0 : pick_.level1;
+    if (pixel_.probes == 1) {
+      footprint(f, pixel_, level, nullptr);
+    } else {  // probe probe_ + 1 of N: its offset on this level
+      const ProbeLevelOffset o{dp::probe_offset_on_level(offset_.du_q16, level), dp::probe_offset_on_level(offset_.dv_q16, level)};
+      footprint(f, pixel_, level, &o);
+      f.tag.probes = static_cast<uint8_t>(pixel_.probes);
+      f.tag.probe = static_cast<uint8_t>(probe_);
+    }
     if (count_ == 2) {
       f.tag.two = true;
       f.tag.second = sent_ == 1;
       f.tag.blend = pick_.blend;
     }
-    if (++sent_ == count_) holding_ = false;
+    if (++sent_ == count_) {
+      if (pixel_.probes > 1 && probe_ + 1 < pixel_.probes) {
+        sent_ = 0;
+        next_probe();
+      } else {
+        holding_ = false;
+      }
+    }
     sim_.progress();
   }
+}
+
+void AddressGen::publish(sim::Stats& st) const {
+  uint64_t pixels = 0, probes = 0;
+  for (size_t n = 1; n < probe_hist_.size(); ++n) {
+    pixels += probe_hist_[n];
+    probes += n * probe_hist_[n];
+  }
+  st.add("probes", probes);
+  if (probes != pixels) st.set_histogram("aniso_probes", std::vector<uint64_t>(probe_hist_.begin(), probe_hist_.end()));
 }
 
 std::string AddressGen::state() const { return fmt::format("{}, {}, holding {}", in_.state(), out_.state(), holding_); }

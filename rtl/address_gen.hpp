@@ -18,6 +18,12 @@
 //                    Eq. 4), columns and rows -1..2 around the centre square (i0, j0)-(i0 + 1, j0 + 1)
 // Under clamp-to-border the cells of a column or row outside the texture (-1) are not `used`:
 // they read the border word.
+// Anisotropic pixels (PixelReq probes = N > 1, docs/anisotropic.md): the N probes one after the
+// other, each its level footprint(s), probe i's offset probe_offset_q16(major, N, i) (probe ROM,
+// one 31 x 15-bit multiply per component) brought to each level by dp::probe_offset_on_level and
+// added to the centre's coordinate by dp::probe_texel_coord (NEAREST: dp::probe_nearest_tap), the
+// golden model's functions; the tag carries probes and probe. On hits: N footprints per pixel (2N
+// when blending). Statistics: counter `probes`, histogram `aniso_probes` (pixels per N).
 #pragma once
 
 #include <utility>
@@ -36,8 +42,11 @@ class AddressGen : public sim::Module {
   void evaluate() override;
   std::string state() const override;
   bool busy() const { return holding_; }
-  // The footprint of (s, t) on `level` (the combinational part of the block), formed in `f`.
-  void footprint(FootprintReq& f, const PixelReq& p, int level) const;
+  // The footprint of (s, t) on `level` (the combinational part of the block), formed in `f`; with
+  // `o`, of an anisotropic probe at that offset from (s, t) (Q.8 texels of the level).
+  void footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o = nullptr) const;
+  // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
+  void publish(sim::Stats& st) const;
 
  private:
   sim::Channel<PixelReq>& in_;
@@ -46,16 +55,23 @@ class AddressGen : public sim::Module {
   const WeightRomBank& roms_;
   // The grid of one footprint (taps, fractions, used cells): LINEAR has one function per pair of
   // wrap modes (chosen per request from its sampler), the other filters share grid_any.
-  using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float);
-  static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t);
+  using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float,
+                          const ProbeLevelOffset*);
+  static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
+                       const ProbeLevelOffset* o);
   template <WrapMode kWs, WrapMode kWt>
-  static void grid_linear(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t);
+  static void grid_linear(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
+                          const ProbeLevelOffset* o);
   template <size_t... k>
   static GridFn linear_grid(size_t wrap_pair, std::index_sequence<k...>);
   bool holding_ = false;
   PixelReq pixel_{};
   LevelPick pick_{};
-  int count_ = 0, sent_ = 0;  // footprints of the held pixel (1, or 2 when blending), sent so far
+  int count_ = 0, sent_ = 0;  // level footprints of a probe (1, or 2 when blending), sent so far
+  int probe_ = 0;             // the held pixel's probe being issued (0..N-1)
+  ProbeOffset offset_{};      // its offset (Q.16 level-0 texels)
+  std::array<uint64_t, kMaxAniso + 1> probe_hist_{};  // pixels per probe count N
+  void next_probe();
 };
 
 }  // namespace tfu::rtl

@@ -61,8 +61,8 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     int missing_arms = 0;
     for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
-    if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1, {lee_jen::kAllTexels, lee_jen::kAllTexels});
-    shapes[cur.tag.id][cur.tag.second ? 1 : 0] = cur.tag.shape;
+    if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1);
+    shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
   }
   entry.ready = ready;
 }

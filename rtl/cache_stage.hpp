@@ -42,8 +42,8 @@ class CacheStage : public sim::Module {
   void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
   uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.tag.id; }
-  // Kernel shape chosen per pixel and level (edge modes; for the golden compare of cache-aware).
-  std::vector<std::array<lee_jen::TexelMask, 2>> shapes;
+  // Kernel shape chosen per pixel, probe and level (edge modes; for the golden compare of cache-aware).
+  std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
   std::array<uint64_t, 4> stage_hits{}, stage_misses{};
 

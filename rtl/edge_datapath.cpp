@@ -118,7 +118,7 @@ void EdgeMerge::evaluate() {
     first_ = c;
   } else {
     if (tag.two) c = dp::level_blend(first_, c, tag.blend);
-    out_.push({tag.id, encode_texel(c, tag.format)});
+    if (probes_.add(tag, c)) out_.push({tag.id, encode_texel(c, tag.format)});
   }
   in_.pop();
   sim_.progress();

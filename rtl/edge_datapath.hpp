@@ -8,7 +8,8 @@
 //                  w_i * dP_i (Eq. 1-2: 8-bit code x 10-bit dP = 18 bits), usable-direction mask of
 //                  the kernel shape, min tree (5 levels, ties to the lower direction index)
 //   edge_merge     directional lerp of the low-pass endpoints (Eq. 3), high-frequency bilinear
-//                  (Eq. 5), merge and clamp (Eq. 6), trilinear blend, encode
+//                  (Eq. 5), merge and clamp (Eq. 6), trilinear blend, the probe accumulator of an
+//                  anisotropic pixel (probe_accumulator.hpp), encode
 //
 // Ports (between stages, valid/ready channels of depth 2):
 //   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], format[1:0] (each
@@ -19,6 +20,7 @@
 #pragma once
 
 #include "cmodel/edge_filter.hpp"
+#include "rtl/probe_accumulator.hpp"
 #include "rtl/unit_ports.hpp"
 #include "sim/kernel/kernel.hpp"
 
@@ -75,6 +77,7 @@ class EdgeMerge : public sim::Module {
   sim::Channel<EdgeS2>& in_;
   sim::Channel<Response>& out_;
   Texel4 first_{};  // level0 result of a blending pixel (register)
+  ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)
 };
 
 }  // namespace tfu::rtl

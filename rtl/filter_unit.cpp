@@ -46,8 +46,12 @@ void FilterUnit::evaluate() {
     const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.holds()) {
       first8_ = c8;
-    } else {
+    } else if (r.tag.probes == 1) {
       out_.push_slot() = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
+    } else {  // an anisotropic probe: the probe accumulator
+      const Rgba8 p = r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
+      Texel4 c{p.r, p.g, p.b, p.a};
+      if (probes_.add(r.tag, c)) out_.push({r.tag.id, encode_texel(c, r.tag.format)});
     }
   } else {
     // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
@@ -57,7 +61,7 @@ void FilterUnit::evaluate() {
       first_ = c;
     } else {
       if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
-      out_.push({r.tag.id, encode_texel(c, r.tag.format)});
+      if (probes_.add(r.tag, c)) out_.push({r.tag.id, encode_texel(c, r.tag.format)});
     }
   }
   in_.pop();

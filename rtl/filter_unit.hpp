@@ -1,13 +1,15 @@
 // filter: texel unpack, then the NEAREST select, the bilinear lerp unit or the cubic datapath
 // (tile-weight ROM + tile-weight multipliers, adder tree, normalise and clamp), then the trilinear
-// blend and the encode to the texture's word. Calls the golden arithmetic (cmodel/datapath.hpp:
+// blend, the probe accumulator of anisotropic pixels (probe_accumulator.hpp: one response per
+// pixel, after its last probe) and the encode to the texture's word. Calls the golden arithmetic (cmodel/datapath.hpp:
 // dp::bilinear_lerp (dp::bilinear_lerp8 on 8-bit words), dp::tile_weights_2d, dp::cubic_accumulate,
 // dp::cubic_normalize, dp::level_blend (dp::level_blend8)). Every footprint carries its own mode:
 // requests of different samplers and textures follow each other freely.
 //
 // Ports:
 //   in  texels     FilterReq: texel words, tag: base[1:0], format[1:0], sampler[7:0],
-//                  texture[11:0], fu[7:0] fv[7:0], blend[8:0], two, second           valid/ready
+//                  texture[11:0], fu[7:0] fv[7:0], blend[8:0], two, second, probes[4:0],
+//                  probe[3:0]                                                       valid/ready
 //   out response   Response: id[31:0], rgba[31:0]
 //   in  registers  sampler descriptor (rom_linear), texture descriptor (content, S, B), the
 //                  sampler's weight ROM (weight_rom_bank.hpp)
@@ -17,6 +19,7 @@
 #pragma once
 
 #include "cmodel/descriptors.hpp"
+#include "rtl/probe_accumulator.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/weight_rom_bank.hpp"
 #include "sim/kernel/kernel.hpp"
@@ -45,6 +48,7 @@ class FilterUnit : public sim::Module {
   // as dp::bilinear_lerp / level_blend + encode, bit-identical and tested; fewer instructions).
   Texel4 first_{};
   Rgba8 first8_{};
+  ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)
   Texel4 filter_level(const FilterReq& r, TexelFormat unpack) const;
 };
 

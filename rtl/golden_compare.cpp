@@ -7,16 +7,16 @@ namespace tfu::rtl {
 std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, const UnitOutput& out) {
   std::vector<Rgba8> want(trace.requests.size());
   const Registers& regs = golden.frame().regs;
-  int32_t lambda = 0;
+  AnisoLod lod;
   for (size_t i = 0; i < trace.requests.size(); ++i) {
     const TraceRequest& r = trace.requests[i];
-    if (trace.mode != TraceMode::Quad || i % 4 == 0) lambda = golden.lambda(trace, i);
+    if (trace.mode != TraceMode::Quad || i % 4 == 0) lod = golden.lod(trace, i);
     const SamplerDescriptor& s = regs.samplers[r.sampler];
     const Sampler& smp = golden.sampler(r.texture, r.sampler);
     if (s.mode.base == BaseFilter::EdgePreserving && s.edge_shape == EdgeShape::CacheAware)
-      want[i] = smp.sample_edge_masks(r.s, r.t, lambda, out.edge_shapes.at(i));
+      want[i] = smp.sample_edge_masks(r.s, r.t, lod, out.edge_shapes.at(i).data());
     else
-      want[i] = smp.sample(r.s, r.t, lambda);
+      want[i] = smp.sample(r.s, r.t, lod);
   }
   return want;
 }

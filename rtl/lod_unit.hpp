@@ -1,17 +1,25 @@
 // lod_unit: lambda per pixel (Pharr, GPU Gems ch. 25; GL 4.6 Eq. 8.4-8.6) from the quad's coarse
 // derivatives, the explicit LOD (textureLod) or the explicit gradients (textureGrad), through the
 // log2 ROM of cmodel/lod.hpp, in texels of the request's texture (level-0 width and height from
-// its texture descriptor); then the pixels one per cycle.
+// its texture descriptor); then the pixels one per cycle. For an anisotropic sampler (max_aniso > 1
+// on a MIP-mapped mode) the anisotropic LOD unit of cmodel/aniso.hpp (EXT_texture_filter_anisotropic:
+// axis lengths, probe count N by exact compares, lambda = log2(Pmax / N)) on the same derivatives;
+// the pixels carry N and the major derivative vector to the address generator.
 //
 // Ports:
 //   in  quad       QuadReq                 valid/ready
-//   out pixel      PixelReq, lambda[15:0]  Q.8 before bias and clamp; one per cycle
-//   in  registers  texture descriptors (width_m1, height_m1), sampler descriptors (mip_mode)
+//   out pixel      PixelReq: lambda[15:0] Q.8 before bias and clamp, probes[4:0], major_du[31:0],
+//                  major_dv[31:0]; one per cycle
+//   in  registers  texture descriptors (width_m1, height_m1), sampler descriptors (mip_mode,
+//                  max_aniso_m1, aniso_rounding)
 // A sampler without MIP-mapping has no level to select (GL: level 0), so its lambda is not used:
 // the model then leaves it at 0 instead of evaluating the derivatives and the log2 ROM (software
-// speed only; the pixels' timing is the same).
+// speed only; the pixels' timing is the same). A lod trace has no derivatives: one probe (N = 1).
+// An isotropic sampler takes the isotropic unit (lambda_from_quad / lambda_from_gradients), whose
+// lambda equals aniso_lod's with max_aniso 1 bit for bit (tested in test_aniso).
 #pragma once
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/descriptors.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/trace.hpp"
@@ -28,25 +36,15 @@ class LodUnit : public sim::Module {
     if (!holding_ && in_.can_pop()) {
       quad_ = in_.front();
       in_.pop();
-      if (regs_.samplers[quad_.req.sampler].mode.mip == MipMode::None) {
-        lambda_ = 0;
-      } else {
-        const TextureDescriptor& tex = regs_.textures[quad_.req.texture];
-        switch (mode_) {
-          case TraceMode::Quad: lambda_ = lambda_from_quad(quad_.s.data(), quad_.t.data(), tex.width, tex.height); break;
-          case TraceMode::Lod: lambda_ = lambda_explicit(quad_.lod); break;
-          case TraceMode::Grad:
-            lambda_ = lambda_from_gradients(quad_.dsdx, quad_.dtdx, quad_.dsdy, quad_.dtdy, tex.width, tex.height);
-            break;
-        }
-      }
+      lod_ = quad_lod(quad_);
       holding_ = true;
       k_ = 0;
       sim_.progress();
     }
     if (holding_ && out_.can_push()) {
       const auto k = static_cast<size_t>(k_);
-      out_.push_slot() = {quad_.id + static_cast<uint32_t>(k_), quad_.req, quad_.s[k], quad_.t[k], lambda_};
+      out_.push_slot() = {quad_.id + static_cast<uint32_t>(k_), quad_.req, quad_.s[k], quad_.t[k], lod_.lambda_q8,
+                          lod_.probes, lod_.major_du_q16, lod_.major_dv_q16};
       if (++k_ == quad_.npix) holding_ = false;
       sim_.progress();
     }
@@ -61,8 +59,24 @@ class LodUnit : public sim::Module {
   const Registers& regs_;
   bool holding_ = false;
   QuadReq quad_;
-  int32_t lambda_ = 0;
+  AnisoLod lod_;
   int k_ = 0;
+
+  // The texel-space derivatives of a quad or gradient request (the input stage); none in lod mode.
+  TexelDerivatives derivatives(const QuadReq& q, const TextureDescriptor& tex) const {
+    if (mode_ == TraceMode::Quad) return derivatives_from_quad(q.s.data(), q.t.data(), tex.width, tex.height);
+    return derivatives_from_gradients(q.dsdx, q.dtdx, q.dsdy, q.dtdy, tex.width, tex.height);
+  }
+  // lambda and the anisotropic footprint of one quad (or pixel).
+  AnisoLod quad_lod(const QuadReq& q) const {
+    const SamplerDescriptor& smp = regs_.samplers[q.req.sampler];
+    if (smp.mode.mip == MipMode::None) return isotropic_lod(0);
+    if (mode_ == TraceMode::Lod) return isotropic_lod(lambda_explicit(q.lod));
+    const TextureDescriptor& tex = regs_.textures[q.req.texture];
+    if (smp.anisotropic()) return aniso_lod(derivatives(q, tex), smp.aniso());
+    if (mode_ == TraceMode::Quad) return isotropic_lod(lambda_from_quad(q.s.data(), q.t.data(), tex.width, tex.height));
+    return isotropic_lod(lambda_from_gradients(q.dsdx, q.dtdx, q.dsdy, q.dtdy, tex.width, tex.height));
+  }
 };
 
 }  // namespace tfu::rtl

@@ -142,6 +142,7 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   sim::Stats& st = out.stats;
   const size_t n = trace.requests.size();
   u.cst.publish(st);
+  u.addr.publish(st);
   st.add("cycles", out.cycles);
   st.add("pixels", n);
   st.add("memory_bytes", u.mem.bytes_read());
@@ -181,6 +182,7 @@ void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   const auto n = static_cast<double>(requests);
   st.set("pixels_per_clock", cycles ? n / static_cast<double>(cycles) : 0.0);
   st.set("memory_bytes_per_pixel", requests ? static_cast<double>(st.counter("memory_bytes")) / n : 0.0);
+  st.set("probes_per_pixel", requests ? static_cast<double>(st.counter("probes")) / n : 0.0);
   const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
   st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
   uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;

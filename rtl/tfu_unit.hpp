@@ -11,7 +11,8 @@
 //
 // Port payloads and widths: rtl/unit_ports.hpp and each block's header. Rates (cache hits):
 // NEAREST, LINEAR and EDGE_PRESERVING 1 pixel/clock; a blending *_MIPMAP_LINEAR pixel 2 clocks (one
-// level footprint per clock); CUBIC ceil(T*T / (4 lanes)) clocks per level footprint. Latency per
+// level footprint per clock); CUBIC ceil(T*T / (4 lanes)) clocks per level footprint; an
+// anisotropic pixel of N probes N times its mode's rate (one probe's footprints after the other). Latency per
 // mode: docs/cycle-model.md (measured by the tests).
 #pragma once
 
@@ -24,6 +25,7 @@
 #include "cmodel/frame.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/unit_config.hpp"
+#include "rtl/unit_ports.hpp"
 #include "sim/kernel/kernel.hpp"
 
 namespace tfu::rtl {
@@ -31,7 +33,7 @@ namespace tfu::rtl {
 struct UnitOutput {
   std::vector<Rgba8> pixels;              // in request order
   std::vector<uint64_t> response_cycle;   // cycle each pixel left the unit
-  std::vector<std::array<lee_jen::TexelMask, 2>> edge_shapes;  // per pixel, level0/level1 (edge modes)
+  std::vector<ProbeShapes> edge_shapes;   // per pixel, probe and level0/level1 (edge modes)
   uint64_t cycles = 0;
   // Counters, values, histograms, and the tables "textures" (per texture descriptor: requests,
   // line hits, line misses, memory bytes) and "stages" (the same per material stage).
@@ -45,8 +47,8 @@ struct UnitOutput {
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd = nullptr);
 
 // The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
-// the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate and the latency mean,
-// minimum and maximum from the latency histogram.
+// the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the
+// latency mean, minimum and maximum from the latency histogram.
 void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles);
 
 }  // namespace tfu::rtl

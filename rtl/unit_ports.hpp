@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/descriptors.hpp"
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/texture.hpp"
@@ -30,12 +31,23 @@ struct QuadReq {
 };
 
 // lod_unit -> address_gen: one pixel per cycle.  id, descriptor indices, s t FP32, lambda[15:0]
-// (Q.8, before bias/clamp)
+// (Q.8, before bias/clamp), and the anisotropic footprint (cmodel/aniso.hpp AnisoLod): probes[4:0]
+// (N, 1..16; 1 for isotropic samplers and lod traces) and the major derivative vector
+// major_du[31:0] major_dv[31:0] (Q.16 level-0 texels, sign + 31-bit clamped magnitude), the step
+// the probes are spread along (probe i at offset probe_offset_q16(major, N, i))
 struct PixelReq {
   uint32_t id = 0;
   RequestTag req;
   float s = 0, t = 0;
   int32_t lambda = 0;
+  int probes = 1;
+  int64_t major_du_q16 = 0, major_dv_q16 = 0;
+};
+
+// An anisotropic probe's offset on one level (dp::probe_offset_on_level): Q.8 texels of the level,
+// inside the address generator.
+struct ProbeLevelOffset {
+  int64_t du_q8 = 0, dv_q8 = 0;
 };
 
 // The taps of one footprint as the address generator sends them, the columns and rows of a grid
@@ -91,7 +103,8 @@ constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
 //   the filter or the edge datapath), format[1:0] (the texture's texel format, for unpack),
 //   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), two/second (a
 //   blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross: texels the
-//   kernel may use)
+//   kernel may use), probes[4:0] probe[3:0] (an anisotropic pixel's probe count N and this
+//   footprint's probe i - 1: the datapath accumulates the probes and answers at the last one)
 // (address_gen::footprint writes every field into the reused output register: keep it in step.)
 struct LevelTag {
   uint32_t id = 0;
@@ -102,9 +115,15 @@ struct LevelTag {
   int blend = 0;
   bool two = false, second = false;
   lee_jen::TexelMask shape = lee_jen::kAllTexels;
-  bool emits() const { return !two || second; }    // the filter outputs a pixel for this footprint
-  bool holds() const { return two && !second; }    // level0 of a blending pair: kept for the blend
+  uint8_t probes = 1, probe = 0;
+  bool last_level() const { return !two || second; }  // a probe's result is complete after this footprint
+  bool emits() const { return last_level() && probe + 1 == probes; }  // the datapath outputs a pixel
+  bool holds() const { return two && !second; }       // level0 of a blending pair: kept for the blend
 };
+
+// Kernel shapes of one pixel's edge footprints, [2 probe + k] for probe 0..N-1 and level0 / level1
+// (k = 0 / 1): what the golden model takes for cache-aware shapes (Sampler::sample_edge_masks).
+using ProbeShapes = std::array<lee_jen::TexelMask, 2 * kMaxAniso>;
 
 // address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
 //   tag, level[3:0], grid (its `used` cells: those inside the texture; the edge shape narrows

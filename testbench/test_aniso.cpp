@@ -27,6 +27,7 @@ namespace {
 __extension__ using u128 = unsigned __int128;  // exact n^2 Pmin^2 in the reference (up to 71 bits)
 
 constexpr int64_t kOneTexel = 65536;  // Q.16
+constexpr AnisoRounding rounding(bool pow2) { return pow2 ? AnisoRounding::PowerOfTwo : AnisoRounding::Integer; }
 constexpr double kLambdaBoundLsb = 1.2;  // docs/anisotropic.md: 0.45 (log2 ROM) + 0.25 (R ROM) + 0.5 (halving)
 
 // Derivative components of the grid (Q.16 level-0 texels): zero, sub-texel, around one texel,
@@ -154,7 +155,7 @@ TEST(AnisoLod, ProbeCountAndLambdaMatchTheReferenceOnTheGrid) {
           const int ref_uncapped = reference_probe_count(pmax2, pmin2, 64);
           for (const int max_aniso : {1, 3, 7, 16}) {
             for (const bool pow2 : {false, true}) {
-              const AnisoLod a = aniso_lod(d, {max_aniso, pow2});
+              const AnisoLod a = aniso_lod(d, {max_aniso, rounding(pow2)});
               ++points;
               ASSERT_EQ(a.px2_q32, px2);
               ASSERT_EQ(a.py2_q32, py2);
@@ -197,7 +198,7 @@ TEST(AnisoLod, ProbeCountAtExactAndNearIntegerRatios) {
     }
     const int max_aniso = 1 + static_cast<int>(rng() % 16);
     for (const bool pow2 : {false, true}) {
-      const AnisoLod r = aniso_lod(d, {max_aniso, pow2});
+      const AnisoLod r = aniso_lod(d, {max_aniso, rounding(pow2)});
       const uint64_t pmax2 = std::max(r.px2_q32, r.py2_q32), pmin2 = std::min(r.px2_q32, r.py2_q32);
       const int ref = reference_probe_count(pmax2, pmin2, max_aniso);
       ASSERT_EQ(r.probes, pow2 ? static_cast<int>(std::bit_ceil(static_cast<unsigned>(ref))) : ref)
@@ -242,14 +243,14 @@ TEST(AnisoLod, OneProbeIsTheIsotropicLodBitForBit) {
           const TexelDerivatives d{dudx, dvdx, dudy, dvdy};
           const int32_t iso = lambda_from_derivatives(d);
           for (const bool pow2 : {false, true}) {
-            const AnisoLod a = aniso_lod(d, {1, pow2});
+            const AnisoLod a = aniso_lod(d, {1, rounding(pow2)});
             ASSERT_EQ(a.probes, 1);
             ASSERT_EQ(a.lambda_q8, iso) << dudx << " " << dvdx << " " << dudy << " " << dvdy;
             const ProbeOffset o = probe_offset(a, 1);
             ASSERT_EQ(o.du_q16, 0);
             ASSERT_EQ(o.dv_q16, 0);
             ++checked;
-            const AnisoLod b = aniso_lod(d, {16, pow2});
+            const AnisoLod b = aniso_lod(d, {16, rounding(pow2)});
             if (b.px2_q32 == b.py2_q32) {
               ASSERT_EQ(b.probes, 1);
               ASSERT_EQ(b.lambda_q8, iso);
@@ -331,7 +332,7 @@ TEST(AnisoProbes, ProbeTexelCoordinatesMatchTheReference) {
     const int w0 = 1 << (4 + rng() % 8);  // 16..2048
     const float s = unit(rng), t = unit(rng);
     const TexelDerivatives d = derivatives_from_gradients(grad(rng), grad(rng), grad(rng), grad(rng), w0, w0);
-    const AnisoLod a = aniso_lod(d, {16, it % 2 == 1});
+    const AnisoLod a = aniso_lod(d, {16, rounding(it % 2 == 1)});
     // A random level, or one of the two levels a trilinear probe at lambda reads.
     const int max_level = std::countr_zero(static_cast<unsigned>(w0));
     const int lambda_level = a.lambda_q8 < 0 ? 0 : std::min(a.lambda_q8 >> 8, max_level);
@@ -432,7 +433,7 @@ TEST(AnisoLod, DegenerateFloatDerivativesHaveTheDocumentedResults) {
   const int w = 256;
   // Zero derivatives (also NaN, which the input stage turns into 0): one probe, lambda = -infinity.
   for (const float z : {0.0f, -0.0f, nan}) {
-    const AnisoLod a = aniso_lod(derivatives_from_gradients(z, z, z, z, w, w), {16, false});
+    const AnisoLod a = aniso_lod(derivatives_from_gradients(z, z, z, z, w, w), {16, rounding(false)});
     EXPECT_EQ(a.probes, 1);
     EXPECT_EQ(a.lambda_q8, kLodMinusInfinity);
     EXPECT_TRUE(a.major_x);
@@ -440,13 +441,13 @@ TEST(AnisoLod, DegenerateFloatDerivativesHaveTheDocumentedResults) {
   }
   // Equal axes: one probe, the isotropic lambda (1/64 in s of 256 texels: 4 texels, lambda = 2).
   {
-    const AnisoLod a = aniso_lod(derivatives_from_gradients(1 / 64.0f, 0, 0, 1 / 64.0f, w, w), {16, false});
+    const AnisoLod a = aniso_lod(derivatives_from_gradients(1 / 64.0f, 0, 0, 1 / 64.0f, w, w), {16, rounding(false)});
     EXPECT_EQ(a.probes, 1);
     EXPECT_EQ(a.lambda_q8, 512);
   }
   // A line footprint (Pmin = 0 < Pmax): maxAniso probes (pow2 mode: rounded up), along x.
   {
-    const AnisoLod a = aniso_lod(derivatives_from_gradients(1 / 16.0f, 0, 0, 0, w, w), {6, false});
+    const AnisoLod a = aniso_lod(derivatives_from_gradients(1 / 16.0f, 0, 0, 0, w, w), {6, rounding(false)});
     EXPECT_EQ(a.probes, 6);
     EXPECT_TRUE(a.major_x);
     // Pmax = 16 texels: log2_q8(2^40) - 32 * 256 = 2048; R[6] = round(512 log2 6) = 1324;
@@ -456,10 +457,10 @@ TEST(AnisoLod, DegenerateFloatDerivativesHaveTheDocumentedResults) {
   // Infinite derivatives saturate, then clamp to 2^31 - 1 (32768 texels): Px = Py -> 1 probe, lambda
   // = 256 log2(sqrt(2) (2^31 - 1) / 2^16) = 15.5 levels; +inf and -inf alike.
   for (const float x : {inf, -inf}) {
-    const AnisoLod a = aniso_lod(derivatives_from_gradients(x, x, x, -x, w, w), {16, false});
+    const AnisoLod a = aniso_lod(derivatives_from_gradients(x, x, x, -x, w, w), {16, rounding(false)});
     EXPECT_EQ(a.probes, 1);
     EXPECT_EQ(a.lambda_q8, 3968);
-    const AnisoLod b = aniso_lod(derivatives_from_gradients(0, 0, x, 0, w, w), {8, true});
+    const AnisoLod b = aniso_lod(derivatives_from_gradients(0, 0, x, 0, w, w), {8, rounding(true)});
     EXPECT_FALSE(b.major_x);
     EXPECT_EQ(b.probes, 8);
     EXPECT_EQ(b.major_du_q16, x > 0 ? int64_t{kDerivativeClamp} : -int64_t{kDerivativeClamp});
@@ -467,11 +468,11 @@ TEST(AnisoLod, DegenerateFloatDerivativesHaveTheDocumentedResults) {
   }
   // maxAniso outside 1..16 is clamped into it.
   const TexelDerivatives line = derivatives_from_gradients(1.0f, 0, 0, 0, w, w);
-  EXPECT_EQ(aniso_lod(line, {0, false}).probes, 1);
-  EXPECT_EQ(aniso_lod(line, {-5, false}).probes, 1);
-  EXPECT_EQ(aniso_lod(line, {17, false}).probes, 16);
-  EXPECT_EQ(aniso_lod(line, {1000, true}).probes, 16);
-  EXPECT_EQ(aniso_lod(line, {5, true}).probes, 8);  // round up: the spec's "nearest supported rate"
+  EXPECT_EQ(aniso_lod(line, {0, rounding(false)}).probes, 1);
+  EXPECT_EQ(aniso_lod(line, {-5, rounding(false)}).probes, 1);
+  EXPECT_EQ(aniso_lod(line, {17, rounding(false)}).probes, 16);
+  EXPECT_EQ(aniso_lod(line, {1000, rounding(true)}).probes, 16);
+  EXPECT_EQ(aniso_lod(line, {5, rounding(true)}).probes, 8);  // round up: the spec's "nearest supported rate"
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Golden images: every built-in scene rendered small (64x48) in four modes must match the committed
+// Golden images: every built-in scene rendered small (64x48) in five modes must match the committed
 // PNGs in testbench/golden/ pixel for pixel (and their FNV-1a checksums in checksums.txt).
 // Regenerate deliberately with scripts/regen-golden (sets TFU_REGEN_GOLDEN=1), then review the
 // images and commit them with the change that explains why they moved.
@@ -21,7 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kGoldenDir = TFU_GOLDEN_DIR;
 constexpr int kW = 64, kH = 48;
-const char* const kModes[] = {"default", "LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"};
+// "aniso16": LINEAR_MIPMAP_LINEAR with maxAniso 16 (docs/anisotropic.md).
+const char* const kModes[] = {"default", "LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR", "aniso16"};
 
 uint64_t fnv1a(const Image& img) {
   uint64_t h = 1469598103934665603ull;
@@ -35,7 +36,12 @@ Image render_small(const std::string& scene_name, const std::string& mode) {
   s.width = kW;
   s.height = kH;
   RenderOptions o;
-  if (mode != "default") o.filter = filter_mode_from_name(mode);
+  if (mode == "aniso16") {
+    o.filter = filter_mode_from_name("LINEAR_MIPMAP_LINEAR");
+    o.sampler_overrides["max_aniso"] = "16";
+  } else if (mode != "default") {
+    o.filter = filter_mode_from_name(mode);
+  }
   o.threads = 2;
   return render_scene(s, o).image;
 }

@@ -82,7 +82,7 @@ TEST(Scene, WrongTypesAndValuesAreRejectedByName) {
 }
 
 TEST(Scene, EveryBuiltinSceneParsesAndRendersNonTrivially) {
-  const std::set<std::string> want{"magnified", "ground_plane", "text_quad", "object", "text_patch", "lightmapped"};
+  const std::set<std::string> want{"magnified", "ground_plane", "text_quad", "object", "text_patch", "lightmapped", "grazing"};
   EXPECT_EQ(std::set<std::string>(builtin_scene_names().begin(), builtin_scene_names().end()), want);
   for (const std::string& name : builtin_scene_names()) {
     Scene scene = load_scene(name);

@@ -2,10 +2,13 @@
 // cache line sizes (the CI matrix of TFU-C), every kernel-shape policy, vs16x2, lod and grad
 // traces, every wrap mode; requests of several textures (formats, layouts) and samplers
 // interleaved at random; rates, latencies, the Lee & Jen bandwidth claim; the edge datapath's
-// blocks against the cmodel functions they implement; config and VCD.
+// blocks against the cmodel functions they implement; config and VCD; anisotropic pixels (N = 1..16
+// on random derivative requests and scenes, degenerate gradients, probe statistics, rates on hits).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -413,6 +416,17 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     s.edge_shape = static_cast<EdgeShape>(rng() % 3);
     samplers.push_back(s);
   }
+  for (const FilterMode& m : all_filter_modes()) {  // anisotropic samplers of every MIP mode (TFU-G)
+    if (m.mip == MipMode::None) continue;
+    SamplerDescriptor s;
+    s.mode = m;
+    s.wrap_s = static_cast<WrapMode>(rng() % 4);
+    s.wrap_t = static_cast<WrapMode>(rng() % 4);
+    s.max_aniso = 2 + static_cast<int>(rng() % 15);
+    s.aniso_rounding = static_cast<AnisoRounding>(rng() % 2);
+    s.edge_shape = static_cast<EdgeShape>(rng() % 3);
+    samplers.push_back(s);
+  }
   SamplerDescriptor interp;
   interp.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
   interp.kernel = kBsplineInterp;
@@ -462,6 +476,203 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
       EXPECT_EQ(stage_bytes, got.stats.counter("memory_bytes"));
       EXPECT_GE(got.stats.table("textures")->rows.size(), 5u);  // four textures and a coefficient texture
     }
+}
+
+// ---- Anisotropic filtering (TFU-G, docs/anisotropic.md) ----
+
+// A 64 x 64 random RGBA8 texture (or VS16X2) with box MIP-maps: holds in hot_cache().
+Texture random_mip_texture(TexelFormat fmt, unsigned seed) {
+  Texture t;
+  t.format = fmt;
+  t.levels.emplace_back(64, 64);
+  std::mt19937 rng(seed);
+  for (Rgba8& x : t.levels[0].texels)
+    x = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+  generate_mipmaps(t, MipMethod::Box);
+  return t;
+}
+
+// A gradient request whose footprint is exactly n probes: du/dx = 1.5 n texels, dv/dy = 1.5 texels
+// (exact in binary32 and in Q.16), so N = n and lambda = log2(1.5) (levels 0 and 1, blend 150).
+TraceRequest aniso_request(float s, float t, int n, int width) {
+  TraceRequest r;
+  r.s = s;
+  r.t = t;
+  r.dsdx = 1.5f * static_cast<float>(n) / static_cast<float>(width);
+  r.dtdy = 1.5f / static_cast<float>(width);
+  return r;
+}
+
+// Gradient requests: exactly N = 1..16 (aniso_request, axes swapped for every other one) and
+// footprints of random length, elongation and direction; positions across and beyond the texture.
+Trace aniso_grad_trace(unsigned seed, int per_n) {
+  Trace tr;
+  tr.mode = TraceMode::Grad;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> pos(-0.3f, 1.3f), len(0.002f, 0.1f), ratio(1.0f, 20.0f), angle(0.0f, 6.2831853f);
+  for (int n = 1; n <= kMaxAniso; ++n)
+    for (int k = 0; k < per_n; ++k) {
+      TraceRequest r = aniso_request(pos(rng), pos(rng), n, 64);
+      if (k % 2) std::swap(r.dsdx, r.dtdy);  // major along y
+      tr.requests.push_back(r);
+      const float minor = len(rng), a = angle(rng), major = minor * ratio(rng);
+      r.dsdx = major * std::cos(a);
+      r.dtdx = major * std::sin(a);
+      r.dsdy = -minor * std::sin(a);
+      r.dtdy = minor * std::cos(a);
+      if (k % 3 == 0) std::swap(r.dsdx, r.dsdy), std::swap(r.dtdx, r.dtdy);
+      tr.requests.push_back(r);
+    }
+  return tr;
+}
+
+// The N histogram the golden model's LOD unit gives for a trace (pixels per N).
+std::vector<uint64_t> golden_probe_histogram(const Frame& frame, const Trace& tr) {
+  const GoldenUnit golden(frame);
+  std::vector<uint64_t> h(kMaxAniso + 1, 0);
+  for (size_t i = 0; i < tr.requests.size(); ++i) ++h[static_cast<size_t>(golden.lod(tr, i).probes)];
+  return h;
+}
+
+// Golden and cycle model bit for bit on random derivative requests, N = 1..16, every wrap mode, the
+// MIP-mapped families (probes of NEAREST, bilinear, trilinear, cubic, edge-preserving with static,
+// cache-aware and cross shapes), both probe-count roundings, RGBA8 and VS16X2; the statistics count
+// the golden model's probes.
+TEST(TfuUnit, AnisotropicEveryNWrapModeAndFamily) {
+  const Trace tr = aniso_grad_trace(5, 6);
+  for (TexelFormat fmt : {TexelFormat::RGBA8, TexelFormat::VS16X2}) {
+    const Texture tex = random_mip_texture(fmt, 11);
+    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "LINEAR_MIPMAP_NEAREST", "NEAREST_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR",
+                             "EDGE_PRESERVING_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_NEAREST"})
+      for (WrapMode w : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
+        SamplerDescriptor cfg;
+        cfg.mode = filter_mode_from_name(mode);
+        cfg.wrap_s = w;
+        cfg.wrap_t = static_cast<WrapMode>((static_cast<int>(w) + 1) % 4);
+        cfg.border = {10, 200, 30, 255};
+        cfg.max_aniso = 16;
+        cfg.aniso_rounding = w == WrapMode::ClampToEdge ? AnisoRounding::PowerOfTwo : AnisoRounding::Integer;
+        cfg.edge_shape = static_cast<EdgeShape>(static_cast<int>(w) % 3);
+        const std::string what = fmt::format("{} {} {}", texel_format_name(fmt), mode, wrap_mode_name(w));
+        const OneTexture one = one_texture(tex, cfg, tr, small_cache(4));
+        const UnitOutput got = run_unit(one.frame, one.trace, small_cache(4));
+        expect_golden(one.frame, one.trace, got, what);
+        const std::vector<uint64_t> want = golden_probe_histogram(one.frame, one.trace);
+        ASSERT_NE(got.stats.histogram("aniso_probes"), nullptr) << what;
+        EXPECT_EQ(*got.stats.histogram("aniso_probes"), want) << what;
+        uint64_t probes = 0;
+        for (size_t n = 1; n < want.size(); ++n) {
+          probes += n * want[n];
+          if (cfg.aniso_rounding == AnisoRounding::Integer) {
+            EXPECT_GT(want[n], 0u) << what << " N " << n;
+          }
+        }
+        EXPECT_EQ(got.stats.counter("probes"), probes) << what;
+        EXPECT_DOUBLE_EQ(got.stats.value("probes_per_pixel"), static_cast<double>(probes) / static_cast<double>(tr.requests.size()));
+      }
+  }
+}
+
+// Built-in scenes (quad traces: one LOD result per quad) with maxAniso 16 and 4 rounded to powers of
+// two, in the trilinear, cubic and edge-preserving MIP modes, and the edge modes' shape policies.
+TEST(TfuUnit, AnisotropicScenesBitExact) {
+  for (const char* scene : {"ground_plane", "text_patch", "object", "grazing"}) {
+    const SceneTrace st = scene_trace(scene, 64, 48);
+    const Mesh& mesh = st.scene.meshes.front();
+    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"})
+      for (const auto& [max_aniso, rounding] : {std::pair{16, AnisoRounding::Integer}, std::pair{4, AnisoRounding::PowerOfTwo}}) {
+        SamplerDescriptor cfg = mesh.stages[0].sampler;
+        cfg.mode = filter_mode_from_name(mode);
+        cfg.max_aniso = max_aniso;
+        cfg.aniso_rounding = rounding;
+        for (EdgeShape p : {EdgeShape::Static, EdgeShape::CacheAware}) {
+          if (p == EdgeShape::CacheAware && cfg.mode.base != BaseFilter::EdgePreserving) continue;
+          cfg.edge_shape = p;
+          const UnitOutput got = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, small_cache(4),
+                                                 fmt::format("{} {} max {} {}", scene, mode, max_aniso, edge_shape_name(p)));
+          EXPECT_GT(got.stats.counter("probes"), st.trace.requests.size()) << scene << " " << mode;  // some N > 1
+        }
+      }
+  }
+}
+
+// TFU-G item 3: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
+// so anisotropic EDGE_PRESERVING_MIPMAP_LINEAR probes read exactly the bytes of trilinear probes on
+// the same footprints (the same probes per pixel); the full cross reads more on minified scenes.
+TEST(TfuUnit, AnisotropicStaticEdgeProbesReadExactlyTheTrilinearBytes) {
+  for (const char* scene : {"grazing", "ground_plane"}) {
+    const SceneTrace st = scene_trace(scene, 64, 48);
+    const Mesh& mesh = st.scene.meshes.front();
+    for (int block : {4, 8}) {
+      const UnitConfig u = small_cache(block);
+      SamplerDescriptor cfg = mesh.stages[0].sampler;
+      cfg.max_aniso = 16;
+      cfg.mode = filter_mode_from_name("LINEAR_MIPMAP_LINEAR");
+      const UnitOutput tri = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      cfg.mode = filter_mode_from_name("EDGE_PRESERVING_MIPMAP_LINEAR");
+      cfg.edge_shape = EdgeShape::Static;
+      const UnitOutput edge = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      cfg.edge_shape = EdgeShape::Cross;
+      const UnitOutput cross = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+      const std::string what = fmt::format("{} B={}", scene, block);
+      ASSERT_GT(tri.stats.counter("probes"), st.trace.requests.size()) << what;  // anisotropic pixels exist
+      EXPECT_EQ(edge.stats.counter("probes"), tri.stats.counter("probes")) << what;
+      EXPECT_EQ(edge.stats.counter("memory_bytes"), tri.stats.counter("memory_bytes")) << what;
+      EXPECT_GT(cross.stats.counter("memory_bytes"), tri.stats.counter("memory_bytes")) << what;
+    }
+  }
+}
+
+// Degenerate gradients (zero, equal axes, infinite, NaN, a line) through both models.
+TEST(TfuUnit, AnisotropicDegenerateGradients) {
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  Trace tr;
+  tr.mode = TraceMode::Grad;
+  for (const std::array<float, 4> g : {std::array<float, 4>{0, 0, 0, 0}, {nan, nan, nan, nan}, {0.125f, 0.0625f, -0.0625f, 0.125f},
+                                       {inf, 0, 0, 0.01f}, {inf, -inf, inf, inf}, {-inf, nan, 0, 0}, {0.5f, 0, 0, 0}, {0, 0, 0, -0.5f},
+                                       {1e-30f, 0, 0, 1e-38f}, {3e38f, 3e38f, -3e38f, 1}})
+    for (const float s : {0.3f, -7.0f, 1e9f, nan}) {
+      TraceRequest r;
+      r.s = s;
+      r.t = 0.6f;
+      r.dsdx = g[0], r.dtdx = g[1], r.dsdy = g[2], r.dtdy = g[3];
+      tr.requests.push_back(r);
+    }
+  const Texture tex = random_mip_texture(TexelFormat::RGBA8, 4);
+  for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "NEAREST_MIPMAP_NEAREST", "CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"})
+    for (WrapMode w : {WrapMode::Repeat, WrapMode::ClampToBorder}) {
+      SamplerDescriptor cfg;
+      cfg.mode = filter_mode_from_name(mode);
+      cfg.wrap_s = cfg.wrap_t = w;
+      cfg.max_aniso = 16;
+      run_and_compare(tex, cfg, tr, UnitConfig{}, fmt::format("{} {}", mode, wrap_mode_name(w)));
+    }
+}
+
+// Rates on hits: an anisotropic pixel of N probes takes N times its mode's clocks (one probe's
+// level footprints per clock after the other): N for a bilinear or edge-preserving probe on one
+// level, 2N for a trilinear one.
+TEST(TfuUnit, AnisotropicRatesOnHits) {
+  const Texture tex = random_mip_texture(TexelFormat::RGBA8, 6);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> pos(0.0f, 1.0f);
+  for (const int n : {1, 2, 3, 4, 8, 16}) {
+    Trace tr;
+    tr.mode = TraceMode::Grad;
+    for (int k = 0; k < 400; ++k) tr.requests.push_back(aniso_request(pos(rng), pos(rng), n, 64));
+    const auto rate = [&](const char* mode, int max_aniso) {
+      SamplerDescriptor cfg;
+      cfg.mode = filter_mode_from_name(mode);
+      cfg.max_aniso = max_aniso;
+      return clocks_per_pixel_on_hits(tex, cfg, tr, hot_cache(), fmt::format("{} N {}", mode, n));
+    };
+    // Isotropic (maxAniso 1) on the same requests: one probe, lambda log2(1.5 n) instead.
+    EXPECT_NEAR(rate("LINEAR_MIPMAP_NEAREST", 1), 1.0, 0.01);
+    EXPECT_NEAR(rate("LINEAR_MIPMAP_NEAREST", 16), n, 0.01 * n) << n;
+    EXPECT_NEAR(rate("LINEAR_MIPMAP_LINEAR", 16), 2.0 * n, 0.02 * n) << n;  // lambda log2(1.5): blends
+    EXPECT_NEAR(rate("EDGE_PRESERVING_MIPMAP_NEAREST", 16), n, 0.01 * n) << n;
+    EXPECT_NEAR(rate("EDGE_PRESERVING_MIPMAP_LINEAR", 16), 2.0 * n, 0.02 * n) << n;
+  }
 }
 
 TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {

@@ -4,10 +4,12 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/parallel.hpp"
@@ -26,6 +28,7 @@ namespace {
 struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
+  std::string max_aniso, aniso_rounding;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   bool ideal = false, force = false, list = false;
@@ -72,6 +75,18 @@ void run(const RenderCliOptions& o) {
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);
+  // Anisotropy of every base stage: the sampler keys max_aniso and aniso_rounding (bindings.hpp).
+  for (const auto& [flag, key, value] : {std::tuple{"--max-aniso", "max_aniso", &o.max_aniso},
+                                         std::tuple{"--aniso-rounding", "aniso_rounding", &o.aniso_rounding}}) {
+    if (value->empty()) continue;
+    SamplerDescriptor scratch;
+    try {
+      set_sampler_param(scratch, key, *value);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", flag, e.what()));
+    }
+    ro.sampler_overrides[key] = *value;
+  }
   ro.ideal = o.ideal;
   ro.threads = o.threads;
   ro.trace = !o.trace_out.empty();
@@ -111,6 +126,9 @@ void register_render(CLI::App& app) {
                               q3::kDefaultOpenArenaDir));
   cmd->add_option("--filter", o->filter,
                   "Override the filter of every mesh's base stage (e.g. trilinear, cubic, edge_preserving_mipmap_linear)");
+  cmd->add_option("--max-aniso", o->max_aniso,
+                  "Override the maximum anisotropy (probes per pixel, 1..16) of every mesh's base stage (MIP-mapped modes)");
+  cmd->add_option("--aniso-rounding", o->aniso_rounding, "Override the probe-count rounding of every base stage: integer or pow2");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--truth-out", o->truth_out, "Also write the 8x8-supersampled analytic ground truth image");

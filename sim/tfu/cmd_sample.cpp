@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/lod.hpp"
@@ -30,6 +31,26 @@ struct SampleOptions {
   bool ideal = false;
 };
 
+// The double-precision ideal of request i: at the LOD unit's lambda (isotropic samplers, lod
+// traces), or the anisotropic ideal from the real-valued derivatives of its quad or gradients.
+std::array<double, 4> ideal_sample(const Sampler& smp, const Trace& tr, size_t i, int32_t lambda_q8) {
+  const TraceRequest& r = tr.requests[i];
+  if (!smp.descriptor().anisotropic() || tr.mode == TraceMode::Lod) return smp.sample_ideal(r.s, r.t, lambda_q8 / 256.0);
+  const double w = smp.texture().width(), h = smp.texture().height();
+  std::array<double, 4> d{};
+  switch (tr.mode) {
+    case TraceMode::Lod: break;
+    case TraceMode::Grad: d = {r.dsdx * w, r.dtdx * h, r.dsdy * w, r.dtdy * h}; break;
+    case TraceMode::Quad: {
+      const TraceRequest& q = tr.requests[i - i % 4];
+      const TraceRequest &qx = tr.requests[i - i % 4 + 1], &qy = tr.requests[i - i % 4 + 2];
+      d = {(double{qx.s} - q.s) * w, (double{qx.t} - q.t) * h, (double{qy.s} - q.s) * w, (double{qy.t} - q.t) * h};
+      break;
+    }
+  }
+  return smp.sample_ideal_aniso(r.s, r.t, d);
+}
+
 void run(const SampleOptions& o, const CLI::App& cmd) {
   // Every output checked before any work (cmodel/output_files.hpp); written to a temporary, renamed
   // into place by commit() only when complete.
@@ -48,22 +69,31 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
   }
   const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes);
   const GoldenUnit golden(frame);
-  const std::vector<int32_t> lam = golden.lambdas(tr);
 
   std::ostream& os = file ? file->stream() : std::cout;
-  if (o.query_lod) os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale\n";
+  if (o.query_lod) os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale,px,py,probes\n";
+  AnisoLod lod;
   for (size_t i = 0; i < tr.requests.size(); ++i) {
     const TraceRequest& r = tr.requests[i];
     const Sampler& smp = golden.sampler(r.texture, r.sampler);
+    if (tr.mode != TraceMode::Quad || i % 4 == 0) {
+      // The report forms Px and Py for every sampler (request_lod; with max_aniso 1 its lambda is the
+      // isotropic unit's bit for bit, N = 1), the samples take the golden unit's LOD.
+      const TextureDescriptor& d = frame.regs.textures.at(r.texture);
+      lod = o.query_lod ? request_lod(tr, i, d.width, d.height, smp.descriptor().aniso()) : golden.lod(tr, i);
+    }
     if (o.query_lod) {
-      const LodInfo li = smp.lod_info(lam[i]);
-      os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0, li.level0,
-                        li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale);
+      const LodInfo li = smp.lod_info(lod.lambda_q8);
+      // Px and Py: the axis lengths of the footprint in level-0 texels (floor(sqrt) in Q.16; 0 in
+      // lod traces, which have no derivatives), N the probes per pixel.
+      os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{},{:.8g},{:.8g},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0,
+                        li.level0, li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale,
+                        axis_length_q16(lod.px2_q32) / 65536.0, axis_length_q16(lod.py2_q32) / 65536.0, lod.probes);
     } else if (o.ideal) {
-      const auto v = smp.sample_ideal(r.s, r.t, lam[i] / 256.0);
+      const auto v = ideal_sample(smp, tr, i, lod.lambda_q8);
       os << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f}\n", v[0], v[1], v[2], v[3]);
     } else {
-      const Rgba8 c = smp.sample(r.s, r.t, lam[i]);
+      const Rgba8 c = smp.sample(r.s, r.t, lod);
       os << fmt::format("{},{},{},{}\n", c.r, c.g, c.b, c.a);
     }
   }
@@ -84,7 +114,8 @@ void register_sample(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output: one r,g,b,a line per request ('-' = stdout)")->required();
   cmd->add_flag("--force", o->force, "Overwrite --out if it exists");
   cmd->add_flag("--query-lod", o->query_lod,
-                "Write the LOD unit's report per request instead: lambda, magnify, levels, blend, level size, kernel scale");
+                "Write the LOD unit's report per request instead: lambda, magnify, levels, blend, level size, kernel scale, "
+                "Px, Py (texels), probes N");
   cmd->add_flag("--ideal", o->ideal, "Write the double-precision ideal result (channels as reals) instead");
   cmd->callback([o, cmd] { run(*o, *cmd); });
 }

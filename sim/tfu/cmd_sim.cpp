@@ -2,7 +2,9 @@
 // bit for bit (exit 1 on the first mismatch, naming the request, both values and the cycle), and
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -28,6 +30,8 @@ namespace tfu::cli {
 namespace {
 
 constexpr int kBenchRuns = 7;  // --bench: best of this many runs
+// Sampler keys a scene run takes from the command line for every base stage (besides --filter).
+constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding"};
 
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
@@ -76,6 +80,13 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
                            n ? static_cast<double>(st.counter("memory_bytes")) / dn : 0.0);
   std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", st.counter("stall_cache_miss"),
                            st.counter("stall_bank_conflict"), st.counter("stall_backpressure"));
+  if (const std::vector<uint64_t>* h = st.histogram("aniso_probes")) {
+    std::string hist;
+    for (size_t k = 1; k < h->size(); ++k)
+      if ((*h)[k]) hist += fmt::format("  N={} {}", k, (*h)[k]);
+    std::cout << fmt::format("  anisotropic probes: {} ({:.3f} per pixel); pixels per N:{}\n", st.counter("probes"),
+                             n ? static_cast<double>(st.counter("probes")) / dn : 0.0, hist);
+  }
   if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
     std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", st.counter("shape_cross"), st.counter("shape_T"),
                              st.counter("shape_L"));
@@ -122,6 +133,8 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   ro.line_bytes = unit.cache.line_bytes;
   const Params given = sampler_params_given(cmd, o.smp);
   if (given.contains("filter")) ro.filter = filter_mode_from_name(given.at("filter"));
+  for (const char* key : kSceneSamplerOverrides)
+    if (given.contains(key)) ro.sampler_overrides[key] = given.at(key);
   if (!o.shape_policy.empty()) ro.sampler_overrides["edge_shape"] = o.shape_policy;
   rtl::SceneSimOptions so;
   so.units = o.units;
@@ -151,6 +164,10 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
     pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
   }
   std::sort(pair_ratio.begin(), pair_ratio.end());
+  if (const auto level = requested_level({name, o.width, o.height, o.game_dir})) {
+    std::cout << "tfu sim: " << scene.description << '\n';
+    for (const auto& [field, n] : q3::level_count_fields(*level)) res.stats.add("level_" + field, static_cast<uint64_t>(n));
+  }
   if (out_file) out_file->write_image(res.image);
   mismatch = res.mismatch;
   if (!mismatch.empty()) return res.stats;
@@ -170,6 +187,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
         runs, res.requests, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
         res.cycle_seconds / res.golden_seconds, pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back(),
         render_secs, wall, o.units);
+    if (const uint64_t probes = res.stats.counter("probes"); probes != res.requests)
+      std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s\n", probes,
+                               static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6);
   }
   return res.stats;
 }
@@ -205,9 +225,12 @@ void run(SimOptions& o, CLI::App& cmd) {
     for (const char* key : texture_param_keys())
       if (given(flag_of(key))) throw InputError(fmt::format("{} applies to --requests runs", flag_of(key)));
     for (const SamplerParam& p : sampler_params())
-      if (given(flag_of(p.key)) && std::string(p.key) != "filter")
+      if (given(flag_of(p.key)) && std::string(p.key) != "filter" &&
+          std::find(std::begin(kSceneSamplerOverrides), std::end(kSceneSamplerOverrides), std::string(p.key)) ==
+              std::end(kSceneSamplerOverrides))
         throw InputError(fmt::format("{} applies to --requests runs; a scene's stages carry their own samplers "
-                                     "(--filter and --shape-policy override the base stage's)", flag_of(p.key)));
+                                     "(--filter, --max-aniso, --aniso-rounding and --shape-policy override the base stage's)",
+                                     flag_of(p.key)));
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
   std::ostream* vcd = vcd_file ? &vcd_file->stream() : nullptr;
@@ -232,24 +255,30 @@ struct ResultsOptions {
 struct ResultRow {
   std::string scene, mode, policy;
   int line_bytes = 64;
+  int max_aniso = 1;
   double cycles_per_pixel = 0, hit_rate = 0, bytes_per_pixel = 0;
-  uint64_t bytes = 0, stall_miss = 0, cross = 0, t = 0, l = 0;
+  uint64_t requests = 0, cycles = 0, probes = 0, bytes = 0, stall_miss = 0, cross = 0, t = 0, l = 0;
 };
 
-// One scene in one mode (the base stages' filter) with one edge-shape policy and line size.
-ResultRow measure(const Scene& scene, const std::string& scene_name, FilterMode mode, EdgeShape policy, int line_bytes) {
+// One scene in one mode (the base stages' filter) with one edge-shape policy, line size and maxAniso.
+ResultRow measure(const Scene& scene, const std::string& scene_name, FilterMode mode, EdgeShape policy, int line_bytes,
+                  int max_aniso = 1) {
   RenderOptions ro;
   ro.trace = true;
   ro.filter = mode;
   ro.line_bytes = line_bytes;
   ro.sampler_overrides["edge_shape"] = edge_shape_name(policy);
+  ro.sampler_overrides["max_aniso"] = std::to_string(max_aniso);
   const RenderResult render = render_scene(scene, ro);
   rtl::UnitConfig u;
   u.cache.line_bytes = line_bytes;
   const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, u, {});
   if (!r.mismatch.empty()) throw CheckFailed(r.mismatch);
   ResultRow row{scene_name, filter_mode_name(mode), mode.base == BaseFilter::EdgePreserving ? edge_shape_name(policy) : "",
-                line_bytes};
+                line_bytes, max_aniso};
+  row.requests = r.requests;
+  row.cycles = r.cycles;
+  row.probes = r.stats.counter("probes");
   const auto n = static_cast<double>(r.requests);
   row.cycles_per_pixel = static_cast<double>(r.cycles) / n;
   const uint64_t h = r.stats.counter("cache_line_hits"), m = r.stats.counter("cache_line_misses");
@@ -269,7 +298,7 @@ void run_results(const ResultsOptions& o) {
   OutputFile* md_file = o.markdown == "-" ? nullptr : &outputs.add("--markdown", o.markdown);
   OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   std::vector<ResultRow> rows;
-  std::string ratio_table;
+  std::string ratio_table, aniso_table;
   const std::vector<std::string> scenes = builtin_scene_names();
   for (size_t si = 0; si < scenes.size(); ++si) {
     const std::string& name = scenes[si];
@@ -295,6 +324,15 @@ void run_results(const ResultsOptions& o) {
       ratio_table += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", name, line, lin.bytes, ratio(st), ratio(ca),
                                  ratio(fc));
     }
+    // TFU-G: LINEAR_MIPMAP_LINEAR (and EDGE_PRESERVING_MIPMAP_LINEAR, static shapes) probes per maxAniso.
+    for (int n : {1, 2, 4, 8, 16}) {
+      const ResultRow tri = measure(scene, name, filter_mode_from_name("LINEAR_MIPMAP_LINEAR"), EdgeShape::Static, 64, n);
+      const ResultRow ep = measure(scene, name, filter_mode_from_name("EDGE_PRESERVING_MIPMAP_LINEAR"), EdgeShape::Static, 64, n);
+      const auto per_pixel = [](uint64_t x, uint64_t d) { return d ? static_cast<double>(x) / static_cast<double>(d) : 0.0; };
+      aniso_table += fmt::format("| {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.4f} |\n", name, n, per_pixel(tri.probes, tri.requests),
+                                 per_pixel(tri.requests, tri.cycles), tri.bytes_per_pixel, per_pixel(tri.requests, ep.cycles),
+                                 tri.bytes ? static_cast<double>(ep.bytes) / static_cast<double>(tri.bytes) : 1.0);
+    }
   }
   std::ostringstream md;
   md << fmt::format("\n## Cycle model (TFU-C)\n\nGenerated by `scripts/results` (`tfu sim-results`, {}x{} per scene, default unit "
@@ -308,6 +346,14 @@ void run_results(const ResultsOptions& o) {
      << ratio_table
      << "\nWith the `static` policy the edge-preserving filter reads exactly the bytes of bilinear (ratio 1.0000), as Lee & "
         "Jen Sec. 3 designs it; `cross` pays for the neighbouring tiles' lines.\n\n";
+  md << "### Anisotropic filtering (TFU-G): pixels per clock and bytes per pixel per maxAniso\n\n"
+        "Base stages LINEAR_MIPMAP_LINEAR with maxAniso N (the probe count of a pixel is at most N, any integer, docs/anisotropic.md); "
+        "the last two columns run the same footprints as EDGE_PRESERVING_MIPMAP_LINEAR probes with static T/L shapes "
+        "(Lee & Jen Sec. 3): its pixels per clock, and its memory bytes over LINEAR_MIPMAP_LINEAR's. As in the tables below a pixel is one request: "
+        "a lightmapped pixel makes two, and its light-map request stays isotropic (one probe).\n\n"
+        "| scene | maxAniso | probes/pixel | pixels/clock | memory bytes/pixel | EDGE_PRESERVING pixels/clock | EDGE_PRESERVING / LINEAR bytes |\n"
+        "|---|---:|---:|---:|---:|---:|---:|\n"
+     << aniso_table << "\n";
   md << "### Every scene x mode (x kernel-shape policy)\n\n"
         "| scene | mode | policy | cycles/pixel | line hit rate | memory bytes/pixel | miss stall cycles | shapes cross/T/L |\n"
         "|---|---|---|---:|---:|---:|---:|---|\n";
@@ -316,7 +362,7 @@ void run_results(const ResultsOptions& o) {
     md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy, r.cycles_per_pixel,
                       r.hit_rate, r.bytes_per_pixel, r.stall_miss,
                       r.cross + r.t + r.l ? fmt::format("{}/{}/{}", r.cross, r.t, r.l) : std::string());
-    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"line_bytes", r.line_bytes},
+    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"line_bytes", r.line_bytes}, {"max_aniso", r.max_aniso},
                   {"cycles_per_pixel", r.cycles_per_pixel}, {"hit_rate", r.hit_rate}, {"bytes_per_pixel", r.bytes_per_pixel},
                   {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
                   {"shape_L", r.l}});

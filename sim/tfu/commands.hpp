@@ -18,6 +18,7 @@ void register_compare(CLI::App& app);       // cmd_compare.cpp: `compare` (PSNR,
 void register_sim(CLI::App& app);           // cmd_sim.cpp: cycle model vs golden, statistics
 void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (images, traces, ground truth)
 void register_descriptors(CLI::App& app);   // cmd_descriptors.cpp: descriptor register layouts
+void register_aniso_compare(CLI::App& app); // cmd_aniso_compare.cpp: anisotropic filtering vs OpenImageIO
 
 // Output files go through tfu::OutputFiles (cmodel/output_files.hpp), input files through
 // cmodel/input_file.hpp: one place each for every command.

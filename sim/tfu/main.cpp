@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_render(app);
   tfu::cli::register_sim(app);
   tfu::cli::register_descriptors(app);
+  tfu::cli::register_aniso_compare(app);
   int code = tfu::kExitSuccess;
   try {
     app.parse(argc, argv);

@@ -7,7 +7,7 @@
 //   pmax2      [62:0]  Pmax^2 = max(Px^2, Py^2), Q.32
 //   pmin2      [62:0]  Pmin^2 = min(Px^2, Py^2), Q.32 (pmin2 <= pmax2)
 //   max_aniso  [4:0]   maxAniso of the sampler descriptor, 1..16 (0 acts as 1, 17..31 as 16)
-//   pow2               1: N rounded up to a power of two (the spec's "nearest supported rate")
+//   aniso_rounding     1: N rounded up to a power of two (the spec's "nearest supported rate")
 //   probes     [4:0]   N, 1..16
 //
 // ceil(Pmax / Pmin) is the smallest k >= 1 with k^2 Pmin^2 >= Pmax^2. The unit compares Pmax^2
@@ -19,7 +19,7 @@ module tfu_aniso_count (
   input  logic [62:0] pmax2,
   input  logic [62:0] pmin2,
   input  logic [4:0]  max_aniso,
-  input  logic        pow2,
+  input  logic        aniso_rounding,
   output logic [4:0]  probes
 );
   localparam int W = 71;  // 63 + log2(256)
@@ -70,7 +70,7 @@ module tfu_aniso_count (
   logic [4:0] n;
   assign n = (ratio_ceil < cap) ? ratio_ceil : cap;
   always_comb begin
-    if (!pow2 || n <= 5'd2) probes = n;
+    if (!aniso_rounding || n <= 5'd2) probes = n;
     else if (n <= 5'd4) probes = 5'd4;
     else if (n <= 5'd8) probes = 5'd8;
     else probes = 5'd16;

@@ -105,10 +105,10 @@ TEST(SvAnisoCount, MatchesAnisoProbeCountAtTiesAndEveryMaxAniso) {
     for (int max_aniso = 0; max_aniso < 32; ++max_aniso)
       for (const bool pow2 : {false, true}) {
         m.max_aniso = static_cast<uint8_t>(max_aniso);
-        m.pow2 = pow2;
+        m.aniso_rounding = pow2;
         m.eval();
         ++vectors;
-        const int want = tfu::aniso_probe_count(pmax2, pmin2, {max_aniso, pow2});
+        const int want = tfu::aniso_probe_count(pmax2, pmin2, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer});
         if (m.probes != want)
           bad.add(fmt::format("pmax2 {} pmin2 {} max {} pow2 {}: sv {} c++ {}", pmax2, pmin2, max_aniso, pow2, m.probes, want));
       }
@@ -171,10 +171,10 @@ TEST(SvAnisoLod, MatchesAnisoLodOnTheDerivativeGridAndRandomDerivatives) {
     m.dudy = port(d.dudy, 49);
     m.dvdy = port(d.dvdy, 49);
     m.max_aniso = static_cast<uint8_t>(max_aniso);
-    m.pow2 = pow2;
+    m.aniso_rounding = pow2;
     m.eval();
     ++vectors;
-    const tfu::AnisoLod a = tfu::aniso_lod(d, {max_aniso, pow2});
+    const tfu::AnisoLod a = tfu::aniso_lod(d, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer});
     const bool same = m.px2 == a.px2_q32 && m.py2 == a.py2_q32 && (m.major_x != 0) == a.major_x &&
                       sext(m.major_du, 32) == a.major_du_q16 && sext(m.major_dv, 32) == a.major_dv_q16 &&
                       m.probes == a.probes && sext(m.lambda_q8, 16) == a.lambda_q8;
