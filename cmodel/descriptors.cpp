@@ -34,7 +34,7 @@ FilterMode filter_mode_from_name(const std::string& name) {
     if (filter_mode_name(m) == n) return m;
   std::string list;
   for (const FilterMode& m : all_filter_modes()) list += (list.empty() ? "" : ", ") + filter_mode_name(m);
-  throw InputError(fmt::format("unknown filter '{}' (expected one of {}, or bilinear, trilinear)", name, list));
+  throw InputError(fmt::format("unknown filter '{}' (expected one of {}, or bilinear, trilinear)", quote_input(name), list));
 }
 
 std::string filter_mode_name(FilterMode m) {
@@ -69,14 +69,14 @@ int cubic_kernel_index(const std::string& name) {
   if (it != names.end()) return static_cast<int>(it - names.begin());
   std::string list;
   for (const auto& k : names) list += (list.empty() ? "" : ", ") + k;
-  throw InputError(fmt::format("unknown kernel '{}' (valid: {})", name.substr(0, 60), list));
+  throw InputError(fmt::format("unknown kernel '{}' (valid: {})", quote_input(name), list));
 }
 
 EdgeShape edge_shape_from_name(const std::string& name) {
   if (name == "cross" || name == "full-cross") return EdgeShape::Cross;
   if (name == "static") return EdgeShape::Static;
   if (name == "cache-aware") return EdgeShape::CacheAware;
-  throw InputError(fmt::format("unknown kernel-shape policy '{}' (expected static, cache-aware or cross)", name.substr(0, 60)));
+  throw InputError(fmt::format("unknown kernel-shape policy '{}' (expected static, cache-aware or cross)", quote_input(name)));
 }
 
 const char* edge_shape_name(EdgeShape s) {

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "cmodel/error.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/unorm.hpp"
 
 namespace tfu {
@@ -16,6 +17,7 @@ void KernelErrorSpec::validate() const {
   if (dims < 1 || dims > 3) throw InputError("--dims must be 1, 2 or 3, got " + std::to_string(dims));
   if (locations < 0 || locations > 4096)
     throw InputError("--locations must be in [1, 4096] (0 = default), got " + std::to_string(locations));
+  checked_thread_count("--threads", threads, true);
 }
 
 namespace {
@@ -104,8 +106,7 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
   // Rows of locations (y, and z inside) are handed out to threads through an atomic counter;
   // each thread keeps its own maximum. Tiles composition quantizes the d-D sample h(x)h(y)[h(z)]
   // on the fly (no R^d table), reading 2^d entries per weight for linear reconstruction.
-  unsigned nthreads = spec.threads > 0 ? static_cast<unsigned>(spec.threads) : std::thread::hardware_concurrency();
-  nthreads = std::max(1u, nthreads);
+  const auto nthreads = static_cast<unsigned>(spec.threads > 0 ? spec.threads : hardware_threads());
   std::atomic<int> next_row{0};
   std::vector<double> worst(nthreads, 0.0);
 
@@ -185,10 +186,7 @@ double kernel_error_scaled(const KernelErrorSpec& spec) {
     }
     worst[tid] = local;
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < nthreads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (auto& th : pool) th.join();
+  run_workers(static_cast<int>(nthreads), [&](int w) { work(static_cast<unsigned>(w)); });
   return *std::max_element(worst.begin(), worst.end()) * scale;
 }
 

@@ -14,7 +14,7 @@ MipMethod mip_method_from_name(const std::string& name) {
   if (name == "box") return MipMethod::Box;
   if (name == "gaussian") return MipMethod::Gaussian;
   if (name == "edge") return MipMethod::Edge;
-  throw InputError(fmt::format("unknown MIP method '{}' (expected box, gaussian or edge)", name));
+  throw InputError(fmt::format("unknown MIP method '{}' (expected box, gaussian or edge)", quote_input(name)));
 }
 
 const char* mip_method_name(MipMethod m) {

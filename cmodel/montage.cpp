@@ -61,8 +61,14 @@ MontageLayout montage_layout(const std::vector<Image>& images, int columns, int 
   l.columns = std::min(columns, n);
   l.rows = (n + l.columns - 1) / l.columns;
   l.label_h = label_h;
-  l.width = kMontagePad + l.columns * (l.cell_w + kMontagePad);
-  l.height = kMontagePad + l.rows * (l.label_h + l.cell_h + kMontagePad);
+  // 64-bit sizes, checked: many large images must not wrap an int.
+  const int64_t w = kMontagePad + int64_t{l.columns} * (l.cell_w + kMontagePad);
+  const int64_t h = kMontagePad + int64_t{l.rows} * (l.label_h + l.cell_h + kMontagePad);
+  if (w > kMaxMontageSize || h > kMaxMontageSize)
+    throw InputError(fmt::format("montage would be {}x{} pixels, more than {} per side (use fewer or smaller images, or --columns)",
+                                 w, h, kMaxMontageSize));
+  l.width = static_cast<int>(w);
+  l.height = static_cast<int>(h);
   return l;
 }
 

@@ -20,6 +20,7 @@
 namespace tfu {
 
 inline constexpr int kMontagePad = 4;
+inline constexpr int64_t kMaxMontageSize = 32768;  // pixels per side of a montage
 inline constexpr int kMontageLabelHeight = 20;
 inline constexpr int kMontageFontSize = 14;
 inline constexpr Rgba8 kMontageBackground{48, 48, 48, 255};

@@ -58,7 +58,7 @@ double value_noise(double s, double t, int cells, uint32_t seed) {
 
 void check_size(const std::string& name, int size) {
   if (size < 1 || size > kMaxProceduralSize)
-    throw InputError(fmt::format("procedural texture '{}': size {} outside 1..{}", name, size, kMaxProceduralSize));
+    throw InputError(fmt::format("procedural texture '{}': size {} outside 1..{}", quote_input(name), size, kMaxProceduralSize));
 }
 
 constexpr const char* kTextPhrases[] = {
@@ -239,7 +239,7 @@ Procedural make_procedural(const std::string& name, int size) {
   if (name == "lightmap") return make_lightmap(size);
   if (name == "noise") return make_noise(size, std::clamp(size / 16, 2, 16));
   throw InputError(fmt::format("unknown procedural texture '{}' (valid: checkerboard, text, zoneplate, lightmap, noise)",
-                               name));
+                               quote_input(name)));
 }
 
 }  // namespace tfu

@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/texenv.hpp"
 
 namespace tfu {
@@ -421,10 +422,7 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  run_workers(threads, [&](int) { worker(); });
   if (error) std::rethrow_exception(error);
 }
 
@@ -449,7 +447,25 @@ std::array<double, 3> RasterTriangle::barycentric(int64_t px, int64_t py) const 
           static_cast<double>(edge(2, px, py)) / a};
 }
 
+namespace {
+
+// Largest screen coordinate (pixels) setup accepts: Q.8 positions then fit 29 bits with sign, so
+// every edge-function product (two differences of < 2^29) stays below 2^58 and no int64 sum
+// overflows. Clipping against the guard band keeps real triangles within a few screen widths; a
+// vertex beyond this (or not finite) comes only from absurd input and the triangle is skipped as
+// degenerate.
+constexpr double kMaxScreenCoord = double{1 << 20};
+
+bool screen_position_ok(const ScreenVertex& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::fabs(v.x) <= kMaxScreenCoord &&
+         std::fabs(v.y) <= kMaxScreenCoord;
+}
+
+}  // namespace
+
 std::optional<RasterTriangle> setup_triangle(const std::array<ScreenVertex, 3>& v, int width, int height) {
+  for (const ScreenVertex& sv : v)
+    if (!screen_position_ok(sv)) return std::nullopt;
   RasterTriangle t;
   t.v = v;
   for (size_t i = 0; i < 3; ++i) {
@@ -508,7 +524,9 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   ctx.depth.assign(n, std::numeric_limits<float>::infinity());
 
   const int bands = static_cast<int>(ctx.band_triangles.size());
-  int threads = opts.threads > 0 ? opts.threads : static_cast<int>(std::thread::hardware_concurrency());
+  if (opts.threads < 0 || opts.threads > kMaxThreads)
+    throw InputError("render threads " + std::to_string(opts.threads) + " outside 0.." + std::to_string(kMaxThreads));
+  int threads = opts.threads > 0 ? opts.threads : hardware_threads();
   threads = std::clamp(threads, 1, std::max(1, bands));
   std::vector<BandOutput> outputs(static_cast<size_t>(bands));
   run_bands(ctx, threads, outputs);

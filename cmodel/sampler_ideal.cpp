@@ -12,6 +12,11 @@ namespace tfu {
 
 // ---------------------------------------------------------------- double-precision ideal
 std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) const {
+  // Non-finite coordinates as the datapath treats them (docs/sampler.md): NaN -> 0, +-Inf
+  // saturates (here at +-2^40, far outside any texture, so every index below stays finite).
+  const auto saturate = [](double c) { return std::isnan(c) ? 0.0 : std::clamp(c, -0x1p40, 0x1p40); };
+  s = saturate(s);
+  t = saturate(t);
   // Same level selection as GL, in real arithmetic.
   lambda = std::clamp(lambda + cfg_.lod.bias_q8 / 256.0, cfg_.lod.min_lod_q8 / 256.0, cfg_.lod.max_lod_q8 / 256.0);
   const int q = tex_.max_level();

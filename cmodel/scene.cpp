@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/json_input.hpp"
 #include "cmodel/mipmap.hpp"
 
 #include "cmodel/embedded_scenes.hpp"
@@ -30,7 +32,7 @@ class Obj {
       : j_(j), path_(std::move(path)), source_(source) {
     if (!j.is_object()) fail(fmt::format("expected an object, got {}", j.type_name()));
     for (const auto& [key, unused] : j.items())
-      if (!allowed.contains(key)) fail(fmt::format("unknown key '{}'", key));
+      if (!allowed.contains(key)) fail(fmt::format("unknown key '{}'", quote_input(key)));
   }
 
   [[noreturn]] void fail(const std::string& msg) const { throw InputError(where(path_, msg)); }
@@ -53,16 +55,20 @@ class Obj {
     const json& v = raw(key);
     if (!v.is_number()) fail_key(key, fmt::format("expected a number, got {}", v.type_name()));
     const auto d = v.get<double>();
-    if (!std::isfinite(d)) fail_key(key, "expected a finite number");
+    if (!std::isfinite(d) || std::fabs(d) > kMaxSceneMagnitude)
+      fail_key(key, fmt::format("expected a finite number within +-{:g}, got {}", kMaxSceneMagnitude, json_number_text(v)));
     return d;
   }
   int integer(const std::string& key, int def, int lo, int hi) const {
     if (!has(key)) return def;
     const json& v = raw(key);
     if (!v.is_number_integer()) fail_key(key, fmt::format("expected an integer, got {}", v.type_name()));
-    const auto i = v.get<int64_t>();
-    if (i < lo || i > hi) fail_key(key, fmt::format("{} outside {}..{}", i, lo, hi));
-    return static_cast<int>(i);
+    // An unsigned value above INT64_MAX must not read as negative: compare it as unsigned.
+    const bool inside = v.is_number_unsigned()
+                            ? v.get<uint64_t>() <= static_cast<uint64_t>(std::max(hi, 0)) && static_cast<int64_t>(v.get<uint64_t>()) >= lo
+                            : v.get<int64_t>() >= lo && v.get<int64_t>() <= hi;
+    if (!inside) fail_key(key, fmt::format("{} outside {}..{}", json_number_text(v), lo, hi));
+    return static_cast<int>(v.get<int64_t>());
   }
   std::string string(const std::string& key, const std::string& def) const {
     if (!has(key)) return def;
@@ -77,8 +83,9 @@ class Obj {
                                                   : fmt::format("expected an array of {}..{} numbers", n_min, n_max)));
     std::vector<double> out;
     for (const json& e : v) {
-      if (!e.is_number() || !std::isfinite(e.get<double>()))
-        throw InputError(where(path, fmt::format("expected numbers, found {}", e.dump())));
+      if (!e.is_number() || !std::isfinite(e.get<double>()) || std::fabs(e.get<double>()) > kMaxSceneMagnitude)
+        throw InputError(where(path, fmt::format("expected finite numbers within +-{:g}, found {}", kMaxSceneMagnitude,
+                                                 json_number_text(e))));
       out.push_back(e.get<double>());
     }
     return out;
@@ -343,26 +350,8 @@ Mesh parse_mesh(const json& j, const std::string& path, const std::string& sourc
   return mesh;
 }
 
-std::string strip_nlohmann_prefix(const std::string& what) {
-  // "[json.exception.parse_error.101] parse error at line 1, column 2: syntax error ..." -> "syntax error ..."
-  const auto col = what.find("column ");
-  const auto colon = col == std::string::npos ? std::string::npos : what.find(": ", col);
-  std::string msg = colon == std::string::npos ? what : what.substr(colon + 2);
-  std::replace(msg.begin(), msg.end(), '\n', ' ');
-  return msg;
-}
-
 json parse_json(const std::string& text, const std::string& source) {
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is the 1-based offset of the last character read; convert it to line / column.
-    const size_t end = std::min(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
-    const size_t nl = end == 0 ? std::string::npos : text.rfind('\n', end - 1);
-    const size_t column = nl == std::string::npos ? end + 1 : end - nl;
-    throw InputError(fmt::format("{}: line {}, column {}: {}", source, line, column, strip_nlohmann_prefix(e.what())));
-  }
+  return parse_json_input(text, source);  // InputError "FILE: line L, column C: ..." (json_input.hpp)
 }
 
 }  // namespace
@@ -452,8 +441,9 @@ Mesh make_bezier_patch_mesh(const std::array<glm::dvec3, 16>& control, int tesse
 // ---- Scenes ----
 
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir) {
-  const json j = parse_json(json_text, source);
-  const Obj o(j, "", source, {"description", "width", "height", "camera", "background", "meshes"});
+  const std::string label = quote_path(source);  // the file in messages
+  const json j = parse_json(json_text, label);
+  const Obj o(j, "", label, {"description", "width", "height", "camera", "background", "meshes"});
   Scene scene;
   scene.name = std::filesystem::path(source).stem().string();
   scene.description = o.string("description", "");
@@ -466,7 +456,7 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   if (!meshes.is_array()) o.fail_key("meshes", fmt::format("expected an array, got {}", meshes.type_name()));
   TextureCache cache;
   for (size_t i = 0; i < meshes.size(); ++i)
-    scene.meshes.push_back(parse_mesh(meshes[i], fmt::format("meshes[{}]", i), source, base_dir, cache));
+    scene.meshes.push_back(parse_mesh(meshes[i], fmt::format("meshes[{}]", i), label, base_dir, cache));
   return scene;
 }
 
@@ -488,7 +478,7 @@ const std::string& builtin_scene_json(const std::string& name) {
   }();
   const auto it = texts.find(name);
   if (it == texts.end())
-    throw InputError(fmt::format("unknown built-in scene '{}' (valid: {})", name, fmt::join(builtin_scene_names(), ", ")));
+    throw InputError(fmt::format("unknown built-in scene '{}' (valid: {})", quote_input(name), fmt::join(builtin_scene_names(), ", ")));
   return it->second;
 }
 
@@ -496,13 +486,12 @@ Scene load_scene(const std::string& name_or_path) {
   const auto& names = builtin_scene_names();
   if (std::find(names.begin(), names.end(), name_or_path) != names.end())
     return parse_scene(builtin_scene_json(name_or_path), name_or_path + ".json");
-  std::ifstream in(name_or_path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(name_or_path))
-    throw InputError(fmt::format("scene '{}' is neither a built-in scene ({}) nor a readable file", name_or_path,
+  std::error_code ec;
+  if (!std::filesystem::exists(name_or_path, ec) && !ec)
+    throw InputError(fmt::format("scene '{}' is neither a built-in scene ({}) nor a readable file", quote_input(name_or_path),
                                  fmt::join(names, ", ")));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), name_or_path, std::filesystem::path(name_or_path).parent_path().string());
+  const std::string text = read_input_file(name_or_path, "scene " + quoted_path(name_or_path), kMaxTextInputBytes);
+  return parse_scene(text, name_or_path, std::filesystem::path(name_or_path).parent_path().string());
 }
 
 }  // namespace tfu

@@ -29,6 +29,10 @@
 namespace tfu {
 
 inline constexpr int kMaxRenderSize = 8192;  // per side of the output image
+// Largest magnitude of any number in a scene file (positions, UVs, camera, transform): far beyond
+// any sensible scene, small enough that every product in the renderer stays finite and exact
+// enough; a larger or non-finite value is an error naming the file and key.
+inline constexpr double kMaxSceneMagnitude = 1e6;
 
 struct Camera {
   glm::dvec3 position{0, 0, 3}, look_at{0, 0, 0}, up{0, 1, 0};

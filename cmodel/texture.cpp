@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/stderr_capture.hpp"
 
 namespace tfu {
 
@@ -24,7 +26,7 @@ TexelFormat texel_format_from_name(const std::string& name) {
   if (name == "rgba8") return TexelFormat::RGBA8;
   if (name == "l8") return TexelFormat::L8;
   if (name == "vs16x2") return TexelFormat::VS16X2;
-  throw InputError(fmt::format("unknown texel format '{}' (expected rgba8, l8 or vs16x2)", name));
+  throw InputError(fmt::format("unknown texel format '{}' (expected rgba8, l8 or vs16x2)", quote_input(name)));
 }
 
 const char* texel_format_name(TexelFormat f) {
@@ -126,12 +128,40 @@ Image read_level(OIIO::ImageInput& in, int subimage, int miplevel, const std::st
 }
 
 std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: no such file", path));
+  check_input_file(path, quote_path(path), kMaxImageBytes);  // a regular file of bounded size (never a FIFO)
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // filter the stored values, as GL does
   auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw InputError(fmt::format("{}: cannot open image: {}", path, first_line(OIIO::geterror())));
+  if (!in) throw InputError(fmt::format("{}: cannot open image: {}", quote_path(path), first_line(OIIO::geterror())));
   return in;
+}
+
+Texture load_texture_file(const std::string& path) {
+  auto in = open_input(path);
+  Texture tex;
+  bool gray = false;
+  const std::string name = quote_path(path);  // for messages
+  tex.levels.push_back(read_level(*in, 0, 0, name, &gray));
+  tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
+  const int w = tex.levels[0].width, h = tex.levels[0].height;
+  for (int l = 1; l < mip_level_count(w, h); ++l) {
+    if (!in->seek_subimage(0, l)) break;  // the file holds no more levels
+    tex.levels.push_back(read_level(*in, 0, l, name, nullptr));
+  }
+  in->close();
+  tex.validate(name);
+  return tex;
+}
+
+// Runs an OpenImageIO call with stderr captured; an InputError carries what libraries printed.
+template <typename F>
+auto with_stderr_captured(F&& f) {
+  StderrCapture capture;
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(with_captured(e.what(), capture));
+  }
 }
 
 }  // namespace
@@ -158,41 +188,45 @@ Texture load_level_directory(const std::string& dir) {
 }  // namespace
 
 Texture load_texture(const std::string& path) {
-  if (std::filesystem::is_directory(path)) return load_level_directory(path);
-  auto in = open_input(path);
-  Texture tex;
-  bool gray = false;
-  tex.levels.push_back(read_level(*in, 0, 0, path, &gray));
-  tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
-  const int w = tex.levels[0].width, h = tex.levels[0].height;
-  for (int l = 1; l < mip_level_count(w, h); ++l) {
-    if (!in->seek_subimage(0, l)) break;  // the file holds no more levels
-    tex.levels.push_back(read_level(*in, 0, l, path, nullptr));
-  }
-  in->close();
-  tex.validate(path);
-  return tex;
+  std::error_code ec;  // an unusable name is the file reader's error (one line naming it)
+  if (std::filesystem::is_directory(path, ec)) return with_stderr_captured([&] { return load_level_directory(path); });
+  return with_stderr_captured([&] { return load_texture_file(path); });
 }
 
 Image load_image(const std::string& path) {
-  auto in = open_input(path);
-  Image img = read_level(*in, 0, 0, path, nullptr);
-  in->close();
-  return img;
+  return with_stderr_captured([&] {
+    auto in = open_input(path);
+    Image img = read_level(*in, 0, 0, quote_path(path), nullptr);
+    in->close();
+    return img;
+  });
+}
+
+void write_image_file(const Image& img, const std::string& type_path, const std::string& file_path) {
+  with_stderr_captured([&] {
+    auto out = OIIO::ImageOutput::create(type_path);
+    if (!out)
+      throw InputError(fmt::format("{}: no image writer for this file type: {}", quote_path(type_path), first_line(OIIO::geterror())));
+    OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!out->open(file_path, spec))
+      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
+    if (!out->write_image(OIIO::TypeDesc::UINT8, img.texels.data()))
+      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
+    if (!out->close()) throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
+    return 0;
+  });
+}
+
+bool image_writer_exists(const std::string& type_path) {
+  return with_stderr_captured([&] { return OIIO::ImageOutput::create(type_path) != nullptr; });
 }
 
 void save_image(const Image& img, const std::string& path, bool overwrite) {
-  if (!overwrite && std::filesystem::exists(path))
+  std::error_code ec;
+  if (!overwrite && std::filesystem::exists(path, ec))
     throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw InputError(fmt::format("{}: no image writer for this file type: {}", path,
-                                         first_line(OIIO::geterror())));
-  OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!out->open(path, spec)) throw InputError(fmt::format("{}: cannot write: {}", path, first_line(out->geterror())));
-  if (!out->write_image(OIIO::TypeDesc::UINT8, img.texels.data()))
-    throw InputError(fmt::format("{}: cannot write: {}", path, first_line(out->geterror())));
-  out->close();
+  write_image_file(img, path, path);
 }
 
 }  // namespace tfu

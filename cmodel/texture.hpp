@@ -182,8 +182,14 @@ inline void wrap_run(WrapMode m, int64_t start, int n, int size, int* out) {
 // ...), so that edge-preserving or Gaussian MIP-maps made once can be a scene's texture.
 // Throws InputError naming the file on any failure.
 Texture load_texture(const std::string& path);
-// Writes one level. Refuses to overwrite an existing file unless `overwrite`.
+// Writes one level. Refuses to overwrite an existing file unless `overwrite`. (The tools write
+// through OutputFiles, cmodel/output_files.hpp, which calls write_image_file.)
 void save_image(const Image& img, const std::string& path, bool overwrite);
+// Writes one level into `file_path` in the format that `type_path`'s extension names (OutputFiles
+// writes a temporary file first). Checks every step, close included; InputError on failure.
+void write_image_file(const Image& img, const std::string& type_path, const std::string& file_path);
+// Whether OpenImageIO has a writer for `type_path`'s extension.
+bool image_writer_exists(const std::string& type_path);
 // Loads one plain image (first level) for comparisons.
 Image load_image(const std::string& path);
 

@@ -1,15 +1,16 @@
 #include "cmodel/trace.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
-#include <fstream>
 #include <istream>
 #include <ostream>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
 #include "cmodel/lod.hpp"
 
 namespace tfu {
@@ -68,7 +69,8 @@ std::vector<std::string> words(const std::string& s) {
   return w;
 }
 
-std::string clip(const std::string& s) { return s.size() <= 60 ? s : s.substr(0, 57) + "..."; }
+// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
+std::string clip(const std::string& s) { return quote_input(s); }
 
 struct Header {
   bool mode_known = false;
@@ -126,7 +128,7 @@ TraceBinding parse_binding(const std::string& line, bool texture, const std::str
   char* end = nullptr;
   const long idx = std::strtol(w[2].c_str(), &end, 10);
   const long max_index = texture ? 4095 : 255;
-  if (end == w[2].c_str() || *end != '\0' || idx < 0 || idx > max_index)
+  if (end == w[2].c_str() || end != w[2].c_str() + w[2].size() || idx < 0 || idx > max_index)
     throw InputError(fmt::format("{}: index '{}' is not an integer 0..{}", where, clip(w[2]), max_index));
   b.index = static_cast<int>(idx);
   k = 3;
@@ -144,21 +146,49 @@ TraceBinding parse_binding(const std::string& line, bool texture, const std::str
   return b;
 }
 
+// The number syntax of docs/traces.md: decimal floating point ([+-] digits [. digits] [e [+-] digits],
+// or [+-] . digits ...) or nan / inf / infinity in any case. strtof alone would also take hex floats
+// ("0x1p-1") and stop at a NUL byte ("0.5\0garbage" would read as 0.5).
+bool is_decimal_number(const std::string& f) {
+  size_t i = 0;
+  if (i < f.size() && (f[i] == '+' || f[i] == '-')) ++i;
+  std::string word;
+  for (size_t k = i; k < f.size(); ++k) word += static_cast<char>(std::tolower(static_cast<unsigned char>(f[k])));
+  if (word == "nan" || word == "inf" || word == "infinity") return true;
+  const auto digits = [&] {
+    const size_t start = i;
+    while (i < f.size() && f[i] >= '0' && f[i] <= '9') ++i;
+    return i - start;
+  };
+  size_t mantissa = digits();
+  if (i < f.size() && f[i] == '.') {
+    ++i;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return false;
+  if (i < f.size() && (f[i] == 'e' || f[i] == 'E')) {
+    ++i;
+    if (i < f.size() && (f[i] == '+' || f[i] == '-')) ++i;
+    if (digits() == 0) return false;
+  }
+  return i == f.size();
+}
+
 float parse_float(const std::string& field, size_t column, const std::string& where) {
-  char* end = nullptr;
-  const float x = std::strtof(field.c_str(), &end);
-  if (end == field.c_str() || *end != '\0')
-    throw InputError(fmt::format("{}: field {} '{}' is not a number", where, column, clip(field)));
+  if (!is_decimal_number(field))
+    throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, column, clip(field)));
+  const float x = std::strtof(field.c_str(), nullptr);
   return x;  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
 }
 
 int parse_index(const std::string& field, size_t column, long max, const std::string& where) {
   char* end = nullptr;
   const long x = std::strtol(field.c_str(), &end, 10);
-  if (end == field.c_str() || *end != '\0' || x < 0 || x > max)
+  if (end == field.c_str() || end != field.c_str() + field.size() || x < 0 || x > max)  // no stray byte (NUL)
     throw InputError(fmt::format("{}: field {} '{}' is not an integer 0..{}", where, column, clip(field), max));
   return static_cast<int>(x);
 }
+
 
 }  // namespace
 
@@ -236,9 +266,8 @@ Trace parse_trace(std::istream& in, const std::string& name) {
 }
 
 Trace load_trace(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw InputError(fmt::format("{}: cannot open trace", path));
-  return parse_trace(f, path);
+  InputFile f(path, "trace " + quoted_path(path), kMaxTraceBytes);  // a regular file of bounded size
+  return parse_trace(f.stream(), quote_path(path));
 }
 
 void write_trace(std::ostream& out, const Trace& trace) {

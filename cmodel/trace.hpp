@@ -11,8 +11,9 @@
 //   s,t,dsdx,dtdx,dsdy,dtdy        mode grad: explicit gradients (GLSL textureGrad)
 //   s,t                            mode quad: 4 consecutive lines are the pixels (0,0), (1,0), (0,1),
 //                                  (1,1) of a 2x2 quad; the LOD unit derives lambda from them
-// Numbers are decimal floating point (anything strtof accepts, including nan and inf), read as IEEE
-// binary32 with round-to-nearest: the unit's interface format. Fields are separated by commas with
+// Numbers are decimal floating point ([+-]digits[.digits][e[+-]digits], or nan, inf, infinity in
+// any case; no hex floats, no stray bytes), read as IEEE binary32 with round-to-nearest (strtof):
+// the unit's interface format. Fields are separated by commas with
 // optional spaces. Without a header the mode follows from the field count of the first request; every
 // line must then have the same count. A trace without texture / sampler columns names descriptor 0
 // in every request (old traces read unchanged). Errors name the file and line.
@@ -61,6 +62,7 @@ struct Trace {
 
 // Throws InputError "<name>:<line>: ..." on malformed input.
 Trace parse_trace(std::istream& in, const std::string& name);
+// Reads a trace file (cmodel/input_file.hpp: a regular file of at most kMaxTraceBytes).
 Trace load_trace(const std::string& path);
 // Writes the header line and one line per request; floats printed with 9 significant digits so that
 // they read back to the same binary32 value.

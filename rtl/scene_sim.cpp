@@ -1,7 +1,7 @@
 #include "rtl/scene_sim.hpp"
 
 #include <algorithm>
-#include <thread>
+#include <atomic>
 
 #include <time.h>
 
@@ -9,6 +9,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
+#include "cmodel/parallel.hpp"
 #include "rtl/golden_compare.hpp"
 
 namespace tfu::rtl {
@@ -68,21 +69,19 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     job.golden_seconds = t2 - t1;
     job.mismatch = first_mismatch(job.trace, want, job.out, fmt::format("unit {}", job.unit));
   };
-  // One thread per unit; at most hardware_concurrency at a time.
-  const auto hw = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  // Units are handed out to up to hardware_threads() workers (each unit on
+  // one thread); results do not depend on which worker runs which unit.
   std::vector<std::exception_ptr> errors(static_cast<size_t>(opt.units));
-  for (int first = 0; first < opt.units; first += hw) {
-    std::vector<std::thread> pool;
-    for (int unit = first; unit < std::min(opt.units, first + hw); ++unit)
-      pool.emplace_back([&, unit] {
-        try {
-          run_job(jobs[static_cast<size_t>(unit)]);
-        } catch (...) {
-          errors[static_cast<size_t>(unit)] = std::current_exception();
-        }
-      });
-    for (std::thread& t : pool) t.join();
-  }
+  std::atomic<int> next_unit{0};
+  run_workers(std::min(opt.units, hardware_threads()), [&](int) {
+    for (int unit = next_unit++; unit < opt.units; unit = next_unit++) {
+      try {
+        run_job(jobs[static_cast<size_t>(unit)]);
+      } catch (...) {
+        errors[static_cast<size_t>(unit)] = std::current_exception();
+      }
+    }
+  });
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 

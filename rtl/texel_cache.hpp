@@ -45,6 +45,7 @@ namespace tfu::rtl {
 
 enum class BankMapping { TexelParity, BlockParity };
 
+
 struct TexelCacheConfig {
   int line_bytes = 64;         // 64, 256 or 1024
   int capacity_bytes = 16384;  // total data capacity

@@ -18,6 +18,7 @@
 #include "rtl/lod_unit.hpp"
 #include "rtl/request_fifo.hpp"
 #include "rtl/response.hpp"
+#include "rtl/unit_watchdog.hpp"
 #include "rtl/weight_rom_bank.hpp"
 
 namespace tfu::rtl {
@@ -59,6 +60,7 @@ struct Unit {
   Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out)
       : depth(static_cast<size_t>(u.channel_depth)),
         accept(trace.requests.size(), 0),
+        sim(no_progress_limit(u)),  // the watchdog, derived from the configuration (unit_watchdog.hpp)
         roms(frame.regs.samplers),
         cache(u.cache, frame.regs.textures),
         mem(u.memory, frame.regs.textures.size()),
@@ -240,7 +242,7 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
   }
   unit->sim.set_idle_skip(ucfg.idle_skip);
   const ResponseSink& sink = unit->sink;
-  unit->sim.run([&sink, n] { return sink.retired() == n; }, static_cast<uint64_t>(n) * 4096 + 1000000,
+  unit->sim.run([&sink, n] { return sink.retired() == n; }, sim::Simulator::kNoCycleLimit,  // no total-cycle cap: the watchdog only
                 [&sink] { return static_cast<uint64_t>(sink.retired()); }, n);
   out.cycles = unit->sim.cycle();
   out.edge_shapes = std::move(unit->cst.shapes);

@@ -7,12 +7,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_input.hpp"
 
 namespace tfu::rtl {
 
 namespace {
 
-std::string clip(const std::string& s) { return s.size() <= 60 ? s : s.substr(0, 57) + "..."; }
+// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
+std::string clip(const std::string& s) { return quote_input(s); }
 
 #define TFU_INT_FIELD(member) \
   [](const UnitConfig& c) { return c.member; }, [](UnitConfig& c, int v) { c.member = v; }
@@ -132,7 +134,7 @@ void read_object(const nlohmann::json& obj, const std::string& prefix, UnitConfi
       } else {
         if (!v.is_number_integer()) throw InputError("must be an integer");
         if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))
-          throw InputError(fmt::format("{} is out of range", v.get<uint64_t>()));
+          throw InputError(fmt::format("value {} is out of range", json_number_text(v)));
         f->set_text(c, std::to_string(v.get<int64_t>()));
       }
     } catch (const InputError& e) {
@@ -142,15 +144,8 @@ void read_object(const nlohmann::json& obj, const std::string& prefix, UnitConfi
 }
 
 UnitConfig unit_config_from_json(const std::string& text, const std::string& name) {
-  using nlohmann::json;
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw InputError(fmt::format("{}: malformed JSON (byte {})", name, e.byte));
-  } catch (const json::exception& e) {  // e.g. a number out of double range
-    throw InputError(fmt::format("{}: malformed JSON: {}", name, clip(e.what())));
-  }
+  // InputError "NAME: line L, column C: [at KEY: ]..." for malformed JSON and numbers out of range.
+  const nlohmann::json j = parse_json_input(text, name);
   UnitConfig c;
   read_object(j, "", c, name);
   try {

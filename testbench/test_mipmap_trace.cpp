@@ -94,7 +94,7 @@ TEST(Trace, ErrorsNameFileAndLine) {
     return std::string("no error");
   };
   EXPECT_NE(msg("0,0,1\n0,0\n").find("f.txt:2"), std::string::npos);
-  EXPECT_NE(msg("0,x,1\n").find("f.txt:1: field 2 'x' is not a number"), std::string::npos);
+  EXPECT_NE(msg("0,x,1\n").find("f.txt:1: field 2 'x' is not a decimal number"), std::string::npos);
   EXPECT_NE(msg("0,0\n0,0\n0,0\n").find("not a multiple of 4"), std::string::npos);
   EXPECT_NE(msg("1,2,3,4\n").find("4 fields"), std::string::npos);
   EXPECT_NE(msg("1,,3\n").find("empty field"), std::string::npos);

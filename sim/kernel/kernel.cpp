@@ -187,8 +187,11 @@ std::string Simulator::dump() const {
 }
 
 void Simulator::stop(uint64_t start, uint64_t max_cycles) const {
-  if (cycle_ - start >= max_cycles) throw CheckFailed(fmt::format("simulation exceeded {} cycles; {}", max_cycles, dump()));
-  throw CheckFailed(fmt::format("deadlock: no progress for {} cycles; {}", watchdog_, dump()));
+  if (cycle_ - start >= max_cycles)
+    throw DeadlockError(fmt::format("simulation exceeded its limit of {} cycles at cycle {}", max_cycles, cycle_), dump());
+  throw DeadlockError(fmt::format("no block made progress for {} cycles (cycle {}, last progress at cycle {})",
+                                  watchdog_, cycle_, last_progress_),
+                      dump());
 }
 
 Simulator::ProgressBar::ProgressBar(const std::function<uint64_t()>& done, uint64_t total)

@@ -251,6 +251,7 @@ class VcdWriter {
 
 class Simulator {
  public:
+  static constexpr uint64_t kNoCycleLimit = UINT64_MAX;
   explicit Simulator(uint64_t watchdog_cycles = 100000) : watchdog_(watchdog_cycles) {}
   void add_module(Module* m) { modules_.push_back(m); }
   void add_clocked(Clocked* c) { clocked_.push_back(c); }
@@ -282,8 +283,8 @@ class Simulator {
     ++cycle_;
     if (vcd_ || (idle_skip_ && !progressed)) after_edge(progressed);
   }
-  // Steps until done() is true. Throws CheckFailed with a dump of every module's state if the
-  // watchdog fires or max_cycles pass. Shows a progress bar on stderr for runs over ~2 s when
+  // Steps until done() is true. Throws DeadlockError (one summary line, dump() = every module's
+  // state) if the watchdog fires or max_cycles pass (kNoCycleLimit: only the watchdog). Shows a progress bar on stderr for runs over ~2 s when
   // `work_total` > 0 and `work_done` reports progress. (A template, so that the per-cycle test of
   // done() and the step inline into one loop.)
   template <typename Done>
@@ -316,7 +317,7 @@ class Simulator {
   };
   // After the edge: the VCD sample, or the jump over idle cycles (see Module::wake_cycle).
   void after_edge(bool progressed);
-  // Throws the watchdog's or the cycle limit's CheckFailed with the state dump.
+  // Throws the watchdog's or the cycle limit's DeadlockError with the state dump.
   [[noreturn]] void stop(uint64_t start, uint64_t max_cycles) const;
   std::vector<Module*> modules_;
   std::vector<Clocked*> clocked_;

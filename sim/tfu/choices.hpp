@@ -15,7 +15,7 @@ E parse_choice(const std::string& option, const std::string& value, const std::m
   if (it != choices.end()) return it->second;
   std::string valid;
   for (const auto& [name, unused] : choices) valid += (valid.empty() ? "" : ", ") + name;
-  throw InputError("unknown " + option + " '" + value + "' (valid: " + valid + ")");
+  throw InputError("unknown " + option + " '" + quote_input(value) + "' (valid: " + valid + ")");
 }
 
 }  // namespace tfu::cli

@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -32,6 +31,7 @@
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/montage.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
@@ -180,8 +180,11 @@ void run(const AnisoCompareOptions& o) {
   if (o.max_aniso < 2 || o.max_aniso > kMaxAniso) throw InputError(fmt::format("--max-aniso must be in 2..16, got {}", o.max_aniso));
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
-  prepare_output("--montage", o.montage, o.force);
-  prepare_output("--json", o.json, o.force);
+  // Both outputs reserved before the run (cmodel/output_files.hpp): distinct files, none replaced
+  // without --force, written to temporaries and renamed only when the run completes.
+  OutputFiles outputs(o.force);
+  OutputFile* montage_file = o.montage.empty() ? nullptr : &outputs.add_image("--montage", o.montage);
+  OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir});
   const RenderResult iso = render_quads(scene, 1, true), aniso = render_quads(scene, o.max_aniso, false);
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("tfu_aniso_compare_{}", ::getpid());
@@ -214,22 +217,18 @@ void run(const AnisoCompareOptions& o) {
                              d.mean_abs, d.max_abs);
     js[l.label] = {{"psnr_db", l.psnr}, {"ssim", l.ssim}, {"mean_abs_diff_other_side", d.mean_abs}, {"max_abs_diff_other_side", d.max_abs}};
   }
-  if (!o.montage.empty()) {
+  if (montage_file) {
     std::vector<Image> tiles{iso.truth};
     std::vector<std::string> labels{"ground truth"};
     for (const Lookup& l : {looks[0], looks[1], looks[2], looks[3]}) {
       tiles.push_back(l.image);
       labels.push_back(l.label);
     }
-    save_image(montage(tiles, labels, static_cast<int>(tiles.size())), o.montage, true);
-    std::cout << "  montage -> " << o.montage << '\n';
+    montage_file->write_image(montage(tiles, labels, static_cast<int>(tiles.size())));
   }
-  if (!o.json.empty()) {
-    std::ofstream f(o.json);
-    f << js.dump(2) << '\n';
-    f.close();
-    if (!f) throw InputError(fmt::format("--json '{}' cannot be written", o.json));
-  }
+  if (json_file) json_file->stream() << js.dump(2) << '\n';
+  outputs.commit();
+  if (montage_file) std::cout << "  montage -> " << o.montage << '\n';
 }
 
 }  // namespace

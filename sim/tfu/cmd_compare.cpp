@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/montage.hpp"
 #include "cmodel/texture.hpp"
@@ -38,16 +39,6 @@ struct MontageOptions {
   bool force = false;
 };
 
-// Refuses an existing output (unless --force) or one in a missing directory, before any work.
-void check_output(const std::string& option, const std::string& path, bool force) {
-  if (path.empty()) return;
-  if (std::filesystem::exists(path) && !force)
-    throw InputError(fmt::format("{} '{}' already exists (use --force to overwrite)", option, path));
-  const auto dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw InputError(fmt::format("cannot write {} '{}': no such directory", option, path));
-}
-
 void print_metrics(const ImageMetrics& m) {
   fmt::print("psnr_db: {}\n", format_metric(m.psnr_db));
   fmt::print("ssim: {}\n", format_metric(m.ssim, 6));
@@ -58,7 +49,7 @@ void print_metrics(const ImageMetrics& m) {
   fmt::print("mean_abs_diff: {}\n", format_metric(m.diff.mean_abs, 6));
 }
 
-void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m) {
+void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m, std::ostream& out) {
   nlohmann::json j = {{"a", o.a},
                       {"b", o.b},
                       {"width", a.width},
@@ -74,46 +65,50 @@ void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m) 
     j["psnr_db"] = "inf";
   else
     j["psnr_db"] = m.psnr_db;
-  std::ofstream f(o.json);
-  f << j.dump(2) << '\n';
-  f.close();
-  if (!f) throw InputError(fmt::format("cannot write --json '{}'", o.json));
-  fmt::print(stderr, "tfu compare: wrote {}\n", o.json);
+  out << j.dump(2) << '\n';
 }
 
 void run_compare(const CompareOptions& o) {
   if (o.scale < 1) throw InputError(fmt::format("--scale must be >= 1, got {}", o.scale));
   if (o.fail_below_psnr && !std::isfinite(*o.fail_below_psnr))
     throw InputError("--fail-below-psnr must be a finite number of dB");
-  check_output("--diff", o.diff, o.force);
-  check_output("--json", o.json, o.force);
+  OutputFiles outputs(o.force);
+  OutputFile* diff_file = o.diff.empty() ? nullptr : &outputs.add_image("--diff", o.diff);
+  OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   const Image a = load_image(o.a), b = load_image(o.b);  // InputError naming the file
   if (a.width != b.width || a.height != b.height)
     throw InputError(fmt::format("image sizes differ: {} is {}x{}, {} is {}x{}", o.a, a.width, a.height, o.b, b.width,
                                  b.height));
   const ImageMetrics m = compare_images(a, b);
+  if (diff_file) diff_file->write_image(diff_heatmap(a, b, o.scale));
+  if (json_file) write_json(o, a, m, json_file->stream());
+  outputs.commit();
   print_metrics(m);
-  if (!o.diff.empty()) {
-    save_image(diff_heatmap(a, b, o.scale), o.diff, o.force);
-    fmt::print(stderr, "tfu compare: wrote {}\n", o.diff);
-  }
-  if (!o.json.empty()) write_json(o, a, m);
+  if (diff_file) fmt::print(stderr, "tfu compare: wrote {}\n", o.diff);
+  if (json_file) fmt::print(stderr, "tfu compare: wrote {}\n", o.json);
   if (o.fail_below_psnr && m.psnr_db < *o.fail_below_psnr)
     throw CheckFailed(fmt::format("PSNR {:.4f} dB is below --fail-below-psnr {}", m.psnr_db, *o.fail_below_psnr));
 }
 
 // IMG[=LABEL]: an argument that names an existing file is taken whole; otherwise it splits at the
-// first '='. Without a label the file name (no directory) is used.
+// first '='. Without a label the file name (no directory) is used. (The whole argument may be no
+// valid path at all, e.g. a label longer than a file name may be: then it is not a file.)
 std::pair<std::string, std::string> split_input(const std::string& arg) {
   const auto eq = arg.find('=');
-  if (std::filesystem::exists(arg) || eq == std::string::npos)
-    return {arg, std::filesystem::path(arg).filename().string()};
-  return {arg.substr(0, eq), arg.substr(eq + 1)};
+  std::error_code ec;
+  std::pair<std::string, std::string> r;
+  if (std::filesystem::exists(arg, ec) || eq == std::string::npos)
+    r = {arg, std::filesystem::path(arg).filename().string()};
+  else
+    r = {arg.substr(0, eq), arg.substr(eq + 1)};
+  if (r.first.empty()) throw InputError(fmt::format("montage input '{}': no image file before '='", quote_input(arg)));
+  return r;
 }
 
 void run_montage(const MontageOptions& o) {
   if (o.columns < 1) throw InputError(fmt::format("--columns must be >= 1, got {}", o.columns));
-  check_output("--out", o.out, o.force);
+  OutputFiles outputs(o.force);
+  OutputFile& out = outputs.add_image("--out", o.out);
   std::vector<Image> images;
   std::vector<std::string> labels;
   for (const std::string& arg : o.inputs) {
@@ -123,7 +118,8 @@ void run_montage(const MontageOptions& o) {
   }
   bool drawn = false;
   const Image m = montage(images, labels, o.columns, &drawn);
-  save_image(m, o.out, o.force);
+  out.write_image(m);
+  outputs.commit();
   if (!drawn) fmt::print(stderr, "tfu montage: warning: font {} not available, labels omitted\n", kMontageFont);
   fmt::print(stderr, "tfu montage: wrote {} ({}x{})\n", o.out, m.width, m.height);
 }

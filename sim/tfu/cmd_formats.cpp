@@ -10,18 +10,18 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 #include <random>
 #include <string>
-#include <thread>
+#include <atomic>
 #include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/signed_formats.hpp"
 #include "cmodel/unorm.hpp"
 #include "sim/tfu/commands.hpp"
@@ -135,15 +135,13 @@ Vs16Stats measure_vs16_random(int64_t pairs, uint64_t seed) {
 // All 2^32 (x, y) pairs, x split across threads.
 Vs16Stats measure_vs16_exhaustive() {
   snorm::multiplication_table();  // build the table before the threads start
-  const unsigned n = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<Vs16Stats> part(n);
-  std::vector<std::thread> threads;
-  for (unsigned t = 0; t < n; ++t)
-    threads.emplace_back([t, n, &part] {
-      for (uint32_t i = t; i < 65536; i += n)
-        for (uint32_t j = 0; j < 65536; ++j) part[t].check(code_of(i), code_of(j));
-    });
-  for (auto& th : threads) th.join();
+  const int n = hardware_threads();
+  std::vector<Vs16Stats> part(static_cast<size_t>(n));
+  std::atomic<uint32_t> next{0};
+  run_workers(n, [&](int t) {
+    for (uint32_t i = next++; i < 65536; i = next++)
+      for (uint32_t j = 0; j < 65536; ++j) part[static_cast<size_t>(t)].check(code_of(i), code_of(j));
+  });
   Vs16Stats st;
   for (const auto& p : part) st.merge(p);
   return st;
@@ -154,13 +152,8 @@ std::string code_str(snorm::Vs16 x) { return fmt::format("({}, {})", x.r, x.a); 
 void run(const FormatsOptions& o) {
   if (o.pairs < 1 || o.pairs > kMaxPairs)
     throw InputError(fmt::format("--pairs must be in [1, {}], got {}", kMaxPairs, o.pairs));
-  if (!o.json.empty()) {
-    if (std::filesystem::exists(o.json) && !o.force)
-      throw InputError("--json '" + o.json + "' already exists (use --force to overwrite)");
-    const auto dir = std::filesystem::path(o.json).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-      throw InputError("cannot write --json '" + o.json + "': no such directory");
-  }
+  OutputFiles outputs(o.force);
+  OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   nlohmann::json out;
   bool ok = true;
 
@@ -226,11 +219,9 @@ void run(const FormatsOptions& o) {
                  {"mul_worst_pair", {{st.mul_worst_x.r, st.mul_worst_x.a}, {st.mul_worst_y.r, st.mul_worst_y.a}}}};
   if (!o.exhaustive) out["vs16"]["seed"] = o.seed;
 
-  if (!o.json.empty()) {
-    std::ofstream f(o.json);
-    f << out.dump(2) << '\n';
-    f.close();
-    if (!f) throw InputError("cannot write --json '" + o.json + "'");
+  if (json_file) {
+    json_file->stream() << out.dump(2) << '\n';
+    outputs.commit();
     std::fflush(stdout);
     std::fprintf(stderr, "tfu formats: wrote %s\n", o.json.c_str());
   }

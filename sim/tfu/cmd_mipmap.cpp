@@ -5,10 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/mipmap.hpp"
+#include "cmodel/output_files.hpp"
 #include "sim/tfu/commands.hpp"
-#include "cmodel/bindings.hpp"
 
 namespace tfu::cli {
 namespace {
@@ -25,22 +26,23 @@ void run(const MipmapOptions& o) {
   const MipMethod method = mip_method_from_name(o.method);
   if (!(o.alpha >= 0.0 && o.alpha <= 1.0)) throw InputError(fmt::format("--alpha {} is outside [0, 1]", o.alpha));
   namespace fs = std::filesystem;
-  if (fs::exists(o.out) && !fs::is_directory(o.out))
-    throw InputError(fmt::format("--out '{}' exists and is not a directory", o.out));
+  if (o.out.empty()) throw InputError("--out: empty directory name");
+  std::error_code ec;
+  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
+    throw InputError(fmt::format("--out '{}' exists and is not a directory", quote_input(o.out)));
   Texture tex = *load_texture_spec({o.texture, {{"mipmaps", "none"}}}, "--texture").texture;
   generate_mipmaps(tex, method, o.alpha);
-  // Check every target before writing any, so nothing is half-overwritten.
-  std::vector<std::string> paths;
-  for (int l = 0; l <= tex.max_level(); ++l) {
-    paths.push_back((fs::path(o.out) / fmt::format("level_{:02d}.png", l)).string());
-    if (fs::exists(paths.back()) && !o.force)
-      throw InputError(fmt::format("'{}' already exists (use --force to overwrite)", paths.back()));
-  }
-  fs::create_directories(o.out);
+  // Every level file reserved before any is written (cmodel/output_files.hpp): nothing is
+  // half-overwritten, and a failed run leaves no files and no new directory.
+  OutputFiles outputs(o.force);
+  std::vector<OutputFile*> files;
+  for (int l = 0; l <= tex.max_level(); ++l)
+    files.push_back(&outputs.add_image("--out", (fs::path(o.out) / fmt::format("level_{:02d}.png", l)).string()));
+  for (int l = 0; l <= tex.max_level(); ++l) files[static_cast<size_t>(l)]->write_image(tex.levels[static_cast<size_t>(l)]);
+  outputs.commit();
   for (int l = 0; l <= tex.max_level(); ++l) {
     const Image& img = tex.levels[static_cast<size_t>(l)];
-    save_image(img, paths[static_cast<size_t>(l)], true);
-    std::cout << fmt::format("level {:2d}  {:5d} x {:<5d} {}\n", l, img.width, img.height, paths[static_cast<size_t>(l)]);
+    std::cout << fmt::format("level {:2d}  {:5d} x {:<5d} {}\n", l, img.width, img.height, files[static_cast<size_t>(l)]->path());
   }
 }
 

@@ -1,8 +1,6 @@
 // tfu render: draw a scene (built-in or JSON file) through the golden sampler; optionally write the
 // quad request trace and the supersampled analytic ground truth (docs/renderer.md). Scenes named
 // oa:MAP[:SPAWN] are single-stage previews of OpenArena levels (docs/real-frames.md).
-#include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -13,6 +11,8 @@
 
 #include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/q3_archives.hpp"
 #include "cmodel/q3_scene.hpp"
 #include "cmodel/raster.hpp"
@@ -57,14 +57,6 @@ void list_levels(std::ostream& os, const std::string& game_dir) {
   }
 }
 
-void write_trace_file(const Trace& trace, const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw InputError(fmt::format("cannot write --trace-out '{}'", path));
-  write_trace(file, trace);
-  file.flush();
-  if (!file) throw InputError(fmt::format("write failed for --trace-out '{}'", path));
-}
-
 void check_size_override(const char* option, int v) {
   if (v < 0 || v > kMaxRenderSize) throw InputError(fmt::format("{} must be in 0..{} (0: the scene's), got {}", option, kMaxRenderSize, v));
 }
@@ -75,7 +67,7 @@ void run(const RenderCliOptions& o) {
     list_levels(std::cout, o.game_dir);
     return;
   }
-  if (o.threads < 0 || o.threads > 1024) throw InputError(fmt::format("--threads must be in 0..1024, got {}", o.threads));
+  checked_thread_count("--threads", o.threads, true);
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
   const bool level_scene = q3::is_level_scene(o.scene);
@@ -101,23 +93,20 @@ void run(const RenderCliOptions& o) {
   ro.ground_truth = !o.truth_out.empty();
 
   const std::string out = o.out.empty() ? fmt::format("out/render/{}.png", scene.name) : o.out;
-  if (out == o.trace_out || out == o.truth_out || (!o.trace_out.empty() && o.trace_out == o.truth_out))
-    throw InputError("--out, --trace-out and --truth-out must name different files");
-  prepare_output("--out", out, o.force);
-  prepare_output("--trace-out", o.trace_out, o.force);
-  prepare_output("--truth-out", o.truth_out, o.force);
+  // Every output reserved (distinct files, none overwritten without --force) before the render.
+  OutputFiles outputs(o.force);
+  OutputFile& image_file = outputs.add_image("--out", out);
+  OutputFile* trace_file = ro.trace ? &outputs.add("--trace-out", o.trace_out) : nullptr;
+  OutputFile* truth_file = ro.ground_truth ? &outputs.add_image("--truth-out", o.truth_out) : nullptr;
 
   const RenderResult r = render_scene(scene, ro);
-  save_image(r.image, out, o.force);
+  image_file.write_image(r.image);
+  if (trace_file) write_trace(trace_file->stream(), loadable_trace(r.frame->frame, r.trace));
+  if (truth_file) truth_file->write_image(r.truth);
+  outputs.commit();
   std::cout << out << '\n';
-  if (ro.trace) {
-    write_trace_file(loadable_trace(r.frame->frame, r.trace), o.trace_out);
-    std::cout << o.trace_out << '\n';
-  }
-  if (ro.ground_truth) {
-    save_image(r.truth, o.truth_out, o.force);
-    std::cout << o.truth_out << '\n';
-  }
+  if (trace_file) std::cout << o.trace_out << '\n';
+  if (truth_file) std::cout << o.truth_out << '\n';
   std::cerr << fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels\n",
                            scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
                            r.stats.clipped_away, r.stats.quads, r.stats.pixels);

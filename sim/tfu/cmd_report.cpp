@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/montage.hpp"
@@ -111,17 +112,20 @@ struct Claim {
   bool confirmed = false;
 };
 
-void save(const Image& img, const std::filesystem::path& p) { save_image(img, p.string(), true); }
-
 void run(const ReportOptions& o) {
   namespace fs = std::filesystem;
   const std::vector<std::string> names = o.scenes.empty() ? builtin_scene_names() : o.scenes;
   for (const auto& n : names) (void)scene_for(n, o.quick, o.game_dir);  // unknown scene -> InputError before any work
-  if (!o.markdown.empty() && fs::exists(o.markdown) && !o.force)
-    throw InputError(fmt::format("--markdown '{}' already exists (use --force to overwrite)", o.markdown));
-  if (fs::exists(o.out_dir) && !fs::is_empty(o.out_dir) && !o.force)
-    throw InputError(fmt::format("--out-dir '{}' is not empty (use --force to overwrite its files)", o.out_dir));
-  fs::create_directories(o.out_dir);
+  // Every file goes through OutputFiles: written as temporaries, renamed when the report is complete.
+  OutputFiles outputs(o.force);
+  OutputFile* md_file = o.markdown.empty() ? nullptr : &outputs.add("--markdown", o.markdown);
+  if (o.out_dir.empty()) throw InputError("--out-dir: empty directory name");
+  std::error_code ec;
+  if (fs::exists(o.out_dir, ec) && !fs::is_directory(o.out_dir, ec))
+    throw InputError(fmt::format("--out-dir '{}' exists and is not a directory", quote_input(o.out_dir)));
+  if (fs::exists(o.out_dir, ec) && !fs::is_empty(o.out_dir, ec) && !o.force)
+    throw InputError(fmt::format("--out-dir '{}' is not empty (use --force to overwrite its files)", quote_input(o.out_dir)));
+  const auto save = [&](const Image& img, const fs::path& p) { outputs.add_image("--out-dir", p.string()).write_image(img); };
   const auto t0 = std::chrono::steady_clock::now();
 
   nlohmann::json js;
@@ -142,7 +146,6 @@ void run(const ReportOptions& o) {
     js["provenance"]["scenes"][name]["height"] = scene.height;
     js["provenance"]["scenes"][name]["textures"] = rec.textures;
     const fs::path dir = fs::path(o.out_dir) / scene_label(name);
-    fs::create_directories(dir);
     const RenderResult base = render(scene, std::nullopt, false, true);
     save(base.truth, dir / "truth.png");
     const double truth_energy = gradient_energy(base.truth);
@@ -264,10 +267,7 @@ void run(const ReportOptions& o) {
     p["scenes"] = scenes;
     js["provenance"] = p;
   }
-  {
-    std::ofstream f(fs::path(o.out_dir) / "results.json");
-    f << js.dump(2) << '\n';
-  }
+  outputs.add("--out-dir", (fs::path(o.out_dir) / "results.json").string()).stream() << js.dump(2) << '\n';
 
   // ---- Markdown ----
   md << "# Measured results\n\n"
@@ -296,11 +296,8 @@ void run(const ReportOptions& o) {
     }
   }
   md << fmt::format("\nGenerated in {:.0f} s{}.\n", secs, o.quick ? " (quick mode: quarter-size renders)" : "");
-  if (!o.markdown.empty()) {
-    std::ofstream f(o.markdown);
-    f << md.str();
-    if (!f) throw InputError(fmt::format("--markdown '{}' cannot be written", o.markdown));
-  }
+  if (md_file) md_file->stream() << md.str();
+  outputs.commit();
   std::cout << fmt::format("tfu report: {} scenes x {} modes in {:.0f} s -> {}/ (montages *_montage.png, results.json){}\n",
                            names.size(), report_modes().size(), secs, o.out_dir,
                            o.markdown.empty() ? "" : fmt::format(", {}", o.markdown));

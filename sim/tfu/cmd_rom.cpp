@@ -1,7 +1,6 @@
 // tfu rom: dump any ROM (tile-weight or Lee & Jen direction-weight) as CSV or $readmemh hex.
 #include <bit>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -11,6 +10,7 @@
 
 #include "cmodel/direction_rom.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/rom_dump.hpp"
 #include "sim/tfu/choices.hpp"
 #include "sim/tfu/commands.hpp"
@@ -100,15 +100,8 @@ void run(const RomOptions& o) {
     dir = parse_dir(o.dir);
   }
 
-  std::ofstream file;
-  std::ostream* os = &std::cout;
-  if (!o.out.empty()) {
-    if (std::filesystem::exists(o.out) && !o.force)
-      throw InputError("--out '" + o.out + "' already exists (use --force to overwrite)");
-    file.open(o.out);
-    if (!file) throw InputError("cannot write --out '" + o.out + "'");
-    os = &file;
-  }
+  OutputFiles outputs(o.force);
+  std::ostream* os = o.out.empty() ? &std::cout : &outputs.add("--out", o.out).stream();
   if (o.list) {
     list_directions(*os);
   } else if (tile) {
@@ -116,8 +109,7 @@ void run(const RomOptions& o) {
   } else {
     format == Format::Csv ? dump_direction_rom_csv(dir, *os) : dump_direction_rom_hex(dir, *os);
   }
-  os->flush();
-  if (!*os) throw InputError("write failed for '" + (o.out.empty() ? std::string("stdout") : o.out) + "'");
+  outputs.commit();
   if (!o.out.empty()) std::cerr << "tfu rom: wrote " << o.out << '\n';
 }
 

@@ -2,8 +2,8 @@
 // report what the LOD unit / meta MIP-map supplies per request (--query-lod). The trace's header
 // binds its textures and samplers (docs/traces.md), or the command line describes texture 0 and
 // sampler 0.
-#include <filesystem>
-#include <fstream>
+#include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
@@ -13,6 +13,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/lod.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
@@ -51,22 +52,25 @@ std::array<double, 4> ideal_sample(const Sampler& smp, const Trace& tr, size_t i
 }
 
 void run(const SampleOptions& o, const CLI::App& cmd) {
-  if (o.out != "-" && std::filesystem::exists(o.out) && !o.force)
-    throw InputError(fmt::format("--out '{}' already exists (use --force to overwrite)", o.out));
+  // Every output checked before any work (cmodel/output_files.hpp); written to a temporary, renamed
+  // into place by commit() only when complete.
+  OutputFiles outputs(o.force);
+  OutputFile* file = o.out == "-" ? nullptr : &outputs.add("--out", o.out);
   Trace tr = load_trace(o.requests);
   const std::optional<TextureSpec> spec = texture_spec_given(cmd, o.tex);
   int line_bytes = 64;  // tiles of --tile-bytes, if given (the static edge shapes follow them)
-  if (spec && spec->params.contains("tile_bytes")) line_bytes = std::atoi(spec->params.at("tile_bytes").c_str());
-  if (!valid_tile_bytes(line_bytes)) throw InputError(fmt::format("--tile-bytes {} must be 64, 256 or 1024", line_bytes));
+  if (spec && spec->params.contains("tile_bytes")) {
+    const std::string& text = spec->params.at("tile_bytes");  // strtol, not atoi: no overflow on any text
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end != text.c_str() + text.size() || text.empty() || !valid_tile_bytes(static_cast<int>(std::clamp(v, 0L, 4096L))))
+      throw InputError(fmt::format("--tile-bytes '{}' must be 64, 256 or 1024", quote_input(text)));
+    line_bytes = static_cast<int>(v);
+  }
   const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes);
   const GoldenUnit golden(frame);
 
-  std::unique_ptr<std::ofstream> file;
-  if (o.out != "-") {
-    file = std::make_unique<std::ofstream>(o.out);
-    if (!*file) throw InputError(fmt::format("--out '{}' cannot be written", o.out));
-  }
-  std::ostream& os = file ? *file : std::cout;
+  std::ostream& os = file ? file->stream() : std::cout;
   if (o.query_lod) os << "# lambda,magnify,level0,level1,blend,level0_width,level0_height,kernel_scale,px,py,probes\n";
   AnisoLod lod;
   for (size_t i = 0; i < tr.requests.size(); ++i) {
@@ -93,9 +97,8 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
       os << fmt::format("{},{},{},{}\n", c.r, c.g, c.b, c.a);
     }
   }
+  outputs.commit();
   if (file) {
-    file->close();
-    if (!*file) throw InputError(fmt::format("--out '{}': write failed", o.out));
     std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(), trace_mode_name(tr.mode), o.out);
   }
 }

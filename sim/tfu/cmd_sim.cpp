@@ -6,7 +6,6 @@
 #include <chrono>
 #include <filesystem>
 #include <iterator>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -16,6 +15,8 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
@@ -50,19 +51,14 @@ struct SimOptions {
   bool force = false, bench = false, config_fields = false;
 };
 
-std::string read_file(const std::string& path, const char* option) {
-  std::ifstream f(path);
-  if (!f) throw InputError(fmt::format("{} '{}': cannot open", option, path));
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 // The unit configuration: the defaults, then --config (a unit configuration, or a statistics file
 // whose provenance records one), then the field flags given.
 rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
   rtl::UnitConfig u;
-  if (!o.config.empty()) u = rtl::unit_config_from_json(unit_config_text(read_file(o.config, "--config")), o.config);
+  if (!o.config.empty())
+    u = rtl::unit_config_from_json(
+        unit_config_text(read_input_file(o.config, "--config " + quoted_path(o.config), kMaxTextInputBytes)),
+        quote_path(o.config));
   for (const rtl::UnitField& f : rtl::unit_config_fields()) {
     if (cmd.count(f.flag) == 0) continue;
     try {
@@ -112,8 +108,9 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
 }
 
 // A request trace through the unit and the golden model.
+// A golden-compare failure is returned in `mismatch` (the outputs are still written: they show it).
 sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds,
-                        RunRecord& rec) {
+                        RunRecord& rec, std::string& mismatch) {
   if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
   Trace trace = load_trace(o.requests);
   if (!o.shape_policy.empty()) o.smp.values["edge_shape"] = o.shape_policy;
@@ -123,12 +120,12 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   rec.textures = frame_texture_names(frame);
   const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
   const GoldenUnit golden(frame);
-  const std::string mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
-  if (!mismatch.empty()) throw CheckFailed(mismatch);
+  mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   std::string modes;
   for (const SamplerDescriptor& s : frame.regs.samplers) modes += (modes.empty() ? "" : ", ") + filter_mode_name(s.mode);
   rec.filter = modes;
   rec.sampler_overrides = sampler_params_given(cmd, o.smp);
+  if (!mismatch.empty()) return got.stats;
   print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", modes, trace.requests.size(),
                             o.requests, trace.requests.size()),
                 trace.requests.size(), got.cycles, got.stats);
@@ -137,7 +134,7 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
 
 // A scene rendered by the golden model, its trace through the units.
 sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds,
-                     RunRecord& rec) {
+                     RunRecord& rec, OutputFile* out_file, std::string& mismatch) {
   const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
@@ -187,11 +184,13 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   rec.sampler_overrides = ro.sampler_overrides;
   rec.units = o.units;
   rec.textures = frame_texture_names(render.frame->frame);
-  if (!res.mismatch.empty()) throw CheckFailed(res.mismatch);
   if (const auto level = requested_level({name, o.width, o.height, o.game_dir})) {
     std::cout << "tfu sim: " << scene.description << '\n';
     for (const auto& [field, n] : q3::level_count_fields(*level)) res.stats.add("level_" + field, static_cast<uint64_t>(n));
   }
+  if (out_file) out_file->write_image(res.image);
+  mismatch = res.mismatch;
+  if (!mismatch.empty()) return res.stats;
   const std::string mode = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene filters");
   print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
                             res.requests, name, scene.width, scene.height, o.units, o.units == 1 ? "" : "s", res.requests),
@@ -212,10 +211,6 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
       std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s\n", probes,
                                static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6);
   }
-  if (!o.out.empty()) {
-    save_image(res.image, o.out, true);
-    std::cout << "  image -> " << o.out << '\n';
-  }
   return res.stats;
 }
 
@@ -224,16 +219,32 @@ void run(SimOptions& o, CLI::App& cmd) {
     std::cout << rtl::unit_config_markdown();
     return;
   }
-  prepare_output("--stats", o.stats, o.force);
-  prepare_output("--out", o.out, o.force);
-  prepare_output("--vcd", o.vcd, o.force);
-  prepare_output("--config-out", o.config_out, o.force);
-  const rtl::UnitConfig unit = unit_config(o, cmd);
-  if (!o.config_out.empty()) {
-    write_file_atomic(o.config_out, rtl::unit_config_to_json(unit) + "\n", "--config-out");
-    std::cout << "  unit configuration -> " << o.config_out << '\n';
+  // Every output reserved before any work (cmodel/output_files.hpp); written at the end, or not at all.
+  OutputFiles outputs(o.force);
+  OutputFile* stats_file = o.stats.empty() ? nullptr : &outputs.add("--stats", o.stats);
+  OutputFile* out_file = o.out.empty() ? nullptr : &outputs.add_image("--out", o.out);
+  OutputFile* config_out_file = o.config_out.empty() ? nullptr : &outputs.add("--config-out", o.config_out);
+  // One waveform per unit: --vcd FILE for unit 0, FILE's name with .unitK before the extension for unit K.
+  std::vector<std::string> vcd_paths;
+  std::vector<OutputFile*> vcd_files;
+  if (!o.vcd.empty()) {
+    vcd_paths.push_back(o.vcd);
+    const std::filesystem::path p(o.vcd);
+    for (int k = 1; k < (o.requests.empty() ? o.units : 1); ++k) {
+      std::filesystem::path q = p;
+      q.replace_filename(fmt::format("{}.unit{}{}", p.stem().string(), k, p.extension().string()));
+      vcd_paths.push_back(q.string());
+    }
+    for (const std::string& path : vcd_paths) vcd_files.push_back(&outputs.add("--vcd", path));
   }
-  if (!o.shape_policy.empty()) edge_shape_from_name(o.shape_policy);
+  const rtl::UnitConfig unit = unit_config(o, cmd);
+  if (cmd.count("--shape-policy") > 0) {  // given, even empty, it must name a policy
+    try {
+      edge_shape_from_name(o.shape_policy);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--shape-policy: {}", e.what()));
+    }
+  }
   // Options that do not apply to this kind of run are errors, not silently ignored.
   const auto given = [&cmd](const std::string& name) {
     const CLI::Option* opt = cmd.get_option_no_throw(name);
@@ -256,39 +267,22 @@ void run(SimOptions& o, CLI::App& cmd) {
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
   if (o.vcd_from > o.vcd_to) throw InputError(fmt::format("--vcd-from {} is after --vcd-to {}", o.vcd_from, o.vcd_to));
-  // One waveform per unit: --vcd FILE for unit 0, FILE's name with .unitK before the extension for unit K.
-  std::vector<std::string> vcd_paths;
-  if (!o.vcd.empty()) {
-    vcd_paths.push_back(o.vcd);
-    const std::filesystem::path p(o.vcd);
-    for (int k = 1; k < (o.requests.empty() ? o.units : 1); ++k) {
-      std::filesystem::path q = p;
-      q.replace_filename(fmt::format("{}.unit{}{}", p.stem().string(), k, p.extension().string()));
-      vcd_paths.push_back(q.string());
-      prepare_output("--vcd", vcd_paths.back(), o.force);
-    }
-  }
-  std::vector<std::unique_ptr<std::ofstream>> vcd_files;
+  if (config_out_file) config_out_file->stream() << rtl::unit_config_to_json(unit) << '\n';
   std::vector<std::ostream*> vcds;
-  for (const std::string& path : vcd_paths) {
-    vcd_files.push_back(std::make_unique<std::ofstream>(path));
-    if (!*vcd_files.back()) throw InputError(fmt::format("--vcd '{}' cannot be written", path));
-    vcds.push_back(vcd_files.back().get());
-  }
+  for (OutputFile* f : vcd_files) vcds.push_back(&f->stream());
   RunRecord rec;
   rec.command = "sim";
   rec.config = &unit;
-  const sim::Stats stats =
-      o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec) : run_requests(o, cmd, unit, vcds, rec);
-  if (!o.stats.empty()) {
-    write_file_atomic(o.stats, stats_document(stats, provenance_json(rec)), "--stats");
-    std::cout << "  stats -> " << o.stats << '\n';
-  }
-  for (size_t k = 0; k < vcd_files.size(); ++k) {
-    vcd_files[k]->close();
-    if (!*vcd_files[k]) throw InputError(fmt::format("--vcd '{}': write failed", vcd_paths[k]));
-    std::cout << "  vcd -> " << vcd_paths[k] << '\n';
-  }
+  std::string mismatch;
+  const sim::Stats stats = o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
+                                              : run_requests(o, cmd, unit, vcds, rec, mismatch);
+  if (stats_file) stats_file->stream() << stats_document(stats, provenance_json(rec));
+  outputs.commit();
+  if (config_out_file) std::cout << "  unit configuration -> " << o.config_out << '\n';
+  if (out_file) std::cout << "  image -> " << o.out << '\n';
+  if (stats_file) std::cout << "  stats -> " << o.stats << '\n';
+  for (const std::string& path : vcd_paths) std::cout << "  vcd -> " << path << '\n';
+  if (!mismatch.empty()) throw CheckFailed(mismatch);
 }
 
 // ---- tfu sim-results: the cycle model's measured results (TFU-C item 5) ----
@@ -342,13 +336,17 @@ ResultRow measure(const Scene& scene, const std::string& scene_name, const rtl::
 }
 
 void run_results(const ResultsOptions& o) {
-  if (o.markdown != "-") prepare_output("--markdown", o.markdown, o.force);
-  prepare_output("--json", o.json, o.force);
+  // Checked (and a temporary created) before the long run, so that an unwritable output fails first.
+  OutputFiles outputs(o.force);
+  OutputFile* md_file = o.markdown == "-" ? nullptr : &outputs.add("--markdown", o.markdown);
+  OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   std::vector<ResultRow> rows;
   std::string ratio_table, aniso_table;
   const std::vector<std::string> scenes = o.scenes.empty() ? builtin_scene_names() : o.scenes;
   const rtl::UnitConfig base =
-      o.config.empty() ? rtl::UnitConfig{} : rtl::unit_config_from_json(unit_config_text(read_file(o.config, "--config")), o.config);
+      o.config.empty() ? rtl::UnitConfig{} : rtl::unit_config_from_json(
+                             unit_config_text(read_input_file(o.config, "--config " + quoted_path(o.config), kMaxTextInputBytes)),
+                             quote_path(o.config));
   for (const std::string& name : scenes) (void)open_scene({name, o.width, o.height, o.game_dir});  // bad names fail before any work
   for (size_t si = 0; si < scenes.size(); ++si) {
     const std::string& name = scenes[si];
@@ -420,20 +418,10 @@ void run_results(const ResultsOptions& o) {
                   {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
                   {"shape_L", r.l}});
   }
-  if (o.markdown == "-") {
-    std::cout << md.str();
-  } else {
-    std::ofstream f(o.markdown);
-    f << md.str();
-    f.close();
-    if (!f) throw InputError(fmt::format("--markdown '{}' cannot be written", o.markdown));
-  }
-  if (!o.json.empty()) {
-    std::ofstream f(o.json);
-    f << js.dump(2) << '\n';
-    f.close();
-    if (!f) throw InputError(fmt::format("--json '{}' cannot be written", o.json));
-  }
+  if (md_file) md_file->stream() << md.str();
+  if (json_file) json_file->stream() << js.dump(2) << '\n';
+  outputs.commit();
+  if (!md_file) std::cout << md.str();
 }
 
 }  // namespace

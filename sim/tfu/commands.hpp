@@ -21,8 +21,7 @@ void register_descriptors(CLI::App& app);   // cmd_descriptors.cpp: descriptor r
 void register_aniso_compare(CLI::App& app); // cmd_aniso_compare.cpp: anisotropic filtering vs OpenImageIO
 void register_sweep(CLI::App& app);         // cmd_sweep.cpp: `sweep` (design-space sweeps, Slurm) and `plot`
 
-// Output files: refuses an existing `path` unless `force` (InputError naming `option`) and creates
-// missing parent directories. An empty path is a no-op.
-void prepare_output(const std::string& option, const std::string& path, bool force);
+// Output files go through tfu::OutputFiles (cmodel/output_files.hpp), input files through
+// cmodel/input_file.hpp: one place each for every command.
 
 }  // namespace tfu::cli

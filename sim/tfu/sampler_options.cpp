@@ -1,7 +1,6 @@
 #include "sim/tfu/sampler_options.hpp"
 
 #include <algorithm>
-#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -80,15 +79,6 @@ Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const Sample
     d.sampler_overrides = given;
   }
   return frame_from_trace(trace, d, line_bytes);
-}
-
-void prepare_output(const std::string& option, const std::string& path, bool force) {
-  if (path.empty()) return;
-  if (!force && std::filesystem::exists(path)) throw InputError(fmt::format("{}: exists (pass --force to overwrite)", path));
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  if (ec) throw InputError(fmt::format("{} '{}': cannot create directory '{}': {}", option, path, parent.string(), ec.message()));
 }
 
 }  // namespace tfu::cli

@@ -1,0 +1,164 @@
+// Fuzz target (e), differential (docs/fuzzing.md): random frames and requests through the golden
+// model (GoldenUnit) and the cycle model (rtl::run_unit), which must agree bit for bit, as `tfu sim`
+// compares them (rtl::golden_outputs, rtl::first_mismatch). The input chooses everything:
+//   textures   1 or 2, each 1..24 texels per side, RGBA8 / L8 / VS16X2 texels, tiled or linear rows,
+//              no MIP chain, a box or an edge-preserving chain
+//   samplers   1..3 descriptors: every filter mode, wrap mode per axis, border word, LOD bias and
+//              min / max clamps (each within +-16 levels or unbounded), cubic kernel (bspline-interp
+//              included: the driver's coefficient texture), ROM samples and bits, reconstruction,
+//              level adaptation, edge shape policy (static, cross, cache-aware), max anisotropy
+//              1..16 and its rounding
+//   unit       cache line 64 / 256 / 1024 bytes, 1..16 sets of 1..8 ways, 1 or 4 banks, both bank
+//              mappings, memory latency 0..10^6 and bandwidth 1..65536 bytes per cycle, channel
+//              depth 1..4, miss FIFO 1..16, 1 / 2 / 4 filter lanes, idle skipping on or off
+//   requests   lod, grad or quad mode; each request (each quad) names a texture and a sampler;
+//              coordinates mostly in [-2, 2], sometimes any 32-bit pattern (NaN, infinities,
+//              denormals, huge values)
+// A configuration the models refuse (InputError) is skipped; a mismatch aborts with the details.
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "cmodel/descriptors.hpp"
+#include "cmodel/error.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/golden_unit.hpp"
+#include "cmodel/mipmap.hpp"
+#include "cmodel/trace.hpp"
+#include "rtl/golden_compare.hpp"
+#include "rtl/tfu_unit.hpp"
+#include "rtl/unit_config.hpp"
+#include "testbench/fuzz/fuzz_input.hpp"
+
+namespace {
+
+using tfu::fuzz::ByteReader;
+
+std::shared_ptr<tfu::Texture> make_texture(ByteReader& in) {
+  auto tex = std::make_shared<tfu::Texture>();
+  tex->format = in.pick({tfu::TexelFormat::RGBA8, tfu::TexelFormat::L8, tfu::TexelFormat::VS16X2});
+  tex->layout = in.flag() ? tfu::MemoryLayout::Linear : tfu::MemoryLayout::Tiled;
+  const int w = static_cast<int>(in.in_range(1, 24)), h = static_cast<int>(in.in_range(1, 24));
+  tfu::Image img(w, h);
+  for (tfu::Rgba8& t : img.texels) {
+    t = {in.byte(), in.byte(), in.byte(), in.byte()};
+    if (tex->format == tfu::TexelFormat::L8) t = {t.r, t.r, t.r, 255};
+  }
+  tex->levels.push_back(std::move(img));
+  const uint8_t mips = in.byte() % 3;
+  if (mips == 1) tfu::generate_mipmaps(*tex, tfu::MipMethod::Box);
+  if (mips == 2) tfu::generate_mipmaps(*tex, tfu::MipMethod::Edge, 0.5);
+  return tex;
+}
+
+int32_t lod_q8(ByteReader& in, int32_t unbounded) {
+  return in.flag() ? unbounded : static_cast<int32_t>(in.in_range(-16 * 256, 16 * 256));
+}
+
+tfu::SamplerDescriptor make_sampler(ByteReader& in) {
+  tfu::SamplerDescriptor c;
+  const auto& modes = tfu::all_filter_modes();
+  c.mode = modes[in.byte() % modes.size()];
+  constexpr tfu::WrapMode kWrap[] = {tfu::WrapMode::Repeat, tfu::WrapMode::MirroredRepeat, tfu::WrapMode::ClampToEdge,
+                                     tfu::WrapMode::ClampToBorder};
+  c.wrap_s = in.pick(kWrap);
+  c.wrap_t = in.pick(kWrap);
+  c.border = {in.byte(), in.byte(), in.byte(), in.byte()};
+  c.lod.bias_q8 = static_cast<int32_t>(in.in_range(-16 * 256, 16 * 256));
+  c.lod.min_lod_q8 = lod_q8(in, -1000 * 256);
+  c.lod.max_lod_q8 = lod_q8(in, 1000 * 256);
+  const auto& kernels = tfu::cubic_kernel_names();
+  c.kernel = kernels[in.byte() % kernels.size()];
+  c.cubic_rom.samples = in.pick({16, 32, 64, 512});
+  c.cubic_rom.bits = static_cast<unsigned>(in.in_range(4, 16));
+  c.cubic_recon = in.flag() ? tfu::RomRecon::Linear : tfu::RomRecon::Nearest;
+  c.cubic_level_adapt = !in.flag();
+  c.edge_shape = in.pick({tfu::EdgeShape::Static, tfu::EdgeShape::Cross, tfu::EdgeShape::CacheAware});
+  c.max_aniso = static_cast<int>(in.in_range(1, 16));
+  c.aniso_rounding = in.flag() ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer;
+  return c;
+}
+
+tfu::rtl::UnitConfig make_unit(ByteReader& in) {
+  tfu::rtl::UnitConfig u;
+  u.cache.line_bytes = in.pick({64, 256, 1024});
+  u.cache.ways = static_cast<int>(in.in_range(1, 8));
+  const int sets = static_cast<int>(in.in_range(1, 16));
+  u.cache.capacity_bytes = sets * u.cache.ways * u.cache.line_bytes;
+  u.cache.banks = in.flag() ? 4 : 1;
+  u.cache.bank_mapping = in.flag() ? tfu::rtl::BankMapping::TexelParity : tfu::rtl::BankMapping::BlockParity;
+  u.memory.latency = in.pick({0, 1, 7, 100, 1000, 1000000});
+  u.memory.bytes_per_cycle = in.pick({1, 3, 16, 64, 65536});
+  u.channel_depth = static_cast<int>(in.in_range(1, 4));
+  u.miss_fifo_depth = static_cast<int>(in.in_range(1, 16));
+  u.filter_lanes = in.pick({1, 2, 4});
+  u.idle_skip = u.memory.latency > 1000 || !in.flag();  // without skipping, a 10^6-cycle miss is slow
+  return u;
+}
+
+// Requests over the frame's (texture, sampler) pairs; textures bound through FrameBuilder::bind
+// (a bspline-interp sampler reads the coefficient texture the driver made).
+tfu::Trace make_trace(ByteReader& in, tfu::FrameBuilder& fb, int textures, int samplers) {
+  tfu::Trace tr;
+  tr.source = "fuzz";
+  tr.mode = in.pick({tfu::TraceMode::Quad, tfu::TraceMode::Lod, tfu::TraceMode::Grad});
+  const int n = tr.mode == tfu::TraceMode::Quad ? 4 * static_cast<int>(in.in_range(1, 8)) : static_cast<int>(in.in_range(1, 32));
+  int texture = 0, sampler = 0;
+  for (int i = 0; i < n; ++i) {
+    if (tr.mode != tfu::TraceMode::Quad || i % 4 == 0) {  // a quad's four pixels share texture and sampler
+      texture = static_cast<int>(in.in_range(0, textures - 1));
+      sampler = static_cast<int>(in.in_range(0, samplers - 1));
+    }
+    tfu::TraceRequest r;
+    r.texture = static_cast<uint16_t>(fb.bind(texture, sampler));
+    r.sampler = static_cast<uint8_t>(sampler);
+    r.s = in.coordinate();
+    r.t = in.coordinate();
+    if (tr.mode == tfu::TraceMode::Lod) r.lod = in.flag() ? in.raw_float() : static_cast<float>(in.in_range(-64, 192)) / 16.0f;
+    if (tr.mode == tfu::TraceMode::Grad) {
+      r.dsdx = in.coordinate() / 8;
+      r.dtdx = in.coordinate() / 8;
+      r.dsdy = in.coordinate() / 8;
+      r.dtdy = in.coordinate() / 8;
+    }
+    tr.requests.push_back(r);
+  }
+  return tr;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size > 8192) return 0;
+  ByteReader in(data, size);
+  const tfu::rtl::UnitConfig unit = make_unit(in);
+  tfu::Frame frame;
+  tfu::Trace trace;
+  try {
+    tfu::FrameBuilder fb(unit.cache.line_bytes);
+    const int textures = 1 + (in.byte() & 1);
+    for (int k = 0; k < textures; ++k) fb.add_texture(make_texture(in), {"fuzz", {}});
+    const int samplers = static_cast<int>(in.in_range(1, 3));
+    for (int k = 0; k < samplers; ++k) fb.add_sampler(make_sampler(in), false);
+    trace = make_trace(in, fb, textures, samplers);
+    frame = fb.finish();
+  } catch (const tfu::InputError&) {
+    return 0;  // a descriptor the driver refuses (e.g. a ROM the kernel does not fit)
+  }
+  tfu::rtl::UnitOutput got;
+  try {
+    got = tfu::rtl::run_unit(frame, trace, unit);
+  } catch (const tfu::InputError&) {
+    return 0;  // a frame the unit refuses
+  }
+  const tfu::GoldenUnit golden(frame);
+  const std::string mismatch = tfu::rtl::first_mismatch(trace, tfu::rtl::golden_outputs(golden, trace, got), got);
+  if (!mismatch.empty()) {
+    const tfu::TraceRequest& r0 = trace.requests.front();
+    const tfu::SamplerDescriptor& s0 = frame.regs.samplers[r0.sampler];
+    std::fprintf(stderr, "mismatch (%s trace, first sampler %s, line %d bytes): %s\n", tfu::trace_mode_name(trace.mode),
+                 tfu::filter_mode_name(s0.mode).c_str(), unit.cache.line_bytes, mismatch.c_str());
+    std::abort();
+  }
+  return 0;
+}
