@@ -122,9 +122,9 @@ void run(const ReportOptions& o) {
   if (o.out_dir.empty()) throw InputError("--out-dir: empty directory name");
   std::error_code ec;
   if (fs::exists(o.out_dir, ec) && !fs::is_directory(o.out_dir, ec))
-    throw InputError(fmt::format("--out-dir '{}' exists and is not a directory", quote_input(o.out_dir)));
+    throw InputError(fmt::format("--out-dir '{}' exists and is not a directory", quote_path(o.out_dir)));
   if (fs::exists(o.out_dir, ec) && !fs::is_empty(o.out_dir, ec) && !o.force)
-    throw InputError(fmt::format("--out-dir '{}' is not empty (use --force to overwrite its files)", quote_input(o.out_dir)));
+    throw InputError(fmt::format("--out-dir '{}' is not empty (use --force to overwrite its files)", quote_path(o.out_dir)));
   const auto save = [&](const Image& img, const fs::path& p) { outputs.add_image("--out-dir", p.string()).write_image(img); };
   const auto t0 = std::chrono::steady_clock::now();
 
