@@ -146,7 +146,11 @@ Image ours(const Scene& scene, const RenderResult& r) {
 
 Image oiio(const Scene& scene, const RenderResult& r, const std::filesystem::path& dir) {
   const Frame& frame = r.frame->frame;
-  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+  // One TextureSystem for the process, never destroyed: OpenImageIO 2.4's TextureSystem::destroy
+  // deletes its implementation object through the base type (AddressSanitizer reports a
+  // new-delete-type-mismatch inside libOpenImageIO). It stays reachable, so it is no leak; its
+  // cached files are dropped after each use (invalidate_all below).
+  static OIIO::TextureSystem* const ts = OIIO::TextureSystem::create(false);
   ts->attribute("automip", 0);
   std::vector<OIIO::TextureSystem::TextureHandle*> handles;
   for (size_t t = 0; t < frame.textures.size(); ++t) {
@@ -170,7 +174,7 @@ Image oiio(const Scene& scene, const RenderResult& r, const std::filesystem::pat
     const auto code = [](float x) { return static_cast<uint8_t>(std::clamp(std::lround(255.0f * x), 0L, 255L)); };
     out[i] = {code(res[0]), code(res[1]), code(res[2]), code(res[3])};
   }
-  OIIO::TextureSystem::destroy(ts);
+  ts->invalidate_all(true);
   Image img = r.image;
   compose_quad_outputs(scene, r.quad_targets, out, img);
   return img;
