@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "testbench/input_error.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/error_report.hpp"
 #include "cmodel/json_input.hpp"
@@ -25,16 +26,6 @@ namespace tfu {
 namespace {
 
 namespace fs = std::filesystem;
-
-template <typename F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 // What report_error prints for `e` (into a temporary file) and the exit code it returns.
 std::pair<std::string, int> report(std::exception_ptr e) {

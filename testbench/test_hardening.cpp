@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "testbench/input_error.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/kernel_error.hpp"
 #include "cmodel/montage.hpp"
@@ -25,16 +26,6 @@
 
 namespace tfu {
 namespace {
-
-template <typename F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
-}
 
 // ---- D1: cache configuration ----
 

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "testbench/input_error.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/output_files.hpp"
@@ -52,16 +53,6 @@ std::vector<std::string> entries(const fs::path& d) {
   for (const auto& e : fs::recursive_directory_iterator(d)) v.push_back(fs::relative(e.path(), d).string());
   std::sort(v.begin(), v.end());
   return v;
-}
-
-template <typename F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 // ---- Inputs ----
