@@ -214,21 +214,24 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
   switch (f) {
     case BaseFilter::Nearest: return filter_nearest(rd, s, t);
     case BaseFilter::Linear: return filter_linear(rd, s, t);
-    case BaseFilter::Cubic: {
-      const LevelCoord u = texel_coord(s, img.width), v = texel_coord(t, img.height);
-      if (impl_->prefiltered) {
-        const LevelReader cr{impl_->coeffs.codes[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
-                             TexelFormat::RGBA8, {}};
-        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
-      }
-      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
-    }
+    case BaseFilter::Cubic: return cubic_at(level, texel_coord(s, img.width), texel_coord(t, img.height));
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint(level, s, t);
       return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
     }
   }
   return {};
+}
+
+// CUBIC on one level at (u, v): the tile-weight ROM over the texels, or over the B-spline
+// coefficients when the sampler reads a prefiltered texture.
+Texel4 Sampler::cubic_at(int level, LevelCoord u, LevelCoord v) const {
+  if (impl_->prefiltered) {
+    const LevelReader cr{impl_->coeffs.codes[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t, TexelFormat::RGBA8, {}};
+    return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
+  }
+  const LevelReader rd{tex_.levels[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
 }
 
 Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& o, int mask_override) const {
@@ -244,14 +247,7 @@ Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, co
       return rd(tap(s, img.width, o.du_q16), tap(t, img.height, o.dv_q16));
     }
     case BaseFilter::Linear: return filter_linear_at(rd, u, v);
-    case BaseFilter::Cubic: {
-      if (impl_->prefiltered) {
-        const LevelReader cr{impl_->coeffs.codes[static_cast<size_t>(level)], cfg_.wrap_s, cfg_.wrap_t,
-                             TexelFormat::RGBA8, {}};
-        return dp::cubic_normalize(filter_tiled_acc(cr, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
-      }
-      return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
-    }
+    case BaseFilter::Cubic: return cubic_at(level, u, v);
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint_at(level, u, v, mask_override);
       return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);

@@ -142,6 +142,7 @@ class Sampler {
   Texel4 probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& offset, int mask_override = -1) const;
   Texel4 probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
   EdgeFootprint edge_footprint_at(int level, dp::LevelCoord u, dp::LevelCoord v, int mask_override) const;
+  Texel4 cubic_at(int level, dp::LevelCoord u, dp::LevelCoord v) const;
   // sample() dispatches once, at construction, to the generic datapath or to a fast path of the
   // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
   // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
