@@ -107,10 +107,7 @@ const std::array<ProbeRomWord, 1u << kProbeRomAddrBits>& probe_rom() {
 }
 
 int64_t probe_offset_q16(int64_t major_q16, int n, int i) {
-  const int32_t q = probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16;
-  const uint64_t m = uint64_t{derivative_magnitude(major_q16)} * static_cast<uint64_t>(q < 0 ? -q : q);
-  const auto r = static_cast<int64_t>((m + (uint64_t{1} << (kProbeFracBits - 1))) >> kProbeFracBits);
-  return (major_q16 < 0) != (q < 0) ? -r : r;
+  return dp::scale_probe_fraction(major_q16, probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16);
 }
 
 ProbeOffset probe_offset(const AnisoLod& a, int i) {

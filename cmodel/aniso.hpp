@@ -109,6 +109,15 @@ ProbeOffset probe_offset(const AnisoLod& a, int i);
 
 namespace dp {
 
+// Probe offset unit, one component: sgn(d) sgn(q) ((|d| |q| + 2^15) >> 16) for the major
+// derivative component d (Q.16, magnitude clamped to 2^31 - 1) and the probe ROM's fraction q
+// (Q.16); a 31 x 15-bit product, |result| < 2^30.
+inline int64_t scale_probe_fraction(int64_t major_q16, int32_t frac_q16) {
+  const uint64_t m = uint64_t{derivative_magnitude(major_q16)} * static_cast<uint64_t>(frac_q16 < 0 ? -frac_q16 : frac_q16);
+  const auto r = static_cast<int64_t>((m + (uint64_t{1} << (kProbeFracBits - 1))) >> kProbeFracBits);
+  return (major_q16 < 0) != (frac_q16 < 0) ? -r : r;
+}
+
 // Address generator: a probe offset (Q.16 level-0 texels) on level L (0..15) in Q.8 texels of
 // that level: sgn(o) ((|o| + 2^(7 + L)) >> (8 + L)) (round half away from zero; the level is taken
 // as 2^L times smaller than level 0, exact for power-of-two textures).

@@ -192,6 +192,60 @@ Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t la
   }
 }
 
+namespace {
+
+// LINEAR's N > 1 probes on the 4-lane lerp unit: the pixel's (probe, level) lerps in the order
+// probe 1 level0, probe 1 level1 (when the levels blend), probe 2 level0, ..., four lanes a call;
+// after each call the blend unit and the averaging unit take its probes (a probe's two lanes never
+// straddle calls), the averaging sums (R, B) and (G, A) in 32-bit lanes (sum_i w_i c_i <= 256 * 255
+// < 2^17). The same arithmetic as the plain probe datapath (Sampler::sample_channels):
+// dp::bilinear_lerp8x4 equals bilinear_lerp8 per lane, and the result is AnisoAccumulator's
+// (acc + 128) >> 8. Returned as the output word: each probe is an output word of the 8-bit LINEAR
+// path (on which encoding is the identity, as sample<Linear8> has it) and their weighted mean lies
+// between them, channel by channel.
+template <WrapMode kWs, WrapMode kWt>
+Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p, LevelCoord u0, LevelCoord v0,
+                     LevelCoord u1, LevelCoord v1, const AnisoLod& lod) {
+  // The lerp unit's input lanes, one set per thread (zeroed once, not per pixel: a short last call
+  // reads lanes of an earlier call, whose results are not used).
+  thread_local dp::Quad8 q;
+  const int n = lod.probes;
+  const bool two = p.blend != 0;
+  const ProbeRomWord* rom = probe_rom().data() + probe_rom_address(n, 1);  // words (n, 1..n)
+  uint64_t rb = 0, ga = 0;
+  int averaged = 0;  // probes through the averaging unit
+  size_t lane = 0;
+  const auto lerp_and_average = [&] {
+    std::array<Rgba8, 4> c;
+    dp::bilinear_lerp8x4(q, c.data());
+    for (size_t k = 0; k < lane; k += two ? 2 : 1, ++averaged) {
+      const Rgba8 probe = two ? dp::level_blend8(c[k], c[k + 1], p.blend) : c[k];
+      const auto w = static_cast<uint64_t>(rom[averaged].weight);
+      rb += dp::word_lanes_rb(probe) * w;
+      ga += dp::word_lanes_ga(probe) * w;
+    }
+    lane = 0;
+  };
+  for (int i = 0; i < n; ++i) {
+    const int64_t du = dp::scale_probe_fraction(lod.major_du_q16, rom[i].frac_q16);
+    const int64_t dv = dp::scale_probe_fraction(lod.major_dv_q16, rom[i].frac_q16);
+    bilinear8_taps_at<kWs, kWt>(l0, border, dp::probe_texel_coord(u0, dp::probe_offset_on_level(du, p.level0)),
+                                dp::probe_texel_coord(v0, dp::probe_offset_on_level(dv, p.level0)), q, lane++);
+    if (two)
+      bilinear8_taps_at<kWs, kWt>(l1, border, dp::probe_texel_coord(u1, dp::probe_offset_on_level(du, p.level1)),
+                                  dp::probe_texel_coord(v1, dp::probe_offset_on_level(dv, p.level1)), q, lane++);
+    if (lane == 4) lerp_and_average();
+  }
+  if (lane != 0) lerp_and_average();
+  constexpr uint64_t kHalf = 1u << (kAnisoWeightBits - 1);
+  const auto lane_result = [](uint64_t x, int shift) {
+    return static_cast<uint8_t>((((x >> shift) & 0xFFFFFFFFu) + kHalf) >> kAnisoWeightBits);
+  };
+  return {lane_result(rb, 0), lane_result(ga, 0), lane_result(rb, 32), lane_result(ga, 32)};
+}
+
+}  // namespace
+
 // N > 1 probes (MIP-mapped variants): the levels are selected once (every probe has the same
 // lambda) and the centre's coordinate on each level formed once; per probe its offset on each level
 // (probe_offset, dp::probe_offset_on_level, dp::probe_texel_coord), the mode's filter, the blend,
@@ -205,6 +259,8 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
   const Image& i1 = sm.tex_.levels[static_cast<size_t>(p.level1)];
   const LevelCoord u0 = texel_coord(s, i0.width), v0 = texel_coord(t, i0.height);
   const LevelCoord u1 = texel_coord(s, i1.width), v1 = texel_coord(t, i1.height);
+  if constexpr (kV.path == Path::Linear8)
+    return aniso_linear8<kV.ws, kV.wt>(LevelView(i0), LevelView(i1), sm.cfg_.border, p, u0, v0, u1, v1, lod);
   const int n = lod.probes;
   dp::AnisoAccumulator acc;
   for (int i = 1; i <= n; ++i) {
