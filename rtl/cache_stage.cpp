@@ -61,6 +61,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];
     if (tx >= 0 && ty >= 0) accepted_line_ = cache_.line_of(texture, cur.level, tx, ty);
   }
+  if (record_taps_) accepted_ = cur;
   last_misses_ = r.misses;
   if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
@@ -74,6 +75,20 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
   }
   entry.ready = ready;
+}
+
+uint64_t CacheStage::accepted_tap_address(int k) const {
+  if (!record_taps_ || k < 0 || k >= accepted_.ntaps()) return 0;
+  const TapGrid& g = accepted_.grid;
+  size_t cell = 0;  // grid cell 4 j + i of tap k
+  if (accepted_.cross) {
+    if (((accepted_.tag.shape >> k) & 1u) == 0) return 0;
+    cell = kCrossCell[static_cast<size_t>(k)];
+  } else {
+    cell = 4u * static_cast<size_t>(k / g.cols) + static_cast<size_t>(k % g.cols);
+  }
+  if (((g.used >> cell) & 1u) == 0) return 0;  // outside the texture: the border word
+  return regs_.textures[accepted_.tag.req.texture].texel_address(accepted_.level, g.x[cell & 3u], g.y[cell >> 2]);
 }
 
 namespace {

@@ -49,6 +49,13 @@ class CacheStage : public sim::Module {
   uint64_t accepted_line() const { return accepted_line_; }
   uint64_t last_miss_line() const { return last_miss_line_; }
   int last_misses() const { return last_misses_; }
+  // Waveform probe of the footprint last accepted, tap by tap in FilterReq order (grid row-major,
+  // the cross in C order): the byte address of tap k (0..15) in the texel memory, 0 where the tap
+  // reads no texel (k >= its tap count, a border tap, a cross texel outside the edge shape; 0 is
+  // never a texel address). Recorded only while record_taps(true) (a waveform is being written).
+  void record_taps(bool on) { record_taps_ = on; }
+  uint64_t accepted_tap_address(int k) const;
+  int accepted_taps() const { return record_taps_ ? accepted_.ntaps() : 0; }
   // Kernel shape chosen per pixel, probe and level (edge modes; for the golden compare of cache-aware).
   std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
@@ -80,6 +87,8 @@ class CacheStage : public sim::Module {
   uint64_t accepted_line_ = 0;
   uint64_t last_miss_line_ = 0;
   int last_misses_ = 0;
+  bool record_taps_ = false;  // accepted_ holds the footprint last accepted
+  FootprintReq accepted_;
   sim::Channel<FilterReq>& out_of(const FootprintReq& f) {
     return f.tag.base == BaseFilter::EdgePreserving ? edge_out_ : filter_out_;
   }

@@ -126,7 +126,8 @@ uint64_t payload_id(const T& p) {
 }
 
 // The waveform probes: the clock, every channel's valid / ready / occupancy and head request id, the
-// blocks' busy flags, the texel cache's request and line addresses, and the pixels retired.
+// blocks' busy flags, the texel cache's request, line and per-tap texel addresses, and the pixels
+// retired.
 void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add_clock("tfu.clk");
   const auto channel = [&vcd](const auto& ch) {
@@ -156,6 +157,11 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add("tfu.texel_cache.accepted_line", line_bits, [&u] { return u.cst.accepted_line(); });
   vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cst.last_miss_line(); });
   vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cst.last_misses()); });
+  u.cst.record_taps(true);
+  vcd.add("tfu.texel_cache.accepted_taps", 5, [&u] { return static_cast<uint64_t>(u.cst.accepted_taps()); });
+  for (int k = 0; k < static_cast<int>(std::tuple_size_v<decltype(FilterReq::texels)>); ++k)
+    vcd.add(fmt::format("tfu.texel_cache.accepted_tap_addr_{:02}", k), kAddressBits,
+            [&u, k] { return u.cst.accepted_tap_address(k); });
   vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.sink.retired()}; });
 }
 

@@ -1,17 +1,25 @@
 // Waveforms (docs/cycle-model.md, "Statistics"): the kernel's clock and cycle window written out
 // exactly, and the unit's dump with its clock, request ids, texel cache lines, unique names, one
 // file per unit and the window.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
+#include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
+#include "rtl/tfu_unit.hpp"
 #include "sim/kernel/kernel.hpp"
 
 namespace tfu {
@@ -95,6 +103,81 @@ TEST(Vcd, EveryUnitWithClockIdsLinesAndWindow) {
     std::set<uint64_t> want;
     for (uint64_t t = 100; t < 120; ++t) want.insert(t);
     EXPECT_EQ(times, want);
+  }
+}
+
+// The per-tap texel addresses: a LINEAR (no MIP-map, repeat) run on a 16x16 texture; for every
+// request, the four accepted_tap_addr values the waveform shows for its footprint are the
+// descriptor's byte addresses of the taps (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1)
+// that the golden address generator (dp::texel_coord) gives for its (s, t), and the rest are 0.
+TEST(Vcd, TapAddressesAreTheFootprintsTexelAddresses) {
+  const Scene scene = [] {
+    Scene sc = load_scene("magnified");
+    sc.width = 16;
+    sc.height = 16;
+    return sc;
+  }();
+  RenderOptions ro;
+  ro.trace = true;
+  ro.threads = 1;
+  Trace tr = render_scene(scene, ro).trace;
+  ASSERT_GT(tr.requests.size(), 100u);
+  const rtl::UnitConfig u;
+  FrameBuilder b(u.cache.line_bytes);
+  b.add_texture(std::make_shared<const Texture>(make_checkerboard(16, 4).texture), {"test", {}});
+  SamplerDescriptor smp;
+  smp.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  smp.wrap_s = smp.wrap_t = WrapMode::Repeat;
+  b.add_sampler(smp);
+  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  std::ostringstream os;
+  const rtl::UnitOutput out = rtl::run_unit(frame, tr, u, rtl::VcdOptions{&os});
+  ASSERT_EQ(out.pixels.size(), tr.requests.size());
+
+  // Signal codes, then the values in effect at each cycle (time 2c); per accepted id, the taps.
+  const std::string v = os.str();
+  std::map<std::string, std::string> name_of;  // code -> name
+  {
+    std::istringstream in(v);
+    for (std::string line; std::getline(in, line) && line != "$enddefinitions $end";) {
+      std::istringstream w(line);
+      std::string tok, type, width, code, name;
+      if (w >> tok && tok == "$var" && w >> type >> width >> code >> name) name_of[code] = name;
+    }
+  }
+  std::map<std::string, uint64_t> now;  // name -> value
+  std::map<uint64_t, std::array<uint64_t, 17>> seen;  // accepted id -> taps, then 16 addresses
+  const auto snapshot = [&] {
+    if (!now.count("accepted_id")) return;
+    std::array<uint64_t, 17>& a = seen[now["accepted_id"]];
+    a[0] = now["accepted_taps"];
+    for (int k = 0; k < 16; ++k) a[static_cast<size_t>(k + 1)] = now[fmt::format("accepted_tap_addr_{:02}", k)];
+  };
+  std::istringstream in(body(v));
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      snapshot();  // the values of the cycle just ended
+    } else if (line[0] == 'b') {
+      const size_t sp = line.find(' ');
+      now[name_of[line.substr(sp + 1)]] = std::stoull(line.substr(1, sp - 1), nullptr, 2);
+    }
+  }
+  snapshot();
+  const TextureDescriptor& d = frame.regs.textures[0];
+  for (size_t id = 0; id < tr.requests.size(); ++id) {
+    ASSERT_TRUE(seen.count(id)) << "request " << id << " never accepted";
+    const std::array<uint64_t, 17>& a = seen[id];
+    const dp::LevelCoord cu = dp::texel_coord(tr.requests[id].s, 16), cv = dp::texel_coord(tr.requests[id].t, 16);
+    const auto wrap = [](int64_t i) { return static_cast<int>(i & 15); };
+    const std::array<uint64_t, 4> want{d.texel_address(0, wrap(cu.i0), wrap(cv.i0)), d.texel_address(0, wrap(cu.i0 + 1), wrap(cv.i0)),
+                                       d.texel_address(0, wrap(cu.i0), wrap(cv.i0 + 1)),
+                                       d.texel_address(0, wrap(cu.i0 + 1), wrap(cv.i0 + 1))};
+    ASSERT_EQ(a[0], 4u) << "request " << id;
+    for (size_t k = 0; k < 4; ++k) ASSERT_EQ(a[k + 1], want[k]) << "request " << id << " tap " << k;
+    for (size_t k = 4; k < 16; ++k) ASSERT_EQ(a[k + 1], 0u) << "request " << id << " tap " << k;
   }
 }
 
