@@ -10,6 +10,7 @@
 #include <set>
 
 #include "rtl/median_network.hpp"
+#include "testbench/iterations.hpp"
 #include "testbench/median_inputs.hpp"
 
 namespace tfu::rtl {
@@ -126,12 +127,12 @@ void check_random(std::mt19937& rng, int iterations, int32_t y_min, uint32_t y_r
 
 TEST(MedianNetwork, RandomKeysAllShapesAllOutputs) {
   std::mt19937 rng(11);
-  check_random(rng, 100000, 0, 4081);
+  check_random(rng, test::iterations(100000), 0, 4081);
 }
 
 TEST(MedianNetwork, SignedKeysOfVs16x2) {
   std::mt19937 rng(5);
-  check_random(rng, 20000, -32640, 65281);
+  check_random(rng, test::iterations(20000), -32640, 65281);
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "cmodel/unorm.hpp"
 #include "cmodel/weight_rom.hpp"
 #include "rtl/sv/tests/sv_texel.hpp"
+#include "testbench/iterations.hpp"
 #include "tfu_sv_params.hpp"  // generated: W2_BITS, ACC_BITS of gen/tfu_cubic_pkg.sv
 
 #include "Vtfu_bilinear_lerp.h"
@@ -40,7 +41,7 @@ namespace {
 using tfu::Texel4;
 
 constexpr uint64_t kSeed = 0x7f0dULL;
-constexpr int kRandomVectors = 1'000'000;
+constexpr int kRandomVectors = tfu::test::iterations(1'000'000);  // testbench/iterations.hpp
 constexpr int kMaxReports = 8;
 
 // Counts mismatches and reports the first few.

@@ -16,6 +16,7 @@
 
 #include "cmodel/aniso.hpp"
 #include "cmodel/lod.hpp"
+#include "testbench/iterations.hpp"
 
 #include "Vtfu_aniso_axis_len2.h"
 #include "Vtfu_aniso_count.h"
@@ -27,7 +28,7 @@
 namespace {
 
 constexpr uint64_t kSeed = 0xa115ULL;
-constexpr int kRandomVectors = 1'000'000;
+constexpr int kRandomVectors = tfu::test::iterations(1'000'000);  // testbench/iterations.hpp
 constexpr int kMaxReports = 8;
 constexpr int64_t kOneTexel = 65536;
 constexpr int64_t kInputLimit = int64_t{1} << 47;  // |derivative| at the 49-bit input port

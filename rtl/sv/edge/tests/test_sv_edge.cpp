@@ -29,6 +29,7 @@
 #include "testbench/median_inputs.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/sv/tests/sv_texel.hpp"
+#include "testbench/iterations.hpp"
 
 #include "Vtfu_edge_dir_roms.h"
 #include "Vtfu_edge_dir_select.h"
@@ -46,7 +47,7 @@ using tfu::Texel4;
 using Texels = std::array<Texel4, lj::kTexels>;
 
 constexpr uint64_t kSeed = 0xed9eULL;
-constexpr int kRandomVectors = 1'000'000;
+constexpr int kRandomVectors = tfu::test::iterations(1'000'000);  // testbench/iterations.hpp
 constexpr int kMaxReports = 8;
 constexpr tfu::TexelFormat kFmt = tfu::TexelFormat::RGBA8;
 
