@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <set>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -21,6 +22,7 @@
 #include "rtl/cost_model.hpp"
 #include "rtl/scene_sim.hpp"
 #include "sim/sweep/provenance.hpp"
+#include "sim/sweep/sweep_point.hpp"
 #include "sim/sweep/sweep_report.hpp"
 #include "sim/sweep/sweep_run.hpp"
 #include "sim/sweep/sweep_spec.hpp"
@@ -267,6 +269,61 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
             rtl::texel_cache_sram_bits(pts[0].config.cache).total());
   EXPECT_EQ(small.at("provenance").at("command"), "sweep");
   fs::remove_all(root);
+}
+
+// The points of a cache grid share one golden render (same scene, size, sampler keys, filter and
+// line), equal to the render tfu sim makes; it is dropped after the last planned point.
+TEST(SweepRun, PointsOfACacheGridShareOneRenderDroppedAfterTheLast) {
+  const fs::path root = fs::temp_directory_path() / fmt::format("tfu-test-sweep-share-{}", ::getpid());
+  fs::create_directories(root);
+  {
+    std::ofstream(root / "spec.json")
+        << R"({"scenes": ["ground_plane"], "filters": ["LINEAR"], "width": 32, "height": 24,
+               "grid": {"cache.capacity_bytes": [2048, 8192], "cache.line_bytes": [64, 256]}})";
+  }
+  const sweep::Spec spec = sweep::load_spec((root / "spec.json").string());
+  fs::remove_all(root);
+  const std::vector<sweep::Point> pts = sweep::expand(spec);
+  ASSERT_EQ(pts.size(), 4u);
+  std::vector<const sweep::Point*> todo;
+  for (const sweep::Point& p : pts) todo.push_back(&p);
+  sweep::SceneCache cache;
+  cache.plan(spec, todo);
+  std::vector<std::shared_ptr<const RenderResult>> r;
+  for (const sweep::Point& p : pts) r.push_back(cache.render(spec, p));
+  std::set<const RenderResult*> distinct;
+  for (const auto& x : r) distinct.insert(x.get());
+  EXPECT_EQ(distinct.size(), 2u);  // one per line size
+  for (size_t i = 0; i < pts.size(); ++i)
+    for (size_t j = 0; j < pts.size(); ++j)
+      EXPECT_EQ(r[i] == r[j], pts[i].config.cache.line_bytes == pts[j].config.cache.line_bytes) << i << " " << j;
+  // the same trace and image as a render of its own
+  Scene scene = load_scene("ground_plane");
+  scene.width = 32;
+  scene.height = 24;
+  RenderOptions ro;
+  ro.trace = true;
+  ro.threads = 1;
+  ro.line_bytes = pts[0].config.cache.line_bytes;
+  ro.filter = filter_mode_from_name("LINEAR");
+  const RenderResult own = render_scene(scene, ro);
+  EXPECT_EQ(own.image.texels, r[0]->image.texels);
+  ASSERT_EQ(own.trace.requests.size(), r[0]->trace.requests.size());
+  // dropped when the last point that planned it is done
+  const std::weak_ptr<const RenderResult> first = r[0];
+  r.clear();
+  size_t sharing = 0;
+  for (const sweep::Point& p : pts) sharing += p.config.cache.line_bytes == pts[0].config.cache.line_bytes;
+  ASSERT_EQ(sharing, 2u);
+  bool released_one = false;
+  for (const sweep::Point& p : pts) {
+    if (p.config.cache.line_bytes != pts[0].config.cache.line_bytes) continue;
+    EXPECT_FALSE(first.expired());
+    cache.done_with_render(spec, p);
+    released_one = true;
+  }
+  EXPECT_TRUE(released_one);
+  EXPECT_TRUE(first.expired());
 }
 
 }  // namespace

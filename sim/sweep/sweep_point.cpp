@@ -34,6 +34,10 @@ std::string truth_key(const Spec& s, const Point& p) {
   return k;
 }
 
+std::string render_key(const Spec& s, const Point& p) {
+  return fmt::format("{}\nfilter={}\nline_bytes={}", truth_key(s, p), p.filter, p.config.cache.line_bytes);
+}
+
 // Made once under the cache's lock; other threads wait on the shared future.
 template <typename T, typename Make>
 std::shared_ptr<const T> once(std::mutex& m, std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& map,
@@ -147,6 +151,26 @@ std::shared_ptr<const Image> SceneCache::truth(const Spec& s, const Point& p) {
                      [&] { return std::make_shared<const Image>(render_scene(*sc, render_options(p, true)).truth); });
 }
 
+void SceneCache::plan(const Spec& s, const std::vector<const Point*>& points) {
+  const std::lock_guard lock(mutex_);
+  for (const Point* p : points) ++render_uses_[render_key(s, *p)];
+}
+
+std::shared_ptr<const RenderResult> SceneCache::render(const Spec& s, const Point& p) {
+  const std::shared_ptr<const Scene> sc = scene(s, p);
+  return once<RenderResult>(mutex_, renders_, render_key(s, p),
+                            [&] { return std::make_shared<const RenderResult>(render_scene(*sc, render_options(p, false))); });
+}
+
+void SceneCache::done_with_render(const Spec& s, const Point& p) {
+  const std::lock_guard lock(mutex_);
+  const std::string key = render_key(s, p);
+  const auto it = render_uses_.find(key);
+  if (it == render_uses_.end() || --it->second > 0) return;  // unplanned renders stay
+  render_uses_.erase(it);
+  renders_.erase(key);
+}
+
 std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTiming* timing) {
   const auto t0 = std::chrono::steady_clock::now();
   nlohmann::json doc;
@@ -157,7 +181,8 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
     const std::shared_ptr<const Scene> scene = cache.scene(s, p);
     const std::shared_ptr<const Image> truth = cache.truth(s, p);
     const auto t1 = std::chrono::steady_clock::now();
-    const RenderResult render = render_scene(*scene, render_options(p, false));
+    const std::shared_ptr<const RenderResult> shared = cache.render(s, p);
+    const RenderResult& render = *shared;
     rtl::SceneSimOptions so;
     so.units = s.units;
     const rtl::SceneSimResult res = rtl::simulate_scene(*scene, render, p.config, so);
@@ -167,10 +192,13 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
     const nlohmann::json stats = nlohmann::json::parse(stats_document(res.stats, provenance_json(rec)));
     for (const auto& [k, v] : stats.items()) doc[k] = v;
     doc["result"] = result_json(s, p, res, *truth, render.frame->frame);
+    cache.done_with_render(s, p);
   } catch (const InputError& e) {
+    cache.done_with_render(s, p);
     doc["error"] = e.what();
     doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
   } catch (const CheckFailed& e) {
+    cache.done_with_render(s, p);
     std::string what = e.what();
     doc["error"] = what.substr(0, what.find('\n'));
     doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));

@@ -20,28 +20,41 @@
 #include <mutex>
 #include <string>
 
+#include <vector>
+
+#include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "sim/sweep/sweep_spec.hpp"
 
 namespace tfu::sweep {
 
-// Scenes and ground truths shared by the points of one process, each made once (thread-safe; a
-// second thread asking for one being made waits for it).
+// Scenes, ground truths and golden renders shared by the points of one process, each made once
+// (thread-safe; a second thread asking for one being made waits for it).
 class SceneCache {
  public:
   std::shared_ptr<const Scene> scene(const Spec& s, const Point& p);
   // The ground truth depends on the scene, its size and the base-stage sampler keys (wrap modes,
   // border), not on the filter or the unit.
   std::shared_ptr<const Image> truth(const Spec& s, const Point& p);
+  // The golden render with its request trace depends on those, the filter and the cache line (the
+  // textures are tiled for it), not on the rest of the unit: the points of a cache or memory grid
+  // share it. plan() counts the points that will ask for each render; a render is dropped when the
+  // last of them has called done_with_render (so memory holds the renders of points in flight).
+  void plan(const Spec& s, const std::vector<const Point*>& points);
+  std::shared_ptr<const RenderResult> render(const Spec& s, const Point& p);
+  void done_with_render(const Spec& s, const Point& p);
 
  private:
   std::mutex mutex_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Scene>>> scenes_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Image>>> truths_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const RenderResult>>> renders_;
+  std::map<std::string, size_t> render_uses_;  // points still to use each render (plan())
 };
 
 // Wall seconds of run_point, and of the part that is the simulation proper (the golden render
-// with its trace plus the cycle model with the golden compare): the rest is the sweep's overhead.
+// with its trace, when this point made it or waited for it, plus the cycle model with the golden
+// compare): the rest is the sweep's overhead.
 struct PointTiming {
   double seconds = 0, simulation_seconds = 0;
 };

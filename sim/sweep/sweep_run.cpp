@@ -89,6 +89,7 @@ RunSummary run_points(const Spec& spec, const std::vector<Point>& points, const 
   const auto t0 = Clock::now();
   Progress progress(sum.points, sum.skipped, opt.progress);
   SceneCache cache;
+  cache.plan(spec, todo);
   std::atomic<size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex mutex;
