@@ -186,9 +186,15 @@ void OutputFiles::make_parents(const std::string& option, const std::string& pat
 }
 
 std::string OutputFiles::make_temp(const std::string& option, const std::string& path) {
-  const fs::path temp =
-      parent_dir(path) / fmt::format(".tfu-{}-{}.tmp", static_cast<long>(::getpid()), g_temp_counter++);
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  // The name is unique in this process; another process with the same PID (another host writing
+  // into a shared directory, as Slurm array tasks do) makes O_EXCL fail with EEXIST: take the next.
+  fs::path temp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 64 && fd < 0; ++attempt) {
+    temp = parent_dir(path) / fmt::format(".tfu-{}-{}.tmp", static_cast<long>(::getpid()), g_temp_counter++);
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
   if (fd < 0)
     throw InputError(fmt::format("{} {}: cannot create a file in '{}': {}", option, quoted_path(path),
                                  quote_input(parent_dir(path).string()), reason(errno)));

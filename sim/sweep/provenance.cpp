@@ -1,10 +1,7 @@
 #include "sim/sweep/provenance.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "cmodel/q3_archives.hpp"
 #include "cmodel/q3_scene.hpp"
 #include "cmodel/scene.hpp"
@@ -189,25 +187,9 @@ std::string stats_document(const sim::Stats& stats, const nlohmann::json& proven
 }
 
 void write_file_atomic(const std::string& path, const std::string& text, const std::string& what) {
-  static std::atomic<uint64_t> serial{0};
-  const fs::path p(path);
-  std::error_code ec;
-  if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-  const fs::path tmp = p.parent_path() / fmt::format(".{}.tmp.{}.{}", p.filename().string(), ::getpid(), serial++);
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << text;
-    f.close();
-    if (!f) {
-      fs::remove(tmp, ec);
-      throw InputError(fmt::format("{} '{}' cannot be written", what, path.substr(0, 200)));
-    }
-  }
-  fs::rename(tmp, p, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(fmt::format("{} '{}' cannot be written", what, path.substr(0, 200)));
-  }
+  OutputFiles out(/*force=*/true);  // the sweep's own files in its own directory: replaced
+  out.add(what, path).stream() << text;
+  out.commit();
 }
 
 }  // namespace tfu

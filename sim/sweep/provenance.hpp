@@ -87,9 +87,10 @@ std::string unit_config_text(const std::string& text);
 // A statistics file: {"provenance", "definitions"} and the statistics' own keys.
 std::string stats_document(const sim::Stats& stats, const nlohmann::json& provenance);
 
-// Writes `text` to `path` atomically (a temporary file in the same directory, then rename), so a
-// reader sees the old file, no file, or the whole new one; creates missing parent directories.
-// InputError naming `what` and the path on failure.
+// Writes `text` to `path` through OutputFiles with --force (cmodel/output_files.hpp: a temporary
+// in the same directory, then rename, so a reader sees the old file, no file, or the whole new
+// one; missing parent directories created; every write checked). For the files a sweep owns in its
+// directory, which a resumed or collected sweep replaces. InputError naming `what` and the path.
 void write_file_atomic(const std::string& path, const std::string& text, const std::string& what);
 
 }  // namespace tfu
