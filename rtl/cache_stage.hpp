@@ -88,7 +88,7 @@ class CacheStage : public sim::Module {
   uint64_t last_miss_line_ = 0;
   int last_misses_ = 0;
   bool record_taps_ = false;  // accepted_ holds the footprint last accepted
-  FootprintReq accepted_;
+  FootprintReq accepted_{};  // no taps until the first footprint is accepted
   sim::Channel<FilterReq>& out_of(const FootprintReq& f) {
     return f.tag.base == BaseFilter::EdgePreserving ? edge_out_ : filter_out_;
   }
