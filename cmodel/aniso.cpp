@@ -79,33 +79,6 @@ uint32_t axis_length_q16(uint64_t len2_q32) {
   return static_cast<uint32_t>(root);
 }
 
-const std::array<ProbeRomWord, 1u << kProbeRomAddrBits>& probe_rom() {
-  // Offline table generation in exact integer arithmetic, the one source of the ROM contents.
-  static const auto rom = [] {
-    std::array<ProbeRomWord, 1u << kProbeRomAddrBits> r{};
-    constexpr int kTotal = 1 << kAnisoWeightBits;
-    for (int n = 1; n <= kMaxAniso; ++n) {
-      const int base = kTotal / n, extra = kTotal % n;
-      const bool centre_extra = (n % 2 == 1) && (extra % 2 == 1);
-      const int pairs = extra / 2;  // innermost symmetric pairs that get one more
-      for (int i = 1; i <= n; ++i) {
-        ProbeRomWord& w = r[static_cast<size_t>(probe_rom_address(n, i))];
-        // q = 2^16 (2i - n - 1) / (2 (n + 1)), rounded half away from zero on the magnitude.
-        const int64_t num = int64_t{2 * i - n - 1} << kProbeFracBits, den = 2 * (n + 1);
-        const int64_t mag = (2 * std::llabs(num) + den) / (2 * den);
-        w.frac_q16 = static_cast<int32_t>(num < 0 ? -mag : mag);
-        // Distance from the centre in half probe spacings: 0 (centre, n odd), 1, 2, 3, ...
-        const int k = std::abs(2 * i - n - 1);
-        const int ring = n % 2 == 1 ? k / 2 : (k + 1) / 2;  // 1 = innermost pair
-        const bool plus = k == 0 ? centre_extra : ring <= pairs;
-        w.weight = base + (plus ? 1 : 0);
-      }
-    }
-    return r;
-  }();
-  return rom;
-}
-
 int64_t probe_offset_q16(int64_t major_q16, int n, int i) {
   return dp::scale_probe_fraction(major_q16, probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16);
 }

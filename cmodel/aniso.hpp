@@ -96,8 +96,34 @@ struct ProbeRomWord {
   int32_t weight = 0;    // 1..256 (9 bits; 256 only for N = 1)
 };
 inline constexpr int probe_rom_address(int n, int i) { return ((n - 1) << 4) | (i - 1); }
-// 256 words at {N - 1, i - 1}; words with i > N are zero (never addressed).
-const std::array<ProbeRomWord, 1u << kProbeRomAddrBits>& probe_rom();
+// 256 words at {N - 1, i - 1}; words with i > N are zero (never addressed). Generated at compile
+// time by make_probe_rom (exact integer arithmetic, the one source of the ROM contents).
+using ProbeRom = std::array<ProbeRomWord, 1u << kProbeRomAddrBits>;
+constexpr ProbeRom make_probe_rom() {
+  ProbeRom r{};
+  constexpr int kTotal = 1 << kAnisoWeightBits;
+  const auto abs64 = [](int64_t x) { return x < 0 ? -x : x; };
+  for (int n = 1; n <= kMaxAniso; ++n) {
+    const int base = kTotal / n, extra = kTotal % n;
+    const bool centre_extra = (n % 2 == 1) && (extra % 2 == 1);
+    const int pairs = extra / 2;  // innermost symmetric pairs that get one more
+    for (int i = 1; i <= n; ++i) {
+      ProbeRomWord& w = r[static_cast<size_t>(probe_rom_address(n, i))];
+      // q = 2^16 (2i - n - 1) / (2 (n + 1)), rounded half away from zero on the magnitude.
+      const int64_t num = int64_t{2 * i - n - 1} * (int64_t{1} << kProbeFracBits), den = 2 * (n + 1);
+      const int64_t mag = (2 * abs64(num) + den) / (2 * den);
+      w.frac_q16 = static_cast<int32_t>(num < 0 ? -mag : mag);
+      // Distance from the centre in half probe spacings: 0 (centre, n odd), 1, 2, 3, ...
+      const auto k = static_cast<int>(abs64(2 * i - n - 1));
+      const int ring = n % 2 == 1 ? k / 2 : (k + 1) / 2;  // 1 = innermost pair
+      const bool plus = k == 0 ? centre_extra : ring <= pairs;
+      w.weight = base + (plus ? 1 : 0);
+    }
+  }
+  return r;
+}
+inline constexpr ProbeRom kProbeRom = make_probe_rom();
+inline const ProbeRom& probe_rom() { return kProbeRom; }
 
 // Offset of probe i (1..N) from the footprint centre along the major vector, per component:
 // sgn(d) sgn(q) ((|d| |q(N, i)| + 2^15) >> 16), Q.16 level-0 texels, |result| < 2^30.
