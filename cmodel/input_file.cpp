@@ -31,11 +31,9 @@ std::string errno_reason(int err) {
 std::string type_problem(mode_t mode) {
   if (S_ISREG(mode)) return {};
   if (S_ISDIR(mode)) return "is a directory, not a file";
-  if (S_ISFIFO(mode)) return "is a named pipe (FIFO), not a regular file";
-  if (S_ISCHR(mode)) return "is a character device, not a regular file";
-  if (S_ISBLK(mode)) return "is a block device, not a regular file";
-  if (S_ISSOCK(mode)) return "is a socket, not a regular file";
-  return "is not a regular file";
+  const std::string kind = file_kind(mode);
+  if (kind == "not a regular file") return "is not a regular file";
+  return fmt::format("is {}{}, not a regular file", kind, S_ISFIFO(mode) ? " (FIFO)" : "");
 }
 
 [[noreturn]] void fail(const std::string& label, const std::string& reason) {
@@ -67,6 +65,15 @@ int open_checked(const std::string& path, const std::string& label, uint64_t max
 }
 
 }  // namespace
+
+std::string file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a named pipe";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 std::string quoted_path(const std::string& path) { return fmt::format("'{}'", quote_path(path)); }
 

@@ -14,6 +14,8 @@
 #include <memory>
 #include <string>
 
+#include <sys/types.h>
+
 namespace tfu {
 
 inline constexpr uint64_t kMaxTextInputBytes = uint64_t{64} << 20;  // scene and config JSON
@@ -22,6 +24,10 @@ inline constexpr uint64_t kMaxImageBytes = uint64_t{1} << 30;       // texture a
 
 // The path as a label for messages: quote_path(path) in single quotes.
 std::string quoted_path(const std::string& path);
+
+// What a file that is not a regular file is, for messages (`mode` from stat): "a directory", "a
+// named pipe", "a character device", "a block device", "a socket", else "not a regular file".
+std::string file_kind(mode_t mode);
 
 // Throws InputError unless `path` names a regular file of at most `max_bytes` bytes that can be
 // opened for reading. For inputs opened by a library (OpenImageIO).

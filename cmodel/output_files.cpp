@@ -36,15 +36,6 @@ std::string reason(int err) {
   }
 }
 
-std::string type_name(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a named pipe";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 fs::path parent_dir(const std::string& path) {
   const fs::path parent = fs::path(path).parent_path();
   return parent.empty() ? fs::path(".") : parent;
@@ -209,7 +200,7 @@ OutputFile& OutputFiles::add(const std::string& option, const std::string& path)
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
     if (!S_ISREG(st.st_mode))
-      throw InputError(fmt::format("{} {} exists and is {}", option, quoted_path(path), type_name(st.st_mode)));
+      throw InputError(fmt::format("{} {} exists and is {}", option, quoted_path(path), file_kind(st.st_mode)));
     if (!force_) throw InputError(fmt::format("{} {} already exists (pass --force to overwrite)", option, quoted_path(path)));
     id.exists = true;
     id.dev = static_cast<uint64_t>(st.st_dev);
