@@ -22,7 +22,7 @@ struct LevelCoord {
   int64_t i0;
   uint32_t f;
 };
-inline LevelCoord texel_coord(float s, int size) {
+[[gnu::always_inline]] inline LevelCoord texel_coord(float s, int size) {
   const int64_t u = float_to_fixed_fast(s, static_cast<uint32_t>(size), 8) - 128;
   return {u >> 8, static_cast<uint32_t>(u & 255)};
 }

@@ -8,7 +8,17 @@ namespace tfu::rtl {
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
                        const WeightRomBank& roms)
-    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs), roms_(roms) {}
+    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs), roms_(roms) {
+  for (size_t k = 0; k < regs.samplers.size(); ++k) {
+    const SamplerDescriptor& c = regs.samplers[k];
+    const TileWeightRom* rom = roms.rom(static_cast<int>(k));
+    decoded_.push_back({c.mode.base == BaseFilter::Linear
+                            ? linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)),
+                                          std::make_index_sequence<16>())
+                            : &grid_any,
+                        rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
+  }
+}
 
 namespace {
 
@@ -113,28 +123,13 @@ AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence
 void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o) const {
   const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
   const TextureDescriptor& tex = regs_.textures[p.req.texture];
-  LevelTag& tag = f.tag;  // every field written (the output register is reused)
-  tag.id = p.id;
-  tag.req = p.req;
-  tag.base = c.mode.base;
-  tag.format = tex.format;
-  tag.fu = tag.fv = 0;
-  tag.blend = 0;
-  tag.two = tag.second = false;
-  tag.shape = lee_jen::kAllTexels;
-  tag.probes = 1;
-  tag.probe = 0;
+  // Every field written (the output register is reused): fu, fv by the grid, the rest here.
+  f.tag = LevelTag{.id = p.id, .req = p.req, .base = c.mode.base, .format = tex.format};
   f.level = level;
   f.optional = 0;
   f.cross = false;
-  const int w = tex.level_width(level), h = tex.level_height(level);
-  if (c.mode.base == BaseFilter::Linear) {
-    linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)), std::make_index_sequence<16>())(
-        c, 2, 0, f, w, h, p.s, p.t, o);
-  } else {
-    const TileWeightRom* rom = roms_.rom(p.req.sampler);
-    grid_any(c, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0, f, w, h, p.s, p.t, o);
-  }
+  const SamplerDecode& d = decoded_[p.req.sampler];
+  d.grid(c, d.taps, d.first_tap, f, tex.level_width(level), tex.level_height(level), p.s, p.t, o);
 }
 
 void AddressGen::next_probe() {

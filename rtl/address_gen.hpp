@@ -27,6 +27,7 @@
 #pragma once
 
 #include <utility>
+#include <vector>
 
 #include "cmodel/descriptors.hpp"
 #include "rtl/unit_ports.hpp"
@@ -64,6 +65,13 @@ class AddressGen : public sim::Module {
                           const ProbeLevelOffset* o);
   template <size_t... k>
   static GridFn linear_grid(size_t wrap_pair, std::index_sequence<k...>);
+  // The decoded registers of each sampler descriptor (at reset): the grid function of its filter
+  // and wrap modes, the weight ROM's tap count and first tap (CUBIC).
+  struct SamplerDecode {
+    GridFn grid;
+    int taps, first_tap;
+  };
+  std::vector<SamplerDecode> decoded_;
   bool holding_ = false;
   PixelReq pixel_{};
   LevelPick pick_{};

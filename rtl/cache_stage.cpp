@@ -45,25 +45,23 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       if (resident) cur.tag.shape = static_cast<lee_jen::TexelMask>(cur.tag.shape | bits);
     }
   }
-  FootprintResult r;
-  if (edge) {  // the taps that read the cache: inside the texture and in the shape
-    TapGrid lookup = g;
-    lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
-    r = cache_.access(texture, cur.level, lookup);
-  } else {
-    r = cache_.access(texture, cur.level, g);
-  }
+  // The taps that read the cache: inside the texture (and, for the edge cross, in the shape).
+  TapGrid lookup = g;
+  if (edge) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
+  const FootprintResult r = cache_.access(texture, cur.level, lookup);
   stage_hits[cur.tag.req.stage] += static_cast<uint64_t>(r.hits);
   stage_misses[cur.tag.req.stage] += static_cast<uint64_t>(r.misses);
-  accepted_id_ = cur.tag.id;
-  if (g.used != 0) {
-    const auto cell = static_cast<size_t>(std::countr_zero(static_cast<uint32_t>(g.used)));
-    const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];
-    if (tx >= 0 && ty >= 0) accepted_line_ = cache_.line_of(texture, cur.level, tx, ty);
+  if (probes_) {  // the waveform probes (accepted_id() ...)
+    accepted_id_ = cur.tag.id;
+    if (g.used != 0) {
+      const auto cell = static_cast<size_t>(std::countr_zero(static_cast<uint32_t>(g.used)));
+      const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];
+      if (tx >= 0 && ty >= 0) accepted_line_ = cache_.line_of(texture, cur.level, tx, ty);
+    }
+    accepted_ = cur;
+    last_misses_ = r.misses;
+    if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   }
-  if (record_taps_) accepted_ = cur;
-  last_misses_ = r.misses;
-  if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
   uint64_t ready = port_free_ - 1;
   for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));
@@ -78,7 +76,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
 }
 
 uint64_t CacheStage::accepted_tap_address(int k) const {
-  if (!record_taps_ || k < 0 || k >= accepted_.ntaps()) return 0;
+  if (!probes_ || k < 0 || k >= accepted_.ntaps()) return 0;
   const TapGrid& g = accepted_.grid;
   size_t cell = 0;  // grid cell 4 j + i of tap k
   if (accepted_.cross) {

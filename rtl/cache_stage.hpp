@@ -42,20 +42,21 @@ class CacheStage : public sim::Module {
   void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
   uint32_t current_id() const { return fifo_.empty() ? 0 : fifo_.front().f.tag.id; }
-  // Waveform probes (no effect on timing): the request id of the footprint last accepted, the line
-  // address (byte address / line bytes, 40 - log2(line) bits) of its first in-texture tap, of the
-  // last line sent to memory, and how many lines that footprint missed.
+  // Waveform probes (no effect on timing), recorded only while probes(true) (a waveform is being
+  // written; 0 before): the request id of the footprint last accepted, the line address (byte
+  // address / line bytes, 40 - log2(line) bits) of its first in-texture tap, of the last line sent
+  // to memory, and how many lines that footprint missed.
+  void probes(bool on) { probes_ = on; }
   uint32_t accepted_id() const { return accepted_id_; }
   uint64_t accepted_line() const { return accepted_line_; }
   uint64_t last_miss_line() const { return last_miss_line_; }
   int last_misses() const { return last_misses_; }
-  // Waveform probe of the footprint last accepted, tap by tap in FilterReq order (grid row-major,
-  // the cross in C order): the byte address of tap k (0..15) in the texel memory, 0 where the tap
-  // reads no texel (k >= its tap count, a border tap, a cross texel outside the edge shape; 0 is
-  // never a texel address). Recorded only while record_taps(true) (a waveform is being written).
-  void record_taps(bool on) { record_taps_ = on; }
+  // The footprint last accepted, tap by tap in FilterReq order (grid row-major, the cross in C
+  // order): the byte address of tap k (0..15) in the texel memory, 0 where the tap reads no texel
+  // (k >= its tap count, a border tap, a cross texel outside the edge shape; 0 is never a texel
+  // address).
   uint64_t accepted_tap_address(int k) const;
-  int accepted_taps() const { return record_taps_ ? accepted_.ntaps() : 0; }
+  int accepted_taps() const { return probes_ ? accepted_.ntaps() : 0; }
   // Kernel shape chosen per pixel, probe and level (edge modes; for the golden compare of cache-aware).
   std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
@@ -83,12 +84,12 @@ class CacheStage : public sim::Module {
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
-  uint32_t accepted_id_ = 0;               // waveform probes (accepted_id() ...)
+  bool probes_ = false;                    // waveform probes recorded (probes())
+  uint32_t accepted_id_ = 0;
   uint64_t accepted_line_ = 0;
   uint64_t last_miss_line_ = 0;
   int last_misses_ = 0;
-  bool record_taps_ = false;  // accepted_ holds the footprint last accepted
-  FootprintReq accepted_{};  // no taps until the first footprint is accepted
+  FootprintReq accepted_{};  // the footprint last accepted; no taps until the first one
   sim::Channel<FilterReq>& out_of(const FootprintReq& f) {
     return f.tag.base == BaseFilter::EdgePreserving ? edge_out_ : filter_out_;
   }

@@ -182,7 +182,7 @@ inline void TexelCache::tally(size_t l, const FootprintResult& r) {
 // one, two or four lines, looked up row-major. Banks: the lines in one bank share the parity of bx
 // and of by, so per axis two distinct blocks of equal parity (a wrap over an odd number of blocks)
 // put two lines into every bank touched; with one bank every line is a read.
-inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
+[[gnu::always_inline]] inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
   const LevelLines& ll = lines_[l];
   const int bx0 = g.x[0] >> ll.shift_x, bx1 = g.x[1] >> ll.shift_x;
   const int by0 = g.y[0] >> ll.shift_y, by1 = g.y[1] >> ll.shift_y;

@@ -111,6 +111,24 @@ struct Unit {
   std::optional<EdgeMedian> e1;
   std::optional<EdgeDirection> e2;
   std::optional<EdgeMerge> e3;
+  // The static schedule (sim::Simulator::step_scheduled): every block once per cycle, called
+  // directly, not through the simulator's module list. Software speed only: evaluate() reads only
+  // committed channel state, so the order is free, and runs through the generic module list, in
+  // either order, give the same results (run_unit_generic_schedule, tested).
+  void evaluate_all() {
+    src.evaluate();
+    lod.evaluate();
+    addr.evaluate();
+    shape.evaluate();
+    cst.evaluate();
+    if (filter) filter->evaluate();
+    if (e1) {
+      e1->evaluate();
+      e2->evaluate();
+      e3->evaluate();
+    }
+    sink.evaluate();
+  }
 };
 
 // The request id a channel's head carries (its pixel's index in the trace), if its payload has one.
@@ -152,12 +170,12 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add("tfu.address_gen.busy", 1, [&u] { return uint64_t{u.addr.busy()}; });
   vcd.add("tfu.texel_cache.busy", 1, [&u] { return uint64_t{u.cst.busy()}; });
   vcd.add("tfu.texel_cache.id", 32, [&u] { return uint64_t{u.cst.current_id()}; });
+  u.cst.probes(true);
   const int line_bits = kAddressBits - std::countr_zero(static_cast<unsigned>(u.cache.config().line_bytes));
   vcd.add("tfu.texel_cache.accepted_id", 32, [&u] { return uint64_t{u.cst.accepted_id()}; });
   vcd.add("tfu.texel_cache.accepted_line", line_bits, [&u] { return u.cst.accepted_line(); });
   vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cst.last_miss_line(); });
   vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cst.last_misses()); });
-  u.cst.record_taps(true);
   vcd.add("tfu.texel_cache.accepted_taps", 5, [&u] { return static_cast<uint64_t>(u.cst.accepted_taps()); });
   for (int k = 0; k < static_cast<int>(std::tuple_size_v<decltype(FilterReq::texels)>); ++k)
     vcd.add(fmt::format("tfu.texel_cache.accepted_tap_addr_{:02}", k), kAddressBits,
@@ -231,7 +249,11 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
   return run_unit(frame, trace, ucfg, VcdOptions{vcd_stream});
 }
 
-UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt) {
+namespace {
+
+enum class Schedule { Static, GenericForward, GenericReverse };
+
+UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt, Schedule schedule) {
   std::ostream* vcd_stream = vcd_opt.out;
   check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
@@ -248,12 +270,30 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
   }
   unit->sim.set_idle_skip(ucfg.idle_skip);
   const ResponseSink& sink = unit->sink;
-  unit->sim.run([&sink, n] { return sink.retired() == n; }, sim::Simulator::kNoCycleLimit,  // no total-cycle cap: the watchdog only
-                [&sink] { return static_cast<uint64_t>(sink.retired()); }, n);
+  const auto done = [&sink, n] { return sink.retired() == n; };
+  const std::function<uint64_t()> retired = [&sink] { return static_cast<uint64_t>(sink.retired()); };
+  // No total-cycle cap: the watchdog only.
+  if (schedule == Schedule::Static) {
+    Unit& u = *unit;
+    unit->sim.run_scheduled([&u] { u.evaluate_all(); }, done, sim::Simulator::kNoCycleLimit, retired, n);
+  } else {
+    unit->sim.set_order(schedule == Schedule::GenericForward ? sim::Simulator::Order::Forward : sim::Simulator::Order::Reverse);
+    unit->sim.run(done, sim::Simulator::kNoCycleLimit, retired, n);
+  }
   out.cycles = unit->sim.cycle();
   out.edge_shapes = std::move(unit->cst.shapes);
   derive_stats(frame, trace, ucfg, *unit, out);
   return out;
+}
+
+}  // namespace
+
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt) {
+  return run(frame, trace, ucfg, vcd_opt, Schedule::Static);
+}
+
+UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool reverse) {
+  return run(frame, trace, ucfg, VcdOptions{}, reverse ? Schedule::GenericReverse : Schedule::GenericForward);
 }
 
 }  // namespace tfu::rtl

@@ -53,6 +53,11 @@ struct VcdOptions {
 };
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd);
 
+// run_unit through the simulation kernel's generic module list (a virtual evaluate() per block and
+// cycle, forward or reverse) instead of the unit's static schedule: for the test that the schedule
+// and the evaluation order change nothing.
+UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool reverse);
+
 // The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
 // the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the
 // latency mean, minimum and maximum from the latency histogram.

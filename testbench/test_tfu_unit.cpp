@@ -462,6 +462,14 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
       UnitConfig u = small_cache(line == 64 ? 4 : 8);
       const UnitOutput got = run_unit(frame, tr, u);
       expect_golden(frame, tr, got, fmt::format("line {} {}", line, trace_mode_name(mode)));
+      // The unit's static schedule is the generic module list's result, in either order.
+      for (const bool reverse : {false, true}) {
+        const UnitOutput generic = run_unit_generic_schedule(frame, tr, u, reverse);
+        EXPECT_EQ(generic.pixels, got.pixels) << reverse;
+        EXPECT_EQ(generic.response_cycle, got.response_cycle) << reverse;
+        EXPECT_EQ(generic.cycles, got.cycles) << reverse;
+        EXPECT_EQ(generic.stats.json_text(), got.stats.json_text()) << reverse;
+      }
       // The per-texture and per-stage tables add up to the totals.
       uint64_t requests = 0, bytes = 0, stage_bytes = 0, misses = 0;
       for (const auto& [label, v] : got.stats.table("textures")->rows) {

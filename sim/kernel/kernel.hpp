@@ -43,23 +43,19 @@ class Clocked {
 // so it needs no second phase: no other block can observe it within a cycle.
 
 // The occupancy state every channel shares, whatever its payload: the simulator commits all
-// channels in one loop without a virtual call per channel (commit_state() is inline).
+// channels in one loop without a virtual call per channel (commit_state() is inline). The state is
+// two free-running 32-bit counters, pushes (write) and pops (read): occupancy = write - read
+// (modulo 2^32), the ring slot of an entry its counter masked. A push or pop of this cycle moves
+// the `next` counters; the edge copies them into the committed ones (one 8-byte move).
 class ChannelBase : public Clocked {
  public:
   size_t depth() const { return depth_; }
-  size_t size() const { return count_; }
-  bool can_push() const { return count_ < depth_; }  // ready, registered
-  bool can_pop() const { return count_ != 0; }       // valid
-  void commit_state() {  // the pop advances the head, both change the count (no branches)
-    head_ = (head_ + popped_) & mask_;
-    count_ = count_ + pushed_ - popped_;
-    pushed_ = popped_ = 0;
-  }
+  size_t size() const { return now_.write - now_.read; }
+  bool can_push() const { return now_.write - now_.read < depth_; }  // ready, registered
+  bool can_pop() const { return now_.write != now_.read; }           // valid
+  void commit_state() { now_ = next_; }
   void commit() final { commit_state(); }
-  void reset() final {
-    head_ = count_ = 0;
-    pushed_ = popped_ = 0;
-  }
+  void reset() final { now_ = next_ = {}; }
 
  protected:
   // Ring slots: the power of two >= depth + 1, so that a push into a full-at-commit ring never
@@ -67,11 +63,14 @@ class ChannelBase : public Clocked {
   explicit ChannelBase(size_t depth)
       : depth_(static_cast<uint32_t>(depth)), mask_(static_cast<uint32_t>(std::bit_ceil(std::min<size_t>(depth, 4096) + 1) - 1)) {}
   size_t slots() const { return size_t{mask_} + 1; }
+  struct Counters {
+    uint32_t write = 0, read = 0;
+  };
+  Counters now_, next_;  // committed, and after this cycle's transfers (at most one push, one pop)
   uint32_t depth_;
   uint32_t mask_;
-  uint32_t head_ = 0, count_ = 0;
-  uint8_t pushed_ = 0, popped_ = 0;  // this cycle's transfers (0 or 1), committed at the edge
-  size_t tail() const { return (head_ + count_) & mask_; }
+  bool pushed() const { return next_.write != now_.write; }
+  bool popped() const { return next_.read != now_.read; }
 };
 
 // Valid/ready channel with a FIFO of `depth` entries (skid buffer), one producer and one consumer.
@@ -88,17 +87,17 @@ class Channel : public ChannelBase {
   void push(const T& v) { push_slot() = v; }
   // push() without the copy: the producer fills the returned slot during this evaluate().
   T& push_slot() {
-    if (!can_push() || pushed_) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
-    pushed_ = 1;
-    return ring_[tail()];
+    if (!can_push() || pushed()) throw CheckFailed(fmt::format("channel {}: push while not ready", name_));
+    next_.write = now_.write + 1;
+    return ring_[now_.write & mask_];
   }
   // Consumer side.
-  const T& front() const { return ring_[head_]; }
+  const T& front() const { return ring_[now_.read & mask_]; }
   void pop() {
-    if (!can_pop() || popped_) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
-    popped_ = 1;
+    if (!can_pop() || popped()) throw CheckFailed(fmt::format("channel {}: pop while not valid", name_));
+    next_.read = now_.read + 1;
   }
-  std::string state() const { return fmt::format("{} {}/{}{}", name_, count_, depth_, can_push() ? "" : " full"); }
+  std::string state() const { return fmt::format("{} {}/{}{}", name_, size(), depth_, can_push() ? "" : " full"); }
 
  private:
   std::string name_;
@@ -271,12 +270,21 @@ class Simulator {
   Stats& stats() { return stats_; }
   void reset();
   // One clock: every module evaluates, then every channel and register commits (the edge).
-  void step() {
+  void step() { step_scheduled([this] { evaluate_modules(); }); }
+  // Every module's evaluate(), through the module list in the set order (a virtual call each).
+  void evaluate_modules() {
     if (order_ == Order::Forward) {
       for (Module* m : modules_) m->evaluate();
     } else {
       for (auto it = modules_.rbegin(); it != modules_.rend(); ++it) (*it)->evaluate();
     }
+  }
+  // One clock with a static schedule: `evaluate()` must call evaluate() of every registered module
+  // once, in any order (a design's own list of its blocks, called directly so that the compiler
+  // can inline them: what Verilator's generated eval() is to a netlist). Then the edge.
+  template <typename Schedule>
+  void step_scheduled(Schedule&& evaluate) {
+    evaluate();
     for (ChannelBase* c : channels_) c->commit_state();
     for (Clocked* c : clocked_) c->commit();
     const bool progressed = last_progress_ == cycle_;
@@ -289,12 +297,18 @@ class Simulator {
   // done() and the step inline into one loop.)
   template <typename Done>
   void run(Done&& done, uint64_t max_cycles, const std::function<uint64_t()>& work_done = {}, uint64_t work_total = 0) {
+    run_scheduled([this] { evaluate_modules(); }, done, max_cycles, work_done, work_total);
+  }
+  // run() with a static schedule (step_scheduled).
+  template <typename Schedule, typename Done>
+  void run_scheduled(Schedule&& evaluate, Done&& done, uint64_t max_cycles, const std::function<uint64_t()>& work_done = {},
+                     uint64_t work_total = 0) {
     ProgressBar bar(work_done, work_total);
     const uint64_t start = cycle_;
     last_progress_ = cycle_;
     for (uint32_t steps = 1; !done(); ++steps) {
       if (cycle_ - start >= max_cycles || cycle_ - last_progress_ > watchdog_) stop(start, max_cycles);
-      step();
+      step_scheduled(evaluate);
       if ((steps & 0xFFFu) == 0) bar.update(cycle_);
     }
     bar.finish(cycle_);
