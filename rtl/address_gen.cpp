@@ -12,10 +12,10 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
   for (size_t k = 0; k < regs.samplers.size(); ++k) {
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));
-    decoded_.push_back({c.mode.base == BaseFilter::Linear
-                            ? linear_grid(static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t)),
-                                          std::make_index_sequence<16>())
-                            : &grid_any,
+    const auto wraps = static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t));
+    decoded_.push_back({c.mode.base == BaseFilter::Linear           ? fixed_grid<false>(wraps, std::make_index_sequence<16>())
+                        : c.mode.base == BaseFilter::EdgePreserving ? fixed_grid<true>(wraps, std::make_index_sequence<16>())
+                                                                    : &grid_any,
                         rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
   }
 }
@@ -83,7 +83,7 @@ void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, F
         square_footprint(f, c, w, h, u, v, -1, 4);
         f.cross = true;
         break;
-      case BaseFilter::Linear:  // grid_linear
+      case BaseFilter::Linear: square_footprint(f, c, w, h, u, v, 0, 2); break;
       case BaseFilter::Nearest: break;
     }
   }
@@ -93,30 +93,34 @@ void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, F
     g.used = static_cast<uint16_t>(g.used & cells_inside(g));
 }
 
-// LINEAR: columns i0, i0 + 1 and rows j0, j0 + 1 through the wrap unit of each axis.
-template <WrapMode kWs, WrapMode kWt>
-void AddressGen::grid_linear(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
-                             const ProbeLevelOffset* o) {
+// LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
+// around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis
+// with the modes fixed (dp::wrap_taps): the same grid as grid_any's.
+template <WrapMode kWs, WrapMode kWt, bool kCross>
+void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
+                            const ProbeLevelOffset* o) {
+  constexpr int kTaps = kCross ? 4 : 2, kFirst = kCross ? -1 : 0;
   const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
   f.tag.fu = u.f;
   f.tag.fv = v.f;
-  int col[2], row[2];
-  dp::wrap_taps<kWs, 2>(u.i0, w, col);
-  dp::wrap_taps<kWt, 2>(v.i0, h, row);
+  int col[kTaps], row[kTaps];
+  dp::wrap_taps<kWs, kTaps>(u.i0 + kFirst, w, col);
+  dp::wrap_taps<kWt, kTaps>(v.i0 + kFirst, h, row);
   TapGrid& g = f.grid;
-  g.cols = g.rows = 2;
-  g.x[0] = static_cast<int16_t>(col[0]);
-  g.x[1] = static_cast<int16_t>(col[1]);
-  g.y[0] = static_cast<int16_t>(row[0]);
-  g.y[1] = static_cast<int16_t>(row[1]);
-  g.used = square_cells(2, 2);
+  g.cols = g.rows = kTaps;
+  for (size_t i = 0; i < kTaps; ++i) {
+    g.x[i] = static_cast<int16_t>(col[i]);
+    g.y[i] = static_cast<int16_t>(row[i]);
+  }
+  f.cross = kCross;
+  g.used = kCross ? cross_cells(lee_jen::kAllTexels) : square_cells(2, 2);
   if constexpr (kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder)
     g.used = static_cast<uint16_t>(g.used & cells_inside(g));
 }
 
-template <size_t... k>
-AddressGen::GridFn AddressGen::linear_grid(size_t wrap_pair, std::index_sequence<k...>) {
-  static constexpr GridFn kTable[] = {&grid_linear<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
+template <bool kCross, size_t... k>
+AddressGen::GridFn AddressGen::fixed_grid(size_t wrap_pair, std::index_sequence<k...>) {
+  static constexpr GridFn kTable[] = {&grid_fixed<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4), kCross>...};
   return kTable[wrap_pair];
 }
 

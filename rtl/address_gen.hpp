@@ -48,23 +48,26 @@ class AddressGen : public sim::Module {
   void footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o = nullptr) const;
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
   void publish(sim::Stats& st) const;
+  // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`
+  // for an anisotropic probe. grid_any forms every filter's grid with the wrap modes read at run
+  // time (the plain unit); LINEAR and the edge cross use one function per pair of wrap modes
+  // (grid_fixed, chosen per sampler at reset; software speed only, equal to grid_any: tested).
+  using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float,
+                          const ProbeLevelOffset*);
+  static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
+                       const ProbeLevelOffset* o);
+  GridFn grid_function(size_t sampler) const { return decoded_[sampler].grid; }
 
  private:
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
   const Registers& regs_;
   const WeightRomBank& roms_;
-  // The grid of one footprint (taps, fractions, used cells): LINEAR has one function per pair of
-  // wrap modes (chosen per request from its sampler), the other filters share grid_any.
-  using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float,
-                          const ProbeLevelOffset*);
-  static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
-                       const ProbeLevelOffset* o);
-  template <WrapMode kWs, WrapMode kWt>
-  static void grid_linear(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
-                          const ProbeLevelOffset* o);
-  template <size_t... k>
-  static GridFn linear_grid(size_t wrap_pair, std::index_sequence<k...>);
+  template <WrapMode kWs, WrapMode kWt, bool kCross>
+  static void grid_fixed(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
+                         const ProbeLevelOffset* o);
+  template <bool kCross, size_t... k>
+  static GridFn fixed_grid(size_t wrap_pair, std::index_sequence<k...>);
   // The decoded registers of each sampler descriptor (at reset): the grid function of its filter
   // and wrap modes, the weight ROM's tap count and first tap (CUBIC).
   struct SamplerDecode {

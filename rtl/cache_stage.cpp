@@ -118,14 +118,7 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
     return regs_.textures[cur.tag.req.texture].content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0}
                                                                                              : regs_.samplers[cur.tag.req.sampler].border;
   };
-  const auto word = [&](size_t i, size_t j) { return ((g.used >> (4 * j + i)) & 1u) ? level(g.x[i], g.y[j]) : border(); };
-  if (cur.cross) {
-#pragma GCC unroll 12
-    for (size_t k = 0; k < lee_jen::kTexels; ++k) {
-      const size_t cell = kCrossCell[k];
-      f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0} : word(cell & 3, cell >> 2);
-    }
-  } else if (g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
+  if (!cur.cross && g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
       case 1: read_square<1>(g, level, f.texels.data()); break;
       case 2: read_square<2>(g, level, f.texels.data()); break;
@@ -133,9 +126,22 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
       default: read_square<4>(g, level, f.texels.data()); break;
     }
   } else {
-    size_t k = 0;
-    for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
-      for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(i, j);
+    // The address parts of the grid's columns and rows, once (a border column or row, -1, is
+    // never read: its cells are not used).
+    std::array<size_t, 4> col{}, row{};
+    for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) col[i] = level.column(g.x[i]);
+    for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j) row[j] = level.row(g.y[j]);
+    const Rgba8 outside = border();
+    const auto word = [&](size_t cell) { return ((g.used >> cell) & 1u) ? level.at(col[cell & 3] + row[cell >> 2]) : outside; };
+    if (cur.cross) {
+#pragma GCC unroll 12
+      for (size_t k = 0; k < lee_jen::kTexels; ++k)
+        f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0} : word(kCrossCell[k]);
+    } else {
+      size_t k = 0;
+      for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
+        for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(4 * j + i);
+    }
   }
   fifo_.pop_front();
   sim_.progress();

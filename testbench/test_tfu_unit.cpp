@@ -19,10 +19,12 @@
 #include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "rtl/address_gen.hpp"
 #include "rtl/edge_datapath.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "testbench/iterations.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -369,6 +371,54 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
       ASSERT_EQ(got.cost, want.cost);
     }
   }
+}
+
+// The address generator's per-wrap-pair grid functions (LINEAR, the edge cross) form the grids of
+// the plain unit, grid_any, for every pair of wrap modes, power-of-two and other level sizes,
+// coordinates inside and outside [0, 1], with and without an anisotropic probe offset.
+TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
+  Registers regs;
+  for (const char* mode : {"LINEAR", "EDGE_PRESERVING"})
+    for (int k = 0; k < 16; ++k) {
+      SamplerDescriptor c;
+      c.mode = filter_mode_from_name(mode);
+      c.wrap_s = static_cast<WrapMode>(k / 4);
+      c.wrap_t = static_cast<WrapMode>(k % 4);
+      regs.samplers.push_back(c);
+    }
+  const WeightRomBank roms(regs.samplers);
+  sim::Simulator sim;
+  sim::Channel<PixelReq> in("pixel", 2);
+  sim::Channel<FootprintReq> out("footprint", 2);
+  const AddressGen gen(sim, in, out, regs, roms);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-2.5f, 3.5f);
+  std::uniform_int_distribution<int64_t> offset(-3000, 3000);
+  int compared = 0;
+  for (int it = 0; it < test::iterations(4000); ++it)
+    for (size_t k = 0; k < regs.samplers.size(); ++k) {
+      const SamplerDescriptor& c = regs.samplers[k];
+      const int w = std::array{1, 2, 5, 8, 40, 64, 1024}[static_cast<size_t>(it % 7)];
+      const int h = std::array{1, 3, 4, 16, 24, 2048}[static_cast<size_t>(it % 6)];
+      const float s = coord(rng), t = coord(rng);
+      const ProbeLevelOffset probe{offset(rng), offset(rng)};
+      const ProbeLevelOffset* o = it % 3 == 0 ? &probe : nullptr;
+      FootprintReq want{}, got{};
+      AddressGen::grid_any(c, 0, 0, want, w, h, s, t, o);
+      gen.grid_function(k)(c, 0, 0, got, w, h, s, t, o);
+      ASSERT_NE(gen.grid_function(k), &AddressGen::grid_any);
+      const auto where = [&] { return fmt::format("{} wraps {} {}, {}x{}, s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s), static_cast<int>(c.wrap_t), w, h, s, t); };
+      ASSERT_EQ(got.tag.fu, want.tag.fu) << where();
+      ASSERT_EQ(got.tag.fv, want.tag.fv) << where();
+      ASSERT_EQ(got.cross, want.cross) << where();
+      ASSERT_EQ(got.grid.cols, want.grid.cols) << where();
+      ASSERT_EQ(got.grid.rows, want.grid.rows) << where();
+      ASSERT_EQ(got.grid.used, want.grid.used) << where();
+      for (size_t i = 0; i < static_cast<size_t>(want.grid.cols); ++i) ASSERT_EQ(got.grid.x[i], want.grid.x[i]) << where();
+      for (size_t j = 0; j < static_cast<size_t>(want.grid.rows); ++j) ASSERT_EQ(got.grid.y[j], want.grid.y[j]) << where();
+      ++compared;
+    }
+  EXPECT_EQ(compared, test::iterations(4000) * 32);
 }
 
 // Requests to textures of every format and both layouts, through samplers of all 12 modes (and
