@@ -120,15 +120,24 @@ EdgeDecision select_direction_keyed(const std::array<Texel4, kTexels>& c, const 
 }  // namespace
 
 TexelMask cache_block_mask(int x4, int x5, int y4, int y8, int block) {
-  TexelMask m = kAllTexels;
-  const auto drop = [&m](Side s) { m = static_cast<TexelMask>(m & ~arm(s).mask); };
-  const bool same_x = x5 == x4 + 1 && x4 / block == x5 / block;
-  const bool same_y = y8 == y4 + 1 && y4 / block == y8 / block;
-  if (same_y && y4 % block == 0) drop(Side::Top);             // top arm in the block above
-  if (same_y && y8 % block == block - 1) drop(Side::Bottom);  // bottom arm in the block below
-  if (same_x && x4 % block == 0) drop(Side::Left);            // left arm in the block to the left
-  if (same_x && x5 % block == block - 1) drop(Side::Right);   // right arm in the block to the right
-  return m;
+  // x / block and x % block as C++ defines them (quotient truncated toward zero, so a border
+  // coordinate -1 is in block 0 with remainder -1). A tile side is a power of two: then the
+  // quotient is a shift, with block - 1 added to a negative x first (software speed only; the
+  // general form stays for any other block, and both are tested to agree).
+  const bool pow2 = block > 0 && (block & (block - 1)) == 0;
+  const int k = pow2 ? std::countr_zero(static_cast<unsigned>(block)) : 0;
+  const auto quot = [pow2, k, block](int x) { return pow2 ? (x + ((x >> 31) & (block - 1))) >> k : x / block; };
+  const auto rem = [pow2, k, block, &quot](int x) { return pow2 ? x - (quot(x) << k) : x % block; };
+  // An arm is dropped when its texels lie in another block (selects, not branches: the shape
+  // changes from pixel to pixel).
+  const auto arm_if = [](Side s, bool dropped) { return static_cast<uint32_t>(arm(s).mask) * static_cast<uint32_t>(dropped); };
+  const bool same_x = (x5 == x4 + 1) & (quot(x4) == quot(x5));
+  const bool same_y = (y8 == y4 + 1) & (quot(y4) == quot(y8));
+  const uint32_t dropped = arm_if(Side::Top, same_y & (rem(y4) == 0))             // top arm in the block above
+                           | arm_if(Side::Bottom, same_y & (rem(y8) == block - 1))  // bottom arm in the block below
+                           | arm_if(Side::Left, same_x & (rem(x4) == 0))            // left arm in the block to the left
+                           | arm_if(Side::Right, same_x & (rem(x5) == block - 1));  // right arm in the block to the right
+  return static_cast<TexelMask>(kAllTexels & ~dropped);
 }
 
 LumaKeys luma_keys(const std::array<Texel4, kTexels>& c, TexelMask available, TexelFormat fmt) {

@@ -134,9 +134,19 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
     const Rgba8 outside = border();
     const auto word = [&](size_t cell) { return ((g.used >> cell) & 1u) ? level.at(col[cell & 3] + row[cell >> 2]) : outside; };
     if (cur.cross) {
+      // Every cross texel is read, at its address or, for a border cell, at the level's first
+      // texel, and then selected: the texel, the border word, or zero outside the shape (selects,
+      // not branches: the shape changes from pixel to pixel; the extra reads are the model's).
+      const uint32_t outside_word = std::bit_cast<uint32_t>(outside);
 #pragma GCC unroll 12
-      for (size_t k = 0; k < lee_jen::kTexels; ++k)
-        f.texels[k] = !((cur.tag.shape >> k) & 1u) ? Rgba8{0, 0, 0, 0} : word(kCrossCell[k]);
+      for (size_t k = 0; k < lee_jen::kTexels; ++k) {
+        const size_t cell = kCrossCell[k];
+        const bool read = ((g.used >> cell) & 1u) != 0, in_shape = ((cur.tag.shape >> k) & 1u) != 0;
+        const size_t offset = read ? col[cell & 3] + row[cell >> 2] : 0;
+        uint32_t v = std::bit_cast<uint32_t>(level.at(offset));
+        v = read ? v : outside_word;
+        f.texels[k] = std::bit_cast<Rgba8>(in_shape ? v : 0u);
+      }
     } else {
       size_t k = 0;
       for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)

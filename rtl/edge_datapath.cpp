@@ -15,6 +15,7 @@ struct DirectionTables {
   std::array<const std::array<uint8_t, 256>*, lee_jen::kDirections> rom{};
   std::array<std::array<uint8_t, 2>, lee_jen::kDirections> ends{};  // low-pass endpoints p, q
   std::array<uint32_t, lee_jen::kAllTexels + 1> usable{};
+  std::array<uint32_t, 256> choosable{};  // per ROM address: bit i = ROM i's entry is not "never"
 };
 const DirectionTables& direction_tables() {
   static const DirectionTables kTab = [] {
@@ -24,6 +25,9 @@ const DirectionTables& direction_tables() {
       t.ends[static_cast<size_t>(d.index)] = {static_cast<uint8_t>(d.p), static_cast<uint8_t>(d.q)};
     }
     for (uint32_t m = 0; m <= lee_jen::kAllTexels; ++m) t.usable[m] = lee_jen::usable_directions(static_cast<lee_jen::TexelMask>(m));
+    for (size_t a = 0; a < 256; ++a)
+      for (size_t i = 0; i < lee_jen::kDirections; ++i)
+        if ((*t.rom[i])[a] != lee_jen::kNeverChoose) t.choosable[a] |= 1u << i;
     return t;
   }();
   return kTab;
@@ -44,11 +48,11 @@ void weighted_differences(const DirectionTables& tab, const std::array<Texel4, l
   const auto endpoint = [&](size_t n) -> const Texel4& { return c[static_cast<size_t>(low[n] > 0 ? low[n] - 1 : 0)]; };
   // Every leaf whose direction the shape does not allow, or whose ROM entry says never, is the
   // invalid operand; the model evaluates only the other leaves' multipliers (the same values).
+  // (The never flags of the 22 ROM entries at `addr` form the word choosable[addr].)
   leaf.fill(kInvalidCandidate);
-  for (uint32_t m = usable; m != 0; m &= m - 1) {
+  for (uint32_t m = usable & tab.choosable[addr]; m != 0; m &= m - 1) {
     const auto i = static_cast<size_t>(std::countr_zero(m));
     const uint8_t w = (*tab.rom[i])[addr];
-    if (w == lee_jen::kNeverChoose) continue;
     const uint32_t dp = lee_jen::direction_difference(endpoint(tab.ends[i][0]), endpoint(tab.ends[i][1]), fmt);
     leaf[i] = candidate(w * dp, static_cast<int>(i));
   }

@@ -162,16 +162,18 @@ std::array<int32_t, kTexels> median_input_select(const lee_jen::LumaKeys& key, l
   std::array<int32_t, kTexels> in{};
   for (int n = 1; n <= kTexels; ++n) in[static_cast<size_t>(wire(n))] = key[static_cast<size_t>(n)];
   const auto has = [shape](int n) { return lee_jen::has_texel(shape, n); };
+  // Per centre texel, its two outer neighbours' inputs: the key when present; a T's missing one
+  // takes the opposite centre texel's key; an L corner's missing pair +inf and -inf, which leave
+  // the median of the other three. (Each outer texel belongs to one centre texel; selects, so
+  // that the model does not branch on the shape.)
   for (const lee_jen::CentreMedian& c : lee_jen::kCentreMedians) {
     const int o1 = c.outer[0], o2 = c.outer[1];
     const bool h1 = has(o1), h2 = has(o2);
-    if (h1 && h2) continue;
-    if (h1 || h2) {  // T: the missing outer neighbour is replaced by the opposite centre texel
-      in[static_cast<size_t>(wire(h1 ? o2 : o1))] = key[static_cast<size_t>(c.opposite)];
-    } else {  // L corner: +inf and -inf leave the median of the other three
-      in[static_cast<size_t>(wire(o1))] = kKeyPlusInfinity;
-      in[static_cast<size_t>(wire(o2))] = kKeyMinusInfinity;
-    }
+    const int32_t opposite = key[static_cast<size_t>(c.opposite)];
+    int32_t& in1 = in[static_cast<size_t>(wire(o1))];
+    int32_t& in2 = in[static_cast<size_t>(wire(o2))];
+    in1 = h1 ? in1 : (h2 ? opposite : kKeyPlusInfinity);
+    in2 = h2 ? in2 : (h1 ? opposite : kKeyMinusInfinity);
   }
   return in;
 }
@@ -184,8 +186,9 @@ lee_jen::LowIndex median_network_eval(const lee_jen::LumaKeys& key, lee_jen::Tex
   compare_cells(w, a_gt_b, std::make_index_sequence<static_cast<size_t>(kNetlist.ncells)>{});
   median3_selects(w, a_gt_b, std::make_index_sequence<static_cast<size_t>(kNetlist.nselects)>{});
   lee_jen::LowIndex low{};
-  for (int n = 1; n <= kTexels; ++n)
-    if ((shape >> (n - 1)) & 1u) low[static_cast<size_t>(n)] = w[static_cast<size_t>(kNetlist.out[static_cast<size_t>(n)])] & 15;
+  for (int n = 1; n <= kTexels; ++n)  // texels outside the shape have no low-pass value (0)
+    low[static_cast<size_t>(n)] =
+        w[static_cast<size_t>(kNetlist.out[static_cast<size_t>(n)])] & 15 & -static_cast<int32_t>((shape >> (n - 1)) & 1u);
   return low;
 }
 

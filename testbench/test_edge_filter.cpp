@@ -97,6 +97,31 @@ TEST(EdgeFilter, CacheBlockMaskPicksCrossTAndL) {
     }
 }
 
+// The rule of Sec. 3 written with C++'s / and % (truncating: a border coordinate -1 is in block 0
+// with remainder -1), against cache_block_mask's shift form for power-of-two blocks, exhaustively
+// over centre squares near and across block edges, wrapped seams and border columns.
+TEST(EdgeFilter, CacheBlockMaskEqualsTheDivisionRule) {
+  const auto rule = [](int x4, int x5, int y4, int y8, int b) {
+    TexelMask m = kAllTexels;
+    const bool same_x = x5 == x4 + 1 && x4 / b == x5 / b, same_y = y8 == y4 + 1 && y4 / b == y8 / b;
+    if (same_y && y4 % b == 0) m = static_cast<TexelMask>(m & ~arm(Side::Top).mask);
+    if (same_y && y8 % b == b - 1) m = static_cast<TexelMask>(m & ~arm(Side::Bottom).mask);
+    if (same_x && x4 % b == 0) m = static_cast<TexelMask>(m & ~arm(Side::Left).mask);
+    if (same_x && x5 % b == b - 1) m = static_cast<TexelMask>(m & ~arm(Side::Right).mask);
+    return m;
+  };
+  int cases = 0;
+  for (const int b : {1, 2, 3, 4, 8, 16, 64})
+    for (int x4 = -1; x4 < 40; ++x4)
+      for (const int x5 : {x4 + 1, 0, -1, x4})
+        for (int y4 = -1; y4 < 40; y4 += 3)
+          for (const int y8 : {y4 + 1, 0, -1}) {
+            ASSERT_EQ(cache_block_mask(x4, x5, y4, y8, b), rule(x4, x5, y4, y8, b)) << b << ' ' << x4 << ' ' << x5 << ' ' << y4 << ' ' << y8;
+            ++cases;
+          }
+  EXPECT_EQ(cases, 7 * 41 * 4 * 14 * 3);
+}
+
 TEST(EdgeFilter, SmoothLightMapStaysCloseToBilinear) {
   // Lee & Jen Sec. 2.3: on a light-map the result is almost identical to bilinear.
   Texture t;
