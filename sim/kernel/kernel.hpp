@@ -46,14 +46,17 @@ class Clocked {
 // channels in one loop without a virtual call per channel (commit_state() is inline). The state is
 // two free-running 32-bit counters, pushes (write) and pops (read): occupancy = write - read
 // (modulo 2^32), the ring slot of an entry its counter masked. A push or pop of this cycle moves
-// the `next` counters; the edge copies them into the committed ones (one 8-byte move).
+// the `next` counters; the edge copies them into the committed ones.
 class ChannelBase : public Clocked {
  public:
   size_t depth() const { return depth_; }
   size_t size() const { return now_.write - now_.read; }
   bool can_push() const { return now_.write - now_.read < depth_; }  // ready, registered
   bool can_pop() const { return now_.write != now_.read; }           // valid
-  void commit_state() { now_ = next_; }
+  void commit_state() {  // two 32-bit copies, each load forwarded from its own store
+    now_.write = next_.write;
+    now_.read = next_.read;
+  }
   void commit() final { commit_state(); }
   void reset() final { now_ = next_ = {}; }
 
