@@ -17,7 +17,10 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       cache_(c),
       mem_(m),
       fifo_(static_cast<size_t>(miss_fifo_depth)) {
-  for (const SamplerDescriptor& d : regs.samplers) any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
+  for (const SamplerDescriptor& d : regs.samplers) {
+    any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
+    record_shapes_ = record_shapes_ || (d.mode.base == BaseFilter::EdgePreserving && d.edge_shape == EdgeShape::CacheAware);
+  }
   for (const TextureDescriptor& d : regs.textures) {
     first_readout_.push_back(readout_.size());
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
@@ -69,8 +72,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     int missing_arms = 0;
     for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
-    if (shapes.size() <= cur.tag.id) shapes.resize(cur.tag.id + 1);
-    shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
+    if (record_shapes_) shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
   }
   entry.ready = ready;
 }

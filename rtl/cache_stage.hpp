@@ -57,7 +57,11 @@ class CacheStage : public sim::Module {
   // address).
   uint64_t accepted_tap_address(int k) const;
   int accepted_taps() const { return probes_ ? accepted_.ntaps() : 0; }
-  // Kernel shape chosen per pixel, probe and level (edge modes; for the golden compare of cache-aware).
+  // Kernel shape chosen per pixel, probe and level, for the golden compare of cache-aware shapes:
+  // recorded when some sampler is EDGE_PRESERVING with the cache-aware policy (records_shapes();
+  // the other policies' shapes follow from the descriptors), into `shapes` sized by the caller to
+  // one entry per request before the run.
+  bool records_shapes() const { return record_shapes_; }
   std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
   std::array<uint64_t, 4> stage_hits{}, stage_misses{};
@@ -84,6 +88,7 @@ class CacheStage : public sim::Module {
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
+  bool record_shapes_ = false;             // some EDGE_PRESERVING sampler is cache-aware (shapes)
   bool probes_ = false;                    // waveform probes recorded (probes())
   uint32_t accepted_id_ = 0;
   uint64_t accepted_line_ = 0;

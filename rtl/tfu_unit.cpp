@@ -70,6 +70,7 @@ struct Unit {
         shape(sim, c_addr, c_shape, frame.regs),
         cst(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
         sink(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
+    if (cst.records_shapes()) cst.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
     bool any_edge = false, any_filter = false;
     for (const SamplerDescriptor& s : frame.regs.samplers)
       (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;

@@ -33,7 +33,9 @@ namespace tfu::rtl {
 struct UnitOutput {
   std::vector<Rgba8> pixels;              // in request order
   std::vector<uint64_t> response_cycle;   // cycle each pixel left the unit
-  std::vector<ProbeShapes> edge_shapes;   // per pixel, probe and level0/level1 (edge modes)
+  // Per pixel, probe and level0/level1: the edge kernel shape, when some sampler of the frame is
+  // EDGE_PRESERVING with the cache-aware policy (the golden compare needs them); else empty.
+  std::vector<ProbeShapes> edge_shapes;
   uint64_t cycles = 0;
   // Counters, values, histograms, and the tables "textures" (per texture descriptor: requests,
   // line hits, line misses, memory bytes) and "stages" (the same per material stage).

@@ -143,8 +143,21 @@ TEST(TfuUnit, CacheAwareShapesContainTheStaticShapes) {
   const UnitConfig u = small_cache(4);
   cfg.edge_shape = EdgeShape::CacheAware;
   const UnitOutput aware = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, u, "cache-aware");
+  // The static run: its requests name a static sampler; a cache-aware one is bound beside it
+  // (unused), so that the unit records the shapes (UnitOutput::edge_shapes).
   cfg.edge_shape = EdgeShape::Static;
-  const UnitOutput fixed = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+  EXPECT_TRUE(run_one(*mesh.stages[0].texture, cfg, st.trace, u).edge_shapes.empty());  // not recorded
+  FrameBuilder b(u.cache.line_bytes);
+  b.add_texture(std::make_shared<const Texture>(*mesh.stages[0].texture), {"test", {}});
+  b.add_sampler(cfg);
+  SamplerDescriptor unused = cfg;
+  unused.edge_shape = EdgeShape::CacheAware;
+  b.add_sampler(unused);
+  Trace tr = st.trace;
+  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
+  bind_requests(b, tr);
+  const UnitOutput fixed = run_unit(b.finish(), tr, u);
+  ASSERT_EQ(aware.edge_shapes.size(), tr.requests.size());
   ASSERT_EQ(aware.edge_shapes.size(), fixed.edge_shapes.size());
   size_t wider = 0;
   for (size_t i = 0; i < aware.edge_shapes.size(); ++i) {
