@@ -98,6 +98,19 @@ const std::array<uint8_t, 256>& direction_weight_rom(int dir) {
   return kRoms.at(static_cast<size_t>(dir));
 }
 
+uint32_t choosable_directions(size_t address) {
+  static const std::array<uint32_t, 256> kChoosable = [] {
+    std::array<uint32_t, 256> c{};
+    for (int i = 0; i < kDirections; ++i) {
+      const std::array<uint8_t, 256>& rom = direction_weight_rom(i);
+      for (size_t a = 0; a < rom.size(); ++a)
+        if (rom[a] != kNeverChoose) c[a] |= 1u << i;
+    }
+    return c;
+  }();
+  return kChoosable.at(address);
+}
+
 double decode_weight(uint8_t code) {
   if (code == kNeverChoose) return std::numeric_limits<double>::infinity();
   return code / static_cast<double>(1 << kWeightFracBits);

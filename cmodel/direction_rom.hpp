@@ -54,6 +54,9 @@ double distance_to_direction(int dir, double x, double y);
 double exact_weight(int dir, double x, double y);
 // The ROM of direction i: 256 codes, address (yf4 << 4) | xf4.
 const std::array<uint8_t, 256>& direction_weight_rom(int dir);
+// The 22 ROMs' never flags at one address, as a 22-bit mask: bit i = direction i's code at
+// `address` (0..255) is not kNeverChoose (read once from the ROMs into a table).
+uint32_t choosable_directions(size_t address);
 // Real weight of a code (infinity for kNeverChoose).
 double decode_weight(uint8_t code);
 

@@ -79,11 +79,9 @@ struct DirectionTable {
     const auto i = static_cast<size_t>(x.index);
     d.dir[i] = {static_cast<uint8_t>(x.p), static_cast<uint8_t>(x.q), x.axis == BlendAxis::X};
     const std::array<uint8_t, 256>& rom = direction_weight_rom(x.index);
-    for (size_t a = 0; a < rom.size(); ++a) {
-      d.weight[a][i] = rom[a];
-      if (rom[a] != kNeverChoose) d.choosable[a] |= 1u << i;
-    }
+    for (size_t a = 0; a < rom.size(); ++a) d.weight[a][i] = rom[a];
   }
+  for (size_t a = 0; a < d.choosable.size(); ++a) d.choosable[a] = choosable_directions(a);
   for (uint32_t m = 0; m <= kAllTexels; ++m) d.usable[m] = usable_directions(static_cast<TexelMask>(m));
   return d;
 }

@@ -8,7 +8,7 @@ namespace tfu::rtl {
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
                        const WeightRomBank& roms)
-    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs), roms_(roms) {
+    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs) {
   for (size_t k = 0; k < regs.samplers.size(); ++k) {
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));

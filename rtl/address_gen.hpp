@@ -62,7 +62,6 @@ class AddressGen : public sim::Module {
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
   const Registers& regs_;
-  const WeightRomBank& roms_;
   template <WrapMode kWs, WrapMode kWt, bool kCross>
   static void grid_fixed(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
                          const ProbeLevelOffset* o);

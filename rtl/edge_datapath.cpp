@@ -25,9 +25,7 @@ const DirectionTables& direction_tables() {
       t.ends[static_cast<size_t>(d.index)] = {static_cast<uint8_t>(d.p), static_cast<uint8_t>(d.q)};
     }
     for (uint32_t m = 0; m <= lee_jen::kAllTexels; ++m) t.usable[m] = lee_jen::usable_directions(static_cast<lee_jen::TexelMask>(m));
-    for (size_t a = 0; a < 256; ++a)
-      for (size_t i = 0; i < lee_jen::kDirections; ++i)
-        if ((*t.rom[i])[a] != lee_jen::kNeverChoose) t.choosable[a] |= 1u << i;
+    for (size_t a = 0; a < t.choosable.size(); ++a) t.choosable[a] = lee_jen::choosable_directions(a);
     return t;
   }();
   return kTab;

@@ -70,6 +70,23 @@ TEST(DirectionRom, EveryAddressMatchesGeometryExhaustive) {
   }
 }
 
+// The never-flag word both models read (choosable_directions) is the ROM contents, exhaustively;
+// every address has some choosable direction.
+TEST(DirectionRom, ChoosableWordsAreTheRomsNeverFlags) {
+  int never = 0;
+  for (size_t a = 0; a < 256; ++a) {
+    const uint32_t word = choosable_directions(a);
+    EXPECT_EQ(word >> kDirections, 0u) << a;
+    EXPECT_NE(word, 0u) << a;
+    for (int i = 0; i < kDirections; ++i) {
+      const bool choosable = direction_weight_rom(i)[a] != kNeverChoose;
+      ASSERT_EQ(((word >> i) & 1u) != 0, choosable) << a << ' ' << i;
+      never += !choosable;
+    }
+  }
+  EXPECT_GT(never, 0);  // some entries say never: the word is not all ones
+}
+
 TEST(DirectionRom, HandDerivedCodes) {
   const auto& h = direction_weight_rom(0);  // C4-C5, horizontal, ROI 0.5
   // xf4 = yf4 = 0: d = 1/32, w = 1/(1 - 1/16) = 16/15, code round(17.07) = 17.
