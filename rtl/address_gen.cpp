@@ -3,8 +3,12 @@
 #include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/fixed_coord.hpp"
+#include "rtl/address_gen_detail.hpp"
 
 namespace tfu::rtl {
+
+using address_detail::cells_inside;
+using address_detail::probe_coord;
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
                        const WeightRomBank& roms)
@@ -12,32 +16,14 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
   for (size_t k = 0; k < regs.samplers.size(); ++k) {
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));
-    const auto wraps = static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t));
-    decoded_.push_back({c.mode.base == BaseFilter::Linear           ? fixed_grid<false>(wraps, std::make_index_sequence<16>())
-                        : c.mode.base == BaseFilter::EdgePreserving ? fixed_grid<true>(wraps, std::make_index_sequence<16>())
-                                                                    : &grid_any,
-                        rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
+    GridFn grid = &grid_any;
+    if (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving)
+      grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving, c.wrap_s, c.wrap_t);
+    decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
   }
 }
 
 namespace {
-
-// The centre's level coordinate (dp::texel_coord), plus an anisotropic probe's offset on the
-// level (dp::probe_texel_coord) when there is one.
-[[gnu::always_inline]] inline dp::LevelCoord probe_coord(float s, int size, const ProbeLevelOffset* o, int64_t offset_q8) {
-  const dp::LevelCoord c = dp::texel_coord(s, size);
-  return o ? dp::probe_texel_coord(c, offset_q8) : c;
-}
-
-// Grid cells whose column or row lies outside the texture (clamp-to-border: -1) read the border.
-uint16_t cells_inside(const TapGrid& g) {
-  uint16_t out = 0xFFFF;
-  for (int i = 0; i < g.cols; ++i)
-    if (g.x[static_cast<size_t>(i)] < 0) out = static_cast<uint16_t>(out & ~(0x1111u << i));
-  for (int j = 0; j < g.rows; ++j)
-    if (g.y[static_cast<size_t>(j)] < 0) out = static_cast<uint16_t>(out & ~(0xFu << (4 * j)));
-  return out;
-}
 
 // NEAREST: i = floor(s W) (GL); an anisotropic probe: the probe offset's carry into it
 // (dp::probe_nearest_tap).
@@ -91,37 +77,6 @@ void AddressGen::grid_any(const SamplerDescriptor& c, int taps, int first_tap, F
   g.used = f.cross ? cross_cells(lee_jen::kAllTexels) : square_cells(g.cols, g.rows);
   if (c.wrap_s == WrapMode::ClampToBorder || c.wrap_t == WrapMode::ClampToBorder)
     g.used = static_cast<uint16_t>(g.used & cells_inside(g));
-}
-
-// LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
-// around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis
-// with the modes fixed (dp::wrap_taps): the same grid as grid_any's.
-template <WrapMode kWs, WrapMode kWt, bool kCross>
-void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
-                            const ProbeLevelOffset* o) {
-  constexpr int kTaps = kCross ? 4 : 2, kFirst = kCross ? -1 : 0;
-  const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
-  f.tag.fu = u.f;
-  f.tag.fv = v.f;
-  int col[kTaps], row[kTaps];
-  dp::wrap_taps<kWs, kTaps>(u.i0 + kFirst, w, col);
-  dp::wrap_taps<kWt, kTaps>(v.i0 + kFirst, h, row);
-  TapGrid& g = f.grid;
-  g.cols = g.rows = kTaps;
-  for (size_t i = 0; i < kTaps; ++i) {
-    g.x[i] = static_cast<int16_t>(col[i]);
-    g.y[i] = static_cast<int16_t>(row[i]);
-  }
-  f.cross = kCross;
-  g.used = kCross ? cross_cells(lee_jen::kAllTexels) : square_cells(2, 2);
-  if constexpr (kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder)
-    g.used = static_cast<uint16_t>(g.used & cells_inside(g));
-}
-
-template <bool kCross, size_t... k>
-AddressGen::GridFn AddressGen::fixed_grid(size_t wrap_pair, std::index_sequence<k...>) {
-  static constexpr GridFn kTable[] = {&grid_fixed<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4), kCross>...};
-  return kTable[wrap_pair];
 }
 
 void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o) const {

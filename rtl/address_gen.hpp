@@ -51,7 +51,8 @@ class AddressGen : public sim::Module {
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`
   // for an anisotropic probe. grid_any forms every filter's grid with the wrap modes read at run
   // time (the plain unit); LINEAR and the edge cross use one function per pair of wrap modes
-  // (grid_fixed, chosen per sampler at reset; software speed only, equal to grid_any: tested).
+  // (fixed_wrap_grid, chosen per sampler at reset, in rtl/address_gen_fixed_grids.cpp; software
+  // speed only, equal to grid_any: tested).
   using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float,
                           const ProbeLevelOffset*);
   static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
@@ -62,6 +63,8 @@ class AddressGen : public sim::Module {
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
   const Registers& regs_;
+  // The per-wrap-pair grid of LINEAR (cross false) or the edge cross (cross true).
+  static GridFn fixed_wrap_grid(bool cross, WrapMode wrap_s, WrapMode wrap_t);
   template <WrapMode kWs, WrapMode kWt, bool kCross>
   static void grid_fixed(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
                          const ProbeLevelOffset* o);

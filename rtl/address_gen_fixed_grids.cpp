@@ -1,0 +1,52 @@
+// The address generator's per-wrap-pair grids: LINEAR and the edge cross with both wrap modes
+// fixed at compile time, one function per pair, chosen per sampler descriptor at reset
+// (AddressGen::fixed_wrap_grid). Software speed only: the plain unit is AddressGen::grid_any
+// in rtl/address_gen.cpp, which reads the wrap modes at run time; these must form the same grid
+// (TfuUnit.FixedWrapGridsEqualThePlainAddressUnit compares them over every wrap pair, level
+// sizes and probe offsets).
+#include "cmodel/datapath.hpp"
+#include "rtl/address_gen.hpp"
+#include "rtl/address_gen_detail.hpp"
+
+namespace tfu::rtl {
+
+using address_detail::cells_inside;
+using address_detail::probe_coord;
+
+// LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
+// around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis
+// with the modes fixed (dp::wrap_taps): the same grid as grid_any's.
+template <WrapMode kWs, WrapMode kWt, bool kCross>
+void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
+                            const ProbeLevelOffset* o) {
+  constexpr int kTaps = kCross ? 4 : 2, kFirst = kCross ? -1 : 0;
+  const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
+  f.tag.fu = u.f;
+  f.tag.fv = v.f;
+  int col[kTaps], row[kTaps];
+  dp::wrap_taps<kWs, kTaps>(u.i0 + kFirst, w, col);
+  dp::wrap_taps<kWt, kTaps>(v.i0 + kFirst, h, row);
+  TapGrid& g = f.grid;
+  g.cols = g.rows = kTaps;
+  for (size_t i = 0; i < kTaps; ++i) {
+    g.x[i] = static_cast<int16_t>(col[i]);
+    g.y[i] = static_cast<int16_t>(row[i]);
+  }
+  f.cross = kCross;
+  g.used = kCross ? cross_cells(lee_jen::kAllTexels) : square_cells(2, 2);
+  if constexpr (kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder)
+    g.used = static_cast<uint16_t>(g.used & cells_inside(g));
+}
+
+template <bool kCross, size_t... k>
+AddressGen::GridFn AddressGen::fixed_grid(size_t wrap_pair, std::index_sequence<k...>) {
+  static constexpr GridFn kTable[] = {&grid_fixed<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4), kCross>...};
+  return kTable[wrap_pair];
+}
+
+AddressGen::GridFn AddressGen::fixed_wrap_grid(bool cross, WrapMode wrap_s, WrapMode wrap_t) {
+  const auto pair = static_cast<size_t>(4 * static_cast<int>(wrap_s) + static_cast<int>(wrap_t));
+  return cross ? fixed_grid<true>(pair, std::make_index_sequence<16>()) : fixed_grid<false>(pair, std::make_index_sequence<16>());
+}
+
+}  // namespace tfu::rtl
