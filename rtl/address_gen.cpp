@@ -99,47 +99,54 @@ void AddressGen::next_probe() {
 
 void AddressGen::evaluate() {
   if (!holding_ && in_.can_pop()) {
-    const PixelReq& p = in_.front();
-    pixel_ = p;
-    const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
-    // Without MIP-mapping level 0 alone (GL), whatever lambda.
-    pick_ = c.mode.mip == MipMode::None ? LevelPick{} : select_levels(p.lambda, c, regs_.textures[p.req.texture].levels - 1);
-    count_ = pick_.blend != 0 ? 2 : 1;
+    begin(in_.front());
     in_.pop();
     holding_ = true;
-    sent_ = 0;
-    probe_ = -1;
-    ++probe_hist_[static_cast<size_t>(pixel_.probes)];
-    if (pixel_.probes > 1) next_probe();
     sim_.progress();
   }
   if (holding_ && out_.can_push()) {
     // The footprint is formed straight in the output register (no copy).
-    FootprintReq& f = out_.push_slot();
-    const int level = sent_ == 0 ? pick_.level0 : pick_.level1;
-    if (pixel_.probes == 1) {
-      footprint(f, pixel_, level, nullptr);
-    } else {  // probe probe_ + 1 of N: its offset on this level
-      const ProbeLevelOffset o{dp::probe_offset_on_level(offset_.du_q16, level), dp::probe_offset_on_level(offset_.dv_q16, level)};
-      footprint(f, pixel_, level, &o);
-      f.tag.probes = static_cast<uint8_t>(pixel_.probes);
-      f.tag.probe = static_cast<uint8_t>(probe_);
-    }
-    if (count_ == 2) {
-      f.tag.two = true;
-      f.tag.second = sent_ == 1;
-      f.tag.blend = pick_.blend;
-    }
-    if (++sent_ == count_) {
-      if (pixel_.probes > 1 && probe_ + 1 < pixel_.probes) {
-        sent_ = 0;
-        next_probe();
-      } else {
-        holding_ = false;
-      }
-    }
+    if (issue(out_.push_slot())) holding_ = false;
     sim_.progress();
   }
+}
+
+void AddressGen::begin(const PixelReq& p) {
+  pixel_ = p;
+  const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
+  // Without MIP-mapping level 0 alone (GL), whatever lambda.
+  pick_ = c.mode.mip == MipMode::None ? LevelPick{} : select_levels(p.lambda, c, regs_.textures[p.req.texture].levels - 1);
+  count_ = pick_.blend != 0 ? 2 : 1;
+  sent_ = 0;
+  probe_ = -1;
+  ++probe_hist_[static_cast<size_t>(pixel_.probes)];
+  if (pixel_.probes > 1) next_probe();
+}
+
+bool AddressGen::issue(FootprintReq& f) {
+  const int level = sent_ == 0 ? pick_.level0 : pick_.level1;
+  if (pixel_.probes == 1) {
+    footprint(f, pixel_, level, nullptr);
+  } else {  // probe probe_ + 1 of N: its offset on this level
+    const ProbeLevelOffset o{dp::probe_offset_on_level(offset_.du_q16, level), dp::probe_offset_on_level(offset_.dv_q16, level)};
+    footprint(f, pixel_, level, &o);
+    f.tag.probes = static_cast<uint8_t>(pixel_.probes);
+    f.tag.probe = static_cast<uint8_t>(probe_);
+  }
+  if (count_ == 2) {
+    f.tag.two = true;
+    f.tag.second = sent_ == 1;
+    f.tag.blend = pick_.blend;
+  }
+  if (++sent_ == count_) {
+    if (pixel_.probes > 1 && probe_ + 1 < pixel_.probes) {
+      sent_ = 0;
+      next_probe();
+    } else {
+      return true;
+    }
+  }
+  return false;
 }
 
 void AddressGen::publish(sim::Stats& st) const {

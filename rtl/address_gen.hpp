@@ -46,6 +46,10 @@ class AddressGen : public sim::Module {
   // The footprint of (s, t) on `level` (the combinational part of the block), formed in `f`; with
   // `o`, of an anisotropic probe at that offset from (s, t) (Q.8 texels of the level).
   void footprint(FootprintReq& f, const PixelReq& p, int level, const ProbeLevelOffset* o = nullptr) const;
+  // The sequencer, without the handshakes: begin() takes a pixel (level selection, probe count);
+  // each issue() forms its next level footprint in `f` and returns true with the pixel's last.
+  void begin(const PixelReq& p);
+  bool issue(FootprintReq& f);
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
   void publish(sim::Stats& st) const;
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`

@@ -30,8 +30,13 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
 [[gnu::always_inline]] inline void CacheStage::accept(uint64_t now) {
   Entry& entry = fifo_.push_back();  // the footprint goes straight into the miss FIFO
   entry.f = in_.front();
-  FootprintReq& cur = entry.f;
   in_.pop();
+  int bank_cycles = 1;
+  entry.ready = admit(entry.f, now, bank_cycles);
+  port_free_ = now + static_cast<uint64_t>(bank_cycles);
+}
+
+[[gnu::always_inline]] inline uint64_t CacheStage::admit(FootprintReq& cur, uint64_t now, int& bank_cycles) {
   const TapGrid& g = cur.grid;
   const bool edge = cur.tag.base == BaseFilter::EdgePreserving;
   const int texture = cur.tag.req.texture;
@@ -65,8 +70,8 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     last_misses_ = r.misses;
     if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   }
-  port_free_ = now + static_cast<uint64_t>(std::max(r.cycles, 1));
-  uint64_t ready = port_free_ - 1;
+  bank_cycles = std::max(r.cycles, 1);
+  uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
   for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));
   if (edge) {
     int missing_arms = 0;
@@ -74,8 +79,10 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
     if (record_shapes_) shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
   }
-  entry.ready = ready;
+  return ready;
 }
+
+uint64_t CacheStage::admit_footprint(FootprintReq& f, uint64_t now, int& bank_cycles) { return admit(f, now, bank_cycles); }
 
 uint64_t CacheStage::accepted_tap_address(int k) const {
   if (!probes_ || k < 0 || k >= accepted_.ntaps()) return 0;
@@ -111,8 +118,15 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
 // texel (not read).
 [[gnu::always_inline]] inline void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
+  read_out(cur, out_of(cur).push_slot());
+  fifo_.pop_front();
+  sim_.progress();
+}
+
+void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const { read_out(cur, f); }
+
+[[gnu::always_inline]] inline void CacheStage::read_out(const FootprintReq& cur, FilterReq& f) const {
   const TapGrid& g = cur.grid;
-  FilterReq& f = out_of(cur).push_slot();
   f.tag = cur.tag;
   f.ntaps = cur.ntaps();
   const LevelReadout& level = readout_[first_readout_[cur.tag.req.texture] + static_cast<size_t>(cur.level)];
@@ -155,8 +169,6 @@ void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
         for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(4 * j + i);
     }
   }
-  fifo_.pop_front();
-  sim_.progress();
 }
 
 void CacheStage::evaluate() {

@@ -65,6 +65,18 @@ class CacheStage : public sim::Module {
   std::vector<ProbeShapes> shapes;
   // Lines found and fetched per material stage (0..3).
   std::array<uint64_t, 4> stage_hits{}, stage_misses{};
+  // The block without its miss FIFO and handshakes (the timing recurrences of
+  // rtl/unit_recurrence.cpp drive these; evaluate() uses the same code): admit_footprint looks a
+  // footprint up at cycle `now` (cache-aware arms, tags, memory reads, statistics) and returns the
+  // cycle its lines are all in, with the cycles it holds the tag/bank port; read_out_footprint
+  // forms its texel words; add_stalls adds stall cycles counted outside evaluate().
+  uint64_t admit_footprint(FootprintReq& f, uint64_t now, int& bank_cycles);
+  void read_out_footprint(const FootprintReq& f, FilterReq& out) const;
+  void add_stalls(uint64_t miss, uint64_t bank, uint64_t back) {
+    stall_miss_ += miss;
+    stall_bank_ += bank;
+    stall_back_ += back;
+  }
 
  private:
   sim::Channel<FootprintReq>& in_;
@@ -101,6 +113,8 @@ class CacheStage : public sim::Module {
   // The input and output halves of evaluate() (inline: once per cycle each).
   inline void accept(uint64_t now);
   inline void emit();
+  inline uint64_t admit(FootprintReq& cur, uint64_t now, int& bank_cycles);
+  inline void read_out(const FootprintReq& cur, FilterReq& f) const;
 };
 
 }  // namespace tfu::rtl

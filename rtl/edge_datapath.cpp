@@ -89,41 +89,52 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
 
 void EdgeMedian::evaluate() {
   if (!in_.can_pop() || !out_.can_push()) return;
-  const FilterReq& r = in_.front();
-  EdgeS1& s = out_.push_slot();
-  s.tag = r.tag;
-  const TexelFormat fmt = r.tag.format;
-  for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt);
-  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.tag.shape, fmt), r.tag.shape);
+  stage(in_.front(), out_.push_slot());
   in_.pop();
   sim_.progress();
 }
 
+void EdgeMedian::stage(const FilterReq& r, EdgeS1& s) {
+  s.tag = r.tag;
+  const TexelFormat fmt = r.tag.format;
+  for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt);
+  s.low = median_network_eval(lee_jen::luma_keys(s.c, r.tag.shape, fmt), r.tag.shape);
+}
+
 void EdgeDirection::evaluate() {
   if (!in_.can_pop() || !out_.can_push()) return;
-  const EdgeS1& s = in_.front();
-  EdgeS2& o = out_.push_slot();
+  stage(in_.front(), out_.push_slot());
+  in_.pop();
+  sim_.progress();
+}
+
+void EdgeDirection::stage(const EdgeS1& s, EdgeS2& o) {
   o.s1 = s;
   o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, s.tag.format).direction;
   ++chosen[static_cast<size_t>(o.direction)];
-  in_.pop();
-  sim_.progress();
 }
 
 void EdgeMerge::evaluate() {
   if (!in_.can_pop()) return;
   const EdgeS2& s = in_.front();
+  if (s.s1.tag.emits() && !out_.can_push()) return;
+  Response out;
+  if (merge(s, out)) out_.push(out);
+  in_.pop();
+  sim_.progress();
+}
+
+bool EdgeMerge::merge(const EdgeS2& s, Response& out) {
   const LevelTag& tag = s.s1.tag;
-  if (tag.emits() && !out_.can_push()) return;
   Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, tag.fu, tag.fv, tag.format);
   if (tag.holds()) {
     first_ = c;
-  } else {
-    if (tag.two) c = dp::level_blend(first_, c, tag.blend);
-    if (probes_.add(tag, c)) out_.push({tag.id, encode_texel(c, tag.format)});
+    return false;
   }
-  in_.pop();
-  sim_.progress();
+  if (tag.two) c = dp::level_blend(first_, c, tag.blend);
+  if (!probes_.add(tag, c)) return false;
+  out = {tag.id, encode_texel(c, tag.format)};
+  return true;
 }
 
 }  // namespace tfu::rtl

@@ -47,6 +47,8 @@ class EdgeMedian : public sim::Module {
       : Module(s, "edge_median"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+  // The stage's combinational part (evaluate() and the timing recurrences of rtl/unit_recurrence.cpp).
+  static void stage(const FilterReq& r, EdgeS1& s);
 
  private:
   sim::Channel<FilterReq>& in_;
@@ -60,6 +62,8 @@ class EdgeDirection : public sim::Module {
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
   std::array<uint64_t, lee_jen::kDirections> chosen{};  // histogram of chosen directions
+  // The stage's combinational part (and the histogram).
+  void stage(const EdgeS1& s, EdgeS2& o);
 
  private:
   sim::Channel<EdgeS1>& in_;
@@ -72,6 +76,9 @@ class EdgeMerge : public sim::Module {
       : Module(s, "edge_merge"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+  // The stage's datapath: true with the pixel's response in `out` when the footprint completes one
+  // (LevelTag::emits()).
+  bool merge(const EdgeS2& s, Response& out);
 
  private:
   sim::Channel<EdgeS2>& in_;

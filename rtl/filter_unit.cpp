@@ -32,7 +32,7 @@ Texel4 FilterUnit::filter_level(const FilterReq& r, TexelFormat unpack) const {
 void FilterUnit::evaluate() {
   if (!in_.can_pop()) return;
   const FilterReq& r = in_.front();
-  if (remaining_ < 0) remaining_ = extra_clocks_[static_cast<size_t>(r.ntaps)];
+  if (remaining_ < 0) remaining_ = extra_clocks(r.ntaps);
   if (remaining_ > 0) {  // the lanes are still working on this footprint
     --remaining_;
     ++busy_cycles_;
@@ -40,33 +40,44 @@ void FilterUnit::evaluate() {
     return;
   }
   if (r.tag.emits() && !out_.can_push()) return;
+  Response out;
+  if (filter(r, out)) out_.push(out);
+  in_.pop();
+  remaining_ = -1;
+  sim_.progress();
+}
+
+bool FilterUnit::filter(const FilterReq& r, Response& out) {
   if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2) {
     // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8)
     const auto& w = r.texels;
     const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.holds()) {
       first8_ = c8;
-    } else if (r.tag.probes == 1) {
-      out_.push_slot() = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
-    } else {  // an anisotropic probe: the probe accumulator
-      const Rgba8 p = r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
-      Texel4 c{p.r, p.g, p.b, p.a};
-      if (probes_.add(r.tag, c)) out_.push({r.tag.id, encode_texel(c, r.tag.format)});
+      return false;
     }
-  } else {
-    // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
-    const bool coeffs = regs_.textures[r.tag.req.texture].content == TextureContent::BsplineCoefficients;
-    Texel4 c = filter_level(r, coeffs ? TexelFormat::RGBA8 : r.tag.format);
-    if (r.tag.holds()) {
-      first_ = c;
-    } else {
-      if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
-      if (probes_.add(r.tag, c)) out_.push({r.tag.id, encode_texel(c, r.tag.format)});
+    if (r.tag.probes == 1) {
+      out = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
+      return true;
     }
+    // an anisotropic probe: the probe accumulator
+    const Rgba8 p = r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
+    Texel4 c{p.r, p.g, p.b, p.a};
+    if (!probes_.add(r.tag, c)) return false;
+    out = {r.tag.id, encode_texel(c, r.tag.format)};
+    return true;
   }
-  in_.pop();
-  remaining_ = -1;
-  sim_.progress();
+  // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
+  const bool coeffs = regs_.textures[r.tag.req.texture].content == TextureContent::BsplineCoefficients;
+  Texel4 c = filter_level(r, coeffs ? TexelFormat::RGBA8 : r.tag.format);
+  if (r.tag.holds()) {
+    first_ = c;
+    return false;
+  }
+  if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
+  if (!probes_.add(r.tag, c)) return false;
+  out = {r.tag.id, encode_texel(c, r.tag.format)};
+  return true;
 }
 
 std::string FilterUnit::state() const { return fmt::format("{}, {}, lanes busy {}", in_.state(), out_.state(), remaining_); }

@@ -33,6 +33,13 @@ class FilterUnit : public sim::Module {
   void evaluate() override;
   std::string state() const override;
   uint64_t busy_cycles() const { return busy_cycles_; }
+  // The block without its handshakes (evaluate() and the timing recurrences of
+  // rtl/unit_recurrence.cpp): the clocks a footprint of `ntaps` texels keeps the lanes busy before
+  // it leaves (ceil(ntaps / (4 lanes)) - 1), and its filtering, true with the pixel's response in
+  // `out` when the footprint completes one (LevelTag::emits()).
+  int extra_clocks(int ntaps) const { return extra_clocks_[static_cast<size_t>(ntaps)]; }
+  bool filter(const FilterReq& r, Response& out);
+  void add_busy_cycles(uint64_t n) { busy_cycles_ += n; }
 
  private:
   sim::Channel<FilterReq>& in_;

@@ -41,11 +41,14 @@ class KernelSelect : public sim::Module {
     FootprintReq& f = out_.push_slot();
     f = in_.front();
     in_.pop();
-    if (f.tag.base == BaseFilter::EdgePreserving) {
-      const TextureDescriptor& t = regs_.textures[f.tag.req.texture];
-      select(f, regs_.samplers[f.tag.req.sampler].edge_shape, t.layout == MemoryLayout::Tiled ? t.tile_side() : 0);
-    }
+    shape(f);
     sim_.progress();
+  }
+  // The block's combinational part: an edge footprint's shape from its descriptors (others pass).
+  void shape(FootprintReq& f) const {
+    if (f.tag.base != BaseFilter::EdgePreserving) return;
+    const TextureDescriptor& t = regs_.textures[f.tag.req.texture];
+    select(f, regs_.samplers[f.tag.req.sampler].edge_shape, t.layout == MemoryLayout::Tiled ? t.tile_side() : 0);
   }
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
 

@@ -42,12 +42,16 @@ class LodUnit : public sim::Module {
       sim_.progress();
     }
     if (holding_ && out_.can_push()) {
-      const auto k = static_cast<size_t>(k_);
-      out_.push_slot() = {quad_.id + static_cast<uint32_t>(k_), quad_.req, quad_.s[k], quad_.t[k], lod_.lambda_q8,
-                          lod_.probes, lod_.major_du_q16, lod_.major_dv_q16};
+      out_.push_slot() = pixel(quad_, lod_, k_);
       if (++k_ == quad_.npix) holding_ = false;
       sim_.progress();
     }
+  }
+  // The combinational parts: lambda and the anisotropic footprint of a quad (quad_lod below), and
+  // its pixel k.
+  static PixelReq pixel(const QuadReq& q, const AnisoLod& lod, int k) {
+    const auto i = static_cast<size_t>(k);
+    return {q.id + static_cast<uint32_t>(k), q.req, q.s[i], q.t[i], lod.lambda_q8, lod.probes, lod.major_du_q16, lod.major_dv_q16};
   }
   std::string state() const override { return fmt::format("{}, {}, holding {}", in_.state(), out_.state(), holding_); }
   bool busy() const { return holding_; }
@@ -67,6 +71,8 @@ class LodUnit : public sim::Module {
     if (mode_ == TraceMode::Quad) return derivatives_from_quad(q.s.data(), q.t.data(), tex.width, tex.height);
     return derivatives_from_gradients(q.dsdx, q.dtdx, q.dsdy, q.dtdy, tex.width, tex.height);
   }
+
+ public:
   // lambda and the anisotropic footprint of one quad (or pixel).
   AnisoLod quad_lod(const QuadReq& q) const {
     const SamplerDescriptor& smp = regs_.samplers[q.req.sampler];

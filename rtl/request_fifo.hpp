@@ -22,23 +22,27 @@ class RequestFifo : public sim::Module {
   void evaluate() override {
     if (next_ >= trace_.requests.size() || !out_.can_push()) return;
     QuadReq& q = out_.push_slot();  // formed in the output register
-    q.id = static_cast<uint32_t>(next_);
-    q.npix = trace_.mode == TraceMode::Quad ? 4 : 1;
+    form_quad(trace_, next_, q);
+    for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) accept_[next_ + k] = sim_.cycle();
+    next_ += static_cast<size_t>(q.npix);
+    sim_.progress();
+  }
+  // The combinational part: the quad (or pixel) of `trace` that starts at request `first`.
+  static void form_quad(const Trace& trace, size_t first, QuadReq& q) {
+    q.id = static_cast<uint32_t>(first);
+    q.npix = trace.mode == TraceMode::Quad ? 4 : 1;
     for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) {
-      const TraceRequest& r = trace_.requests[next_ + k];
+      const TraceRequest& r = trace.requests[first + k];
       q.s[k] = r.s;
       q.t[k] = r.t;
-      accept_[next_ + k] = sim_.cycle();
     }
-    const TraceRequest& r = trace_.requests[next_];
+    const TraceRequest& r = trace.requests[first];
     q.req = {r.texture, r.sampler, r.stage};
     q.lod = r.lod;
     q.dsdx = r.dsdx;
     q.dtdx = r.dtdx;
     q.dsdy = r.dsdy;
     q.dtdy = r.dtdy;
-    next_ += static_cast<size_t>(q.npix);
-    sim_.progress();
   }
   std::string state() const override { return out_.state(); }
 

@@ -34,17 +34,19 @@ class ResponseSink : public sim::Module {
       if (stuck) throw CheckFailed(fmt::format("response out of order (expected {}) at cycle {}", retired_, sim_.cycle()));
       return;
     }
-    const Response& r = in->front();
-    if (r.id >= pixels_.size()) throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", r.id, sim_.cycle()));
-    const uint64_t now = sim_.cycle();
+    retire(in->front(), sim_.cycle());
+    in->pop();
+    sim_.progress();
+  }
+  // Pixel r.id leaves the unit at cycle `now` (its colour, exit cycle and latency recorded).
+  void retire(const Response& r, uint64_t now) {
+    if (r.id >= pixels_.size()) throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", r.id, now));
     pixels_[r.id] = r.rgba;
     exit_[r.id] = now;
     const uint64_t lat = now - accept_[r.id];
     if (lat >= latency.size()) latency.resize(lat + 1);
     ++latency[lat];
     ++retired_;
-    in->pop();
-    sim_.progress();
   }
   std::string state() const override { return fmt::format("{}, {}, next {}", filter_.state(), edge_.state(), retired_); }
   size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)

@@ -3,26 +3,16 @@
 #include <algorithm>
 #include <bit>
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <type_traits>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
-#include "rtl/address_gen.hpp"
-#include "rtl/cache_stage.hpp"
-#include "rtl/edge_datapath.hpp"
-#include "rtl/filter_unit.hpp"
-#include "rtl/kernel_select.hpp"
-#include "rtl/lod_unit.hpp"
-#include "rtl/request_fifo.hpp"
-#include "rtl/response.hpp"
-#include "rtl/unit_watchdog.hpp"
-#include "rtl/weight_rom_bank.hpp"
+#include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
-namespace {
+namespace detail {
 
 // What the unit refuses before it starts: a configuration out of range, a frame tiled for another
 // line size, a request naming an unbound descriptor, a sampler that needs B-spline coefficients on
@@ -53,84 +43,51 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
   }
 }
 
-// The wiring: every block and channel of one unit, connected (the block diagram of tfu_unit.hpp).
-// A datapath no sampler of the frame uses is left out of the simulation (software speed only: it
-// would see no footprint).
-struct Unit {
-  Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out)
-      : depth(static_cast<size_t>(u.channel_depth)),
-        accept(trace.requests.size(), 0),
-        sim(no_progress_limit(u)),  // the watchdog, derived from the configuration (unit_watchdog.hpp)
-        roms(frame.regs.samplers),
-        cache(u.cache, frame.regs.textures),
-        mem(u.memory, frame.regs.textures.size()),
-        src(sim, trace, c_quad, accept),
-        lod(sim, c_quad, c_pixel, trace.mode, frame.regs),
-        addr(sim, c_pixel, c_addr, frame.regs, roms),
-        shape(sim, c_addr, c_shape, frame.regs),
-        cst(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
-        sink(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
-    if (cst.records_shapes()) cst.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
-    bool any_edge = false, any_filter = false;
-    for (const SamplerDescriptor& s : frame.regs.samplers)
-      (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;
-    for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_quad, &c_pixel, &c_addr, &c_shape}) sim.add_clocked(c);
-    if (any_filter) {
-      filter.emplace(sim, c_texels, c_resp, frame.regs, roms, u.filter_lanes);
-      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_texels, &c_resp}) sim.add_clocked(c);
-    }
-    if (any_edge) {
-      e1.emplace(sim, c_edge_texels, c_s1);
-      e2.emplace(sim, c_s1, c_s2);
-      e3.emplace(sim, c_s2, c_edge_resp);
-      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_s1, &c_s2, &c_edge_resp}) sim.add_clocked(c);
-    }
+// The statistics of a finished run: the blocks' counters, the per-texture and per-stage traffic
+// tables, and the derived rates.
+void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
+  sim::Stats& st = out.stats;
+  const size_t n = trace.requests.size();
+  u.cst.publish(st);
+  u.addr.publish(st);
+  st.add("cycles", out.cycles);
+  st.add("pixels", n);
+  st.add("memory_bytes", u.mem.bytes_read());
+  st.add("memory_requests", u.mem.requests());
+  if (u.filter) st.add("filter_lane_busy_cycles", u.filter->busy_cycles());
+  if (u.e2) st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
+  st.set_histogram("latency", u.sink.latency);
+  // Traffic per texture descriptor and per material stage.
+  std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
+  std::array<uint64_t, 4> stage_requests{};
+  for (const TraceRequest& r : trace.requests) {
+    ++tex_requests[r.texture];
+    ++stage_requests[r.stage];
   }
-  size_t depth;
-  std::vector<uint64_t> accept;
-  sim::Simulator sim;
-  sim::Channel<QuadReq> c_quad{"quad", depth};
-  sim::Channel<PixelReq> c_pixel{"pixel", depth};
-  sim::Channel<FootprintReq> c_addr{"footprint", depth};
-  sim::Channel<FootprintReq> c_shape{"shaped_footprint", depth};
-  sim::Channel<FilterReq> c_texels{"texels", depth};
-  sim::Channel<FilterReq> c_edge_texels{"edge_texels", depth};
-  sim::Channel<EdgeS1> c_s1{"edge_s1", depth};
-  sim::Channel<EdgeS2> c_s2{"edge_s2", depth};
-  sim::Channel<Response> c_resp{"response", depth};
-  sim::Channel<Response> c_edge_resp{"edge_response", depth};
-  WeightRomBank roms;
-  TexelCache cache;
-  MemoryModel mem;
-  RequestFifo src;
-  LodUnit lod;
-  AddressGen addr;
-  KernelSelect shape;
-  CacheStage cst;
-  ResponseSink sink;
-  std::optional<FilterUnit> filter;
-  std::optional<EdgeMedian> e1;
-  std::optional<EdgeDirection> e2;
-  std::optional<EdgeMerge> e3;
-  // The static schedule (sim::Simulator::step_scheduled): every block once per cycle, called
-  // directly, not through the simulator's module list. Software speed only: evaluate() reads only
-  // committed channel state, so the order is free, and runs through the generic module list, in
-  // either order, give the same results (run_unit_generic_schedule, tested).
-  void evaluate_all() {
-    src.evaluate();
-    lod.evaluate();
-    addr.evaluate();
-    shape.evaluate();
-    cst.evaluate();
-    if (filter) filter->evaluate();
-    if (e1) {
-      e1->evaluate();
-      e2->evaluate();
-      e3->evaluate();
-    }
-    sink.evaluate();
+  sim::Stats::Table textures{{"index", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
+  for (size_t t = 0; t < frame.textures.size(); ++t) {
+    const int ti = static_cast<int>(t);
+    if (tex_requests[t] == 0 && u.cache.texture_hits(ti) + u.cache.texture_misses(ti) == 0) continue;
+    textures.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
+                               std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti), u.cache.texture_misses(ti),
+                                                     u.mem.texture_bytes(ti)});
   }
-};
+  st.set_table("textures", std::move(textures));
+  sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
+  for (size_t k = 0; k < 4; ++k)
+    if (stage_requests[k] > 0)
+      stages.rows.emplace_back(fmt::format("stage {}", k),
+                               std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
+                                                     u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
+  st.set_table("stages", std::move(stages));
+  derive_rates(st, n, out.cycles);
+}
+
+}  // namespace detail
+
+using detail::Unit;
+
+namespace {
 
 // The request id a channel's head carries (its pixel's index in the trace), if its payload has one.
 template <typename T>
@@ -184,46 +141,6 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.sink.retired()}; });
 }
 
-// The statistics of a finished run: the blocks' counters, the per-texture and per-stage traffic
-// tables, and the derived rates.
-void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
-  sim::Stats& st = out.stats;
-  const size_t n = trace.requests.size();
-  u.cst.publish(st);
-  u.addr.publish(st);
-  st.add("cycles", out.cycles);
-  st.add("pixels", n);
-  st.add("memory_bytes", u.mem.bytes_read());
-  st.add("memory_requests", u.mem.requests());
-  if (u.filter) st.add("filter_lane_busy_cycles", u.filter->busy_cycles());
-  if (u.e2) st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
-  st.set_histogram("latency", u.sink.latency);
-  // Traffic per texture descriptor and per material stage.
-  std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
-  std::array<uint64_t, 4> stage_requests{};
-  for (const TraceRequest& r : trace.requests) {
-    ++tex_requests[r.texture];
-    ++stage_requests[r.stage];
-  }
-  sim::Stats::Table textures{{"index", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
-  for (size_t t = 0; t < frame.textures.size(); ++t) {
-    const int ti = static_cast<int>(t);
-    if (tex_requests[t] == 0 && u.cache.texture_hits(ti) + u.cache.texture_misses(ti) == 0) continue;
-    textures.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
-                               std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti), u.cache.texture_misses(ti),
-                                                     u.mem.texture_bytes(ti)});
-  }
-  st.set_table("textures", std::move(textures));
-  sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
-  for (size_t k = 0; k < 4; ++k)
-    if (stage_requests[k] > 0)
-      stages.rows.emplace_back(fmt::format("stage {}", k),
-                               std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
-                                                     u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
-  st.set_table("stages", std::move(stages));
-  derive_rates(st, n, out.cycles);
-}
-
 }  // namespace
 
 void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
@@ -256,7 +173,7 @@ enum class Schedule { Static, GenericForward, GenericReverse };
 
 UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt, Schedule schedule) {
   std::ostream* vcd_stream = vcd_opt.out;
-  check_inputs(frame, trace, ucfg);
+  detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
   out.pixels.resize(n);
@@ -283,7 +200,7 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
   }
   out.cycles = unit->sim.cycle();
   out.edge_shapes = std::move(unit->cst.shapes);
-  derive_stats(frame, trace, ucfg, *unit, out);
+  detail::derive_stats(frame, trace, ucfg, *unit, out);
   return out;
 }
 

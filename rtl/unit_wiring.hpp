@@ -1,0 +1,113 @@
+// The wiring of one unit (the block diagram of rtl/tfu_unit.hpp): every block and channel,
+// connected. Internal to the two ways of running it: clocked, every block evaluated every cycle
+// (rtl/tfu_unit.cpp, the reference), and by timing recurrences (rtl/unit_recurrence.cpp).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "cmodel/frame.hpp"
+#include "cmodel/trace.hpp"
+#include "rtl/address_gen.hpp"
+#include "rtl/cache_stage.hpp"
+#include "rtl/edge_datapath.hpp"
+#include "rtl/filter_unit.hpp"
+#include "rtl/kernel_select.hpp"
+#include "rtl/lod_unit.hpp"
+#include "rtl/request_fifo.hpp"
+#include "rtl/response.hpp"
+#include "rtl/tfu_unit.hpp"
+#include "rtl/unit_watchdog.hpp"
+#include "rtl/weight_rom_bank.hpp"
+
+namespace tfu::rtl::detail {
+
+// What the unit refuses before it starts (InputError): a configuration out of range, a frame tiled
+// for another line size, a request naming an unbound descriptor, a sampler that needs B-spline
+// coefficients on a texture that holds texels (or the reverse).
+void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u);
+
+// The wiring: every block and channel of one unit, connected (the block diagram of tfu_unit.hpp).
+// A datapath no sampler of the frame uses is left out of the simulation (software speed only: it
+// would see no footprint).
+struct Unit {
+  Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out)
+      : depth(static_cast<size_t>(u.channel_depth)),
+        accept(trace.requests.size(), 0),
+        sim(no_progress_limit(u)),  // the watchdog, derived from the configuration (unit_watchdog.hpp)
+        roms(frame.regs.samplers),
+        cache(u.cache, frame.regs.textures),
+        mem(u.memory, frame.regs.textures.size()),
+        src(sim, trace, c_quad, accept),
+        lod(sim, c_quad, c_pixel, trace.mode, frame.regs),
+        addr(sim, c_pixel, c_addr, frame.regs, roms),
+        shape(sim, c_addr, c_shape, frame.regs),
+        cst(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
+        sink(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
+    if (cst.records_shapes()) cst.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
+    bool any_edge = false, any_filter = false;
+    for (const SamplerDescriptor& s : frame.regs.samplers)
+      (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;
+    for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_quad, &c_pixel, &c_addr, &c_shape}) sim.add_clocked(c);
+    if (any_filter) {
+      filter.emplace(sim, c_texels, c_resp, frame.regs, roms, u.filter_lanes);
+      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_texels, &c_resp}) sim.add_clocked(c);
+    }
+    if (any_edge) {
+      e1.emplace(sim, c_edge_texels, c_s1);
+      e2.emplace(sim, c_s1, c_s2);
+      e3.emplace(sim, c_s2, c_edge_resp);
+      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_s1, &c_s2, &c_edge_resp}) sim.add_clocked(c);
+    }
+  }
+  size_t depth;
+  std::vector<uint64_t> accept;
+  sim::Simulator sim;
+  sim::Channel<QuadReq> c_quad{"quad", depth};
+  sim::Channel<PixelReq> c_pixel{"pixel", depth};
+  sim::Channel<FootprintReq> c_addr{"footprint", depth};
+  sim::Channel<FootprintReq> c_shape{"shaped_footprint", depth};
+  sim::Channel<FilterReq> c_texels{"texels", depth};
+  sim::Channel<FilterReq> c_edge_texels{"edge_texels", depth};
+  sim::Channel<EdgeS1> c_s1{"edge_s1", depth};
+  sim::Channel<EdgeS2> c_s2{"edge_s2", depth};
+  sim::Channel<Response> c_resp{"response", depth};
+  sim::Channel<Response> c_edge_resp{"edge_response", depth};
+  WeightRomBank roms;
+  TexelCache cache;
+  MemoryModel mem;
+  RequestFifo src;
+  LodUnit lod;
+  AddressGen addr;
+  KernelSelect shape;
+  CacheStage cst;
+  ResponseSink sink;
+  std::optional<FilterUnit> filter;
+  std::optional<EdgeMedian> e1;
+  std::optional<EdgeDirection> e2;
+  std::optional<EdgeMerge> e3;
+  // The static schedule (sim::Simulator::step_scheduled): every block once per cycle, called
+  // directly, not through the simulator's module list. Software speed only: evaluate() reads only
+  // committed channel state, so the order is free, and runs through the generic module list, in
+  // either order, give the same results (run_unit_generic_schedule, tested).
+  void evaluate_all() {
+    src.evaluate();
+    lod.evaluate();
+    addr.evaluate();
+    shape.evaluate();
+    cst.evaluate();
+    if (filter) filter->evaluate();
+    if (e1) {
+      e1->evaluate();
+      e2->evaluate();
+      e3->evaluate();
+    }
+    sink.evaluate();
+  }
+};
+
+// The statistics of a finished run: the blocks' counters, the per-texture and per-stage traffic
+// tables, and the derived rates.
+void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out);
+
+}  // namespace tfu::rtl::detail
