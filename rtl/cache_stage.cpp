@@ -195,9 +195,12 @@ void CacheStage::evaluate() {
 }
 
 uint64_t CacheStage::wake_cycle(uint64_t now) const {
+  // A head whose lines arrive, or a port that frees, at `now` itself lets the block act now: that
+  // wake (now) stops the jump. (Comparing with > dropped exactly that case, and a jump to a later
+  // wake of the other side skipped the cycle in which the block would have acted.)
   uint64_t wake = kNever;
-  if (!fifo_.empty() && fifo_.front().ready > now) wake = fifo_.front().ready;
-  if (in_.can_pop() && port_free_ > now) wake = std::min(wake, port_free_);
+  if (!fifo_.empty() && fifo_.front().ready >= now) wake = fifo_.front().ready;
+  if (in_.can_pop() && port_free_ >= now) wake = std::min(wake, port_free_);
   return wake;
 }
 

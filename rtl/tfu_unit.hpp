@@ -60,6 +60,18 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 // and the evaluation order change nothing.
 UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool reverse);
 
+// How a unit is run: clocked (every block evaluated every cycle: the reference, and the only way
+// that writes a waveform) or by timing recurrences (request by request through every block:
+// the same outputs and statistics, several times faster). `tfu sim --engine`.
+enum class UnitEngine { Recurrence, Clocked };
+const char* unit_engine_name(UnitEngine e);
+UnitEngine unit_engine_from_name(const std::string& name);  // InputError naming the valid names
+
+// The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
+// every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes
+// and statistics as the clocked run (tested). No waveform.
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg);
+
 // The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
 // the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the
 // latency mean, minimum and maximum from the latency histogram.

@@ -1,6 +1,8 @@
 // Fuzz target (e), differential (docs/fuzzing.md): random frames and requests through the golden
 // model (GoldenUnit) and the cycle model (rtl::run_unit), which must agree bit for bit, as `tfu sim`
-// compares them (rtl::golden_outputs, rtl::first_mismatch). The input chooses everything:
+// compares them (rtl::golden_outputs, rtl::first_mismatch); and through the cycle model's timing
+// recurrences (rtl::run_unit_recurrence), which must give the clocked run's pixels, cycles and
+// statistics. The input chooses everything:
 //   textures   1 or 2, each 1..24 texels per side, RGBA8 / L8 / VS16X2 texels, tiled or linear rows,
 //              no MIP chain, a box or an edge-preserving chain
 //   samplers   1..3 descriptors: every filter mode, wrap mode per axis, border word, LOD bias and
@@ -158,6 +160,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const tfu::SamplerDescriptor& s0 = frame.regs.samplers[r0.sampler];
     std::fprintf(stderr, "mismatch (%s trace, first sampler %s, line %d bytes): %s\n", tfu::trace_mode_name(trace.mode),
                  tfu::filter_mode_name(s0.mode).c_str(), unit.cache.line_bytes, mismatch.c_str());
+    std::abort();
+  }
+  // The timing recurrences (rtl/unit_recurrence.cpp) must give the clocked run's pixels, cycles
+  // and statistics.
+  const tfu::rtl::UnitOutput rec = tfu::rtl::run_unit_recurrence(frame, trace, unit);
+  if (rec.pixels != got.pixels || rec.response_cycle != got.response_cycle || rec.cycles != got.cycles ||
+      rec.edge_shapes != got.edge_shapes || rec.stats.json_text() != got.stats.json_text()) {
+    std::fprintf(stderr, "the timing recurrences differ from the clocked unit: %llu against %llu cycles\n",
+                 static_cast<unsigned long long>(rec.cycles), static_cast<unsigned long long>(got.cycles));
     std::abort();
   }
   return 0;
