@@ -49,6 +49,8 @@ struct SimOptions {
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
   bool force = false, bench = false, config_fields = false;
+  std::string engine = "clocked";
+  rtl::UnitEngine unit_engine = rtl::UnitEngine::Clocked;  // from engine
 };
 
 // The unit configuration: the defaults, then --config (a unit configuration, or a statistics file
@@ -118,7 +120,9 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   rec.has_scene = false;
   rec.trace = o.requests;
   rec.textures = frame_texture_names(frame);
-  const rtl::UnitOutput got = rtl::run_unit(frame, trace, unit, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
+  const rtl::UnitOutput got = o.unit_engine == rtl::UnitEngine::Recurrence
+                                  ? rtl::run_unit_recurrence(frame, trace, unit)
+                                  : rtl::run_unit(frame, trace, unit, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
   const GoldenUnit golden(frame);
   mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   std::string modes;
@@ -152,6 +156,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   so.unit_vcds = std::move(vcds);
   so.vcd_from = o.vcd_from;
   so.vcd_to = o.vcd_to;
+  so.engine = o.unit_engine;
   if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
   // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
   // seconds, so that the figures do not depend on other work on the machine; the two alternate
@@ -161,6 +166,10 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   RenderResult render;
   rtl::SceneSimResult res;
   std::vector<double> pair_ratio;  // cycle model / golden LOD + sampler of each run (the same requests)
+  // --bench with the timing recurrences also times the clocked blocks on the same requests.
+  const bool bench_clocked = o.bench && o.unit_engine == rtl::UnitEngine::Recurrence;
+  std::vector<double> clocked_ratio;
+  double clocked_secs = 1e300;
   for (int run = 0; run < runs; ++run) {
     const double tr = rtl::thread_cpu_seconds();
     render = render_scene(scene, ro);
@@ -175,8 +184,18 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
       res.golden_seconds = std::min(res.golden_seconds, r.golden_seconds);
     }
     pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
+    if (bench_clocked) {
+      rtl::SceneSimOptions clocked = so;
+      clocked.engine = rtl::UnitEngine::Clocked;
+      const rtl::SceneSimResult c = rtl::simulate_scene(scene, render, unit, clocked);
+      if (c.cycles != res.cycles || c.stats.json_text() != res.stats.json_text())
+        throw CheckFailed("--bench: the clocked unit and the timing recurrences disagree (cycles or statistics)");
+      clocked_secs = std::min(clocked_secs, c.cycle_seconds);
+      clocked_ratio.push_back(c.cycle_seconds / c.golden_seconds);
+    }
   }
   std::sort(pair_ratio.begin(), pair_ratio.end());
+  std::sort(clocked_ratio.begin(), clocked_ratio.end());
   rec.scene = {name, o.width, o.height, o.game_dir};
   rec.width = scene.width;
   rec.height = scene.height;
@@ -199,17 +218,26 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
     const auto n = static_cast<double>(res.requests);
     std::cout << fmt::format(
         "  speed, one thread each, CPU seconds, best of {} runs, on the same {} requests:\n"
-        "    cycle model {:.3f} s = {:.2f} M simulated requests/s\n"
+        "    cycle model ({}) {:.3f} s = {:.2f} M simulated requests/s\n"
         "    golden LOD + sampler {:.3f} s = {:.2f} M requests/s\n"
-        "    cost of cycle accuracy: cycle model / golden LOD + sampler = {:.2f}x (per run: median {:.2f}x, range {:.2f}-{:.2f}x)\n"
+        "    cost of cycle accuracy: cycle model / golden LOD + sampler = {:.2f}x (per run: median {:.2f}x, range {:.2f}-{:.2f}x)\n",
+        runs, res.requests, rtl::unit_engine_name(o.unit_engine), res.cycle_seconds, n / res.cycle_seconds / 1e6,
+        res.golden_seconds, n / res.golden_seconds / 1e6, res.cycle_seconds / res.golden_seconds,
+        pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back());
+    if (bench_clocked)
+      std::cout << fmt::format(
+          "    the clocked blocks on the same requests (the reference; same cycles and statistics): {:.3f} s = {:.2f} M "
+          "simulated requests/s, {:.2f}x the golden (per run: median {:.2f}x)\n",
+          clocked_secs, n / clocked_secs / 1e6, clocked_secs / res.golden_seconds, clocked_ratio[clocked_ratio.size() / 2]);
+    std::cout << fmt::format(
         "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
         "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
-        runs, res.requests, res.cycle_seconds, n / res.cycle_seconds / 1e6, res.golden_seconds, n / res.golden_seconds / 1e6,
-        res.cycle_seconds / res.golden_seconds, pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back(),
         render_secs, wall, o.units);
     if (const uint64_t probes = res.stats.counter("probes"); probes != res.requests)
-      std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s\n", probes,
-                               static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6);
+      std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s{}\n", probes,
+                               static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6,
+                               bench_clocked ? fmt::format(" (clocked blocks {:.2f} M)", static_cast<double>(probes) / clocked_secs / 1e6)
+                                             : std::string());
   }
   return res.stats;
 }
@@ -238,6 +266,13 @@ void run(SimOptions& o, CLI::App& cmd) {
     for (const std::string& path : vcd_paths) vcd_files.push_back(&outputs.add("--vcd", path));
   }
   const rtl::UnitConfig unit = unit_config(o, cmd);
+  try {
+    o.unit_engine = rtl::unit_engine_from_name(o.engine);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--engine: {}", e.what()));
+  }
+  if (o.unit_engine == rtl::UnitEngine::Recurrence && !o.vcd.empty())
+    throw InputError("--vcd needs --engine clocked: the timing recurrences write no waveform");
   if (cmd.count("--shape-policy") > 0) {  // given, even empty, it must name a policy
     try {
       edge_shape_from_name(o.shape_policy);
@@ -471,7 +506,12 @@ void register_sim(CLI::App& app) {
                   "lines; with --units N also FILE.unitK.vcd per further unit");
   cmd->add_option("--vcd-from", o->vcd_from, "First cycle the waveform covers")->capture_default_str();
   cmd->add_option("--vcd-to", o->vcd_to, "Last cycle the waveform covers (default: the end)");
-  cmd->add_flag("--bench", o->bench, "Print the simulation speed");
+  cmd->add_option("--engine", o->engine,
+                  "How the cycle model runs: clocked (every block every cycle: the reference, and the one that writes "
+                  "--vcd) or recurrence (request by request through every block, by the timing recurrences of "
+                  "rtl/unit_recurrence.cpp); the same outputs, cycles and statistics (tested)")
+      ->capture_default_str();
+  cmd->add_flag("--bench", o->bench, "Print the simulation speed (with the recurrences, of the clocked blocks too)");
   cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });
 }
