@@ -48,7 +48,7 @@
 namespace tfu::rtl {
 namespace {
 
-// Pop cycles of the items of one channel (or any per-item time), kept for the last `slots`
+// Pop cycles of the items of one channel (or any per-item time), kept for the last `keep`
 // items: at(i) for i < 0 is -1, so that "after item i - depth left" (at(i - depth) + 1) is cycle 0
 // when no such item exists.
 class Times {
