@@ -59,8 +59,7 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     const double t0 = thread_cpu_seconds();
     const auto k = static_cast<size_t>(job.unit);
     std::ostream* vcd = opt.unit_vcds.empty() ? (job.unit == 0 ? opt.vcd : nullptr) : (k < opt.unit_vcds.size() ? opt.unit_vcds[k] : nullptr);
-    job.out = opt.engine == UnitEngine::Recurrence && vcd == nullptr ? run_unit_recurrence(frame, job.trace, u)
-                                                                     : run_unit(frame, job.trace, u, VcdOptions{vcd, opt.vcd_from, opt.vcd_to});
+    job.out = run_unit(frame, job.trace, u, opt.engine, VcdOptions{vcd, opt.vcd_from, opt.vcd_to});
     const double t1 = thread_cpu_seconds();
     // The golden model on the same requests: LOD unit and sampler (the same work the cycle model
     // does, without timing), timed separately for the cost-of-cycle-accuracy ratio.

@@ -14,9 +14,7 @@
 namespace tfu::rtl {
 namespace detail {
 
-// What the unit refuses before it starts: a configuration out of range, a frame tiled for another
-// line size, a request naming an unbound descriptor, a sampler that needs B-spline coefficients on
-// a texture that holds texels (or the reverse).
+// check_inputs and derive_stats: rtl/unit_wiring.hpp.
 void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
   u.validate();
   frame.regs.validate();
@@ -43,8 +41,6 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
   }
 }
 
-// The statistics of a finished run: the blocks' counters, the per-texture and per-stage traffic
-// tables, and the derived rates.
 void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
   sim::Stats& st = out.stats;
   const size_t n = trace.requests.size();

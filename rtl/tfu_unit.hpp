@@ -66,6 +66,8 @@ UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, con
 enum class UnitEngine { Recurrence, Clocked };
 const char* unit_engine_name(UnitEngine e);
 UnitEngine unit_engine_from_name(const std::string& name);  // InputError naming the valid names
+// The unit by `engine`; with a waveform (vcd.out) always clocked.
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd);
 
 // The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes

@@ -83,6 +83,11 @@ UnitEngine unit_engine_from_name(const std::string& name) {
   throw InputError(fmt::format("'{}' is not an engine: recurrence or clocked", name.size() > 40 ? name.substr(0, 40) + "..." : name));
 }
 
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd) {
+  return engine == UnitEngine::Recurrence && vcd.out == nullptr ? run_unit_recurrence(frame, trace, ucfg)
+                                                                : run_unit(frame, trace, ucfg, vcd);
+}
+
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg) {
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();

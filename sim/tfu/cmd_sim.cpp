@@ -120,9 +120,8 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   rec.has_scene = false;
   rec.trace = o.requests;
   rec.textures = frame_texture_names(frame);
-  const rtl::UnitOutput got = o.unit_engine == rtl::UnitEngine::Recurrence
-                                  ? rtl::run_unit_recurrence(frame, trace, unit)
-                                  : rtl::run_unit(frame, trace, unit, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
+  const rtl::UnitOutput got =
+      rtl::run_unit(frame, trace, unit, o.unit_engine, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
   const GoldenUnit golden(frame);
   mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   std::string modes;
