@@ -48,29 +48,31 @@
 namespace tfu::rtl {
 namespace {
 
-// Pop cycles of the items of one channel (or any per-item time), kept for the last `keep`
-// items: at(i) for i < 0 is -1, so that "after item i - depth left" (at(i - depth) + 1) is cycle 0
-// when no such item exists.
-class Times {
+// The cycles of the last items of one kind (at least `keep` of them), by item number: a ring of a
+// power-of-two size, at least 2 keep + 1, filled with `before` (the value of an item that does not
+// exist). Item i < 0 therefore reads `before` without a test: every index read is at least
+// count - keep, so while i < 0 fewer than keep items exist, in slots below keep, and the slot of
+// i is size + i >= size - keep > keep. (The mask is 32 bits wide so that the compiler need not
+// reload it after a store of a 64-bit cycle.)
+template <typename T>
+class Ring {
  public:
-  explicit Times(size_t keep) : v_(std::bit_ceil(keep + 1), -1), mask_(v_.size() - 1) {}
-  int64_t at(int64_t i) const { return i < 0 ? -1 : v_[static_cast<size_t>(i) & mask_]; }
-  void set(int64_t i, int64_t t) { v_[static_cast<size_t>(i) & mask_] = t; }
+  Ring(size_t keep, T before) : v_(std::bit_ceil(2 * keep + 1), before), mask_(static_cast<uint32_t>(v_.size() - 1)) {}
+  T& operator[](int64_t i) { return v_[static_cast<size_t>(i) & mask_]; }
 
  private:
-  std::vector<int64_t> v_;
-  size_t mask_;
+  std::vector<T> v_;
+  uint32_t mask_;
 };
 
-// One channel between two blocks: its items so far and their pop cycles.
-struct Link {
-  explicit Link(size_t keep) : pop(keep) {}
-  int64_t count = 0;
-  Times pop;
-  // The earliest cycle item `count` may be pushed: item count - depth has left.
-  int64_t room(int64_t depth) const { return pop.at(count - depth) + 1; }
-  // The cycle the previous item left (-1: none).
-  int64_t last_pop() const { return pop.at(count - 1); }
+// Per footprint: the cycle kernel_select took it (it left the footprint channel), the cycle the
+// texel cache accepted it (it left the shaped channel), the cycle it left the miss FIFO.
+struct FootprintTimes {
+  int64_t shaped_push, accept, exit;
+};
+// Per edge footprint: the cycles it left the edge texel channel and the two stage channels.
+struct EdgeTimes {
+  int64_t t1, t2, t3;
 };
 
 }  // namespace
@@ -99,48 +101,61 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   const auto depth = static_cast<int64_t>(ucfg.channel_depth);
   const auto fifo_depth = static_cast<int64_t>(ucfg.miss_fifo_depth);
   const size_t keep = static_cast<size_t>(std::max(depth, fifo_depth)) + 1;
-  Link quads(keep), pixels(keep), footprints(keep), shaped(keep), texels(keep), edge_texels(keep), s1(keep), s2(keep),
-      responses(keep), edge_responses(keep);
-  Times cache_exit(keep);  // the cycle each footprint left the miss FIFO
-  int64_t quad_push = -1, last_pixel_push = -1, last_footprint_push = -1;
-  int64_t prev_accept = -1, prev_port_cycles = 0, last_exit = -1, last_retire = -1;
+  // Pop cycles per item of each channel (-1: before the first item), and the items so far. A
+  // channel of depth d has room for item i once item i - d has left it: ring[i - d] + 1. The
+  // footprint channel, the shaped channel and the miss FIFO carry the same footprints (one row
+  // each), as the three edge channels carry the same edge footprints.
+  Ring<int64_t> quads(keep, -1), pixels(keep, -1), texels(keep, -1), responses(keep, -1), edge_responses(keep, -1);
+  Ring<FootprintTimes> footprints(keep, {-1, -1, -1});
+  Ring<EdgeTimes> edges(keep, {-1, -1, -1});
+  int64_t n_quads = 0, n_pixels = 0, n_footprints = 0, n_texels = 0, n_edges = 0, n_responses = 0, n_edge_responses = 0;
+  // The previous item's cycles (-1: none).
+  int64_t quad_push = -1, last_pixel_push = -1, last_footprint_push = -1, last_shaped_push = -1;
+  int64_t prev_accept = -1, prev_port_cycles = 0, last_exit = -1, last_done = -1, last_retire = -1;
+  EdgeTimes last_edge{-1, -1, -1};
   uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, lane_busy = 0;
   const auto span = [](int64_t from, int64_t to) { return static_cast<uint64_t>(std::max<int64_t>(0, to - from)); };
-  // The response of pixel r.id, pushed into `link` at `pushed`: retired in id order.
-  const auto retire = [&](Link& link, const Response& r, int64_t pushed) {
+  // The response of pixel r.id, pushed at `pushed` into the response channel `ring` (`count`
+  // items so far): retired in id order.
+  const auto retire = [&](Ring<int64_t>& ring, int64_t& count, const Response& r, int64_t pushed) {
     const int64_t t = std::max(pushed + 1, last_retire + 1);
-    link.pop.set(link.count++, t);
+    ring[count++] = t;
     u.sink.retire(r, static_cast<uint64_t>(t));
     last_retire = t;
   };
+  // The blocks' output registers, reused from item to item as the clocked run reuses its channel
+  // slots (every field the datapath functions read is written first).
   QuadReq quad;
   FootprintReq f;
   FilterReq texel_words;
+  EdgeS1 median_out;
+  EdgeS2 direction_out;
   for (size_t first = 0; first < n;) {
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
-    quad_push = std::max(quad_push + 1, quads.room(depth));
+    quad_push = std::max(quad_push + 1, quads[n_quads - depth] + 1);
     for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k) u.accept[first + k] = static_cast<uint64_t>(quad_push);
     const int64_t quad_taken = std::max(quad_push + 1, last_pixel_push + 1);
-    quads.pop.set(quads.count++, quad_taken);
+    quads[n_quads++] = quad_taken;
     const AnisoLod lod = u.lod.quad_lod(quad);
     for (int k = 0; k < quad.npix; ++k) {
       // lod_unit -> address_gen
-      last_pixel_push = std::max(k == 0 ? quad_taken : last_pixel_push + 1, pixels.room(depth));
+      last_pixel_push = std::max(k == 0 ? quad_taken : last_pixel_push + 1, pixels[n_pixels - depth] + 1);
       const int64_t pixel_taken = std::max(last_pixel_push + 1, last_footprint_push + 1);
-      pixels.pop.set(pixels.count++, pixel_taken);
+      pixels[n_pixels++] = pixel_taken;
       u.addr.begin(LodUnit::pixel(quad, lod, k));
       for (bool first_footprint = true, last = false; !last; first_footprint = false) {
         // address_gen -> kernel_select -> texel_cache
         last = u.addr.issue(f);
-        last_footprint_push = std::max(first_footprint ? pixel_taken : last_footprint_push + 1, footprints.room(depth));
-        const int64_t shaped_push = std::max({last_footprint_push + 1, footprints.last_pop() + 1, shaped.room(depth)});
-        footprints.pop.set(footprints.count++, shaped_push);
+        const FootprintTimes& earlier = footprints[n_footprints - depth];
+        last_footprint_push = std::max(first_footprint ? pixel_taken : last_footprint_push + 1, earlier.shaped_push + 1);
+        const int64_t shaped_push = std::max({last_footprint_push + 1, last_shaped_push + 1, earlier.accept + 1});
+        last_shaped_push = shaped_push;
         u.shape.shape(f);
         // texel_cache: the input side
-        const int64_t visible = std::max(shaped_push + 1, shaped.last_pop() + 1);
+        const int64_t visible = std::max(shaped_push + 1, prev_accept + 1);
         const int64_t port_free = prev_accept + prev_port_cycles;
-        const int64_t accept = std::max({visible, port_free, cache_exit.at(shaped.count - fifo_depth)});
+        const int64_t accept = std::max({visible, port_free, footprints[n_footprints - fifo_depth].exit});
         stall_bank += span(visible, std::min(accept, port_free));
         int bank_cycles = 1;
         const auto ready = static_cast<int64_t>(u.cst.admit_footprint(f, static_cast<uint64_t>(accept), bank_cycles));
@@ -148,38 +163,37 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
         prev_port_cycles = bank_cycles;
         // texel_cache: the output side
         const bool edge = f.tag.base == BaseFilter::EdgePreserving;
-        Link& words = edge ? edge_texels : texels;
+        const int64_t words_room = (edge ? edges[n_edges - depth].t1 : texels[n_texels - depth]) + 1;
         const int64_t head = std::max(accept + 1, last_exit + 1);
-        const int64_t exit = std::max({head, ready, words.room(depth)});
+        const int64_t exit = std::max({head, ready, words_room});
         stall_miss += span(head, std::min(ready, exit));
         stall_back += span(std::max(head, ready), exit);
-        cache_exit.set(shaped.count, exit);
-        shaped.pop.set(shaped.count++, accept);
+        footprints[n_footprints++] = {shaped_push, accept, exit};
         last_exit = exit;
         u.cst.read_out_footprint(f, texel_words);
         const bool emits = texel_words.tag.emits();
         Response r;
         if (!edge) {
           // filter -> response
-          const int64_t filter_head = std::max(exit + 1, texels.last_pop() + 1);
+          const int64_t filter_head = std::max(exit + 1, last_done + 1);
           const int lanes = u.filter->extra_clocks(texel_words.ntaps);
           lane_busy += static_cast<uint64_t>(lanes);
-          const int64_t done = std::max(filter_head + lanes, emits ? responses.room(depth) : 0);
-          texels.pop.set(texels.count++, done);
-          if (u.filter->filter(texel_words, r)) retire(responses, r, done);
+          const int64_t done = std::max(filter_head + lanes, emits ? responses[n_responses - depth] + 1 : 0);
+          texels[n_texels++] = done;
+          last_done = done;
+          if (u.filter->filter(texel_words, r)) retire(responses, n_responses, r, done);
         } else {
           // edge_median -> edge_direction -> edge_merge -> response
-          const int64_t t1 = std::max({exit + 1, edge_texels.last_pop() + 1, s1.room(depth)});
-          edge_texels.pop.set(edge_texels.count++, t1);
-          EdgeS1 a;
-          EdgeMedian::stage(texel_words, a);
-          const int64_t t2 = std::max({t1 + 1, s1.last_pop() + 1, s2.room(depth)});
-          s1.pop.set(s1.count++, t2);
-          EdgeS2 b;
-          u.e2->stage(a, b);
-          const int64_t t3 = std::max({t2 + 1, s2.last_pop() + 1, emits ? edge_responses.room(depth) : 0});
-          s2.pop.set(s2.count++, t3);
-          if (u.e3->merge(b, r)) retire(edge_responses, r, t3);
+          const EdgeTimes& earlier_edge = edges[n_edges - depth];
+          EdgeTimes e;
+          e.t1 = std::max({exit + 1, last_edge.t1 + 1, earlier_edge.t2 + 1});
+          EdgeMedian::stage(texel_words, median_out);
+          e.t2 = std::max({e.t1 + 1, last_edge.t2 + 1, earlier_edge.t3 + 1});
+          u.e2->stage(median_out, direction_out);
+          e.t3 = std::max({e.t2 + 1, last_edge.t3 + 1, emits ? edge_responses[n_edge_responses - depth] + 1 : 0});
+          edges[n_edges++] = e;
+          last_edge = e;
+          if (u.e3->merge(direction_out, r)) retire(edge_responses, n_edge_responses, r, e.t3);
         }
       }
     }
