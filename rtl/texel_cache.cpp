@@ -140,14 +140,6 @@ struct GridGroups {
 
 }  // namespace
 
-// The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU
-// order), and the reads per bank: distinct lines (block parity) or distinct texels (texel parity).
-struct TexelCache::LineSet {
-  std::array<uint64_t, 16> lines;  // [0, n) written and read
-  size_t n = 0;
-  std::array<int, 4> nbank{};
-};
-
 // Any set of used cells of a grid under block parity: the lines are the (block column, block row)
 // groups that hold a used cell, each looked up when the row-major scan of the cells first reaches
 // it, i.e. in order of its lowest used cell.
@@ -206,7 +198,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
-  } else {
+  } else if (g.cols != 4 || g.rows != 4 || !block_run_lines(l, g, s)) {
     group_lines(l, g, s);
   }
   FootprintResult r;

@@ -131,8 +131,17 @@ class TexelCache {
   // The lookup tail both share: one line into r's hits or misses; the level's counters.
   void probe(uint64_t line, FootprintResult& r);
   void tally(size_t l, const FootprintResult& r);
-  struct LineSet;
+  // The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU
+  // order), and the reads per bank: distinct lines (block parity) or distinct texels (texel parity).
+  struct LineSet {
+    std::array<uint64_t, 16> lines;  // [0, n) written and read
+    size_t n = 0;
+    std::array<int, 4> nbank{};
+  };
   void group_lines(size_t l, const TapGrid& g, LineSet& s) const;
+  // group_lines for a 4 x 4 grid of column and row runs in at most two lines per axis (software
+  // speed only, rtl/texel_cache_block_runs.cpp); false (nothing written) for any other grid.
+  bool block_run_lines(size_t l, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t l, const TapGrid& g, LineSet& s) const;
 };
 

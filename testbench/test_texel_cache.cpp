@@ -185,8 +185,9 @@ TEST(TexelCache, ScanlineHitRateOfABlockedCache) {
 // (x[i], y[j]) of the used cells in row-major order, their distinct lines in order of first
 // appearance through an LRU list per set, and the bank cycles counted from distinct lines (block
 // parity) or distinct texels (texel parity). Random grids with repeated columns and rows (clamped
-// or wrapped runs), random used cells, two levels of two textures (one tiled, one linear), both
-// mappings, 1 or 4 banks, 64- and 256-byte lines.
+// or wrapped runs), random used cells, full 2x2 grids (access_quad) and 4x4 grids with the edge
+// cross's cells or a random part of them (block_run_lines), two levels of two textures (one tiled,
+// one linear), both mappings, 1 or 4 banks, 64- and 256-byte lines.
 TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
   std::mt19937 rng(5);
   const std::vector<int> widths{40, 20}, heights{24, 12};
@@ -205,9 +206,10 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
           const int line_w = t == 0 ? block : cfg.line_bytes / 4, line_h = t == 0 ? block : 1;
           const int w = widths[static_cast<size_t>(level)], h = heights[static_cast<size_t>(level)];
           TapGrid g{};
-          const bool quad = n % 4 == 0;  // a full 2x2 grid: the cache's LINEAR fast path
-          g.cols = quad ? 2 : 1 + static_cast<int>(rng() % 4);
-          g.rows = quad ? 2 : 1 + static_cast<int>(rng() % 4);
+          const bool quad = n % 4 == 0;   // a full 2x2 grid: the cache's LINEAR fast path
+          const bool cross = n % 4 == 1;  // 4x4, the edge cross's cells (block runs: block_run_lines)
+          g.cols = quad ? 2 : cross ? 4 : 1 + static_cast<int>(rng() % 4);
+          g.rows = quad ? 2 : cross ? 4 : 1 + static_cast<int>(rng() % 4);
           const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(w)), y0 = static_cast<int>(rng() % static_cast<uint32_t>(h));
           const bool clamp = rng() % 2 == 0;
           for (int i = 0; i < g.cols; ++i)
@@ -215,7 +217,8 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
           for (int j = 0; j < g.rows; ++j)
             g.y[static_cast<size_t>(j)] = static_cast<int16_t>(clamp ? std::min(y0 + j, h - 1) : (y0 + j) % h);
           g.used = square_cells(g.cols, g.rows);
-          if (!quad && rng() % 2 == 0) g.used = static_cast<uint16_t>(g.used & rng());
+          if (cross) g.used = static_cast<uint16_t>(cross_cells(lee_jen::kAllTexels) & (rng() % 4 == 0 ? 0xFFFFu : rng()));
+          if (!quad && !cross && rng() % 2 == 0) g.used = static_cast<uint16_t>(g.used & rng());
           // Reference.
           std::vector<uint64_t> lines;
           std::vector<std::pair<int, int>> texels;
