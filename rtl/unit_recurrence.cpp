@@ -36,6 +36,7 @@
 // The run ends the cycle after the last retire.
 #include <algorithm>
 #include <bit>
+#include <functional>
 #include <memory>
 
 #include <fmt/format.h>
@@ -130,7 +131,11 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   FilterReq texel_words;
   EdgeS1 median_out;
   EdgeS2 direction_out;
-  for (size_t first = 0; first < n;) {
+  // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
+  const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.sink.retired()); };
+  sim::ProgressBar bar(retired, n);
+  for (size_t first = 0, quads_in = 0; first < n; ++quads_in) {
+    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(last_retire, 0)));
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
     quad_push = std::max(quad_push + 1, quads[n_quads - depth] + 1);
@@ -199,6 +204,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
     }
     first += static_cast<size_t>(quad.npix);
   }
+  bar.finish(static_cast<uint64_t>(last_retire + 1));
   u.cst.add_stalls(stall_miss, stall_bank, stall_back);
   if (u.filter) u.filter->add_busy_cycles(lane_busy);
   out.cycles = static_cast<uint64_t>(last_retire + 1);

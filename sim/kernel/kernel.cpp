@@ -194,7 +194,7 @@ void Simulator::stop(uint64_t start, uint64_t max_cycles) const {
                       dump());
 }
 
-Simulator::ProgressBar::ProgressBar(const std::function<uint64_t()>& done, uint64_t total)
+ProgressBar::ProgressBar(const std::function<uint64_t()>& done, uint64_t total)
     : done_(done), total_(total), t0_(std::chrono::steady_clock::now()), last_(t0_) {}
 
 namespace {
@@ -203,7 +203,7 @@ std::atomic<bool> g_progress_bars{true};
 
 void set_progress_bars(bool on) { g_progress_bars = on; }
 
-void Simulator::ProgressBar::update(uint64_t cycle) {
+void ProgressBar::update(uint64_t cycle) {
   if (total_ == 0 || !done_ || !g_progress_bars) return;
   const auto now = std::chrono::steady_clock::now();
   if (now - t0_ > std::chrono::seconds(2) && now - last_ > std::chrono::milliseconds(500)) {
@@ -214,7 +214,7 @@ void Simulator::ProgressBar::update(uint64_t cycle) {
   }
 }
 
-void Simulator::ProgressBar::finish(uint64_t cycle) const {
+void ProgressBar::finish(uint64_t cycle) const {
   if (printed_) std::fprintf(stderr, "\r  simulating: 100.0 %% (cycle %llu)\n", static_cast<unsigned long long>(cycle));
 }
 

@@ -188,6 +188,22 @@ class Simulator;
 // running many simulations on worker threads shows its own progress instead.
 void set_progress_bars(bool on);
 
+// The progress bar of a simulation (Simulator::run, and the unit's timing recurrences): stderr,
+// after ~2 s, at most every 0.5 s, `done()` of `total` work items and the cycle reached; nothing
+// when total is 0, `done` is empty or set_progress_bars(false).
+class ProgressBar {
+ public:
+  ProgressBar(const std::function<uint64_t()>& done, uint64_t total);
+  void update(uint64_t cycle);
+  void finish(uint64_t cycle) const;
+
+ private:
+  const std::function<uint64_t()>& done_;
+  uint64_t total_;
+  std::chrono::steady_clock::time_point t0_, last_;
+  bool printed_ = false;
+};
+
 // A hardware block. Modules form a tree; path() is the hierarchical name used in VCD and dumps.
 class Module {
  public:
@@ -319,19 +335,6 @@ class Simulator {
   std::string dump() const;
 
  private:
-  // The progress bar of run(): stderr, after ~2 s, at most every 0.5 s.
-  class ProgressBar {
-   public:
-    ProgressBar(const std::function<uint64_t()>& done, uint64_t total);
-    void update(uint64_t cycle);
-    void finish(uint64_t cycle) const;
-
-   private:
-    const std::function<uint64_t()>& done_;
-    uint64_t total_;
-    std::chrono::steady_clock::time_point t0_, last_;
-    bool printed_ = false;
-  };
   // After the edge: the VCD sample, or the jump over idle cycles (see Module::wake_cycle).
   void after_edge(bool progressed);
   // Throws the watchdog's or the cycle limit's DeadlockError with the state dump.

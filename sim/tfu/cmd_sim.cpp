@@ -49,8 +49,8 @@ struct SimOptions {
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
   bool force = false, bench = false, config_fields = false;
-  std::string engine = "clocked";
-  rtl::UnitEngine unit_engine = rtl::UnitEngine::Clocked;  // from engine
+  std::string engine;  // empty: recurrence, or clocked when a waveform is asked for
+  rtl::UnitEngine unit_engine = rtl::UnitEngine::Recurrence;  // from engine
 };
 
 // The unit configuration: the defaults, then --config (a unit configuration, or a statistics file
@@ -265,13 +265,17 @@ void run(SimOptions& o, CLI::App& cmd) {
     for (const std::string& path : vcd_paths) vcd_files.push_back(&outputs.add("--vcd", path));
   }
   const rtl::UnitConfig unit = unit_config(o, cmd);
-  try {
-    o.unit_engine = rtl::unit_engine_from_name(o.engine);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("--engine: {}", e.what()));
+  if (cmd.count("--engine") == 0) {  // the default: the recurrences, unless a waveform is asked for
+    o.unit_engine = o.vcd.empty() ? rtl::UnitEngine::Recurrence : rtl::UnitEngine::Clocked;
+  } else {
+    try {
+      o.unit_engine = rtl::unit_engine_from_name(o.engine);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--engine: {}", e.what()));
+    }
+    if (o.unit_engine == rtl::UnitEngine::Recurrence && !o.vcd.empty())
+      throw InputError("--vcd needs --engine clocked: the timing recurrences write no waveform");
   }
-  if (o.unit_engine == rtl::UnitEngine::Recurrence && !o.vcd.empty())
-    throw InputError("--vcd needs --engine clocked: the timing recurrences write no waveform");
   if (cmd.count("--shape-policy") > 0) {  // given, even empty, it must name a policy
     try {
       edge_shape_from_name(o.shape_policy);
@@ -506,10 +510,10 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--vcd-from", o->vcd_from, "First cycle the waveform covers")->capture_default_str();
   cmd->add_option("--vcd-to", o->vcd_to, "Last cycle the waveform covers (default: the end)");
   cmd->add_option("--engine", o->engine,
-                  "How the cycle model runs: clocked (every block every cycle: the reference, and the one that writes "
-                  "--vcd) or recurrence (request by request through every block, by the timing recurrences of "
-                  "rtl/unit_recurrence.cpp); the same outputs, cycles and statistics (tested)")
-      ->capture_default_str();
+                  "How the cycle model runs: recurrence (request by request through every block, by the timing "
+                  "recurrences of rtl/unit_recurrence.cpp; the default) or clocked (every block every cycle: the "
+                  "reference, and the one that writes --vcd; the default with --vcd); the same outputs, cycles and "
+                  "statistics (tested)");
   cmd->add_flag("--bench", o->bench, "Print the simulation speed (with the recurrences, of the clocked blocks too)");
   cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });
