@@ -34,9 +34,7 @@ double single_run(const Spec& s, const Point& p) {
   ro.sampler_overrides = p.sampler;
   if (p.filter != kSceneFilter) ro.filter = filter_mode_from_name(p.filter);
   const RenderResult render = render_scene(scene, ro);
-  rtl::SceneSimOptions so;
-  so.units = s.units;
-  so.engine = rtl::UnitEngine::Recurrence;  // the fast engine: the clocked run's results (tested)
+  const rtl::SceneSimOptions so = scene_sim_options(s);
   (void)rtl::simulate_scene(scene, render, p.config, so);
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }

@@ -183,9 +183,7 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
     const auto t1 = std::chrono::steady_clock::now();
     const std::shared_ptr<const RenderResult> shared = cache.render(s, p);
     const RenderResult& render = *shared;
-    rtl::SceneSimOptions so;
-    so.units = s.units;
-    so.engine = rtl::UnitEngine::Recurrence;  // the fast engine: the clocked run's results (tested)
+    const rtl::SceneSimOptions so = scene_sim_options(s);
     const rtl::SceneSimResult res = rtl::simulate_scene(*scene, render, p.config, so);
     sim_seconds = seconds_since(t1);
     RunRecord rec = run_record(s, p, scene->width, scene->height);

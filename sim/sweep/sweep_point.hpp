@@ -24,6 +24,7 @@
 
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "rtl/scene_sim.hpp"
 #include "sim/sweep/sweep_spec.hpp"
 
 namespace tfu::sweep {
@@ -60,6 +61,15 @@ struct PointTiming {
 };
 
 std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTiming* timing = nullptr);
+
+// How a sweep simulates a point's scene: `units` units, by the timing recurrences (the clocked
+// run's results, tested; the sweep writes no waveforms).
+inline rtl::SceneSimOptions scene_sim_options(const Spec& s) {
+  rtl::SceneSimOptions so;
+  so.units = s.units;
+  so.engine = rtl::UnitEngine::Recurrence;
+  return so;
+}
 
 // DIR/points/ID.json
 std::string point_path(const std::string& dir, const Point& p);
