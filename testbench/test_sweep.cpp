@@ -126,6 +126,7 @@ TEST(Provenance, RecordedConfigurationReproducesTheStatistics) {
     rec.height = 48;
     rec.filter = "LINEAR_MIPMAP_LINEAR";
     rec.config = &c;
+    rec.engine = rtl::UnitEngine::Clocked;  // simulate_scene's default, as run above
     rec.textures = frame_texture_names(render.frame->frame);
     return stats_document(r.stats, provenance_json(rec));
   };
@@ -138,6 +139,13 @@ TEST(Provenance, RecordedConfigurationReproducesTheStatistics) {
   EXPECT_EQ(p.at("filter"), "LINEAR_MIPMAP_LINEAR");
   EXPECT_EQ(p.at("unit_config").at("memory").at("latency"), 37);
   EXPECT_EQ(p.at("unit_config").at("channel_depth"), u.channel_depth);  // defaults recorded too
+  EXPECT_EQ(p.at("engine"), "clocked");
+  RunRecord golden_only;  // no cycle model ran (tfu report): neither a configuration nor an engine
+  golden_only.command = "report";
+  golden_only.scene = {"ground_plane", 64, 48, ""};
+  const nlohmann::json g = provenance_json(golden_only);
+  EXPECT_FALSE(g.contains("unit_config"));
+  EXPECT_FALSE(g.contains("engine"));
   EXPECT_FALSE(p.at("textures").empty());
   ASSERT_TRUE(doc.contains("definitions"));
   const rtl::UnitConfig back = rtl::unit_config_from_json(unit_config_text(first), "stats");
@@ -268,6 +276,7 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
   EXPECT_EQ(small.at("result").at("sram_bits").get<uint64_t>(),
             rtl::texel_cache_sram_bits(pts[0].config.cache).total());
   EXPECT_EQ(small.at("provenance").at("command"), "sweep");
+  EXPECT_EQ(small.at("provenance").at("engine"), "recurrence");  // a sweep runs the recurrences
   fs::remove_all(root);
 }
 

@@ -132,7 +132,10 @@ nlohmann::json provenance_json(const RunRecord& run) {
   for (const auto& [k, v] : run.sampler_overrides) j["sampler_overrides"][k] = v;
   j["units"] = run.units;
   j["textures"] = run.textures;
-  if (run.config) j["unit_config"] = nlohmann::json::parse(rtl::unit_config_to_json(*run.config));
+  if (run.config) {
+    j["unit_config"] = nlohmann::json::parse(rtl::unit_config_to_json(*run.config));
+    j["engine"] = rtl::unit_engine_name(run.engine);
+  }
   return j;
 }
 

@@ -18,6 +18,7 @@
 #include "cmodel/frame.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
+#include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
 #include "sim/kernel/kernel.hpp"
 
@@ -55,6 +56,7 @@ struct RunRecord {
   Params sampler_overrides;        // further sampler keys of the base stages
   int units = 1;
   const rtl::UnitConfig* config = nullptr;  // the whole effective configuration (nullptr: golden only)
+  rtl::UnitEngine engine = rtl::UnitEngine::Recurrence;  // the cycle model's engine (with `config`)
   std::vector<std::string> textures;        // the frame's textures, "INDEX NAME"
 };
 
@@ -63,7 +65,8 @@ nlohmann::json tool_provenance(const std::string& command);
 
 // {"tool": "tfu", "version", "command", "command_line": [...], "scene": scene_fingerprint or
 //  {"kind": "trace", "path", "fnv1a64"}, "width", "height", "filter", "sampler_overrides", "units",
-//  "textures", "unit_config": every field, defaults included (unit_config_to_json)}
+//  "textures", "unit_config": every field, defaults included (unit_config_to_json), "engine":
+//  "recurrence" or "clocked"}; the last two only where a cycle model ran (`config`)
 nlohmann::json provenance_json(const RunRecord& run);
 
 // The textures of a frame as "INDEX NAME" (the statistics' table labels).

@@ -99,6 +99,7 @@ RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
   r.sampler_overrides = p.sampler;
   r.units = s.units;
   r.config = &p.config;
+  r.engine = scene_sim_options(s).engine;
   return r;
 }
 

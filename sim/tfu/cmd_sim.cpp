@@ -311,6 +311,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   RunRecord rec;
   rec.command = "sim";
   rec.config = &unit;
+  rec.engine = o.unit_engine;
   std::string mismatch;
   const sim::Stats stats = o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
                                               : run_requests(o, cmd, unit, vcds, rec, mismatch);
