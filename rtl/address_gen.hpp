@@ -50,6 +50,10 @@ class AddressGen : public sim::Module {
   // each issue() forms its next level footprint in `f` and returns true with the pixel's last.
   void begin(const PixelReq& p);
   bool issue(FootprintReq& f);
+  // The sequencer's count of `n` pixels of one probe and one level footprint each, issued without
+  // begin() / issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp),
+  // which forms their grids through grid_function() itself.
+  void count_single_footprint_pixels(uint64_t n) { probe_hist_[1] += n; }
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
   void publish(sim::Stats& st) const;
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`

@@ -56,9 +56,8 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   // The taps that read the cache: inside the texture (and, for the edge cross, in the shape).
   TapGrid lookup = g;
   if (edge) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
-  const FootprintResult r = cache_.access(texture, cur.level, lookup);
-  stage_hits[cur.tag.req.stage] += static_cast<uint64_t>(r.hits);
-  stage_misses[cur.tag.req.stage] += static_cast<uint64_t>(r.misses);
+  FootprintResult r;
+  const uint64_t ready = admit_lines(texture, cur.tag.req.stage, cur.level, lookup, now, bank_cycles, r);
   if (probes_) {  // the waveform probes (accepted_id() ...)
     accepted_id_ = cur.tag.id;
     if (g.used != 0) {
@@ -70,9 +69,6 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     last_misses_ = r.misses;
     if (r.misses > 0) last_miss_line_ = r.missed_lines[static_cast<size_t>(r.misses - 1)];
   }
-  bank_cycles = std::max(r.cycles, 1);
-  uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
-  for (int m = 0; m < r.misses; ++m) ready = std::max(ready, mem_.read(now, cache_.config().line_bytes, texture));
   if (edge) {
     int missing_arms = 0;
     for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
@@ -98,21 +94,6 @@ uint64_t CacheStage::accepted_tap_address(int k) const {
   return regs_.textures[accepted_.tag.req.texture].texel_address(accepted_.level, g.x[cell & 3u], g.y[cell >> 2]);
 }
 
-namespace {
-
-// Texel read-out of an n x n square whose taps are all inside the texture, row-major.
-template <int n>
-void read_square(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
-  size_t col[n];
-  for (size_t i = 0; i < n; ++i) col[i] = level.column(g.x[i]);
-  for (size_t j = 0; j < n; ++j) {
-    const size_t row = level.row(g.y[j]);
-    for (size_t i = 0; i < n; ++i) out[n * j + i] = level.at(col[i] + row);
-  }
-}
-
-}  // namespace
-
 // Texel read-out: the footprint's taps in FilterReq order (row-major over the grid; the cross in
 // C order), the border word where a tap is outside the texture, zero where an edge shape has no
 // texel (not read).
@@ -129,17 +110,17 @@ void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const
   const TapGrid& g = cur.grid;
   f.tag = cur.tag;
   f.ntaps = cur.ntaps();
-  const LevelReadout& level = readout_[first_readout_[cur.tag.req.texture] + static_cast<size_t>(cur.level)];
+  const LevelReadout& level = level_readout(cur.tag.req.texture, cur.level);
   const auto border = [&] {  // the border word (clamp-to-border taps outside the texture)
     return regs_.textures[cur.tag.req.texture].content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0}
                                                                                              : regs_.samplers[cur.tag.req.sampler].border;
   };
   if (!cur.cross && g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
-      case 1: read_square<1>(g, level, f.texels.data()); break;
-      case 2: read_square<2>(g, level, f.texels.data()); break;
-      case 3: read_square<3>(g, level, f.texels.data()); break;
-      default: read_square<4>(g, level, f.texels.data()); break;
+      case 1: read_square_taps<1>(g, level, f.texels.data()); break;
+      case 2: read_square_taps<2>(g, level, f.texels.data()); break;
+      case 3: read_square_taps<3>(g, level, f.texels.data()); break;
+      default: read_square_taps<4>(g, level, f.texels.data()); break;
     }
   } else {
     // The address parts of the grid's columns and rows, once (a border column or row, -1, is

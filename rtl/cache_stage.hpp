@@ -30,6 +30,17 @@
 
 namespace tfu::rtl {
 
+// Texel read-out of an n x n grid whose taps are all inside the texture, row-major.
+template <int n>
+[[gnu::always_inline]] inline void read_square_taps(const TapGrid& g, const LevelReadout& level, Rgba8* out) {
+  size_t col[n];
+  for (size_t i = 0; i < n; ++i) col[i] = level.column(g.x[i]);
+  for (size_t j = 0; j < n; ++j) {
+    const size_t row = level.row(g.y[j]);
+    for (size_t i = 0; i < n; ++i) out[n * j + i] = level.at(col[i] + row);
+  }
+}
+
 class CacheStage : public sim::Module {
  public:
   CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
@@ -72,6 +83,27 @@ class CacheStage : public sim::Module {
   // forms its texel words; add_stalls adds stall cycles counted outside evaluate().
   uint64_t admit_footprint(FootprintReq& f, uint64_t now, int& bank_cycles);
   void read_out_footprint(const FootprintReq& f, FilterReq& out) const;
+  // admit_footprint's tail, once the taps to look up are known (`lookup`: the grid, its used cells
+  // narrowed by an edge shape): the tags (hits, misses, LRU, bank cycles in `r`), the memory reads
+  // of the missing lines, the per-stage counters; returns the cycle the lines are all in. Also
+  // called by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp).
+  [[gnu::always_inline]] uint64_t admit_lines(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
+                                              int& bank_cycles, FootprintResult& r) {
+    r = cache_.access(texture, level, lookup);
+    stage_hits[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.hits);
+    stage_misses[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.misses);
+    bank_cycles = r.cycles > 1 ? r.cycles : 1;
+    uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
+    for (int m = 0; m < r.misses; ++m) {
+      const uint64_t in = mem_.read(now, cache_.config().line_bytes, texture);
+      ready = in > ready ? in : ready;
+    }
+    return ready;
+  }
+  // The read-out registers of a texture's level (its address, pitch, layout and format).
+  const LevelReadout& level_readout(int texture, int level) const {
+    return readout_[first_readout_[static_cast<size_t>(texture)] + static_cast<size_t>(level)];
+  }
   void add_stalls(uint64_t miss, uint64_t bank, uint64_t back) {
     stall_miss_ += miss;
     stall_bank_ += bank;

@@ -18,6 +18,7 @@
 // 4x4 cubic with one lane, 1 with four lanes.
 #pragma once
 
+#include "cmodel/datapath.hpp"
 #include "cmodel/descriptors.hpp"
 #include "rtl/probe_accumulator.hpp"
 #include "rtl/unit_ports.hpp"
@@ -39,6 +40,10 @@ class FilterUnit : public sim::Module {
   // `out` when the footprint completes one (LevelTag::emits()).
   int extra_clocks(int ntaps) const { return extra_clocks_[static_cast<size_t>(ntaps)]; }
   bool filter(const FilterReq& r, Response& out);
+  // filter()'s LINEAR path on 8-bit words (dp::bilinear_lerp8) for four single-level,
+  // single-probe footprints at once, lane k the footprint of q's lane k (dp::bilinear_lerp8x4,
+  // equal to dp::bilinear_lerp8 per lane): the recurrences' LINEAR quad path.
+  static void filter_linear8x4(const dp::Quad8& q, Rgba8* out) { dp::bilinear_lerp8x4(q, out); }
   void add_busy_cycles(uint64_t n) { busy_cycles_ += n; }
 
  private:

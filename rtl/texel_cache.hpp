@@ -151,7 +151,7 @@ inline size_t TexelCache::set_of(uint64_t line) const {
   return set_mask_ ? static_cast<size_t>(line & set_mask_) : static_cast<size_t>(line % static_cast<uint64_t>(cfg_.sets()));
 }
 
-inline bool TexelCache::lookup(uint64_t line) {
+[[gnu::always_inline]] inline bool TexelCache::lookup(uint64_t line) {
   ++tick_;
   uint32_t& hint = hint_[line & (kHints - 1)];
   if (ways_[hint].tag == line) {  // the line is still in the way its slot remembers (a hit)

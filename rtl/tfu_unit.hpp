@@ -71,8 +71,10 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 
 // The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes
-// and statistics as the clocked run (tested). No waveform.
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg);
+// and statistics as the clocked run (tested). No waveform. `linear_quads` false runs every quad
+// through the plain per-pixel path, without the LINEAR quad path (software speed only,
+// rtl/unit_recurrence_linear_quads.hpp): for the test that the two are equal.
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true);
 
 // The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
 // the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the

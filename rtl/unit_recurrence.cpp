@@ -44,6 +44,7 @@
 #include "cmodel/error.hpp"
 
 #include "rtl/tfu_unit.hpp"
+#include "rtl/unit_recurrence_linear_quads.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
@@ -91,7 +92,7 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
                                                                 : run_unit(frame, trace, ucfg, vcd);
 }
 
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg) {
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads) {
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
@@ -99,6 +100,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   out.response_cycle.resize(n);
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out);
   detail::Unit& u = *unit;
+  detail::LinearQuadPath linear(frame.regs, u, linear_quads);
   const auto depth = static_cast<int64_t>(ucfg.channel_depth);
   const auto fifo_depth = static_cast<int64_t>(ucfg.miss_fifo_depth);
   const size_t keep = static_cast<size_t>(std::max(depth, fifo_depth)) + 1;
@@ -116,13 +118,62 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   EdgeTimes last_edge{-1, -1, -1};
   uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, lane_busy = 0;
   const auto span = [](int64_t from, int64_t to) { return static_cast<uint64_t>(std::max<int64_t>(0, to - from)); };
-  // The response of pixel r.id, pushed at `pushed` into the response channel `ring` (`count`
-  // items so far): retired in id order.
-  const auto retire = [&](Ring<int64_t>& ring, int64_t& count, const Response& r, int64_t pushed) {
+
+  // The blocks' rules (the list above), one function per step; both the plain path and the LINEAR
+  // quad path take their cycles from these.
+  // lod_unit -> address_gen: pixel k of the quad taken at `quad_taken`; the cycle address_gen takes it.
+  const auto pixel_taken_at = [&](int k, int64_t quad_taken) {
+    last_pixel_push = std::max(k == 0 ? quad_taken : last_pixel_push + 1, pixels[n_pixels - depth] + 1);
+    const int64_t pixel_taken = std::max(last_pixel_push + 1, last_footprint_push + 1);
+    pixels[n_pixels++] = pixel_taken;
+    return pixel_taken;
+  };
+  // address_gen -> kernel_select -> texel_cache: a footprint of the pixel taken at `pixel_taken`
+  // (its first, or the next after the previous footprint), through the cache's input side, where
+  // `admit(accept, bank_cycles)` looks it up and returns the cycle its lines are in, and its output
+  // side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO.
+  const auto cache_exit_at = [&](bool first_footprint, int64_t pixel_taken, bool edge, auto&& admit) {
+    const FootprintTimes& earlier = footprints[n_footprints - depth];
+    last_footprint_push = std::max(first_footprint ? pixel_taken : last_footprint_push + 1, earlier.shaped_push + 1);
+    const int64_t shaped_push = std::max({last_footprint_push + 1, last_shaped_push + 1, earlier.accept + 1});
+    last_shaped_push = shaped_push;
+    // texel_cache: the input side
+    const int64_t visible = std::max(shaped_push + 1, prev_accept + 1);
+    const int64_t port_free = prev_accept + prev_port_cycles;
+    const int64_t accept = std::max({visible, port_free, footprints[n_footprints - fifo_depth].exit});
+    stall_bank += span(visible, std::min(accept, port_free));
+    int bank_cycles = 1;
+    const auto ready = static_cast<int64_t>(admit(static_cast<uint64_t>(accept), bank_cycles));
+    prev_accept = accept;
+    prev_port_cycles = bank_cycles;
+    // texel_cache: the output side
+    const int64_t words_room = (edge ? edges[n_edges - depth].t1 : texels[n_texels - depth]) + 1;
+    const int64_t head = std::max(accept + 1, last_exit + 1);
+    const int64_t exit = std::max({head, ready, words_room});
+    stall_miss += span(head, std::min(ready, exit));
+    stall_back += span(std::max(head, ready), exit);
+    footprints[n_footprints++] = {shaped_push, accept, exit};
+    last_exit = exit;
+    return exit;
+  };
+  // filter: the cycle a footprint of `ntaps` taps that left the cache at `exit` leaves the lanes
+  // (`emits`: it completes a pixel, whose response needs room).
+  const auto filter_done_at = [&](int64_t exit, int ntaps, bool emits) {
+    const int64_t filter_head = std::max(exit + 1, last_done + 1);
+    const int lanes = u.filter->extra_clocks(ntaps);
+    lane_busy += static_cast<uint64_t>(lanes);
+    const int64_t done = std::max(filter_head + lanes, emits ? responses[n_responses - depth] + 1 : 0);
+    texels[n_texels++] = done;
+    last_done = done;
+    return done;
+  };
+  // response: the cycle a pixel pushed at `pushed` into the response channel `ring` (`count` items
+  // so far) retires, in id order.
+  const auto retire_at = [&](Ring<int64_t>& ring, int64_t& count, int64_t pushed) {
     const int64_t t = std::max(pushed + 1, last_retire + 1);
     ring[count++] = t;
-    u.sink.retire(r, static_cast<uint64_t>(t));
     last_retire = t;
+    return static_cast<uint64_t>(t);
   };
   // The blocks' output registers, reused from item to item as the clocked run reuses its channel
   // slots (every field the datapath functions read is written first).
@@ -131,6 +182,8 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   FilterReq texel_words;
   EdgeS1 median_out;
   EdgeS2 direction_out;
+  std::array<uint64_t, 4> quad_retire{};
+  std::array<Rgba8, 4> quad_colour{};
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.sink.retired()); };
   sim::ProgressBar bar(retired, n);
@@ -142,51 +195,37 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
     for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k) u.accept[first + k] = static_cast<uint64_t>(quad_push);
     const int64_t quad_taken = std::max(quad_push + 1, last_pixel_push + 1);
     quads[n_quads++] = quad_taken;
+    first += static_cast<size_t>(quad.npix);
+    if (linear.takes(quad)) {
+      // The LINEAR quad path: one footprint per pixel, the functions batched per quad.
+      linear.address(quad);
+      for (int k = 0; k < 4; ++k) {
+        const int64_t exit = cache_exit_at(true, pixel_taken_at(k, quad_taken), false,
+                                           [&](uint64_t now, int& bank_cycles) { return linear.admit(k, now, bank_cycles); });
+        quad_retire[static_cast<size_t>(k)] = retire_at(responses, n_responses, filter_done_at(exit, 4, true));
+      }
+      linear.filter(quad_colour);
+      for (size_t k = 0; k < 4; ++k) u.sink.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, quad_retire[k]);
+      continue;
+    }
     const AnisoLod lod = u.lod.quad_lod(quad);
     for (int k = 0; k < quad.npix; ++k) {
-      // lod_unit -> address_gen
-      last_pixel_push = std::max(k == 0 ? quad_taken : last_pixel_push + 1, pixels[n_pixels - depth] + 1);
-      const int64_t pixel_taken = std::max(last_pixel_push + 1, last_footprint_push + 1);
-      pixels[n_pixels++] = pixel_taken;
+      const int64_t pixel_taken = pixel_taken_at(k, quad_taken);
       u.addr.begin(LodUnit::pixel(quad, lod, k));
       for (bool first_footprint = true, last = false; !last; first_footprint = false) {
-        // address_gen -> kernel_select -> texel_cache
         last = u.addr.issue(f);
-        const FootprintTimes& earlier = footprints[n_footprints - depth];
-        last_footprint_push = std::max(first_footprint ? pixel_taken : last_footprint_push + 1, earlier.shaped_push + 1);
-        const int64_t shaped_push = std::max({last_footprint_push + 1, last_shaped_push + 1, earlier.accept + 1});
-        last_shaped_push = shaped_push;
         u.shape.shape(f);
-        // texel_cache: the input side
-        const int64_t visible = std::max(shaped_push + 1, prev_accept + 1);
-        const int64_t port_free = prev_accept + prev_port_cycles;
-        const int64_t accept = std::max({visible, port_free, footprints[n_footprints - fifo_depth].exit});
-        stall_bank += span(visible, std::min(accept, port_free));
-        int bank_cycles = 1;
-        const auto ready = static_cast<int64_t>(u.cst.admit_footprint(f, static_cast<uint64_t>(accept), bank_cycles));
-        prev_accept = accept;
-        prev_port_cycles = bank_cycles;
-        // texel_cache: the output side
         const bool edge = f.tag.base == BaseFilter::EdgePreserving;
-        const int64_t words_room = (edge ? edges[n_edges - depth].t1 : texels[n_texels - depth]) + 1;
-        const int64_t head = std::max(accept + 1, last_exit + 1);
-        const int64_t exit = std::max({head, ready, words_room});
-        stall_miss += span(head, std::min(ready, exit));
-        stall_back += span(std::max(head, ready), exit);
-        footprints[n_footprints++] = {shaped_push, accept, exit};
-        last_exit = exit;
+        const int64_t exit = cache_exit_at(first_footprint, pixel_taken, edge, [&](uint64_t now, int& bank_cycles) {
+          return u.cst.admit_footprint(f, now, bank_cycles);
+        });
         u.cst.read_out_footprint(f, texel_words);
         const bool emits = texel_words.tag.emits();
         Response r;
         if (!edge) {
           // filter -> response
-          const int64_t filter_head = std::max(exit + 1, last_done + 1);
-          const int lanes = u.filter->extra_clocks(texel_words.ntaps);
-          lane_busy += static_cast<uint64_t>(lanes);
-          const int64_t done = std::max(filter_head + lanes, emits ? responses[n_responses - depth] + 1 : 0);
-          texels[n_texels++] = done;
-          last_done = done;
-          if (u.filter->filter(texel_words, r)) retire(responses, n_responses, r, done);
+          const int64_t done = filter_done_at(exit, texel_words.ntaps, emits);
+          if (u.filter->filter(texel_words, r)) u.sink.retire(r, retire_at(responses, n_responses, done));
         } else {
           // edge_median -> edge_direction -> edge_merge -> response
           const EdgeTimes& earlier_edge = edges[n_edges - depth];
@@ -198,11 +237,10 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
           e.t3 = std::max({e.t2 + 1, last_edge.t3 + 1, emits ? edge_responses[n_edge_responses - depth] + 1 : 0});
           edges[n_edges++] = e;
           last_edge = e;
-          if (u.e3->merge(direction_out, r)) retire(edge_responses, n_edge_responses, r, e.t3);
+          if (u.e3->merge(direction_out, r)) u.sink.retire(r, retire_at(edge_responses, n_edge_responses, e.t3));
         }
       }
     }
-    first += static_cast<size_t>(quad.npix);
   }
   bar.finish(static_cast<uint64_t>(last_retire + 1));
   u.cst.add_stalls(stall_miss, stall_bank, stall_back);

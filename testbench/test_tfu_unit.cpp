@@ -588,6 +588,106 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     }
 }
 
+// The timing recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.hpp: LINEAR without
+// MIP-mapping or clamp-to-border, 8-bit textures, four pixels a quad; software speed only) gives
+// the plain per-pixel path's and the clocked blocks' pixels, response cycles, cycles and
+// statistics: every non-border wrap pair on RGBA8 tiled, L8 linear-row and non-power-of-two
+// textures, interleaved quad by quad with quads the path does not take (clamp-to-border, MIP-mapped,
+// edge-preserving, VS16X2), on random unit configurations (stalls of every kind).
+TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
+  std::mt19937 rng(4242);
+  std::vector<std::shared_ptr<Texture>> textures;
+  {
+    Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
+    textures.push_back(std::make_shared<Texture>(std::move(text)));
+    Texture lum = make_procedural("checkerboard", 32).texture;  // L8, linear rows
+    for (Rgba8& t : lum.levels[0].texels) t = {t.r, t.r, t.r, 255};
+    lum.format = TexelFormat::L8;
+    lum.layout = MemoryLayout::Linear;
+    textures.push_back(std::make_shared<Texture>(std::move(lum)));
+    Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
+    npot.levels[0] = Image(40, 24);
+    for (Rgba8& t : npot.levels[0].texels)
+      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+    npot.layout = MemoryLayout::Linear;
+    textures.push_back(std::make_shared<Texture>(std::move(npot)));
+    Texture vs = make_procedural("checkerboard", 32).texture;  // VS16X2, tiled: not taken
+    vs.format = TexelFormat::VS16X2;
+    textures.push_back(std::make_shared<Texture>(std::move(vs)));
+  }
+  for (auto& t : textures) generate_mipmaps(*t, MipMethod::Box);
+  std::vector<SamplerDescriptor> samplers;
+  for (int ws = 0; ws < 4; ++ws)
+    for (int wt = 0; wt < 4; ++wt) {  // LINEAR with every wrap pair (the border pairs are not taken)
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name("LINEAR");
+      s.wrap_s = static_cast<WrapMode>(ws);
+      s.wrap_t = static_cast<WrapMode>(wt);
+      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
+      samplers.push_back(s);
+    }
+  for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING", "NEAREST"}) {
+    SamplerDescriptor s;
+    s.mode = filter_mode_from_name(mode);
+    samplers.push_back(s);
+  }
+  const auto taken = [&](const TraceRequest& r) {
+    const SamplerDescriptor& s = samplers[r.sampler];
+    return s.mode.base == BaseFilter::Linear && s.mode.mip == MipMode::None && s.wrap_s != WrapMode::ClampToBorder &&
+           s.wrap_t != WrapMode::ClampToBorder && textures[r.texture]->format != TexelFormat::VS16X2;
+  };
+  FrameBuilder b(64);
+  for (const auto& t : textures) b.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  Trace tr;
+  tr.mode = TraceMode::Quad;
+  std::uniform_real_distribution<float> uni(-1.5f, 2.5f), d(-0.08f, 0.08f);
+  int quads_taken = 0;
+  for (int n = 0; n < 1500; ++n) {
+    TraceRequest r;
+    r.texture = static_cast<uint16_t>(rng() % textures.size());
+    r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+    r.stage = static_cast<uint8_t>(rng() % 2);
+    quads_taken += taken(r) ? 1 : 0;
+    const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+    for (size_t k = 0; k < 4; ++k) {
+      r.s = s0 + static_cast<float>(k & 1) * step;
+      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+      tr.requests.push_back(r);
+    }
+  }
+  EXPECT_GT(quads_taken, 400);  // the path carries about a third of the quads (9/19 samplers x 3/4 textures)
+  EXPECT_LT(quads_taken, 700);
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  for (int k = 0; k < 10; ++k) {
+    UnitConfig c = small_cache(4);
+    const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
+    if (k > 0) {
+      c.channel_depth = pick({1, 2, 4});
+      c.miss_fifo_depth = pick({1, 2, 8, 128});
+      c.filter_lanes = pick({1, 2, 4});
+      c.memory.latency = pick({0, 7, 100});
+      c.memory.bytes_per_cycle = pick({1, 16, 64});
+      c.cache.ways = pick({1, 2, 4});
+      c.cache.capacity_bytes = c.cache.line_bytes * c.cache.ways * pick({1, 8, 32});
+      c.cache.banks = pick({1, 4});
+      c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
+    }
+    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
+    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
+    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
+    const UnitOutput clocked = run_unit(frame, tr, c);
+    expect_golden(frame, tr, quad_path, what);
+    for (const UnitOutput* other : {&plain, &clocked}) {
+      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
+      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
+      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
+      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
+    }
+  }
+}
+
 // ---- Anisotropic filtering (TFU-G, docs/anisotropic.md) ----
 
 // A 64 x 64 random RGBA8 texture (or VS16X2) with box MIP-maps: holds in hot_cache().
