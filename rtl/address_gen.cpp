@@ -113,9 +113,7 @@ void AddressGen::evaluate() {
 
 void AddressGen::begin(const PixelReq& p) {
   pixel_ = p;
-  const SamplerDescriptor& c = regs_.samplers[p.req.sampler];
-  // Without MIP-mapping level 0 alone (GL), whatever lambda.
-  pick_ = c.mode.mip == MipMode::None ? LevelPick{} : select_levels(p.lambda, c, regs_.textures[p.req.texture].levels - 1);
+  pick_ = pick_levels(p.req, p.lambda);
   count_ = pick_.blend != 0 ? 2 : 1;
   sent_ = 0;
   probe_ = -1;

@@ -50,10 +50,17 @@ class AddressGen : public sim::Module {
   // each issue() forms its next level footprint in `f` and returns true with the pixel's last.
   void begin(const PixelReq& p);
   bool issue(FootprintReq& f);
-  // The sequencer's count of `n` pixels of one probe and one level footprint each, issued without
-  // begin() / issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp),
-  // which forms their grids through grid_function() itself.
-  void count_single_footprint_pixels(uint64_t n) { probe_hist_[1] += n; }
+  // The level selection of a pixel of sampler and texture `req` at `lambda` (Q.8, before bias and
+  // clamps): level 0 alone without MIP-mapping, else select_levels.
+  LevelPick pick_levels(const RequestTag& req, int32_t lambda) const {
+    const SamplerDescriptor& c = regs_.samplers[req.sampler];
+    // Without MIP-mapping level 0 alone (GL), whatever lambda.
+    return c.mode.mip == MipMode::None ? LevelPick{} : select_levels(lambda, c, regs_.textures[req.texture].levels - 1);
+  }
+  // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
+  // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
+  // forms their grids through pick_levels() and grid_function() itself.
+  void count_isotropic_pixels(uint64_t n) { probe_hist_[1] += n; }
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
   void publish(sim::Stats& st) const;
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`

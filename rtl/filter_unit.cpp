@@ -57,7 +57,7 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
       return false;
     }
     if (r.tag.probes == 1) {
-      out = {r.tag.id, r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8};
+      out = {r.tag.id, r.tag.two ? blend_linear8(first8_, c8, r.tag.blend) : c8};
       return true;
     }
     // an anisotropic probe: the probe accumulator

@@ -40,10 +40,12 @@ class FilterUnit : public sim::Module {
   // `out` when the footprint completes one (LevelTag::emits()).
   int extra_clocks(int ntaps) const { return extra_clocks_[static_cast<size_t>(ntaps)]; }
   bool filter(const FilterReq& r, Response& out);
-  // filter()'s LINEAR path on 8-bit words (dp::bilinear_lerp8) for four single-level,
-  // single-probe footprints at once, lane k the footprint of q's lane k (dp::bilinear_lerp8x4,
+  // filter()'s LINEAR lerp on 8-bit words (dp::bilinear_lerp8) for four footprints of one level
+  // at once (isotropic pixels), lane k the footprint of q's lane k (dp::bilinear_lerp8x4,
   // equal to dp::bilinear_lerp8 per lane): the recurrences' LINEAR quad path.
   static void filter_linear8x4(const dp::Quad8& q, Rgba8* out) { dp::bilinear_lerp8x4(q, out); }
+  // filter()'s blend unit on 8-bit words (a blending pixel's level0 and level1 colours).
+  static Rgba8 blend_linear8(Rgba8 level0, Rgba8 level1, int blend) { return dp::level_blend8(level0, level1, blend); }
   void add_busy_cycles(uint64_t n) { busy_cycles_ += n; }
 
  private:

@@ -39,12 +39,14 @@ class ResponseSink : public sim::Module {
     sim_.progress();
   }
   // Pixel r.id leaves the unit at cycle `now` (its colour, exit cycle and latency recorded).
-  void retire(const Response& r, uint64_t now) {
-    if (r.id >= pixels_.size()) throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", r.id, now));
+  [[gnu::always_inline]] void retire(const Response& r, uint64_t now) {
+    if (r.id >= pixels_.size()) [[unlikely]]
+      beyond_trace(r.id, now);
     pixels_[r.id] = r.rgba;
     exit_[r.id] = now;
     const uint64_t lat = now - accept_[r.id];
-    if (lat >= latency.size()) latency.resize(lat + 1);
+    if (lat >= latency.size()) [[unlikely]]
+      latency.resize(lat + 1);
     ++latency[lat];
     ++retired_;
   }
@@ -59,6 +61,9 @@ class ResponseSink : public sim::Module {
   std::vector<uint64_t>& exit_;
   const std::vector<uint64_t>& accept_;
   uint32_t retired_ = 0;
+  [[noreturn, gnu::cold, gnu::noinline]] static void beyond_trace(uint32_t id, uint64_t now) {
+    throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", id, now));
+  }
 };
 
 }  // namespace tfu::rtl

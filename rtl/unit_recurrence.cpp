@@ -34,10 +34,14 @@
 //   edge_median, edge_direction  as kernel_select; edge_merge as the filter without lane cycles.
 //   response      retires pixel ids in order, one per cycle, from either datapath.
 // The run ends the cycle after the last retire.
+// The blocks' functions are called per footprint (the plain path), or, for quads of isotropic
+// LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
 #include <algorithm>
 #include <bit>
 #include <functional>
 #include <memory>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -196,19 +200,33 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
     const int64_t quad_taken = std::max(quad_push + 1, last_pixel_push + 1);
     quads[n_quads++] = quad_taken;
     first += static_cast<size_t>(quad.npix);
+    const AnisoLod lod = u.lod.quad_lod(quad);
     if (linear.takes(quad)) {
-      // The LINEAR quad path: one footprint per pixel, the functions batched per quad.
-      linear.address(quad);
-      for (int k = 0; k < 4; ++k) {
-        const int64_t exit = cache_exit_at(true, pixel_taken_at(k, quad_taken), false,
-                                           [&](uint64_t now, int& bank_cycles) { return linear.admit(k, now, bank_cycles); });
-        quad_retire[static_cast<size_t>(k)] = retire_at(responses, n_responses, filter_done_at(exit, 4, true));
+      // The LINEAR quad path: one or two level footprints per pixel, the functions batched per quad.
+      // (The level count is a template constant, so that the loop over levels unrolls.)
+      const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
+        constexpr int kLevels = decltype(level_count)::value;
+        for (int k = 0; k < 4; ++k) {
+          const int64_t pixel_taken = pixel_taken_at(k, quad_taken);
+          for (int n_level = 0; n_level < kLevels; ++n_level) {  // level0, then level1 when blending
+            const int64_t exit = cache_exit_at(n_level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
+              return linear.admit(k, n_level, now, bank_cycles);
+            });
+            const bool emits = n_level + 1 == kLevels;
+            const int64_t done = filter_done_at(exit, 4, emits);
+            if (emits) quad_retire[static_cast<size_t>(k)] = retire_at(responses, n_responses, done);
+          }
+        }
+      };
+      if (linear.address(quad, lod) == 1) {
+        footprint_times(std::integral_constant<int, 1>{});
+      } else {
+        footprint_times(std::integral_constant<int, 2>{});
       }
       linear.filter(quad_colour);
       for (size_t k = 0; k < 4; ++k) u.sink.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, quad_retire[k]);
       continue;
     }
-    const AnisoLod lod = u.lod.quad_lod(quad);
     for (int k = 0; k < quad.npix; ++k) {
       const int64_t pixel_taken = pixel_taken_at(k, quad_taken);
       u.addr.begin(LodUnit::pixel(quad, lod, k));
