@@ -434,6 +434,34 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
   EXPECT_EQ(compared, test::iterations(4000) * 32);
 }
 
+// A 32 x 32 checkerboard in L8 texels, linear rows, no MIP chain yet.
+Texture l8_linear_checkerboard() {
+  Texture lum = make_procedural("checkerboard", 32).texture;
+  for (Rgba8& t : lum.levels[0].texels) t = {t.r, t.r, t.r, 255};
+  lum.format = TexelFormat::L8;
+  lum.layout = MemoryLayout::Linear;
+  return lum;
+}
+
+// A random unit configuration around `base` (its line size kept): channel and miss-FIFO depths
+// down to 1, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping,
+// idle skipping; so that stalls of every kind, back-pressure included, occur.
+UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base) {
+  UnitConfig c = base;
+  const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
+  c.channel_depth = pick({1, 1, 2, 3, 4});
+  c.miss_fifo_depth = pick({1, 2, 3, 8, 128});
+  c.filter_lanes = pick({1, 2, 4});
+  c.memory.latency = pick({0, 1, 7, 100, 300});
+  c.memory.bytes_per_cycle = pick({1, 4, 16, 64});
+  c.cache.ways = pick({1, 2, 4});
+  c.cache.capacity_bytes = c.cache.line_bytes * c.cache.ways * pick({1, 2, 8, 32});
+  c.cache.banks = pick({1, 4});
+  c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
+  c.idle_skip = rng() % 2 != 0;
+  return c;
+}
+
 // Requests to textures of every format and both layouts, through samplers of all 12 modes (and
 // bspline-interp, cache-aware edge shapes, every wrap mode), interleaved at random in one stream,
 // in quad, lod and grad traces: every output equals the golden model's, and the per-texture
@@ -451,10 +479,7 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
     generate_mipmaps(text, MipMethod::Box);
     textures.push_back(std::make_shared<Texture>(std::move(text)));
-    Texture lum = make_procedural("checkerboard", 32).texture;  // L8, linear rows
-    for (Rgba8& t : lum.levels[0].texels) t = {t.r, t.r, t.r, 255};
-    lum.format = TexelFormat::L8;
-    lum.layout = MemoryLayout::Linear;
+    Texture lum = l8_linear_checkerboard();
     generate_mipmaps(lum, MipMethod::Box);
     textures.push_back(std::make_shared<Texture>(std::move(lum)));
     Texture npot;  // RGBA8 40 x 24, linear rows
@@ -548,18 +573,7 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
       };
       same_as_clocked(u, got, "default");
       for (int k = 0; k < 12; ++k) {
-        UnitConfig c = u;
-        const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
-        c.channel_depth = pick({1, 1, 2, 3, 4});
-        c.miss_fifo_depth = pick({1, 2, 3, 8, 128});
-        c.filter_lanes = pick({1, 2, 4});
-        c.memory.latency = pick({0, 1, 7, 100, 300});
-        c.memory.bytes_per_cycle = pick({1, 4, 16, 64});
-        c.cache.ways = pick({1, 2, 4});
-        c.cache.capacity_bytes = c.cache.line_bytes * c.cache.ways * pick({1, 2, 8, 32});
-        c.cache.banks = pick({1, 4});
-        c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
-        c.idle_skip = rng() % 2 != 0;
+        const UnitConfig c = random_unit_config(rng, u);
         const std::string what = fmt::format("line {} {} config {}: {}", line, trace_mode_name(mode), k, unit_config_to_json(c));
         const UnitOutput clocked = run_unit(frame, tr, c);
         expect_golden(frame, tr, clocked, what);
@@ -601,10 +615,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   {
     Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
     textures.push_back(std::make_shared<Texture>(std::move(text)));
-    Texture lum = make_procedural("checkerboard", 32).texture;  // L8, linear rows
-    for (Rgba8& t : lum.levels[0].texels) t = {t.r, t.r, t.r, 255};
-    lum.format = TexelFormat::L8;
-    lum.layout = MemoryLayout::Linear;
+    Texture lum = l8_linear_checkerboard();
     textures.push_back(std::make_shared<Texture>(std::move(lum)));
     Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
     npot.levels[0] = Image(40, 24);
@@ -673,19 +684,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   bind_requests(b, tr);
   const Frame frame = b.finish();
   for (int k = 0; k < 10; ++k) {
-    UnitConfig c = small_cache(4);
-    const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
-    if (k > 0) {
-      c.channel_depth = pick({1, 2, 4});
-      c.miss_fifo_depth = pick({1, 2, 8, 128});
-      c.filter_lanes = pick({1, 2, 4});
-      c.memory.latency = pick({0, 7, 100});
-      c.memory.bytes_per_cycle = pick({1, 16, 64});
-      c.cache.ways = pick({1, 2, 4});
-      c.cache.capacity_bytes = c.cache.line_bytes * c.cache.ways * pick({1, 8, 32});
-      c.cache.banks = pick({1, 4});
-      c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
-    }
+    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4));
     const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
     const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
     const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
