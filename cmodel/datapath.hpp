@@ -94,7 +94,7 @@ inline Rgba8 bilinear_lerp8_words(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t f
 // With SSE2 (every x86-64) the four channels of one sample go side by side in 16-bit lanes, the
 // horizontal lerps (h0, h1) = (a, c) gu + (b, d) fu exact, the vertical one the biased pmaddwd of
 // bilinear_lerp8x4 below; elsewhere the portable form.
-inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
+[[gnu::always_inline]] inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
 #if defined(__SSE2__)
   const auto pair = [](Rgba8 x, Rgba8 y) {  // 16-bit lanes: x.r x.g x.b x.a y.r y.g y.b y.a
     const __m128i w = _mm_unpacklo_epi32(_mm_cvtsi32_si128(std::bit_cast<int32_t>(x)), _mm_cvtsi32_si128(std::bit_cast<int32_t>(y)));
@@ -125,11 +125,11 @@ struct Quad8 {
   std::array<Rgba8, 4> a, b, c, d;  // taps (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1) per lane
   std::array<uint32_t, 4> fu, fv;   // 8-bit fractions per lane
 };
-inline void bilinear_lerp8x4(const Quad8& q, Rgba8* out) {
 #if defined(__SSE2__)
-  const auto words = [](const std::array<Rgba8, 4>& w) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(w.data())); };
-  const __m128i fu = _mm_loadu_si128(reinterpret_cast<const __m128i*>(q.fu.data()));
-  const __m128i fv = _mm_loadu_si128(reinterpret_cast<const __m128i*>(q.fv.data()));
+// The four lanes in registers: a, b, c, d hold the lanes' texel words, fu and fv their fractions
+// in 32-bit lanes; returns the four result words.
+[[gnu::always_inline]] inline __m128i bilinear_lerp8x4_lanes(__m128i a, __m128i b, __m128i c, __m128i d, __m128i fu,
+                                                             __m128i fv) {
   const __m128i lo8 = _mm_set1_epi32(0x00FF00FF);
   const __m128i fu2 = _mm_or_si128(fu, _mm_slli_epi32(fu, 16));       // (fu, fu) per word
   const __m128i gu2 = _mm_sub_epi16(_mm_set1_epi16(256), fu2);         // (256 - fu, 256 - fu)
@@ -147,10 +147,16 @@ inline void bilinear_lerp8x4(const Quad8& q, Rgba8* out) {
     const __m128i h = _mm_madd_epi16(_mm_unpackhi_epi16(h0, h1), whi);
     return _mm_packs_epi32(_mm_srli_epi32(_mm_add_epi32(l, round), 16), _mm_srli_epi32(_mm_add_epi32(h, round), 16));
   };
-  const __m128i a = words(q.a), b = words(q.b), c = words(q.c), d = words(q.d);
   const __m128i rb = vlerp(hlerp(a, b, false), hlerp(c, d, false));
   const __m128i ga = vlerp(hlerp(a, b, true), hlerp(c, d, true));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_or_si128(rb, _mm_slli_epi16(ga, 8)));
+  return _mm_or_si128(rb, _mm_slli_epi16(ga, 8));
+}
+#endif
+inline void bilinear_lerp8x4(const Quad8& q, Rgba8* out) {
+#if defined(__SSE2__)
+  const auto lanes = [](const auto& w) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(w.data())); };
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                   bilinear_lerp8x4_lanes(lanes(q.a), lanes(q.b), lanes(q.c), lanes(q.d), lanes(q.fu), lanes(q.fv)));
 #else
   for (size_t k = 0; k < 4; ++k) out[k] = bilinear_lerp8(q.a[k], q.b[k], q.c[k], q.d[k], q.fu[k], q.fv[k]);
 #endif

@@ -4,8 +4,10 @@
 // sampler.cpp (sample_channels); Properties.FastPathsEqualGenericDatapath and BatchEqualsSample
 // compare them.
 #include <algorithm>
+#include <bit>
 #include <utility>
 
+#include "cmodel/aniso_fast.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/edge_filter.hpp"
 #include "cmodel/sampler.hpp"
@@ -42,22 +44,34 @@ template <bool kBorder>
   return img.texels[static_cast<size_t>(y) * static_cast<size_t>(img.width) + static_cast<size_t>(x)];
 }
 
-// LINEAR on one level of an 8-bit format: address, wrap and the four texel words of lane k of q,
-// then the same arithmetic as filter_linear (one rounding of the Q.16 sum) in dp::bilinear_lerp8,
-// or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit inputs is always within 0..255.
+// LINEAR on one level of an 8-bit format: address, wrap and the four texel words of one footprint
+// (a LerpLane), as lane k of q, then the same arithmetic as filter_linear (one rounding of the Q.16
+// sum) in dp::bilinear_lerp8, or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit
+// inputs is always within 0..255.
+// (Words as integers: a struct of Rgba8 members is copied byte by byte by GCC 12.)
+struct LerpLane {
+  uint32_t a, b, c, d;  // texel words of taps (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1)
+  uint32_t fu, fv;
+};
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline void bilinear8_taps_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v, dp::Quad8& q,
-                                                     size_t k) {
+[[gnu::always_inline]] inline LerpLane lerp_lane(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
   int xs[2], ys[2];
   dp::wrap_taps<kWs, 2>(u.i0, img.width, xs);
   dp::wrap_taps<kWt, 2>(v.i0, img.height, ys);
   constexpr bool kB = kMayBorder<kWs, kWt>;
-  q.a[k] = texel_word<kB>(img, xs[0], ys[0], border);
-  q.b[k] = texel_word<kB>(img, xs[1], ys[0], border);
-  q.c[k] = texel_word<kB>(img, xs[0], ys[1], border);
-  q.d[k] = texel_word<kB>(img, xs[1], ys[1], border);
-  q.fu[k] = u.f;
-  q.fv[k] = v.f;
+  const auto word = [&](int x, int y) { return std::bit_cast<uint32_t>(texel_word<kB>(img, x, y, border)); };
+  return {word(xs[0], ys[0]), word(xs[1], ys[0]), word(xs[0], ys[1]), word(xs[1], ys[1]), u.f, v.f};
+}
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline void bilinear8_taps_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v, dp::Quad8& q,
+                                                     size_t k) {
+  const LerpLane l = lerp_lane<kWs, kWt>(img, border, u, v);
+  q.a[k] = std::bit_cast<Rgba8>(l.a);
+  q.b[k] = std::bit_cast<Rgba8>(l.b);
+  q.c[k] = std::bit_cast<Rgba8>(l.c);
+  q.d[k] = std::bit_cast<Rgba8>(l.d);
+  q.fu[k] = l.fu;
+  q.fv[k] = l.fv;
 }
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
@@ -65,9 +79,9 @@ template <WrapMode kWs, WrapMode kWt>
 }
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 bilinear8_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
-  dp::Quad8 q;
-  bilinear8_taps_at<kWs, kWt>(img, border, u, v, q, 0);
-  return dp::bilinear_lerp8(q.a[0], q.b[0], q.c[0], q.d[0], q.fu[0], q.fv[0]);
+  const LerpLane l = lerp_lane<kWs, kWt>(img, border, u, v);
+  return dp::bilinear_lerp8(std::bit_cast<Rgba8>(l.a), std::bit_cast<Rgba8>(l.b), std::bit_cast<Rgba8>(l.c),
+                           std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
 }
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
@@ -194,55 +208,81 @@ Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t la
 
 namespace {
 
-// LINEAR's N > 1 probes on the 4-lane lerp unit: the pixel's (probe, level) lerps in the order
-// probe 1 level0, probe 1 level1 (when the levels blend), probe 2 level0, ..., four lanes a call;
-// after each call the blend unit and the averaging unit take its probes (a probe's two lanes never
-// straddle calls), the averaging sums (R, B) and (G, A) in 32-bit lanes (sum_i w_i c_i <= 256 * 255
-// < 2^17). The same arithmetic as the plain probe datapath (Sampler::sample_channels):
-// dp::bilinear_lerp8x4 equals bilinear_lerp8 per lane, and the result is AnisoAccumulator's
-// (acc + 128) >> 8. Returned as the output word: each probe is an output word of the 8-bit LINEAR
-// path (on which encoding is the identity, as sample<Linear8> has it) and their weighted mean lies
-// between them, channel by channel.
-template <WrapMode kWs, WrapMode kWt>
+// LINEAR's N > 1 probes on the 4-lane lerp unit, all in registers: with kTwo (the levels blend)
+// each call takes two probes, lanes (probe i level0, probe i + 1 level0, probe i level1, probe
+// i + 1 level1), then the blend unit takes the two probes side by side; without, four probes on
+// level0. The averaging unit sums w_i c_i in 16-bit lanes (sum_i w_i c_i <= 256 * 255 < 2^16, and a
+// blend's p (256 - f) + q f + 128 <= 255 * 256 + 128 as well). A call's missing probes (N not a
+// multiple of its probes) repeat its first with weight 0. The same arithmetic as the plain probe
+// datapath (Sampler::sample_channels): dp::bilinear_lerp8x4_lanes equals bilinear_lerp8 per lane,
+// the blend is dp::level_blend8's, the probe offsets are the offset units' two's-complement forms
+// (aniso_fast.hpp: one multiply, then one add-and-shift per rounding, onto the centre's Q.8
+// coordinate formed once per pixel), and the result is AnisoAccumulator's (acc + 128) >> 8.
+// Returned as the output word: each probe is an output word of the 8-bit LINEAR path (on which
+// encoding is the identity, as sample<Linear8> has it) and their weighted mean lies between them,
+// channel by channel. (Lanes are not staged in memory: four 32-bit stores read back as one
+// 128-bit load cannot be forwarded and stall until the stores retire.) SSE2 (every x86-64);
+// elsewhere LINEAR's probes take the per-probe loop of FastPaths::aniso.
+#if defined(__SSE2__)
+template <WrapMode kWs, WrapMode kWt, bool kTwo>
 Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p, LevelCoord u0, LevelCoord v0,
                      LevelCoord u1, LevelCoord v1, const AnisoLod& lod) {
-  // The lerp unit's input lanes, one set per thread (zeroed once, not per pixel: a short last call
-  // reads lanes of an earlier call, whose results are not used).
-  thread_local dp::Quad8 q;
   const int n = lod.probes;
-  const bool two = p.blend != 0;
   const ProbeRomWord* rom = probe_rom().data() + probe_rom_address(n, 1);  // words (n, 1..n)
-  uint64_t rb = 0, ga = 0;
-  int averaged = 0;  // probes through the averaging unit
-  size_t lane = 0;
-  const auto lerp_and_average = [&] {
-    std::array<Rgba8, 4> c;
-    dp::bilinear_lerp8x4(q, c.data());
-    for (size_t k = 0; k < lane; k += two ? 2 : 1, ++averaged) {
-      const Rgba8 probe = two ? dp::level_blend8(c[k], c[k + 1], p.blend) : c[k];
-      const auto w = static_cast<uint64_t>(rom[averaged].weight);
-      rb += dp::word_lanes_rb(probe) * w;
-      ga += dp::word_lanes_ga(probe) * w;
+  const int64_t major_du = dp_fast::clamped_major(lod.major_du_q16), major_dv = dp_fast::clamped_major(lod.major_dv_q16);
+  const int64_t cu0 = dp_fast::join_q8(u0), cv0 = dp_fast::join_q8(v0);
+  const int64_t cu1 = dp_fast::join_q8(u1), cv1 = dp_fast::join_q8(v1);
+  // Probe i's offset (Q.16 level-0 texels), and its footprint on level 0 (level0) or 1 (level1).
+  const auto offset = [&](int i) __attribute__((always_inline)) {
+    return ProbeOffset{dp_fast::scale_probe_fraction(major_du, rom[i].frac_q16),
+                       dp_fast::scale_probe_fraction(major_dv, rom[i].frac_q16)};
+  };
+  const auto footprint = [&](const ProbeOffset& o, int level) __attribute__((always_inline)) {
+    const int l = level == 0 ? p.level0 : p.level1;
+    return lerp_lane<kWs, kWt>(level == 0 ? l0 : l1, border,
+                               dp_fast::split_q8((level == 0 ? cu0 : cu1) + dp_fast::probe_offset_on_level(o.du_q16, l)),
+                               dp_fast::split_q8((level == 0 ? cv0 : cv1) + dp_fast::probe_offset_on_level(o.dv_q16, l)));
+  };
+  const auto lerp4 = [](const LerpLane& x0, const LerpLane& x1, const LerpLane& x2, const LerpLane& x3) __attribute__((always_inline)) {
+    const auto lanes = [&](auto field) { return _mm_setr_epi32(field(x0), field(x1), field(x2), field(x3)); };
+    return dp::bilinear_lerp8x4_lanes(lanes([](const LerpLane& x) { return static_cast<int32_t>(x.a); }),
+                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.b); }),
+                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.c); }),
+                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.d); }),
+                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.fu); }),
+                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.fv); }));
+  };
+  const auto weight = [&](int i, bool used) { return static_cast<int16_t>(used ? rom[i].weight : 0); };
+  const __m128i zero = _mm_setzero_si128();
+  __m128i acc = zero;  // 8 x 16-bit: (R, G, B, A) of the even and of the odd probe slots
+  if constexpr (kTwo) {
+    const __m128i g = _mm_set1_epi16(static_cast<int16_t>(256 - p.blend)), f = _mm_set1_epi16(static_cast<int16_t>(p.blend));
+    for (int i = 0; i < n; i += 2) {
+      const bool second = i + 1 < n;
+      const int j = second ? i + 1 : i;
+      const ProbeOffset oi = offset(i), oj = offset(j);
+      const __m128i c = lerp4(footprint(oi, 0), footprint(oj, 0), footprint(oi, 1), footprint(oj, 1));
+      const __m128i blended = _mm_srli_epi16(
+          _mm_add_epi16(_mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(c, zero), g), _mm_mullo_epi16(_mm_unpackhi_epi8(c, zero), f)),
+                        _mm_set1_epi16(128)),
+          8);
+      const int16_t wi = weight(i, true), wj = weight(j, second);
+      acc = _mm_add_epi16(acc, _mm_mullo_epi16(blended, _mm_setr_epi16(wi, wi, wi, wi, wj, wj, wj, wj)));
     }
-    lane = 0;
-  };
-  for (int i = 0; i < n; ++i) {
-    const int64_t du = dp::scale_probe_fraction(lod.major_du_q16, rom[i].frac_q16);
-    const int64_t dv = dp::scale_probe_fraction(lod.major_dv_q16, rom[i].frac_q16);
-    bilinear8_taps_at<kWs, kWt>(l0, border, dp::probe_texel_coord(u0, dp::probe_offset_on_level(du, p.level0)),
-                                dp::probe_texel_coord(v0, dp::probe_offset_on_level(dv, p.level0)), q, lane++);
-    if (two)
-      bilinear8_taps_at<kWs, kWt>(l1, border, dp::probe_texel_coord(u1, dp::probe_offset_on_level(du, p.level1)),
-                                  dp::probe_texel_coord(v1, dp::probe_offset_on_level(dv, p.level1)), q, lane++);
-    if (lane == 4) lerp_and_average();
+  } else {
+    for (int i = 0; i < n; i += 4) {
+      const int i1 = i + 1 < n ? i + 1 : i, i2 = i + 2 < n ? i + 2 : i, i3 = i + 3 < n ? i + 3 : i;
+      const __m128i c = lerp4(footprint(offset(i), 0), footprint(offset(i1), 0), footprint(offset(i2), 0), footprint(offset(i3), 0));
+      const int16_t w0 = weight(i, true), w1 = weight(i1, i + 1 < n), w2 = weight(i2, i + 2 < n), w3 = weight(i3, i + 3 < n);
+      acc = _mm_add_epi16(acc, _mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(c, zero), _mm_setr_epi16(w0, w0, w0, w0, w1, w1, w1, w1)),
+                                             _mm_mullo_epi16(_mm_unpackhi_epi8(c, zero), _mm_setr_epi16(w2, w2, w2, w2, w3, w3, w3, w3))));
+    }
   }
-  if (lane != 0) lerp_and_average();
-  constexpr uint64_t kHalf = 1u << (kAnisoWeightBits - 1);
-  const auto lane_result = [](uint64_t x, int shift) {
-    return static_cast<uint8_t>((((x >> shift) & 0xFFFFFFFFu) + kHalf) >> kAnisoWeightBits);
-  };
-  return {lane_result(rb, 0), lane_result(ga, 0), lane_result(rb, 32), lane_result(ga, 32)};
+  constexpr int16_t kHalf = 1 << (kAnisoWeightBits - 1);
+  const __m128i sum = _mm_add_epi16(_mm_add_epi16(acc, _mm_srli_si128(acc, 8)), _mm_set1_epi16(kHalf));
+  return std::bit_cast<Rgba8>(_mm_cvtsi128_si32(_mm_packus_epi16(_mm_srli_epi16(sum, kAnisoWeightBits), zero)));
 }
+#endif
 
 }  // namespace
 
@@ -259,8 +299,12 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
   const Image& i1 = sm.tex_.levels[static_cast<size_t>(p.level1)];
   const LevelCoord u0 = texel_coord(s, i0.width), v0 = texel_coord(t, i0.height);
   const LevelCoord u1 = texel_coord(s, i1.width), v1 = texel_coord(t, i1.height);
+#if defined(__SSE2__)  // elsewhere LINEAR's probes take the loop below
   if constexpr (kV.path == Path::Linear8)
-    return aniso_linear8<kV.ws, kV.wt>(LevelView(i0), LevelView(i1), sm.cfg_.border, p, u0, v0, u1, v1, lod);
+    return p.blend != 0
+               ? aniso_linear8<kV.ws, kV.wt, true>(LevelView(i0), LevelView(i1), sm.cfg_.border, p, u0, v0, u1, v1, lod)
+               : aniso_linear8<kV.ws, kV.wt, false>(LevelView(i0), LevelView(i1), sm.cfg_.border, p, u0, v0, u1, v1, lod);
+#endif
   const int n = lod.probes;
   dp::AnisoAccumulator acc;
   for (int i = 1; i <= n; ++i) {

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "cmodel/aniso.hpp"
+#include "cmodel/aniso_fast.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "cmodel/lod.hpp"
@@ -364,6 +365,64 @@ TEST(AnisoProbes, ProbeTexelCoordinatesMatchTheReference) {
     }
   }
   std::printf("probe offsets on the trilinear levels: max error %.4Lf Q.8 LSB of the level\n", worst);
+}
+
+// The speed-only forms of the offset units (aniso_fast.hpp, used by the golden model's LINEAR probe
+// path) equal the plain units: the rounding at every shift 1..62 on and around every tie, both signs;
+// the fraction scaling for every probe ROM word against derivatives at and around the clamp and
+// random ones; the level offset for every level on ties and random offsets; the coordinate add.
+TEST(AnisoProbes, FastOffsetUnitsEqualThePlainUnits) {
+  const auto sign_magnitude = [](int64_t x, int k) {  // sgn(x) ((|x| + 2^(k-1)) >> k), written out
+    const uint64_t m = x < 0 ? uint64_t{0} - static_cast<uint64_t>(x) : static_cast<uint64_t>(x);
+    const auto r = static_cast<int64_t>((m + (uint64_t{1} << (k - 1))) >> k);
+    return x < 0 ? -r : r;
+  };
+  std::mt19937_64 rng(2026);
+  for (int k = 1; k <= 62; ++k) {
+    const int64_t unit = int64_t{1} << k, half = unit >> 1;
+    const int64_t limit = (int64_t{1} << 62) - 1;
+    for (int64_t j = 0; j < 40; ++j) {
+      const int64_t q = j < 20 ? j : static_cast<int64_t>(rng() % static_cast<uint64_t>(std::max<int64_t>(limit / unit, 1)));
+      for (int64_t delta = -2; delta <= 2; ++delta)
+        for (const int64_t sign : {1, -1}) {
+          const int64_t x = sign * (q * unit + half + delta);
+          if (x > limit || x < -limit) continue;
+          ASSERT_EQ(dp_fast::round_half_away_shift(x, k), sign_magnitude(x, k)) << x << " >> " << k;
+        }
+    }
+  }
+  std::vector<int64_t> majors = grid_values();
+  for (const int64_t m : {int64_t{0}, int64_t{1}, int64_t{kDerivativeClamp} - 1, int64_t{kDerivativeClamp},
+                          int64_t{kDerivativeClamp} + 1, int64_t{1} << 40, std::numeric_limits<int64_t>::max()}) {
+    majors.push_back(m);
+    majors.push_back(-m);
+  }
+  majors.push_back(std::numeric_limits<int64_t>::min());
+  for (int k = 0; k < 2000; ++k) {
+    const auto m = static_cast<int64_t>(rng() >> (rng() % 64));
+    majors.push_back(k % 2 ? -m : m);
+  }
+  for (const int64_t d : majors)
+    for (int n = 1; n <= kMaxAniso; ++n)
+      for (int i = 1; i <= n; ++i) {
+        const int32_t q = probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16;
+        ASSERT_EQ(dp_fast::scale_probe_fraction(dp_fast::clamped_major(d), q), dp::scale_probe_fraction(d, q))
+            << d << " N " << n << " i " << i;
+      }
+  for (int level = 0; level <= 15; ++level)
+    for (int k = 0; k < 20000; ++k) {
+      const int64_t tie = (static_cast<int64_t>(rng() % (uint64_t{1} << (22 - level))) << (8 + level)) + (int64_t{1} << (7 + level));
+      const int64_t o = k % 2 ? tie + static_cast<int64_t>(k % 5) - 2 : static_cast<int64_t>(rng() % (uint64_t{1} << 30));
+      for (const int64_t x : {o, -o}) {
+        ASSERT_EQ(dp_fast::probe_offset_on_level(x, level), dp::probe_offset_on_level(x, level)) << x << " L " << level;
+        const dp::LevelCoord c{static_cast<int64_t>(rng() % (uint64_t{1} << 40)) - (int64_t{1} << 39),
+                               static_cast<uint32_t>(rng() % 256)};
+        const dp::LevelCoord want = dp::probe_texel_coord(c, dp::probe_offset_on_level(x, level));
+        const dp::LevelCoord got = dp_fast::split_q8(dp_fast::join_q8(c) + dp_fast::probe_offset_on_level(x, level));
+        ASSERT_EQ(got.i0, want.i0);
+        ASSERT_EQ(got.f, want.f);
+      }
+    }
 }
 
 // The average: each channel between the probes' smallest and largest value, equal probes give that
