@@ -381,8 +381,9 @@ TEST(AnisoProbes, FastOffsetUnitsEqualThePlainUnits) {
   for (int k = 1; k <= 62; ++k) {
     const int64_t unit = int64_t{1} << k, half = unit >> 1;
     const int64_t limit = (int64_t{1} << 62) - 1;
+    const int64_t q_max = limit / unit;  // q unit <= limit: no overflow below
     for (int64_t j = 0; j < 40; ++j) {
-      const int64_t q = j < 20 ? j : static_cast<int64_t>(rng() % static_cast<uint64_t>(std::max<int64_t>(limit / unit, 1)));
+      const int64_t q = j < 20 ? std::min(j, q_max) : static_cast<int64_t>(rng() % static_cast<uint64_t>(q_max + 1));
       for (int64_t delta = -2; delta <= 2; ++delta)
         for (const int64_t sign : {1, -1}) {
           const int64_t x = sign * (q * unit + half + delta);
