@@ -244,13 +244,12 @@ Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p
                                dp_fast::split_q8((level == 0 ? cv0 : cv1) + dp_fast::probe_offset_on_level(o.dv_q16, l)));
   };
   const auto lerp4 = [](const LerpLane& x0, const LerpLane& x1, const LerpLane& x2, const LerpLane& x3) __attribute__((always_inline)) {
-    const auto lanes = [&](auto field) { return _mm_setr_epi32(field(x0), field(x1), field(x2), field(x3)); };
-    return dp::bilinear_lerp8x4_lanes(lanes([](const LerpLane& x) { return static_cast<int32_t>(x.a); }),
-                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.b); }),
-                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.c); }),
-                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.d); }),
-                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.fu); }),
-                                      lanes([](const LerpLane& x) { return static_cast<int32_t>(x.fv); }));
+    const auto lanes = [&](uint32_t LerpLane::*field) {
+      const auto lane = [&](const LerpLane& x) { return static_cast<int32_t>(x.*field); };
+      return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
+    };
+    return dp::bilinear_lerp8x4_lanes(lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c), lanes(&LerpLane::d),
+                                      lanes(&LerpLane::fu), lanes(&LerpLane::fv));
   };
   const auto weight = [&](int i, bool used) { return static_cast<int16_t>(used ? rom[i].weight : 0); };
   const __m128i zero = _mm_setzero_si128();
