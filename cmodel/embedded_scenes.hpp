@@ -1,5 +1,5 @@
 // Built-in scene files compiled into the library: the table is generated at build time by
-// cmake/TfuEmbedScenes.cmake from sim/scenes/*.json and read by cmodel/scene.cpp.
+// cmake/TfuEmbedScenes.cmake from cmodel/scenes/*.json and read by cmodel/scene.cpp.
 #pragma once
 
 #include <cstddef>

@@ -9,7 +9,7 @@
 // key path ("scene.json: meshes[1].sampler: unknown key 'filtr'"). Malformed JSON throws
 // InputError "FILE: line L, column C: message".
 //
-// The built-in scenes (sim/scenes/*.json) are compiled into the library at build time, so
+// The built-in scenes (cmodel/scenes/*.json) are compiled into the library at build time, so
 // builtin_scene_names() / builtin_scene_json() work without the source tree.
 #pragma once
 

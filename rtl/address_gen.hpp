@@ -32,7 +32,7 @@
 #include "cmodel/descriptors.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/weight_rom_bank.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

@@ -26,7 +26,7 @@
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 #include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

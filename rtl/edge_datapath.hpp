@@ -22,7 +22,7 @@
 #include "cmodel/edge_filter.hpp"
 #include "rtl/probe_accumulator.hpp"
 #include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

@@ -23,7 +23,7 @@
 #include "rtl/probe_accumulator.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/weight_rom_bank.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

@@ -18,7 +18,7 @@
 #include "cmodel/descriptors.hpp"
 #include "cmodel/edge_filter.hpp"
 #include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

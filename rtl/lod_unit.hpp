@@ -24,7 +24,7 @@
 #include "cmodel/lod.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

@@ -14,7 +14,7 @@
 
 #include "cmodel/error.hpp"
 #include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 

@@ -16,31 +16,16 @@
 // mode: docs/cycle-model.md (measured by the tests).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
-#include <vector>
 
 #include "cmodel/frame.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/unit_config.hpp"
-#include "rtl/unit_ports.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/unit_output.hpp"
 
 namespace tfu::rtl {
-
-struct UnitOutput {
-  std::vector<Rgba8> pixels;              // in request order
-  std::vector<uint64_t> response_cycle;   // cycle each pixel left the unit
-  // Per pixel, probe and level0/level1: the edge kernel shape, when some sampler of the frame is
-  // EDGE_PRESERVING with the cache-aware policy (the golden compare needs them); else empty.
-  std::vector<ProbeShapes> edge_shapes;
-  uint64_t cycles = 0;
-  // Counters, values, histograms, and the tables "textures" (per texture descriptor: requests,
-  // line hits, line misses, memory bytes) and "stages" (the same per material stage).
-  sim::Stats stats;
-};
 
 // Runs a trace through the unit (clocked by the simulation kernel) on the frame's registers and
 // texel memory. `vcd`, if given, receives a value-change dump of every channel's valid/ready/
@@ -75,10 +60,5 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 // through the plain per-pixel path, without the LINEAR quad path (software speed only,
 // rtl/unit_recurrence_linear_quads.hpp): for the test that the two are equal.
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true);
-
-// The rates derived from a run's counters (one unit's, or several units' summed with the cycles of
-// the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the
-// latency mean, minimum and maximum from the latency histogram.
-void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles);
 
 }  // namespace tfu::rtl

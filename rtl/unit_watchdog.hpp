@@ -15,7 +15,7 @@
 
 #include <cstdint>
 
-#include "rtl/tfu_unit.hpp"
+#include "rtl/unit_config.hpp"
 
 namespace tfu::rtl {
 

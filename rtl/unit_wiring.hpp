@@ -1,6 +1,6 @@
 // The wiring of one unit (the block diagram of rtl/tfu_unit.hpp): every block and channel,
 // connected. Internal to the two ways of running it: clocked, every block evaluated every cycle
-// (rtl/tfu_unit.cpp, the reference), and by timing recurrences (rtl/unit_recurrence.cpp).
+// (rtl/unit_clocked.cpp, the reference), and by timing recurrences (rtl/unit_recurrence.cpp).
 #pragma once
 
 #include <optional>
@@ -16,7 +16,8 @@
 #include "rtl/lod_unit.hpp"
 #include "rtl/request_fifo.hpp"
 #include "rtl/response.hpp"
-#include "rtl/tfu_unit.hpp"
+#include "rtl/unit_config.hpp"
+#include "rtl/unit_output.hpp"
 #include "rtl/unit_watchdog.hpp"
 #include "rtl/weight_rom_bank.hpp"
 

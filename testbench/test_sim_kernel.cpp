@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu::sim {
 namespace {

@@ -20,7 +20,7 @@
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu {
 namespace {

@@ -20,7 +20,7 @@
 #include "cmodel/scene_source.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 namespace tfu {
 

@@ -14,7 +14,7 @@
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
 #include "rtl/scene_sim.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 #include "sim/sweep/sweep_run.hpp"
 
 namespace tfu::sweep {

@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 #include "sim/sweep/provenance.hpp"
 
 namespace tfu::sweep {

@@ -25,7 +25,7 @@
 
 #include <fmt/format.h>
 
-#include "cmodel/error.hpp"
+#include "cmodel/error_kinds.hpp"
 
 namespace tfu::sim {
 

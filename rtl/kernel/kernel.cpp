@@ -1,4 +1,4 @@
-#include "sim/kernel/kernel.hpp"
+#include "rtl/kernel/kernel.hpp"
 
 #include <algorithm>
 #include <atomic>

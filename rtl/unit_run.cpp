@@ -1,0 +1,104 @@
+// The shared run helpers of both engines (rtl/unit_wiring.hpp declares them): what the unit refuses
+// before it starts, the statistics of a finished run, and the rates derived from its counters.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+#include "rtl/unit_output.hpp"
+#include "rtl/unit_wiring.hpp"
+
+namespace tfu::rtl {
+namespace detail {
+
+// check_inputs and derive_stats: rtl/unit_wiring.hpp.
+void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
+  u.validate();
+  frame.regs.validate();
+  if (frame.line_bytes != u.cache.line_bytes)
+    throw InputError(fmt::format("the frame's textures are tiled for {}-byte lines, the cache has {}-byte lines",
+                                 frame.line_bytes, u.cache.line_bytes));
+  if (trace.mode == TraceMode::Quad && trace.requests.size() % 4 != 0)
+    throw InputError("a quad trace needs a multiple of 4 requests");
+  const size_t nt = frame.regs.textures.size(), ns = frame.regs.samplers.size();
+  std::vector<uint8_t> seen(nt * ns, 0);
+  for (size_t i = 0; i < trace.requests.size(); ++i) {
+    const TraceRequest& r = trace.requests[i];
+    if (r.texture >= nt || r.sampler >= ns)
+      throw InputError(fmt::format("request {} names texture {} and sampler {}; {} and {} are bound", i, r.texture, r.sampler, nt, ns));
+    uint8_t& s = seen[r.texture * ns + r.sampler];
+    if (s) continue;
+    s = 1;
+    const SamplerDescriptor& smp = frame.regs.samplers[r.sampler];
+    const bool wants = smp.mode.base == BaseFilter::Cubic && smp.kernel == kBsplineInterp;
+    if (wants != (frame.regs.textures[r.texture].content == TextureContent::BsplineCoefficients))
+      throw InputError(fmt::format("request {}: sampler {} ({} {}) and texture {} ({}) do not go together (bind_requests)", i,
+                                   r.sampler, filter_mode_name(smp.mode), smp.kernel, r.texture,
+                                   wants ? "texels" : "B-spline coefficients"));
+  }
+}
+
+void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
+  sim::Stats& st = out.stats;
+  const size_t n = trace.requests.size();
+  u.cst.publish(st);
+  u.addr.publish(st);
+  st.add("cycles", out.cycles);
+  st.add("pixels", n);
+  st.add("memory_bytes", u.mem.bytes_read());
+  st.add("memory_requests", u.mem.requests());
+  if (u.filter) st.add("filter_lane_busy_cycles", u.filter->busy_cycles());
+  if (u.e2) st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
+  st.set_histogram("latency", u.sink.latency);
+  // Traffic per texture descriptor and per material stage.
+  std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
+  std::array<uint64_t, 4> stage_requests{};
+  for (const TraceRequest& r : trace.requests) {
+    ++tex_requests[r.texture];
+    ++stage_requests[r.stage];
+  }
+  sim::Stats::Table textures{{"index", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
+  for (size_t t = 0; t < frame.textures.size(); ++t) {
+    const int ti = static_cast<int>(t);
+    if (tex_requests[t] == 0 && u.cache.texture_hits(ti) + u.cache.texture_misses(ti) == 0) continue;
+    textures.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
+                               std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti), u.cache.texture_misses(ti),
+                                                     u.mem.texture_bytes(ti)});
+  }
+  st.set_table("textures", std::move(textures));
+  sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
+  for (size_t k = 0; k < 4; ++k)
+    if (stage_requests[k] > 0)
+      stages.rows.emplace_back(fmt::format("stage {}", k),
+                               std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
+                                                     u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
+  st.set_table("stages", std::move(stages));
+  derive_rates(st, n, out.cycles);
+}
+
+}  // namespace detail
+
+void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
+  const auto n = static_cast<double>(requests);
+  st.set("pixels_per_clock", cycles ? n / static_cast<double>(cycles) : 0.0);
+  st.set("memory_bytes_per_pixel", requests ? static_cast<double>(st.counter("memory_bytes")) / n : 0.0);
+  st.set("probes_per_pixel", requests ? static_cast<double>(st.counter("probes")) / n : 0.0);
+  const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
+  st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
+  uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;
+  if (const std::vector<uint64_t>* lat = st.histogram("latency"))
+    for (size_t c = 0; c < lat->size(); ++c)
+      if ((*lat)[c]) {
+        lat_sum += c * (*lat)[c];
+        lat_min = std::min<uint64_t>(lat_min, c);
+        lat_max = c;
+      }
+  st.set("latency_mean", requests ? static_cast<double>(lat_sum) / n : 0.0);
+  st.set("latency_min", requests ? static_cast<double>(lat_min) : 0.0);
+  st.set("latency_max", static_cast<double>(lat_max));
+}
+
+}  // namespace tfu::rtl
