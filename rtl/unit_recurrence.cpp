@@ -1,5 +1,5 @@
 // The unit run by timing recurrences (`tfu sim --engine recurrence`): the same blocks and
-// datapaths as the clocked run of rtl/tfu_unit.cpp, the same results, cycles and statistics,
+// datapaths as the clocked run of rtl/unit_clocked.cpp, the same results, cycles and statistics,
 // computed request by request instead of cycle by cycle. A second statement of the unit's timing,
 // checked against the clocked run, which stays the reference:
 // TfuUnit.InterleavedTexturesFormatsLayoutsAndSamplers compares the two on every filter family,
