@@ -16,13 +16,11 @@ namespace tfu {
 
 namespace {
 
-std::string clip(const std::string& s) { return s.size() <= 60 ? s : s.substr(0, 57) + "..."; }
-
 long parse_int(const std::string& v, long lo, long hi) {
   char* end = nullptr;
   const long x = std::strtol(v.c_str(), &end, 10);
   if (v.empty() || end != v.c_str() + v.size() || x < lo || x > hi)
-    throw InputError(fmt::format("'{}' is not an integer {}..{}", clip(v), lo, hi));
+    throw InputError(fmt::format("'{}' is not an integer {}..{}", quote_input(v), lo, hi));
   return x;
 }
 
@@ -32,7 +30,7 @@ int32_t parse_lod(const std::string& v) {
   const double x = std::strtod(v.c_str(), &end);
   if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(x) || std::abs(x) > 1000.0 ||
       v.find_first_of("xXpP") != std::string::npos)
-    throw InputError(fmt::format("'{}' is not a decimal number of levels within -1000..1000", clip(v)));
+    throw InputError(fmt::format("'{}' is not a decimal number of levels within -1000..1000", quote_input(v)));
   return static_cast<int32_t>(float_to_fixed_round(static_cast<float>(x), 1, kLodFracBits));
 }
 std::string lod_string(int32_t q8) { return fmt::format("{:.9g}", q8 / 256.0); }
@@ -40,7 +38,7 @@ std::string lod_string(int32_t q8) { return fmt::format("{:.9g}", q8 / 256.0); }
 bool parse_bool(const std::string& v) {
   if (v == "true" || v == "1") return true;
   if (v == "false" || v == "0") return false;
-  throw InputError(fmt::format("'{}' is not true or false", clip(v)));
+  throw InputError(fmt::format("'{}' is not true or false", quote_input(v)));
 }
 
 template <class E>
@@ -50,7 +48,7 @@ E pick(const std::string& v, std::initializer_list<std::pair<const char*, E>> ch
     if (v == name) return e;
     list += (list.empty() ? "" : ", ") + std::string(name);
   }
-  throw InputError(fmt::format("'{}' is not one of {}", clip(v), list));
+  throw InputError(fmt::format("'{}' is not one of {}", quote_input(v), list));
 }
 template <class E>
 std::string name_of(E e, std::initializer_list<std::pair<const char*, E>> choices) {
@@ -69,7 +67,7 @@ Rgba8 parse_border(const std::string& s) {
     if (c == std::string::npos) break;
     p = c + 1;
   }
-  if (n != 4) throw InputError(fmt::format("'{}' is not four integers 0..255 separated by commas", clip(s)));
+  if (n != 4) throw InputError(fmt::format("'{}' is not four integers 0..255 separated by commas", quote_input(s)));
   return {static_cast<uint8_t>(v[0]), static_cast<uint8_t>(v[1]), static_cast<uint8_t>(v[2]), static_cast<uint8_t>(v[3])};
 }
 
@@ -138,7 +136,7 @@ std::span<const SamplerParam> sampler_params() { return kSamplerParams; }
 void set_sampler_param(SamplerDescriptor& s, const std::string& key, const std::string& value) {
   for (const SamplerParam& q : kSamplerParams)
     if (key == q.key) return q.set(s, value);
-  throw InputError(fmt::format("unknown sampler key '{}'", clip(key)));
+  throw InputError(fmt::format("unknown sampler key '{}'", quote_input(key)));
 }
 
 SamplerDescriptor sampler_from_params(const Params& params, const std::string& where, SamplerDescriptor s) {
@@ -171,7 +169,7 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   for (const auto& [key, value] : spec.params) {
     bool known = false;
     for (const char* k : kTextureParamKeys) known = known || key == k;
-    if (!known) throw InputError(fmt::format("{}: unknown texture key '{}'", where, clip(key)));
+    if (!known) throw InputError(fmt::format("{}: unknown texture key '{}'", where, quote_input(key)));
   }
   const auto param = [&spec](const char* key, const char* def) {
     const auto it = spec.params.find(key);
@@ -195,7 +193,7 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       try {
         size = static_cast<int>(parse_int(name.substr(colon + 1), 1, kMaxTextureSize));
       } catch (const InputError& e) {
-        throw InputError(fmt::format("{}: texture '{}': size {}", where, clip(spec.source), e.what()));
+        throw InputError(fmt::format("{}: texture '{}': size {}", where, quote_input(spec.source), e.what()));
       }
       name.resize(colon);
     }

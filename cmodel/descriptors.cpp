@@ -72,21 +72,8 @@ int cubic_kernel_index(const std::string& name) {
   throw InputError(fmt::format("unknown kernel '{}' (valid: {})", quote_input(name), list));
 }
 
-EdgeShape edge_shape_from_name(const std::string& name) {
-  if (name == "cross" || name == "full-cross") return EdgeShape::Cross;
-  if (name == "static") return EdgeShape::Static;
-  if (name == "cache-aware") return EdgeShape::CacheAware;
-  throw InputError(fmt::format("unknown kernel-shape policy '{}' (expected static, cache-aware or cross)", quote_input(name)));
-}
-
-const char* edge_shape_name(EdgeShape s) {
-  switch (s) {
-    case EdgeShape::Cross: return "cross";
-    case EdgeShape::Static: return "static";
-    case EdgeShape::CacheAware: return "cache-aware";
-  }
-  return "?";
-}
+EdgeShape edge_shape_from_name(const std::string& name) { return kEdgeShapeNames.from_name(name); }
+const char* edge_shape_name(EdgeShape s) { return kEdgeShapeNames.name(s); }
 
 // ---------------------------------------------------------------- validation
 namespace {

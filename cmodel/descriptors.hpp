@@ -61,7 +61,12 @@ int cubic_kernel_index(const std::string& name);  // throws InputError listing t
 //               reaches it (decided by the cycle model's tag probe; the golden model alone, which has
 //               no cache, uses Static and takes the cycle model's shapes for a compare)
 enum class EdgeShape { Cross, Static, CacheAware };
-EdgeShape edge_shape_from_name(const std::string& name);  // "cross" (also "full-cross"), "static", "cache-aware"
+inline constexpr EnumNames<EdgeShape, 4> kEdgeShapeNames{"kernel-shape policy",
+                                                          {{{EdgeShape::Static, "static"},
+                                                            {EdgeShape::CacheAware, "cache-aware"},
+                                                            {EdgeShape::Cross, "cross"},
+                                                            {EdgeShape::Cross, "full-cross", false}}}};
+EdgeShape edge_shape_from_name(const std::string& name);  // kEdgeShapeNames ("full-cross": an alias of "cross")
 const char* edge_shape_name(EdgeShape s);
 
 struct SamplerDescriptor {

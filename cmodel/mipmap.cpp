@@ -10,21 +10,8 @@
 
 namespace tfu {
 
-MipMethod mip_method_from_name(const std::string& name) {
-  if (name == "box") return MipMethod::Box;
-  if (name == "gaussian") return MipMethod::Gaussian;
-  if (name == "edge") return MipMethod::Edge;
-  throw InputError(fmt::format("unknown MIP method '{}' (expected box, gaussian or edge)", quote_input(name)));
-}
-
-const char* mip_method_name(MipMethod m) {
-  switch (m) {
-    case MipMethod::Box: return "box";
-    case MipMethod::Gaussian: return "gaussian";
-    case MipMethod::Edge: return "edge";
-  }
-  return "?";
-}
+MipMethod mip_method_from_name(const std::string& name) { return kMipMethodNames.from_name(name); }
+const char* mip_method_name(MipMethod m) { return kMipMethodNames.name(m); }
 
 namespace {
 

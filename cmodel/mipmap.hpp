@@ -18,7 +18,9 @@
 namespace tfu {
 
 enum class MipMethod { Box, Gaussian, Edge };
-MipMethod mip_method_from_name(const std::string& name);  // box, gaussian, edge
+inline constexpr EnumNames<MipMethod, 3> kMipMethodNames{
+    "MIP method", {{{MipMethod::Box, "box"}, {MipMethod::Gaussian, "gaussian"}, {MipMethod::Edge, "edge"}}}};
+MipMethod mip_method_from_name(const std::string& name);  // kMipMethodNames
 const char* mip_method_name(MipMethod m);
 
 // Next level from `src` (src must be larger than 1x1).

@@ -13,14 +13,7 @@
 
 namespace tfu::q3 {
 
-const char* surface_class_name(SurfaceClass c) {
-  switch (c) {
-    case SurfaceClass::Drawn: return "drawn";
-    case SurfaceClass::Invisible: return "invisible";
-    case SurfaceClass::Sky: return "sky";
-  }
-  return "?";
-}
+const char* surface_class_name(SurfaceClass c) { return kSurfaceClassNames.name(c); }
 
 bool name_marks_invisible(const std::string& name) {
   const std::string lower = ascii_lower(name);

@@ -45,7 +45,10 @@ inline constexpr int kFallbackSize = 64, kFallbackCell = 8;
 inline constexpr uint8_t kFallbackLight = 160, kFallbackDark = 96;
 
 enum class SurfaceClass { Drawn, Invisible, Sky };
-const char* surface_class_name(SurfaceClass c);  // "drawn", "invisible", "sky"
+inline constexpr EnumNames<SurfaceClass, 3> kSurfaceClassNames{
+    "surface class",
+    {{{SurfaceClass::Drawn, "drawn"}, {SurfaceClass::Invisible, "invisible"}, {SurfaceClass::Sky, "sky"}}}};
+const char* surface_class_name(SurfaceClass c);  // kSurfaceClassNames
 
 bool name_marks_invisible(const std::string& name);
 SurfaceClass classify_surface(const BspTexture& t);

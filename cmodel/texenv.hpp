@@ -22,7 +22,10 @@
 namespace tfu {
 
 enum class TexEnv { Replace, Modulate, Add, Decal };
-TexEnv tex_env_from_name(const std::string& name);  // replace, modulate, add, decal
+inline constexpr EnumNames<TexEnv, 4> kTexEnvNames{
+    "texture environment",
+    {{{TexEnv::Replace, "replace"}, {TexEnv::Modulate, "modulate"}, {TexEnv::Add, "add"}, {TexEnv::Decal, "decal"}}}};
+TexEnv tex_env_from_name(const std::string& name);  // kTexEnvNames
 const char* tex_env_name(TexEnv e);
 
 struct StageCombine {

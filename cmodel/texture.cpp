@@ -22,29 +22,11 @@ int mip_level_count(int width, int height) {
   return n;
 }
 
-TexelFormat texel_format_from_name(const std::string& name) {
-  if (name == "rgba8") return TexelFormat::RGBA8;
-  if (name == "l8") return TexelFormat::L8;
-  if (name == "vs16x2") return TexelFormat::VS16X2;
-  throw InputError(fmt::format("unknown texel format '{}' (expected rgba8, l8 or vs16x2)", quote_input(name)));
-}
+TexelFormat texel_format_from_name(const std::string& name) { return kTexelFormatNames.from_name(name); }
+const char* texel_format_name(TexelFormat f) { return kTexelFormatNames.name(f); }
 
-const char* texel_format_name(TexelFormat f) {
-  switch (f) {
-    case TexelFormat::RGBA8: return "rgba8";
-    case TexelFormat::L8: return "l8";
-    case TexelFormat::VS16X2: return "vs16x2";
-  }
-  return "?";
-}
-
-MemoryLayout memory_layout_from_name(const std::string& name) {
-  if (name == "linear") return MemoryLayout::Linear;
-  if (name == "tiled") return MemoryLayout::Tiled;
-  throw InputError(fmt::format("unknown memory layout '{}' (expected linear or tiled)", name));
-}
-
-const char* memory_layout_name(MemoryLayout l) { return l == MemoryLayout::Linear ? "linear" : "tiled"; }
+MemoryLayout memory_layout_from_name(const std::string& name) { return kMemoryLayoutNames.from_name(name); }
+const char* memory_layout_name(MemoryLayout l) { return kMemoryLayoutNames.name(l); }
 
 void Texture::validate(const std::string& what) const {
   if (levels.empty()) throw InputError(fmt::format("{}: texture has no levels", what));
@@ -65,27 +47,10 @@ void Texture::validate(const std::string& what) const {
   }
 }
 
-WrapMode wrap_mode_from_name(const std::string& name) {
-  if (name == "repeat") return WrapMode::Repeat;
-  if (name == "mirrored-repeat") return WrapMode::MirroredRepeat;
-  if (name == "clamp-to-edge") return WrapMode::ClampToEdge;
-  if (name == "clamp-to-border") return WrapMode::ClampToBorder;
-  throw InputError(fmt::format(
-      "unknown wrap mode '{}' (expected repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)", name));
-}
-
-const char* wrap_mode_name(WrapMode m) {
-  switch (m) {
-    case WrapMode::Repeat: return "repeat";
-    case WrapMode::MirroredRepeat: return "mirrored-repeat";
-    case WrapMode::ClampToEdge: return "clamp-to-edge";
-    case WrapMode::ClampToBorder: return "clamp-to-border";
-  }
-  return "?";
-}
-
+WrapMode wrap_mode_from_name(const std::string& name) { return kWrapModeNames.from_name(name); }
+const char* wrap_mode_name(WrapMode m) { return kWrapModeNames.name(m); }
 const std::vector<std::string>& wrap_mode_names() {
-  static const std::vector<std::string> names{"repeat", "mirrored-repeat", "clamp-to-edge", "clamp-to-border"};
+  static const std::vector<std::string> names = kWrapModeNames.names();
   return names;
 }
 

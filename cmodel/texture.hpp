@@ -1,6 +1,6 @@
 // Textures as the texture filter unit sees them: texel formats, MIP level chains, wrap modes.
 //
-// Texel formats (what a texel word in memory holds; see docs/textures.md):
+// Texel formats (what a texel word in memory holds; see docs/sampler.md, "Textures"):
 //   RGBA8  4 x unorm8 (1.0 <-> 255), 4 bytes/texel
 //   L8     1 x unorm8 luminance, 1 byte/texel; fetched as (L, L, L, 255) like GL_LUMINANCE
 //   VS16X2 two Strzodka virtual signed 16-bit numbers in one RGBA8 word (4 bytes/texel):
@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "cmodel/enum_names.hpp"
+
 namespace tfu {
 
 inline constexpr int kMaxTextureSize = 16384;  // per side; 2^14, so texel coordinates fit 15 bits
@@ -35,7 +37,9 @@ struct Rgba8 {
 static_assert(sizeof(Rgba8) == 4, "a texel word is 4 bytes: R, G, B, A in address order");
 
 enum class TexelFormat { RGBA8, L8, VS16X2 };
-TexelFormat texel_format_from_name(const std::string& name);  // "rgba8", "l8", "vs16x2"
+inline constexpr EnumNames<TexelFormat, 3> kTexelFormatNames{
+    "texel format", {{{TexelFormat::RGBA8, "rgba8"}, {TexelFormat::L8, "l8"}, {TexelFormat::VS16X2, "vs16x2"}}}};
+TexelFormat texel_format_from_name(const std::string& name);  // kTexelFormatNames
 const char* texel_format_name(TexelFormat f);
 constexpr int bytes_per_texel(TexelFormat f) { return f == TexelFormat::L8 ? 1 : 4; }
 
@@ -86,7 +90,9 @@ constexpr Rgba8 encode_texel(const Texel4& c, TexelFormat f) {
 //            texels (64 bytes: 4x4 RGBA8 or 8x8 L8)
 // Every level starts on a 256-byte boundary.
 enum class MemoryLayout { Linear, Tiled };
-MemoryLayout memory_layout_from_name(const std::string& name);  // "linear", "tiled"
+inline constexpr EnumNames<MemoryLayout, 2> kMemoryLayoutNames{
+    "memory layout", {{{MemoryLayout::Linear, "linear"}, {MemoryLayout::Tiled, "tiled"}}}};
+MemoryLayout memory_layout_from_name(const std::string& name);  // kMemoryLayoutNames
 const char* memory_layout_name(MemoryLayout l);
 inline constexpr int kMinTileBytes = 64, kMaxTileBytes = 1024;  // 64, 256 or 1024 (powers of 4)
 constexpr bool valid_tile_bytes(int b) { return b == 64 || b == 256 || b == 1024; }
@@ -120,7 +126,12 @@ struct Texture {
 
 // ---- Wrap modes (one function each; GL 4.6 Sec. 8.14.2) ----
 enum class WrapMode { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
-WrapMode wrap_mode_from_name(const std::string& name);  // repeat, mirrored-repeat, clamp-to-edge, clamp-to-border
+inline constexpr EnumNames<WrapMode, 4> kWrapModeNames{"wrap mode",
+                                                        {{{WrapMode::Repeat, "repeat"},
+                                                          {WrapMode::MirroredRepeat, "mirrored-repeat"},
+                                                          {WrapMode::ClampToEdge, "clamp-to-edge"},
+                                                          {WrapMode::ClampToBorder, "clamp-to-border"}}}};
+WrapMode wrap_mode_from_name(const std::string& name);  // kWrapModeNames
 const char* wrap_mode_name(WrapMode m);
 const std::vector<std::string>& wrap_mode_names();
 

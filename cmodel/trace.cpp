@@ -15,14 +15,7 @@
 
 namespace tfu {
 
-const char* trace_mode_name(TraceMode m) {
-  switch (m) {
-    case TraceMode::Lod: return "lod";
-    case TraceMode::Grad: return "grad";
-    case TraceMode::Quad: return "quad";
-  }
-  return "?";
-}
+const char* trace_mode_name(TraceMode m) { return kTraceModeNames.name(m); }
 
 namespace {
 
@@ -69,9 +62,6 @@ std::vector<std::string> words(const std::string& s) {
   return w;
 }
 
-// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
-std::string clip(const std::string& s) { return quote_input(s); }
-
 struct Header {
   bool mode_known = false;
   std::vector<Column> columns;  // empty: the mode's default columns
@@ -83,10 +73,9 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
     const auto eq = w.find('=');
     const std::string key = w.substr(0, eq), value = eq == std::string::npos ? std::string() : w.substr(eq + 1);
     if (key == "mode") {
-      if (value == "lod") tr.mode = TraceMode::Lod;
-      else if (value == "grad") tr.mode = TraceMode::Grad;
-      else if (value == "quad") tr.mode = TraceMode::Quad;
-      else throw InputError(fmt::format("{}: unknown trace mode '{}' (expected lod, grad or quad)", where, clip(value)));
+      if (!kTraceModeNames.find(value, tr.mode))
+        throw InputError(fmt::format("{}: unknown trace mode '{}' (expected {})", where, quote_input(value),
+                                     kTraceModeNames.expected()));
       h.mode_known = true;
     } else if (key == "fields") {
       h.columns.clear();
@@ -95,7 +84,7 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
         const size_t c = value.find(',', p);
         const std::string name = value.substr(p, c == std::string::npos ? std::string::npos : c - p);
         const auto it = std::find_if(std::begin(kColumns), std::end(kColumns), [&](const auto& k) { return name == k.first; });
-        if (it == std::end(kColumns)) throw InputError(fmt::format("{}: unknown field '{}'", where, clip(name)));
+        if (it == std::end(kColumns)) throw InputError(fmt::format("{}: unknown field '{}'", where, quote_input(name)));
         if (std::find(h.columns.begin(), h.columns.end(), it->second) != h.columns.end())
           throw InputError(fmt::format("{}: field '{}' twice", where, name));
         h.columns.push_back(it->second);
@@ -103,7 +92,7 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
         p = c + 1;
       }
     } else {
-      throw InputError(fmt::format("{}: unknown trace header key '{}'", where, clip(key)));
+      throw InputError(fmt::format("{}: unknown trace header key '{}'", where, quote_input(key)));
     }
   }
   if (h.columns.empty()) return;
@@ -129,7 +118,7 @@ TraceBinding parse_binding(const std::string& line, bool texture, const std::str
   const long idx = std::strtol(w[2].c_str(), &end, 10);
   const long max_index = texture ? 4095 : 255;
   if (end == w[2].c_str() || end != w[2].c_str() + w[2].size() || idx < 0 || idx > max_index)
-    throw InputError(fmt::format("{}: index '{}' is not an integer 0..{}", where, clip(w[2]), max_index));
+    throw InputError(fmt::format("{}: index '{}' is not an integer 0..{}", where, quote_input(w[2]), max_index));
   b.index = static_cast<int>(idx);
   k = 3;
   if (texture) {
@@ -139,9 +128,9 @@ TraceBinding parse_binding(const std::string& line, bool texture, const std::str
   }
   for (; k < w.size(); ++k) {
     const auto eq = w[k].find('=');
-    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("{}: '{}' is not key=value", where, clip(w[k])));
+    if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("{}: '{}' is not key=value", where, quote_input(w[k])));
     if (!b.params.emplace(w[k].substr(0, eq), w[k].substr(eq + 1)).second)
-      throw InputError(fmt::format("{}: key '{}' twice", where, clip(w[k].substr(0, eq))));
+      throw InputError(fmt::format("{}: key '{}' twice", where, quote_input(w[k].substr(0, eq))));
   }
   return b;
 }
@@ -176,7 +165,7 @@ bool is_decimal_number(const std::string& f) {
 
 float parse_float(const std::string& field, size_t column, const std::string& where) {
   if (!is_decimal_number(field))
-    throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, column, clip(field)));
+    throw InputError(fmt::format("{}: field {} '{}' is not a decimal number", where, column, quote_input(field)));
   const float x = std::strtof(field.c_str(), nullptr);
   return x;  // ERANGE: strtof already returns +-inf or a denormal/0, which is the binary32 value
 }
@@ -185,7 +174,7 @@ int parse_index(const std::string& field, size_t column, long max, const std::st
   char* end = nullptr;
   const long x = std::strtol(field.c_str(), &end, 10);
   if (end == field.c_str() || end != field.c_str() + field.size() || x < 0 || x > max)  // no stray byte (NUL)
-    throw InputError(fmt::format("{}: field {} '{}' is not an integer 0..{}", where, column, clip(field), max));
+    throw InputError(fmt::format("{}: field {} '{}' is not an integer 0..{}", where, column, quote_input(field), max));
   return static_cast<int>(x);
 }
 

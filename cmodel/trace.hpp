@@ -28,11 +28,14 @@
 #include <vector>
 
 #include "cmodel/aniso.hpp"
+#include "cmodel/enum_names.hpp"
 #include "cmodel/lod.hpp"
 
 namespace tfu {
 
 enum class TraceMode { Lod, Grad, Quad };
+inline constexpr EnumNames<TraceMode, 3> kTraceModeNames{
+    "trace mode", {{{TraceMode::Lod, "lod"}, {TraceMode::Grad, "grad"}, {TraceMode::Quad, "quad"}}}};
 const char* trace_mode_name(TraceMode m);
 
 struct TraceRequest {

@@ -20,6 +20,7 @@
 #include <iosfwd>
 #include <string>
 
+#include "cmodel/enum_names.hpp"
 #include "cmodel/frame.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/unit_config.hpp"
@@ -49,6 +50,8 @@ UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, con
 // that writes a waveform) or by timing recurrences (request by request through every block:
 // the same outputs and statistics, several times faster). `tfu sim --engine`.
 enum class UnitEngine { Recurrence, Clocked };
+inline constexpr EnumNames<UnitEngine, 2> kUnitEngineNames{
+    "engine", {{{UnitEngine::Recurrence, "recurrence"}, {UnitEngine::Clocked, "clocked"}}}};
 const char* unit_engine_name(UnitEngine e);
 UnitEngine unit_engine_from_name(const std::string& name);  // InputError naming the valid names
 // The unit by `engine`; with a waveform (vcd.out) always clocked.

@@ -13,9 +13,6 @@ namespace tfu::rtl {
 
 namespace {
 
-// A piece of the input for a message: cut, control characters replaced (cmodel/error.hpp).
-std::string clip(const std::string& s) { return quote_input(s); }
-
 #define TFU_INT_FIELD(member) \
   [](const UnitConfig& c) { return c.member; }, [](UnitConfig& c, int v) { c.member = v; }
 
@@ -89,13 +86,13 @@ void UnitField::set_text(UnitConfig& c, const std::string& text) const {
         set(c, static_cast<int>(i));
         return;
       }
-    throw InputError(fmt::format("'{}' is not one of {}", clip(text), valid_text(*this)));
+    throw InputError(fmt::format("'{}' is not one of {}", quote_input(text), valid_text(*this)));
   }
   char* end = nullptr;
   errno = 0;
   const long long v = std::strtoll(text.c_str(), &end, 10);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
-    throw InputError(fmt::format("'{}' is not an integer", clip(text)));
+    throw InputError(fmt::format("'{}' is not an integer", quote_input(text)));
   check_value(*this, v);
   set(c, static_cast<int>(v));
 }
@@ -121,12 +118,12 @@ void read_object(const nlohmann::json& obj, const std::string& prefix, UnitConfi
     if (v.is_object()) {
       bool is_group = false;
       for (const UnitField& f : fields()) is_group = is_group || std::string(f.key).rfind(key + ".", 0) == 0;
-      if (!is_group) throw InputError(fmt::format("{}: unknown key '{}'", name, clip(key)));
+      if (!is_group) throw InputError(fmt::format("{}: unknown key '{}'", name, quote_input(key)));
       read_object(v, key, c, name);
       continue;
     }
     const UnitField* f = find_unit_field(key);
-    if (!f) throw InputError(fmt::format("{}: unknown key '{}'", name, clip(key)));
+    if (!f) throw InputError(fmt::format("{}: unknown key '{}'", name, quote_input(key)));
     try {
       if (!f->names.empty()) {
         if (!v.is_string()) throw InputError("must be a string");

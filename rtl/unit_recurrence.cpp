@@ -83,14 +83,6 @@ struct EdgeTimes {
 
 }  // namespace
 
-const char* unit_engine_name(UnitEngine e) { return e == UnitEngine::Clocked ? "clocked" : "recurrence"; }
-
-UnitEngine unit_engine_from_name(const std::string& name) {
-  if (name == "recurrence") return UnitEngine::Recurrence;
-  if (name == "clocked") return UnitEngine::Clocked;
-  throw InputError(fmt::format("'{}' is not an engine: recurrence or clocked", name.size() > 40 ? name.substr(0, 40) + "..." : name));
-}
-
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd) {
   return engine == UnitEngine::Recurrence && vcd.out == nullptr ? run_unit_recurrence(frame, trace, ucfg)
                                                                 : run_unit(frame, trace, ucfg, vcd);

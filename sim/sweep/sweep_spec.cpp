@@ -25,13 +25,11 @@ using Json = nlohmann::ordered_json;
 constexpr const char* kSamplerPrefix = "sampler.";
 constexpr size_t kMaxPoints = 1000000;
 
-std::string clip(const std::string& s, size_t n = 60) { return s.size() <= n ? s : s.substr(0, n - 3) + "..."; }
-
 // Errors name the spec file and the key.
 struct Where {
   std::string spec;
   InputError operator()(const std::string& key, const std::string& why) const {
-    return InputError(fmt::format("{}: {}: {}", clip(spec, 100), clip(key, 80), why));
+    return InputError(fmt::format("{}: {}: {}", quote_input(spec, 100), quote_input(key, 80), why));
   }
 };
 
@@ -44,7 +42,7 @@ Key make_key(const std::string& name, const Where& where, const std::string& whe
     if (k.sampler_key == "filter") throw where(where_key, "the filter is swept by \"filters\", not sampler.filter");
     bool known = false;
     for (const SamplerParam& p : sampler_params()) known = known || k.sampler_key == p.key;
-    if (!known) throw where(where_key, fmt::format("unknown sampler key '{}'", clip(k.sampler_key, 40)));
+    if (!known) throw where(where_key, fmt::format("unknown sampler key '{}'", quote_input(k.sampler_key, 40)));
     return k;
   }
   k.field = rtl::find_unit_field(name);
@@ -98,7 +96,7 @@ std::vector<std::string> string_list(const Json& j, const std::string& key, cons
     if (!v.is_string() || v.get<std::string>().empty()) throw where(key, "must be a non-empty list of strings");
     const std::string s = v.get<std::string>();
     for (const std::string& seen : out)
-      if (seen == s) throw where(key, fmt::format("'{}' is listed twice", clip(s, 60)));
+      if (seen == s) throw where(key, fmt::format("'{}' is listed twice", quote_input(s, 60)));
     out.push_back(s);
   }
   return out;
@@ -117,7 +115,7 @@ std::string canonical_filter(const std::string& name, const Where& where, const 
     return filter_mode_name(filter_mode_from_name(name));
   } catch (const InputError&) {  // its list of every mode would make the line too long
     throw where(key, fmt::format("unknown filter '{}' (a mode of docs/sampler.md, e.g. LINEAR_MIPMAP_LINEAR, bilinear, "
-                                 "trilinear, or \"scene\")", clip(name, 40)));
+                                 "trilinear, or \"scene\")", quote_input(name, 40)));
   }
 }
 
@@ -137,7 +135,7 @@ void parse_base(const Json& j, Spec& s, const Where& where) {
   try {
     s.base = rtl::unit_config_from_json(unit.dump(), "base");
   } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", clip(s.path, 100), e.what()));
+    throw InputError(fmt::format("{}: {}", quote_input(s.path, 100), e.what()));
   }
 }
 
@@ -159,7 +157,7 @@ void parse_grid(const Json& j, Spec& s, const Where& where) {
     for (const Json& v : values) {
       std::string t = value_text(s.keys.back(), v, where, wk);
       for (const std::string& seen : texts)
-        if (seen == t) throw where(wk, fmt::format("value {} is listed twice", clip(t, 40)));
+        if (seen == t) throw where(wk, fmt::format("value {} is listed twice", quote_input(t, 40)));
       texts.push_back(std::move(t));
     }
     s.grid_values.push_back(std::move(texts));
@@ -213,11 +211,11 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   try {
     j = Json::parse(text);
   } catch (const Json::parse_error& e) {
-    throw InputError(fmt::format("{}: malformed JSON (byte {})", clip(path, 100), e.byte));
+    throw InputError(fmt::format("{}: malformed JSON (byte {})", quote_input(path, 100), e.byte));
   } catch (const Json::exception& e) {
-    throw InputError(fmt::format("{}: malformed JSON: {}", clip(path, 100), clip(e.what(), 100)));
+    throw InputError(fmt::format("{}: malformed JSON: {}", quote_input(path, 100), quote_input(e.what(), 100)));
   }
-  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", clip(path, 100)));
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", quote_input(path, 100)));
   Spec s;
   s.path = path;
   s.text = text;
@@ -234,7 +232,7 @@ Spec parse_spec(const std::string& text, const std::string& path) {
     for (const std::string& f : string_list(j["filters"], "filters", where)) {
       std::string c = canonical_filter(f, where, "filters");
       for (const std::string& seen : s.filters)
-        if (seen == c) throw where("filters", fmt::format("'{}' is listed twice (as {})", clip(f, 40), c));
+        if (seen == c) throw where("filters", fmt::format("'{}' is listed twice (as {})", quote_input(f, 40), c));
       s.filters.push_back(std::move(c));
     }
   }
@@ -256,7 +254,7 @@ Spec parse_spec(const std::string& text, const std::string& path) {
 
 Spec load_spec(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  if (!f || fs::is_directory(path)) throw InputError(fmt::format("sweep spec '{}': cannot read", clip(path, 200)));
+  if (!f || fs::is_directory(path)) throw InputError(fmt::format("sweep spec '{}': cannot read", quote_input(path, 200)));
   std::ostringstream ss;
   ss << f.rdbuf();
   return parse_spec(ss.str(), path);
