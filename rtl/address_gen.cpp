@@ -4,6 +4,7 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "rtl/address_gen_detail.hpp"
+#include "rtl/unit_stats.hpp"
 
 namespace tfu::rtl {
 
@@ -153,8 +154,8 @@ void AddressGen::publish(sim::Stats& st) const {
     pixels += probe_hist_[n];
     probes += n * probe_hist_[n];
   }
-  st.add("probes", probes);
-  if (probes != pixels) st.set_histogram("aniso_probes", std::vector<uint64_t>(probe_hist_.begin(), probe_hist_.end()));
+  add(st, UnitStat::Probes, probes);
+  if (probes != pixels) st.set_histogram(stat_key(UnitStat::AnisoProbes), std::vector<uint64_t>(probe_hist_.begin(), probe_hist_.end()));
 }
 
 std::string AddressGen::state() const { return fmt::format("{}, {}, holding {}", in_.state(), out_.state(), holding_); }

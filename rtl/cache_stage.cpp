@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 
+#include "rtl/unit_stats.hpp"
+
 namespace tfu::rtl {
 
 CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
@@ -205,18 +207,18 @@ void CacheStage::publish(sim::Stats& st) const {
     hits += h;
     misses += m;
     if (h + m == 0) continue;
-    st.add(fmt::format("cache_line_hits_level{}", l), h);
-    st.add(fmt::format("cache_line_misses_level{}", l), m);
+    st.add(stat_key(UnitStat::CacheLineHitsLevel, l), h);
+    st.add(stat_key(UnitStat::CacheLineMissesLevel, l), m);
   }
-  st.add("cache_line_hits", hits);
-  st.add("cache_line_misses", misses);
-  st.add("stall_cache_miss", stall_miss_);
-  st.add("stall_bank_conflict", stall_bank_);
-  st.add("stall_backpressure", stall_back_);
+  add(st, UnitStat::CacheLineHits, hits);
+  add(st, UnitStat::CacheLineMisses, misses);
+  add(st, UnitStat::StallCacheMiss, stall_miss_);
+  add(st, UnitStat::StallBankConflict, stall_bank_);
+  add(st, UnitStat::StallBackpressure, stall_back_);
   if (any_edge_) {
-    st.add("shape_cross", shape_count_[0]);
-    st.add("shape_T", shape_count_[1]);
-    st.add("shape_L", shape_count_[2]);
+    add(st, UnitStat::ShapeCross, shape_count_[0]);
+    add(st, UnitStat::ShapeT, shape_count_[1]);
+    add(st, UnitStat::ShapeL, shape_count_[2]);
   }
 }
 

@@ -11,6 +11,7 @@
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/parallel.hpp"
 #include "rtl/golden_compare.hpp"
+#include "rtl/unit_stats.hpp"
 
 namespace tfu::rtl {
 
@@ -104,10 +105,10 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   // Sums are right for every counter but cycles (the slowest unit's) and the derived rates.
   sim::Stats st;
   for (const auto& [k, v] : res.stats.counters())
-    if (k != "cycles") st.add(k, v);
+    if (k != stat_key(UnitStat::Cycles)) st.add(k, v);
   st.merge(res.stats, false);
-  st.add("cycles", res.cycles);
-  st.add("units", static_cast<uint64_t>(opt.units));
+  add(st, UnitStat::Cycles, res.cycles);
+  add(st, UnitStat::Units, static_cast<uint64_t>(opt.units));
   derive_rates(st, res.requests, res.cycles);
   res.stats = std::move(st);
   return res;

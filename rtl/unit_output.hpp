@@ -13,8 +13,8 @@
 namespace tfu::rtl {
 
 struct UnitOutput {
-  std::vector<Rgba8> pixels;              // in request order
-  std::vector<uint64_t> response_cycle;   // cycle each pixel left the unit
+  std::vector<Rgba8> pixels;             // in request order
+  std::vector<uint64_t> response_cycle;  // cycle each pixel left the unit
   // Per pixel, probe and level0/level1: the edge kernel shape, when some sampler of the frame is
   // EDGE_PRESERVING with the cache-aware policy (the golden compare needs them); else empty.
   std::vector<ProbeShapes> edge_shapes;

@@ -8,7 +8,9 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "rtl/tfu_unit.hpp"
 #include "rtl/unit_output.hpp"
+#include "rtl/unit_stats.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
@@ -28,16 +30,17 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
   for (size_t i = 0; i < trace.requests.size(); ++i) {
     const TraceRequest& r = trace.requests[i];
     if (r.texture >= nt || r.sampler >= ns)
-      throw InputError(fmt::format("request {} names texture {} and sampler {}; {} and {} are bound", i, r.texture, r.sampler, nt, ns));
+      throw InputError(fmt::format("request {} names texture {} and sampler {}; {} and {} are bound", i, r.texture,
+                                   r.sampler, nt, ns));
     uint8_t& s = seen[r.texture * ns + r.sampler];
     if (s) continue;
     s = 1;
     const SamplerDescriptor& smp = frame.regs.samplers[r.sampler];
     const bool wants = smp.mode.base == BaseFilter::Cubic && smp.kernel == kBsplineInterp;
     if (wants != (frame.regs.textures[r.texture].content == TextureContent::BsplineCoefficients))
-      throw InputError(fmt::format("request {}: sampler {} ({} {}) and texture {} ({}) do not go together (bind_requests)", i,
-                                   r.sampler, filter_mode_name(smp.mode), smp.kernel, r.texture,
-                                   wants ? "texels" : "B-spline coefficients"));
+      throw InputError(fmt::format(
+          "request {}: sampler {} ({} {}) and texture {} ({}) do not go together (bind_requests)", i, r.sampler,
+          filter_mode_name(smp.mode), smp.kernel, r.texture, wants ? "texels" : "B-spline coefficients"));
   }
 }
 
@@ -46,13 +49,13 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   const size_t n = trace.requests.size();
   u.cst.publish(st);
   u.addr.publish(st);
-  st.add("cycles", out.cycles);
-  st.add("pixels", n);
-  st.add("memory_bytes", u.mem.bytes_read());
-  st.add("memory_requests", u.mem.requests());
-  if (u.filter) st.add("filter_lane_busy_cycles", u.filter->busy_cycles());
-  if (u.e2) st.set_histogram("edge_direction", std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
-  st.set_histogram("latency", u.sink.latency);
+  add(st, UnitStat::Cycles, out.cycles);
+  add(st, UnitStat::Pixels, n);
+  add(st, UnitStat::MemoryBytes, u.mem.bytes_read());
+  add(st, UnitStat::MemoryRequests, u.mem.requests());
+  if (u.filter) add(st, UnitStat::FilterLaneBusyCycles, u.filter->busy_cycles());
+  if (u.e2) st.set_histogram(stat_key(UnitStat::EdgeDirection), std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
+  st.set_histogram(stat_key(UnitStat::Latency), u.sink.latency);
   // Traffic per texture descriptor and per material stage.
   std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
   std::array<uint64_t, 4> stage_requests{};
@@ -65,40 +68,44 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
     const int ti = static_cast<int>(t);
     if (tex_requests[t] == 0 && u.cache.texture_hits(ti) + u.cache.texture_misses(ti) == 0) continue;
     textures.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
-                               std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti), u.cache.texture_misses(ti),
-                                                     u.mem.texture_bytes(ti)});
+                               std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti),
+                                                     u.cache.texture_misses(ti), u.mem.texture_bytes(ti)});
   }
-  st.set_table("textures", std::move(textures));
+  st.set_table(stat_key(UnitStat::Textures), std::move(textures));
   sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
   for (size_t k = 0; k < 4; ++k)
     if (stage_requests[k] > 0)
-      stages.rows.emplace_back(fmt::format("stage {}", k),
-                               std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
-                                                     u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
-  st.set_table("stages", std::move(stages));
+      stages.rows.emplace_back(
+          fmt::format("stage {}", k),
+          std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
+                                u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
+  st.set_table(stat_key(UnitStat::Stages), std::move(stages));
   derive_rates(st, n, out.cycles);
 }
 
 }  // namespace detail
 
+const char* unit_engine_name(UnitEngine e) { return kUnitEngineNames.name(e); }
+UnitEngine unit_engine_from_name(const std::string& name) { return kUnitEngineNames.from_name(name); }
+
 void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   const auto n = static_cast<double>(requests);
-  st.set("pixels_per_clock", cycles ? n / static_cast<double>(cycles) : 0.0);
-  st.set("memory_bytes_per_pixel", requests ? static_cast<double>(st.counter("memory_bytes")) / n : 0.0);
-  st.set("probes_per_pixel", requests ? static_cast<double>(st.counter("probes")) / n : 0.0);
-  const uint64_t h = st.counter("cache_line_hits"), m = st.counter("cache_line_misses");
-  st.set("cache_hit_rate", h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
+  set(st, UnitStat::PixelsPerClock, cycles ? n / static_cast<double>(cycles) : 0.0);
+  set(st, UnitStat::MemoryBytesPerPixel, requests ? static_cast<double>(counter(st, UnitStat::MemoryBytes)) / n : 0.0);
+  set(st, UnitStat::ProbesPerPixel, requests ? static_cast<double>(counter(st, UnitStat::Probes)) / n : 0.0);
+  const uint64_t h = counter(st, UnitStat::CacheLineHits), m = counter(st, UnitStat::CacheLineMisses);
+  set(st, UnitStat::CacheHitRate, h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
   uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;
-  if (const std::vector<uint64_t>* lat = st.histogram("latency"))
+  if (const std::vector<uint64_t>* lat = st.histogram(stat_key(UnitStat::Latency)))
     for (size_t c = 0; c < lat->size(); ++c)
       if ((*lat)[c]) {
         lat_sum += c * (*lat)[c];
         lat_min = std::min<uint64_t>(lat_min, c);
         lat_max = c;
       }
-  st.set("latency_mean", requests ? static_cast<double>(lat_sum) / n : 0.0);
-  st.set("latency_min", requests ? static_cast<double>(lat_min) : 0.0);
-  st.set("latency_max", static_cast<double>(lat_max));
+  set(st, UnitStat::LatencyMean, requests ? static_cast<double>(lat_sum) / n : 0.0);
+  set(st, UnitStat::LatencyMin, requests ? static_cast<double>(lat_min) : 0.0);
+  set(st, UnitStat::LatencyMax, static_cast<double>(lat_max));
 }
 
 }  // namespace tfu::rtl

@@ -15,6 +15,7 @@
 #include "cmodel/scene_source.hpp"
 #include "rtl/cost_model.hpp"
 #include "rtl/scene_sim.hpp"
+#include "rtl/unit_stats.hpp"
 #include "sim/sweep/provenance.hpp"
 
 namespace tfu::sweep {
@@ -109,12 +110,13 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   nlohmann::json r;
   r["cycles"] = res.cycles;
   r["pixels"] = res.requests;
-  r["pixels_per_clock"] = st.value("pixels_per_clock");
-  r["hit_rate"] = st.value("cache_hit_rate");
-  r["bytes_per_pixel"] = st.value("memory_bytes_per_pixel");
-  r["memory_bytes"] = st.counter("memory_bytes");
-  for (const char* c : {"stall_cache_miss", "stall_bank_conflict", "stall_backpressure"}) r[c] = st.counter(c);
-  r["latency_mean"] = st.value("latency_mean");
+  r["pixels_per_clock"] = rtl::value(st, rtl::UnitStat::PixelsPerClock);
+  r["hit_rate"] = rtl::value(st, rtl::UnitStat::CacheHitRate);
+  r["bytes_per_pixel"] = rtl::value(st, rtl::UnitStat::MemoryBytesPerPixel);
+  r["memory_bytes"] = rtl::counter(st, rtl::UnitStat::MemoryBytes);
+  for (const rtl::UnitStat c : {rtl::UnitStat::StallCacheMiss, rtl::UnitStat::StallBankConflict, rtl::UnitStat::StallBackpressure})
+    r[rtl::stat_key(c)] = rtl::counter(st, c);
+  r["latency_mean"] = rtl::value(st, rtl::UnitStat::LatencyMean);
   const double psnr = psnr_db(res.image, truth);
   if (std::isinf(psnr)) {
     r["psnr"] = "inf";

@@ -24,6 +24,7 @@
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
+#include "rtl/unit_stats.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
@@ -48,7 +49,7 @@ struct SimOptions {
   int units = 1;
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
-  bool force = false, bench = false, config_fields = false;
+  bool force = false, bench = false, config_fields = false, stats_fields = false;
   std::string engine;  // empty: recurrence, or clocked when a waveform is asked for
   rtl::UnitEngine unit_engine = rtl::UnitEngine::Recurrence;  // from engine
 };
@@ -78,26 +79,26 @@ rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
 }
 
 void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
-  const uint64_t hits = st.counter("cache_line_hits"), misses = st.counter("cache_line_misses");
+  const uint64_t hits = rtl::counter(st, rtl::UnitStat::CacheLineHits), misses = rtl::counter(st, rtl::UnitStat::CacheLineMisses);
   const auto dn = static_cast<double>(n);
   std::cout << head;
   std::cout << fmt::format("  cycles {}  pixels/clock {:.3f}  cache line hit rate {:.4f}  memory bytes/pixel {:.3f}\n",
                            cycles, cycles ? dn / static_cast<double>(cycles) : 0.0,
                            hits + misses ? static_cast<double>(hits) / static_cast<double>(hits + misses) : 1.0,
-                           n ? static_cast<double>(st.counter("memory_bytes")) / dn : 0.0);
-  std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", st.counter("stall_cache_miss"),
-                           st.counter("stall_bank_conflict"), st.counter("stall_backpressure"));
-  if (const std::vector<uint64_t>* h = st.histogram("aniso_probes")) {
+                           n ? static_cast<double>(rtl::counter(st, rtl::UnitStat::MemoryBytes)) / dn : 0.0);
+  std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", rtl::counter(st, rtl::UnitStat::StallCacheMiss),
+                           rtl::counter(st, rtl::UnitStat::StallBankConflict), rtl::counter(st, rtl::UnitStat::StallBackpressure));
+  if (const std::vector<uint64_t>* h = st.histogram(rtl::stat_key(rtl::UnitStat::AnisoProbes))) {
     std::string hist;
     for (size_t k = 1; k < h->size(); ++k)
       if ((*h)[k]) hist += fmt::format("  N={} {}", k, (*h)[k]);
-    std::cout << fmt::format("  anisotropic probes: {} ({:.3f} per pixel); pixels per N:{}\n", st.counter("probes"),
-                             n ? static_cast<double>(st.counter("probes")) / dn : 0.0, hist);
+    std::cout << fmt::format("  anisotropic probes: {} ({:.3f} per pixel); pixels per N:{}\n", rtl::counter(st, rtl::UnitStat::Probes),
+                             n ? static_cast<double>(rtl::counter(st, rtl::UnitStat::Probes)) / dn : 0.0, hist);
   }
-  if (st.counter("shape_cross") + st.counter("shape_T") + st.counter("shape_L") > 0)
-    std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", st.counter("shape_cross"), st.counter("shape_T"),
-                             st.counter("shape_L"));
-  for (const char* name : {"textures", "stages"}) {
+  if (rtl::counter(st, rtl::UnitStat::ShapeCross) + rtl::counter(st, rtl::UnitStat::ShapeT) + rtl::counter(st, rtl::UnitStat::ShapeL) > 0)
+    std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", rtl::counter(st, rtl::UnitStat::ShapeCross), rtl::counter(st, rtl::UnitStat::ShapeT),
+                             rtl::counter(st, rtl::UnitStat::ShapeL));
+  for (const char* name : {rtl::stat_key(rtl::UnitStat::Textures), rtl::stat_key(rtl::UnitStat::Stages)}) {
     const sim::Stats::Table* t = st.table(name);
     if (!t || t->rows.empty()) continue;
     std::cout << fmt::format("  per {}: requests, line hit rate, memory bytes\n", name == std::string("textures") ? "texture" : "stage");
@@ -232,7 +233,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
         "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
         "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
         render_secs, wall, o.units);
-    if (const uint64_t probes = res.stats.counter("probes"); probes != res.requests)
+    if (const uint64_t probes = rtl::counter(res.stats, rtl::UnitStat::Probes); probes != res.requests)
       std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s{}\n", probes,
                                static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6,
                                bench_clocked ? fmt::format(" (clocked blocks {:.2f} M)", static_cast<double>(probes) / clocked_secs / 1e6)
@@ -244,6 +245,10 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
 void run(SimOptions& o, CLI::App& cmd) {
   if (o.config_fields) {
     std::cout << rtl::unit_config_markdown();
+    return;
+  }
+  if (o.stats_fields) {
+    std::cout << rtl::unit_stats_markdown();
     return;
   }
   // Every output reserved before any work (cmodel/output_files.hpp); written at the end, or not at all.
@@ -360,17 +365,17 @@ ResultRow measure(const Scene& scene, const std::string& scene_name, const rtl::
                 line_bytes, max_aniso};
   row.requests = r.requests;
   row.cycles = r.cycles;
-  row.probes = r.stats.counter("probes");
+  row.probes = rtl::counter(r.stats, rtl::UnitStat::Probes);
   const auto n = static_cast<double>(r.requests);
   row.cycles_per_pixel = static_cast<double>(r.cycles) / n;
-  const uint64_t h = r.stats.counter("cache_line_hits"), m = r.stats.counter("cache_line_misses");
+  const uint64_t h = rtl::counter(r.stats, rtl::UnitStat::CacheLineHits), m = rtl::counter(r.stats, rtl::UnitStat::CacheLineMisses);
   row.hit_rate = h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0;
-  row.bytes = r.stats.counter("memory_bytes");
+  row.bytes = rtl::counter(r.stats, rtl::UnitStat::MemoryBytes);
   row.bytes_per_pixel = static_cast<double>(row.bytes) / n;
-  row.stall_miss = r.stats.counter("stall_cache_miss");
-  row.cross = r.stats.counter("shape_cross");
-  row.t = r.stats.counter("shape_T");
-  row.l = r.stats.counter("shape_L");
+  row.stall_miss = rtl::counter(r.stats, rtl::UnitStat::StallCacheMiss);
+  row.cross = rtl::counter(r.stats, rtl::UnitStat::ShapeCross);
+  row.t = rtl::counter(r.stats, rtl::UnitStat::ShapeT);
+  row.l = rtl::counter(r.stats, rtl::UnitStat::ShapeL);
   return row;
 }
 
@@ -500,6 +505,7 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--config-out", o->config_out, "Write the effective unit configuration (every field) as JSON");
   for (const rtl::UnitField& f : rtl::unit_config_fields()) cmd->add_option(f.flag, o->unit_flags[f.key], fmt::format("{}: {}", f.key, f.meaning));
   cmd->add_flag("--config-fields", o->config_fields, "Print the unit configuration's fields (Markdown) and exit");
+  cmd->add_flag("--stats-fields", o->stats_fields, "Print the statistics' fields (Markdown) and exit");
   cmd->add_option("--shape-policy", o->shape_policy,
                   "Edge kernel shapes of every edge-preserving sampler (a scene: its base stages): static, cache-aware or cross");
   cmd->add_option("--units", o->units, "Texture filter units, each taking 32x32 screen tiles round-robin (threads)");

@@ -1,0 +1,134 @@
+// The unit's statistics as a field table: every counter, value, histogram and table a run of the
+// unit (either engine, one unit or a scene's several) publishes, by one enum and one constexpr row
+// each (key, kind, meaning). Blocks publish and the CLI and the sweeps read through these names, never
+// through a string typed twice; docs/cycle-model.md "Statistics" shows the table
+// (`tfu sim --stats-fields`, tested against it: Docs.CycleModelShowsTheStatFields), and
+// UnitStats.EveryPublishedKeyIsInTheTable holds the table equal to what runs publish.
+// A level scene adds the loader's counts (q3::level_count_fields, their own field table).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "cmodel/enum_names.hpp"
+#include "rtl/kernel/kernel.hpp"
+
+namespace tfu::rtl {
+
+enum class StatKind { Counter, Value, Histogram, Table };
+
+enum class UnitStat {
+  Cycles,
+  Pixels,
+  Units,
+  CacheLineHits,
+  CacheLineMisses,
+  CacheLineHitsLevel,
+  CacheLineMissesLevel,
+  MemoryBytes,
+  MemoryRequests,
+  StallCacheMiss,
+  StallBankConflict,
+  StallBackpressure,
+  ShapeCross,
+  ShapeT,
+  ShapeL,
+  FilterLaneBusyCycles,
+  Probes,
+  PixelsPerClock,
+  MemoryBytesPerPixel,
+  ProbesPerPixel,
+  CacheHitRate,
+  LatencyMean,
+  LatencyMin,
+  LatencyMax,
+  Latency,
+  EdgeDirection,
+  AnisoProbes,
+  Textures,
+  Stages,
+};
+
+inline constexpr EnumNames<StatKind, 4> kStatKindNames{"statistic kind",
+                                                       {{{StatKind::Counter, "counter"},
+                                                         {StatKind::Value, "value"},
+                                                         {StatKind::Histogram, "histogram"},
+                                                         {StatKind::Table, "table"}}}};
+
+struct UnitStatField {
+  UnitStat id;
+  const char* key;  // a per-level key ends in "_level" and is published as key + N (the MIP level)
+  StatKind kind;
+  const char* meaning;
+  constexpr bool per_level() const {
+    return id == UnitStat::CacheLineHitsLevel || id == UnitStat::CacheLineMissesLevel;
+  }
+};
+
+// Row i is UnitStat i (checked below), so a key is one array read.
+inline constexpr std::array<UnitStatField, 29> kUnitStatFields{{
+    {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)"},
+    {UnitStat::Pixels, "pixels", StatKind::Counter,
+     "requests: every pixel of every shaded 2x2 quad, helper pixels included, once per material stage"},
+    {UnitStat::Units, "units", StatKind::Counter, "units of a scene run (a scene run only)"},
+    {UnitStat::CacheLineHits, "cache_line_hits", StatKind::Counter, "texel-cache line hits (tag unit)"},
+    {UnitStat::CacheLineMisses, "cache_line_misses", StatKind::Counter, "texel-cache line misses (tag unit)"},
+    {UnitStat::CacheLineHitsLevel, "cache_line_hits_level", StatKind::Counter,
+     "line hits on MIP level N (levels with any access)"},
+    {UnitStat::CacheLineMissesLevel, "cache_line_misses_level", StatKind::Counter,
+     "line misses on MIP level N (levels with any access)"},
+    {UnitStat::MemoryBytes, "memory_bytes", StatKind::Counter, "bytes read from memory"},
+    {UnitStat::MemoryRequests, "memory_requests", StatKind::Counter, "memory requests (one per missed line)"},
+    {UnitStat::StallCacheMiss, "stall_cache_miss", StatKind::Counter,
+     "cycles the miss-FIFO head waits for memory (texel cache stage)"},
+    {UnitStat::StallBankConflict, "stall_bank_conflict", StatKind::Counter,
+     "cycles the tag port is held by a footprint needing several bank cycles (input side)"},
+    {UnitStat::StallBackpressure, "stall_backpressure", StatKind::Counter,
+     "cycles the texel cache stage waits for a full next block"},
+    {UnitStat::ShapeCross, "shape_cross", StatKind::Counter, "edge kernels read as the full cross (edge modes)"},
+    {UnitStat::ShapeT, "shape_T", StatKind::Counter, "edge kernels read as a T shape (edge modes)"},
+    {UnitStat::ShapeL, "shape_L", StatKind::Counter, "edge kernels read as an L shape (edge modes)"},
+    {UnitStat::FilterLaneBusyCycles, "filter_lane_busy_cycles", StatKind::Counter,
+     "lane-cycles the filter's lanes computed (filter modes)"},
+    {UnitStat::Probes, "probes", StatKind::Counter, "probes (anisotropic samples; 1 per pixel otherwise)"},
+    {UnitStat::PixelsPerClock, "pixels_per_clock", StatKind::Value, "pixels / cycles"},
+    {UnitStat::MemoryBytesPerPixel, "memory_bytes_per_pixel", StatKind::Value, "memory_bytes / pixels"},
+    {UnitStat::ProbesPerPixel, "probes_per_pixel", StatKind::Value, "probes / pixels"},
+    {UnitStat::CacheHitRate, "cache_hit_rate", StatKind::Value, "line hits / (hits + misses); 1 without accesses"},
+    {UnitStat::LatencyMean, "latency_mean", StatKind::Value, "mean request latency in clocks"},
+    {UnitStat::LatencyMin, "latency_min", StatKind::Value, "least request latency in clocks"},
+    {UnitStat::LatencyMax, "latency_max", StatKind::Value, "greatest request latency in clocks"},
+    {UnitStat::Latency, "latency", StatKind::Histogram, "requests per latency (bucket = clocks)"},
+    {UnitStat::EdgeDirection, "edge_direction", StatKind::Histogram,
+     "edge-preserving probes per chosen direction index (edge modes)"},
+    {UnitStat::AnisoProbes, "aniso_probes", StatKind::Histogram,
+     "pixels per probe count N (when some pixel has N > 1)"},
+    {UnitStat::Textures, "textures", StatKind::Table,
+     "per texture descriptor: index, requests, line_hits, line_misses, memory_bytes"},
+    {UnitStat::Stages, "stages", StatKind::Table,
+     "per material stage: stage, requests, line_hits, line_misses, memory_bytes"},
+}};
+
+constexpr bool unit_stat_rows_in_order() {
+  for (size_t i = 0; i < kUnitStatFields.size(); ++i)
+    if (static_cast<size_t>(kUnitStatFields[i].id) != i) return false;
+  return true;
+}
+static_assert(unit_stat_rows_in_order(), "kUnitStatFields: row i must be UnitStat i");
+
+constexpr const char* stat_key(UnitStat s) { return kUnitStatFields[static_cast<size_t>(s)].key; }
+// A per-level key: "cache_line_hits_level3".
+std::string stat_key(UnitStat s, int level);
+
+// Reads and writes by name (sim::Stats stays a generic name-keyed store).
+inline uint64_t counter(const sim::Stats& st, UnitStat s) { return st.counter(stat_key(s)); }
+inline double value(const sim::Stats& st, UnitStat s) { return st.value(stat_key(s)); }
+inline void add(sim::Stats& st, UnitStat s, uint64_t n) { st.add(stat_key(s), n); }
+inline void set(sim::Stats& st, UnitStat s, double v) { st.set(stat_key(s), v); }
+
+// The table as Markdown (`tfu sim --stats-fields`; docs/cycle-model.md "Statistics").
+std::string unit_stats_markdown();
+
+}  // namespace tfu::rtl
