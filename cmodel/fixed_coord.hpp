@@ -5,7 +5,7 @@
 // point with F fraction bits, exactly:  floor(x * scale * 2^F), computed from the float's sign,
 // exponent and 24-bit significand with integer shifts and one 24 x 15-bit multiply; no floating-point
 // operation is involved, so every platform gives the same bits.
-//   NaN          -> 0       (documented defined result, docs/textures.md)
+//   NaN          -> 0       (documented defined result, docs/sampler.md, "Input conversion")
 //   +Inf / -Inf  -> saturate to +/-kFixedLimit
 //   |result| > kFixedLimit saturates (kFixedLimit = 2^46: 2^23 texels at F = 16 with margin)
 #pragma once

@@ -1,7 +1,7 @@
 // LOD unit (Pharr, GPU Gems ch. 25; GL 4.6 Sec. 8.14): level of detail lambda per 2x2 pixel quad,
 // per explicit-gradient request or per explicit-LOD request, in fixed point.
 //
-// Datapath (all integer; see docs/lod.md):
+// Datapath (all integer; see docs/sampler.md, "LOD unit"):
 //   u_i = floor(s_i W 2^16), v_i = floor(t_i H 2^16)       texel coordinates, Q.16 (fixed_coord.hpp)
 //   coarse quad derivatives (one lambda per quad, pixel (0,0) is the reference):
 //     du/dx = u(1,0) - u(0,0)   dv/dx = v(1,0) - v(0,0)   du/dy = u(0,1) - u(0,0)   dv/dy = v(0,1) - v(0,0)

@@ -5,7 +5,7 @@
 // Anisotropic samplers (SamplerDescriptor::anisotropic()) take the LOD unit's whole result instead,
 // sample(s, t, AnisoLod) (aniso.hpp: lambda, the probe count N and the major derivative vector):
 // N probes of the mode along the major axis, averaged (docs/anisotropic.md).
-// Datapath widths and rounding, per mode, are listed in docs/filters.md; the short version:
+// Datapath widths and rounding, per mode, are listed in docs/sampler.md, "Filter modes"; the short version:
 //   texel coordinate  u = floor(s W_L 2^8) - 128 (Q.8, texel centres at integers): i0 = u >> 8, fu = u & 255
 //   NEAREST           i = floor(s W_L) (GL)
 //   LINEAR            w = (256 - fu | fu) x (256 - fv | fv) (Q.16); c = (sum c w + 2^15) >> 16

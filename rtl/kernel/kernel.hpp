@@ -1,5 +1,5 @@
 // Cycle simulation kernel: SystemC-like modules, clocked registers and valid/ready channels in plain
-// C++ (FIELD-NOTES: the real SystemC kernel measured ~10x slower for the same pipeline).
+// C++ (../shared/FIELD-NOTES.md, outside the repository: the real SystemC kernel measured ~10x slower for the same pipeline).
 //
 // Two-phase clocking. Every cycle the simulator calls evaluate() on every module, then commit() on
 // every channel. evaluate() may read of other blocks only committed channel state (front, can_*)
