@@ -38,7 +38,6 @@
 // LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
 // (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
 #include <algorithm>
-#include <bit>
 #include <functional>
 #include <memory>
 #include <type_traits>
@@ -48,40 +47,11 @@
 #include "cmodel/error.hpp"
 
 #include "rtl/tfu_unit.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
-namespace {
-
-// The cycles of the last items of one kind (at least `keep` of them), by item number: a ring of a
-// power-of-two size, at least 2 keep + 1, filled with `before` (the value of an item that does not
-// exist). Item i < 0 therefore reads `before` without a test: every index read is at least
-// count - keep, so while i < 0 fewer than keep items exist, in slots below keep, and the slot of
-// i is size + i >= size - keep > keep. (The mask is 32 bits wide so that the compiler need not
-// reload it after a store of a 64-bit cycle.)
-template <typename T>
-class Ring {
- public:
-  Ring(size_t keep, T before) : v_(std::bit_ceil(2 * keep + 1), before), mask_(static_cast<uint32_t>(v_.size() - 1)) {}
-  T& operator[](int64_t i) { return v_[static_cast<size_t>(i) & mask_]; }
-
- private:
-  std::vector<T> v_;
-  uint32_t mask_;
-};
-
-// Per footprint: the cycle kernel_select took it (it left the footprint channel), the cycle the
-// texel cache accepted it (it left the shaped channel), the cycle it left the miss FIFO.
-struct FootprintTimes {
-  int64_t shaped_push, accept, exit;
-};
-// Per edge footprint: the cycles it left the edge texel channel and the two stage channels.
-struct EdgeTimes {
-  int64_t t1, t2, t3;
-};
-
-}  // namespace
 
 const char* unit_engine_name(UnitEngine e) { return e == UnitEngine::Clocked ? "clocked" : "recurrence"; }
 
