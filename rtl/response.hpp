@@ -10,9 +10,11 @@
 //   in  edge    Response: id[31:0], rgba[31:0]   valid/ready
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "cmodel/error.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
@@ -53,6 +55,22 @@ class ResponseSink : public sim::Module {
   std::string state() const override { return fmt::format("{}, {}, next {}", filter_.state(), edge_.state(), retired_); }
   size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)
   std::vector<uint64_t> latency;  // histogram: latency[c] = pixels that took c cycles
+
+  // The same block's timing for the recurrence engine (rtl/unit_recurrence.cpp); changes with
+  // evaluate(). evaluate() retires the pixel due next, one per cycle, the cycle after its path's
+  // channel made it visible: so pixel j retires at max(pushed + 1, retire of pixel j - 1 + 1), and
+  // since the paths deliver in id order, taking the pixels in id order gives their retire cycles.
+  struct Timing {
+    int64_t last_retire = -1;  // the previous pixel's retire cycle (-1: none)
+    // The cycle a pixel pushed at `pushed` into the response channel `ring` (`count` items so far)
+    // retires; the ring records it as the channel's pop cycle.
+    [[gnu::always_inline]] uint64_t retire_at(Ring<int64_t>& ring, int64_t& count, int64_t pushed) {
+      const int64_t t = std::max(pushed + 1, last_retire + 1);
+      ring[count++] = t;
+      last_retire = t;
+      return static_cast<uint64_t>(t);
+    }
+  } timing;
 
  private:
   sim::Channel<Response>& filter_;

@@ -32,13 +32,12 @@
 //   filter        the head keeps the lanes ceil(taps / 4 lanes) - 1 cycles, then leaves when the
 //                 response channel is ready (if it completes a pixel).
 //   edge_median, edge_direction  as kernel_select; edge_merge as the filter without lane cycles.
-//   response      retires pixel ids in order, one per cycle, from either datapath.
+//   response      retires pixel ids in order, one per cycle, from either datapath (ResponseSink::Timing).
 // The run ends the cycle after the last retire.
 // The blocks' functions are called per footprint (the plain path), or, for quads of isotropic
 // LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
 // (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
 #include <algorithm>
-#include <bit>
 #include <functional>
 #include <memory>
 #include <type_traits>
@@ -48,40 +47,11 @@
 #include "cmodel/error.hpp"
 
 #include "rtl/tfu_unit.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
-namespace {
-
-// The cycles of the last items of one kind (at least `keep` of them), by item number: a ring of a
-// power-of-two size, at least 2 keep + 1, filled with `before` (the value of an item that does not
-// exist). Item i < 0 therefore reads `before` without a test: every index read is at least
-// count - keep, so while i < 0 fewer than keep items exist, in slots below keep, and the slot of
-// i is size + i >= size - keep > keep. (The mask is 32 bits wide so that the compiler need not
-// reload it after a store of a 64-bit cycle.)
-template <typename T>
-class Ring {
- public:
-  Ring(size_t keep, T before) : v_(std::bit_ceil(2 * keep + 1), before), mask_(static_cast<uint32_t>(v_.size() - 1)) {}
-  T& operator[](int64_t i) { return v_[static_cast<size_t>(i) & mask_]; }
-
- private:
-  std::vector<T> v_;
-  uint32_t mask_;
-};
-
-// Per footprint: the cycle kernel_select took it (it left the footprint channel), the cycle the
-// texel cache accepted it (it left the shaped channel), the cycle it left the miss FIFO.
-struct FootprintTimes {
-  int64_t shaped_push, accept, exit;
-};
-// Per edge footprint: the cycles it left the edge texel channel and the two stage channels.
-struct EdgeTimes {
-  int64_t t1, t2, t3;
-};
-
-}  // namespace
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd) {
   return engine == UnitEngine::Recurrence && vcd.out == nullptr ? run_unit_recurrence(frame, trace, ucfg)
@@ -110,7 +80,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   int64_t n_quads = 0, n_pixels = 0, n_footprints = 0, n_texels = 0, n_edges = 0, n_responses = 0, n_edge_responses = 0;
   // The previous item's cycles (-1: none).
   int64_t quad_push = -1, last_pixel_push = -1, last_footprint_push = -1, last_shaped_push = -1;
-  int64_t prev_accept = -1, prev_port_cycles = 0, last_exit = -1, last_done = -1, last_retire = -1;
+  int64_t prev_accept = -1, prev_port_cycles = 0, last_exit = -1, last_done = -1;
   EdgeTimes last_edge{-1, -1, -1};
   uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, lane_busy = 0;
   const auto span = [](int64_t from, int64_t to) { return static_cast<uint64_t>(std::max<int64_t>(0, to - from)); };
@@ -163,14 +133,8 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
     last_done = done;
     return done;
   };
-  // response: the cycle a pixel pushed at `pushed` into the response channel `ring` (`count` items
-  // so far) retires, in id order.
-  const auto retire_at = [&](Ring<int64_t>& ring, int64_t& count, int64_t pushed) {
-    const int64_t t = std::max(pushed + 1, last_retire + 1);
-    ring[count++] = t;
-    last_retire = t;
-    return static_cast<uint64_t>(t);
-  };
+  // response: its rule is ResponseSink::Timing::retire_at (rtl/response.hpp).
+  ResponseSink::Timing& response = u.sink.timing;
   // The blocks' output registers, reused from item to item as the clocked run reuses its channel
   // slots (every field the datapath functions read is written first).
   QuadReq quad;
@@ -184,7 +148,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.sink.retired()); };
   sim::ProgressBar bar(retired, n);
   for (size_t first = 0, quads_in = 0; first < n; ++quads_in) {
-    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(last_retire, 0)));
+    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(response.last_retire, 0)));
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
     quad_push = std::max(quad_push + 1, quads[n_quads - depth] + 1);
@@ -206,7 +170,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
             });
             const bool emits = n_level + 1 == kLevels;
             const int64_t done = filter_done_at(exit, 4, emits);
-            if (emits) quad_retire[static_cast<size_t>(k)] = retire_at(responses, n_responses, done);
+            if (emits) quad_retire[static_cast<size_t>(k)] = response.retire_at(responses, n_responses, done);
           }
         }
       };
@@ -235,7 +199,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
         if (!edge) {
           // filter -> response
           const int64_t done = filter_done_at(exit, texel_words.ntaps, emits);
-          if (u.filter->filter(texel_words, r)) u.sink.retire(r, retire_at(responses, n_responses, done));
+          if (u.filter->filter(texel_words, r)) u.sink.retire(r, response.retire_at(responses, n_responses, done));
         } else {
           // edge_median -> edge_direction -> edge_merge -> response
           const EdgeTimes& earlier_edge = edges[n_edges - depth];
@@ -247,15 +211,16 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
           e.t3 = std::max({e.t2 + 1, last_edge.t3 + 1, emits ? edge_responses[n_edge_responses - depth] + 1 : 0});
           edges[n_edges++] = e;
           last_edge = e;
-          if (u.e3->merge(direction_out, r)) u.sink.retire(r, retire_at(edge_responses, n_edge_responses, e.t3));
+          if (u.e3->merge(direction_out, r))
+            u.sink.retire(r, response.retire_at(edge_responses, n_edge_responses, e.t3));
         }
       }
     }
   }
-  bar.finish(static_cast<uint64_t>(last_retire + 1));
+  bar.finish(static_cast<uint64_t>(response.last_retire + 1));
   u.cst.add_stalls(stall_miss, stall_bank, stall_back);
   if (u.filter) u.filter->add_busy_cycles(lane_busy);
-  out.cycles = static_cast<uint64_t>(last_retire + 1);
+  out.cycles = static_cast<uint64_t>(response.last_retire + 1);
   out.edge_shapes = std::move(u.cst.shapes);
   detail::derive_stats(frame, trace, ucfg, u, out);
   return out;
