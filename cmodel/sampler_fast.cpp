@@ -10,6 +10,7 @@
 #include "cmodel/aniso_fast.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/edge_filter.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/sampler_internal.hpp"
 
@@ -409,6 +410,7 @@ void Sampler::FastPaths::setup(Sampler& sm) {
   sm.sample_fn_ = &sample_generic;
   sm.batch_fn_ = &batch_generic;
   sm.aniso_fn_ = &aniso_generic;
+  if (!fast_paths_enabled()) return;  // TFU_PLAIN=1 or --plain: the plain datapath only
   switch (sm.cfg_.mode.base) {
     case BaseFilter::Nearest: break;
     case BaseFilter::Linear:

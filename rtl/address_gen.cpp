@@ -2,6 +2,7 @@
 
 #include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "rtl/address_gen_detail.hpp"
 #include "rtl/unit_stats.hpp"
@@ -18,7 +19,8 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));
     GridFn grid = &grid_any;
-    if (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving)
+    const bool fast = fast_paths_enabled();  // off (TFU_PLAIN=1, --plain): grid_any, the plain twin
+    if (fast && (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving))
       grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving, c.wrap_s, c.wrap_t);
     decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
   }

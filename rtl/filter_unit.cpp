@@ -1,6 +1,7 @@
 #include "rtl/filter_unit.hpp"
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/fast_paths.hpp"
 
 namespace tfu::rtl {
 
@@ -48,8 +49,9 @@ void FilterUnit::evaluate() {
 }
 
 bool FilterUnit::filter(const FilterReq& r, Response& out) {
-  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2) {
-    // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8)
+  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2 && fast_paths_enabled()) {
+    // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8); speed only, the plain
+    // form is filter_level below (off with TFU_PLAIN=1 or --plain, cmodel/fast_paths.hpp)
     const auto& w = r.texels;
     const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.holds()) {

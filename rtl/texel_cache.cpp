@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 
 namespace tfu::rtl {
 
@@ -198,7 +199,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
-  } else if (g.cols != 4 || g.rows != 4 || !block_run_lines(l, g, s)) {
+  } else if (g.cols != 4 || g.rows != 4 || !fast_paths_enabled() || !block_run_lines(l, g, s)) {
     group_lines(l, g, s);
   }
   FootprintResult r;

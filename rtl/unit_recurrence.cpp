@@ -45,6 +45,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 
 #include "rtl/tfu_unit.hpp"
 #include "rtl/timing.hpp"
@@ -66,7 +67,7 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   out.response_cycle.resize(n);
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out);
   detail::Unit& u = *unit;
-  detail::LinearQuadPath linear(frame.regs, u, linear_quads);
+  detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
   const auto depth = static_cast<int64_t>(ucfg.channel_depth);
   const auto fifo_depth = static_cast<int64_t>(ucfg.miss_fifo_depth);
   const size_t keep = static_cast<size_t>(std::max(depth, fifo_depth)) + 1;

@@ -21,6 +21,7 @@
 #include "cmodel/scene_source.hpp"
 #include "cmodel/trace.hpp"
 #include "sim/tfu/commands.hpp"
+#include "sim/tfu/sampler_options.hpp"
 
 namespace tfu::cli {
 namespace {
@@ -132,6 +133,7 @@ void register_render(CLI::App& app) {
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--truth-out", o->truth_out, "Also write the 8x8-supersampled analytic ground truth image");
+  add_plain_option(*cmd);
   cmd->add_flag("--ideal", o->ideal, "Use the double-precision ideal sampler instead of the fixed-point datapath");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all hardware threads)")->capture_default_str();
   cmd->add_option("--width", o->width, "Override the scene's output width (0: keep)");

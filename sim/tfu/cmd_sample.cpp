@@ -108,6 +108,7 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
 void register_sample(CLI::App& app) {
   auto o = std::make_shared<SampleOptions>();
   CLI::App* cmd = app.add_subcommand("sample", "Filter a request trace with the golden reference sampler");
+  add_plain_option(*cmd);
   add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--requests", o->requests, "Request trace (docs/traces.md)")->required();

@@ -521,6 +521,7 @@ void register_sim(CLI::App& app) {
                   "recurrences of rtl/unit_recurrence.cpp; the default) or clocked (every block every cycle: the "
                   "reference, and the one that writes --vcd; the default with --vcd); the same outputs, cycles and "
                   "statistics (tested)");
+  add_plain_option(*cmd);
   cmd->add_flag("--bench", o->bench, "Print the simulation speed (with the recurrences, of the clocked blocks too)");
   cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });

@@ -18,6 +18,7 @@
 #include "sim/sweep/sweep_run.hpp"
 #include "sim/sweep/sweep_slurm.hpp"
 #include "sim/tfu/commands.hpp"
+#include "sim/tfu/sampler_options.hpp"
 
 namespace tfu::cli {
 namespace {
@@ -152,6 +153,7 @@ void register_sweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* cmd = app.add_subcommand("sweep", "Design-space sweep: unit configurations x scenes x filters, golden compare, "
                                               "results.csv, summary.md, plots; local or Slurm (docs/design-space.md)");
+  add_plain_option(*cmd);
   cmd->add_option("spec", o->spec, "Sweep spec JSON (docs/design-space.md)");
   cmd->add_option("--out", o->out, "Sweep directory: points/, results.csv, summary.md (resumable: complete points are skipped)");
   cmd->add_option("--workers", o->workers, "Points run at once on the local runner (0: every hardware thread)")->capture_default_str();

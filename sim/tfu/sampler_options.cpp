@@ -1,10 +1,12 @@
 #include "sim/tfu/sampler_options.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -27,6 +29,16 @@ void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required
       {"layout", "Memory layout: tiled (one tile per cache line) or linear rows"},
       {"tile_bytes", "Tiled layout: bytes per tile, one cache line (64, 256 or 1024)"}};
   for (const char* key : texture_param_keys()) cmd.add_option(flag_of(key), o.values[key], help.at(key));
+}
+
+void add_plain_option(CLI::App& cmd) {
+  cmd.add_flag_callback(
+      "--plain",
+      [] {
+        set_fast_paths(false);
+        ::setenv("TFU_PLAIN", "1", 1);
+      },
+      "Run the plain datapaths instead of the speed-only fast paths (the same results; also TFU_PLAIN=1)");
 }
 
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o) {

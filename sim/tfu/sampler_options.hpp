@@ -38,6 +38,10 @@ Params sampler_params_given(const CLI::App& cmd, const SamplerOptions& o);
 // tiled for `line_bytes` lines. The trace's requests are bound (bind_requests) in place.
 Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes);
 
+// `--plain`: run the plain datapaths instead of every speed-only fast path (cmodel/fast_paths.hpp);
+// it also sets TFU_PLAIN=1 so that processes this one starts (sweep points) run plain too.
+void add_plain_option(CLI::App& cmd);
+
 // The command-line flag of a table key: "wrap_s" -> "--wrap-s".
 std::string flag_of(const std::string& key);
 
