@@ -7,7 +7,7 @@ namespace tfu::rtl {
 
 FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<Response>& o, const Registers& regs,
                        const WeightRomBank& roms, int lanes)
-    : Module(s, "filter"), in_(i), out_(o), regs_(regs), roms_(roms), lanes_(lanes) {
+    : Module(s, "filter"), in_(i), out_(o), regs_(regs), roms_(roms), lanes_(lanes), word_lerps_(fast_paths_enabled()) {
   for (size_t n = 0; n < extra_clocks_.size(); ++n) extra_clocks_[n] = (static_cast<int>(n) + 4 * lanes_ - 1) / (4 * lanes_) - 1;
 }
 
@@ -49,7 +49,7 @@ void FilterUnit::evaluate() {
 }
 
 bool FilterUnit::filter(const FilterReq& r, Response& out) {
-  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2 && fast_paths_enabled()) {
+  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2 && word_lerps_) {
     // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8); speed only, the plain
     // form is filter_level below (off with TFU_PLAIN=1 or --plain, cmodel/fast_paths.hpp)
     const auto& w = r.texels;

@@ -54,6 +54,7 @@ class FilterUnit : public sim::Module {
   const Registers& regs_;
   const WeightRomBank& roms_;
   int lanes_;
+  bool word_lerps_;  // LINEAR on 8-bit words, the fast path (cmodel/fast_paths.hpp), read once
   int remaining_ = -1;  // clocks left on the current footprint (-1: not started)
   std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
   uint64_t busy_cycles_ = 0;

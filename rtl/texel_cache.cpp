@@ -44,7 +44,8 @@ LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, co
   return ll;
 }
 
-TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor>& textures) : cfg_(cfg) {
+TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor>& textures)
+    : cfg_(cfg), block_runs_(fast_paths_enabled()) {
   cfg_.validate();
   const auto sets = static_cast<uint64_t>(cfg_.sets());
   set_mask_ = (sets & (sets - 1)) == 0 ? sets - 1 : 0;  // power of two: a mask instead of a division
@@ -199,7 +200,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
-  } else if (g.cols != 4 || g.rows != 4 || !fast_paths_enabled() || !block_run_lines(l, g, s)) {
+  } else if (g.cols != 4 || g.rows != 4 || !block_runs_ || !block_run_lines(l, g, s)) {
     group_lines(l, g, s);
   }
   FootprintResult r;

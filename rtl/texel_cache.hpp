@@ -105,6 +105,7 @@ class TexelCache {
 
  private:
   TexelCacheConfig cfg_;
+  bool block_runs_;                  // the block-run fast path is on (cmodel/fast_paths.hpp), read once
   std::vector<LevelLines> lines_;    // every level of every texture
   std::vector<size_t> first_level_;  // texture t's levels: lines_[first_level_[t] ...]
   std::vector<int> level_of_;        // lines_ entry -> its level number

@@ -21,6 +21,7 @@
 #include "cmodel/texture_memory.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/scene_sim.hpp"
+#include "testbench/docs_text.hpp"
 
 namespace tfu {
 namespace {
@@ -110,11 +111,7 @@ TEST(Descriptors, TextureEncodingRoundTrips) {
 }
 
 TEST(Descriptors, DocsShowTheFieldTables) {
-  std::ifstream f(std::string(TFU_DOCS_DIR) + "/descriptors.md");
-  ASSERT_TRUE(f.good());
-  std::stringstream ss;
-  ss << f.rdbuf();
-  EXPECT_NE(ss.str().find(descriptor_tables_markdown()), std::string::npos)
+  EXPECT_NE(test::docs_text("descriptors.md").find(descriptor_tables_markdown()), std::string::npos)
       << "docs/descriptors.md is stale: paste `tfu descriptors` between the generated markers";
 }
 

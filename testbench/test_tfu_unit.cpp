@@ -25,6 +25,7 @@
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "testbench/iterations.hpp"
+#include "testbench/docs_text.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -936,11 +937,7 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
 }
 
 TEST(Docs, CycleModelShowsTheConfigFields) {
-  std::ifstream f(std::string(TFU_DOCS_DIR) + "/cycle-model.md");
-  ASSERT_TRUE(f.good());
-  std::stringstream ss;
-  ss << f.rdbuf();
-  EXPECT_NE(ss.str().find(unit_config_markdown()), std::string::npos)
+  EXPECT_NE(test::docs_text("cycle-model.md").find(unit_config_markdown()), std::string::npos)
       << "docs/cycle-model.md is stale: paste `tfu sim --config-fields` between the generated markers";
 }
 

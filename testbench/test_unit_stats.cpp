@@ -18,6 +18,7 @@
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/unit_stats.hpp"
+#include "testbench/docs_text.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -111,11 +112,7 @@ TEST(UnitStats, KeysAndMarkdown) {
 }
 
 TEST(Docs, CycleModelShowsTheStatFields) {
-  std::ifstream f(std::string(TFU_DOCS_DIR) + "/cycle-model.md");
-  ASSERT_TRUE(f.good());
-  std::stringstream ss;
-  ss << f.rdbuf();
-  EXPECT_NE(ss.str().find(unit_stats_markdown()), std::string::npos)
+  EXPECT_NE(test::docs_text("cycle-model.md").find(unit_stats_markdown()), std::string::npos)
       << "docs/cycle-model.md is stale: paste `tfu sim --stats-fields` between the generated markers";
 }
 
