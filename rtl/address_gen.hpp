@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "cmodel/descriptors.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/weight_rom_bank.hpp"
 #include "rtl/kernel/kernel.hpp"
@@ -50,6 +51,10 @@ class AddressGen : public sim::Module {
   // each issue() forms its next level footprint in `f` and returns true with the pixel's last.
   void begin(const PixelReq& p);
   bool issue(FootprintReq& f);
+  // The block's timing for the recurrence engine, beside evaluate(), which takes a pixel when it
+  // holds none and issues its level footprints one per cycle, the first in the cycle it took the
+  // pixel: a SequencerTiming (rtl/timing.hpp), pixels in, footprints out. Both change together.
+  SequencerTiming timing;
   // The level selection of a pixel of sampler and texture `req` at `lambda` (Q.8, before bias and
   // clamps): level 0 alone without MIP-mapping, else select_levels.
   LevelPick pick_levels(const RequestTag& req, int32_t lambda) const {

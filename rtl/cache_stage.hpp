@@ -18,6 +18,7 @@
 // coefficients) and no cache access.
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "cmodel/texture_memory.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
@@ -80,7 +82,7 @@ class CacheStage : public sim::Module {
   // rtl/unit_recurrence.cpp drive these; evaluate() uses the same code): admit_footprint looks a
   // footprint up at cycle `now` (cache-aware arms, tags, memory reads, statistics) and returns the
   // cycle its lines are all in, with the cycles it holds the tag/bank port; read_out_footprint
-  // forms its texel words; add_stalls adds stall cycles counted outside evaluate().
+  // forms its texel words.
   uint64_t admit_footprint(FootprintReq& f, uint64_t now, int& bank_cycles);
   void read_out_footprint(const FootprintReq& f, FilterReq& out) const;
   // admit_footprint's tail, once the taps to look up are known (`lookup`: the grid, its used cells
@@ -104,11 +106,53 @@ class CacheStage : public sim::Module {
   const LevelReadout& level_readout(int texture, int level) const {
     return readout_[first_readout_[static_cast<size_t>(texture)] + static_cast<size_t>(level)];
   }
-  void add_stalls(uint64_t miss, uint64_t bank, uint64_t back) {
-    stall_miss_ += miss;
-    stall_bank_ += bank;
-    stall_back_ += back;
-  }
+
+  // The block's timing for the recurrence engine (rtl/timing.hpp), beside evaluate(), which it
+  // restates item by item; the two change together. evaluate() runs its output side before its
+  // input side in a cycle:
+  //   input side   a footprint pushed into the shaped channel at `pushed` is accepted (looked up)
+  //                in the first cycle in which it is visible (pushed + 1, and the previous one
+  //                accepted a cycle earlier), the tag port is free (the previous footprint's
+  //                accept cycle + its bank cycles) and the miss FIFO has a slot (freed by this
+  //                cycle's exit at the latest); the cycles it waits for the port count as
+  //                stall_bank_conflict;
+  //   output side  the miss-FIFO head leaves, pushing its texel words, in the first cycle after its
+  //                accept and the previous head's exit in which its lines are in (`ready`) and its
+  //                output channel has room; it counts its cycles waiting for the lines as
+  //                stall_cache_miss, then those waiting for room as stall_backpressure.
+  // Both count into the block's own stall counters (published by publish()).
+  class Timing {
+   public:
+    explicit Timing(CacheStage& b) : b_(b) {}
+    // The cycle the footprint pushed at `pushed` leaves the shaped channel `in` into the miss FIFO.
+    [[gnu::always_inline]] int64_t accept(int64_t pushed, ChannelTimes& in, const ChannelTimes& miss_fifo) {
+      const int64_t visible = std::max(pushed + 1, last_accept_ + 1);
+      const int64_t port_free = last_accept_ + port_cycles_;
+      const int64_t t = std::max({visible, port_free, miss_fifo.freed()});
+      b_.stall_bank_ += cycles_between(visible, std::min(t, port_free));
+      in.pop(t);
+      last_accept_ = t;
+      return t;
+    }
+    // The cycle the footprint accepted at `accepted`, holding the tag port `bank_cycles` cycles,
+    // with its lines in at `ready`, leaves the miss FIFO into `out`.
+    [[gnu::always_inline]] int64_t exit(int64_t accepted, int bank_cycles, int64_t ready, ChannelTimes& miss_fifo,
+                                        const ChannelTimes& out) {
+      port_cycles_ = bank_cycles;
+      const int64_t head = std::max(accepted + 1, last_exit_ + 1);
+      const int64_t t = std::max({head, ready, out.room()});
+      b_.stall_miss_ += cycles_between(head, std::min(ready, t));
+      b_.stall_back_ += cycles_between(std::max(head, ready), t);
+      miss_fifo.pop(t);
+      last_exit_ = t;
+      return t;
+    }
+
+   private:
+    CacheStage& b_;
+    int64_t last_accept_ = -1, last_exit_ = -1;  // the previous footprint's cycles (-1: none)
+    int port_cycles_ = 0;                        // the cycles it held the tag port
+  } timing{*this};
 
  private:
   sim::Channel<FootprintReq>& in_;

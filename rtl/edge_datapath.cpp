@@ -94,7 +94,7 @@ void EdgeMedian::evaluate() {
   sim_.progress();
 }
 
-void EdgeMedian::stage(const FilterReq& r, EdgeS1& s) {
+void EdgeMedian::stage(const FilterReq& r, EdgeMedianOut& s) {
   s.tag = r.tag;
   const TexelFormat fmt = r.tag.format;
   for (size_t k = 0; k < s.c.size(); ++k) s.c[k] = decode_texel(r.texels[k], fmt);
@@ -108,25 +108,25 @@ void EdgeDirection::evaluate() {
   sim_.progress();
 }
 
-void EdgeDirection::stage(const EdgeS1& s, EdgeS2& o) {
-  o.s1 = s;
+void EdgeDirection::stage(const EdgeMedianOut& s, EdgeDirectionOut& o) {
+  o.median = s;
   o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, s.tag.format).direction;
   ++chosen[static_cast<size_t>(o.direction)];
 }
 
 void EdgeMerge::evaluate() {
   if (!in_.can_pop()) return;
-  const EdgeS2& s = in_.front();
-  if (s.s1.tag.emits() && !out_.can_push()) return;
+  const EdgeDirectionOut& s = in_.front();
+  if (s.median.tag.emits() && !out_.can_push()) return;
   Response out;
   if (merge(s, out)) out_.push(out);
   in_.pop();
   sim_.progress();
 }
 
-bool EdgeMerge::merge(const EdgeS2& s, Response& out) {
-  const LevelTag& tag = s.s1.tag;
-  Texel4 c = lee_jen::edge_merge(s.s1.c, s.s1.low, s.direction, tag.fu, tag.fv, tag.format);
+bool EdgeMerge::merge(const EdgeDirectionOut& s, Response& out) {
+  const LevelTag& tag = s.median.tag;
+  Texel4 c = lee_jen::edge_merge(s.median.c, s.median.low, s.direction, tag.fu, tag.fv, tag.format);
   if (tag.holds()) {
     first_ = c;
     return false;

@@ -14,25 +14,26 @@
 // Ports (between stages, valid/ready channels of depth 2):
 //   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], format[1:0] (each
 //               footprint's own texel format), fu fv, blend, two, second
-//   s1  EdgeS1: tag, 12 texels (datapath channels), low[12] x [3:0]
-//   s2  EdgeS2: s1 + direction[4:0]
+//   edge_median_out     EdgeMedianOut: tag, 12 texels (datapath channels), low[12] x [3:0]
+//   edge_direction_out  EdgeDirectionOut: the median stage's output + direction[4:0]
 //   out Response: id, rgba[31:0]
 #pragma once
 
 #include "cmodel/edge_filter.hpp"
 #include "rtl/probe_accumulator.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
 namespace tfu::rtl {
 
-struct EdgeS1 {
+struct EdgeMedianOut {
   LevelTag tag;
   std::array<Texel4, lee_jen::kTexels> c{};
   lee_jen::LowIndex low{};
 };
-struct EdgeS2 {
-  EdgeS1 s1;
+struct EdgeDirectionOut {
+  EdgeMedianOut median;
   int direction = 0;
 };
 
@@ -43,45 +44,56 @@ lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels
 
 class EdgeMedian : public sim::Module {
  public:
-  EdgeMedian(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<EdgeS1>& o)
+  EdgeMedian(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Channel<EdgeMedianOut>& o)
       : Module(s, "edge_median"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
   // The stage's combinational part (evaluate() and the timing recurrences of rtl/unit_recurrence.cpp).
-  static void stage(const FilterReq& r, EdgeS1& s);
+  static void stage(const FilterReq& r, EdgeMedianOut& s);
+  // The stage's timing for the recurrence engine, beside evaluate(), which takes its input's head
+  // when its output has room, one per cycle: an InOrderTiming (rtl/timing.hpp). Both change together.
+  InOrderTiming timing;
 
  private:
   sim::Channel<FilterReq>& in_;
-  sim::Channel<EdgeS1>& out_;
+  sim::Channel<EdgeMedianOut>& out_;
 };
 
 class EdgeDirection : public sim::Module {
  public:
-  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeS1>& i, sim::Channel<EdgeS2>& o)
+  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeMedianOut>& i, sim::Channel<EdgeDirectionOut>& o)
       : Module(s, "edge_direction"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
   std::array<uint64_t, lee_jen::kDirections> chosen{};  // histogram of chosen directions
   // The stage's combinational part (and the histogram).
-  void stage(const EdgeS1& s, EdgeS2& o);
+  void stage(const EdgeMedianOut& s, EdgeDirectionOut& o);
+  // The stage's timing for the recurrence engine, beside evaluate(), which takes its input's head
+  // when its output has room, one per cycle: an InOrderTiming (rtl/timing.hpp). Both change together.
+  InOrderTiming timing;
 
  private:
-  sim::Channel<EdgeS1>& in_;
-  sim::Channel<EdgeS2>& out_;
+  sim::Channel<EdgeMedianOut>& in_;
+  sim::Channel<EdgeDirectionOut>& out_;
 };
 
 class EdgeMerge : public sim::Module {
  public:
-  EdgeMerge(sim::Simulator& s, sim::Channel<EdgeS2>& i, sim::Channel<Response>& o)
+  EdgeMerge(sim::Simulator& s, sim::Channel<EdgeDirectionOut>& i, sim::Channel<Response>& o)
       : Module(s, "edge_merge"), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
   // The stage's datapath: true with the pixel's response in `out` when the footprint completes one
   // (LevelTag::emits()).
-  bool merge(const EdgeS2& s, Response& out);
+  bool merge(const EdgeDirectionOut& s, Response& out);
+  // The stage's timing for the recurrence engine, beside evaluate(), which takes its input's head,
+  // one per cycle, when the response channel has room if the footprint completes a pixel (and at
+  // once if not): an InOrderTiming (rtl/timing.hpp) without an output for the others. Both change
+  // together.
+  InOrderTiming timing;
 
  private:
-  sim::Channel<EdgeS2>& in_;
+  sim::Channel<EdgeDirectionOut>& in_;
   sim::Channel<Response>& out_;
   Texel4 first_{};  // level0 result of a blending pixel (register)
   ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)

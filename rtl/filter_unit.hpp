@@ -21,6 +21,7 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/descriptors.hpp"
 #include "rtl/probe_accumulator.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/weight_rom_bank.hpp"
 #include "rtl/kernel/kernel.hpp"
@@ -46,7 +47,26 @@ class FilterUnit : public sim::Module {
   static void filter_linear8x4(const dp::Quad8& q, Rgba8* out) { dp::bilinear_lerp8x4(q, out); }
   // filter()'s blend unit on 8-bit words (a blending pixel's level0 and level1 colours).
   static Rgba8 blend_linear8(Rgba8 level0, Rgba8 level1, int blend) { return dp::level_blend8(level0, level1, blend); }
-  void add_busy_cycles(uint64_t n) { busy_cycles_ += n; }
+  // The block's timing for the recurrence engine (rtl/timing.hpp), beside evaluate(), which it
+  // restates item by item; the two change together. evaluate() keeps the head footprint in the
+  // lanes for extra_clocks(ntaps) cycles (counted in busy_cycles), then pops it in the first cycle
+  // in which the response channel has room, if it completes a pixel: an InOrderTiming with that
+  // hold.
+  class Timing {
+   public:
+    explicit Timing(FilterUnit& b) : b_(b) {}
+    // The cycle the footprint of `ntaps` texels pushed at `pushed` leaves `in` (`emits`: it
+    // completes a pixel, pushed into `out`).
+    [[gnu::always_inline]] int64_t done(int64_t pushed, int ntaps, bool emits, ChannelTimes& in, const ChannelTimes& out) {
+      const int hold = b_.extra_clocks(ntaps);
+      b_.busy_cycles_ += static_cast<uint64_t>(hold);
+      return stage_.move(pushed, in, emits ? &out : nullptr, hold);
+    }
+
+   private:
+    FilterUnit& b_;
+    InOrderTiming stage_;
+  } timing{*this};
 
  private:
   sim::Channel<FilterReq>& in_;

@@ -17,6 +17,7 @@
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/edge_filter.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
@@ -51,6 +52,9 @@ class KernelSelect : public sim::Module {
     select(f, regs_.samplers[f.tag.req.sampler].edge_shape, t.layout == MemoryLayout::Tiled ? t.tile_side() : 0);
   }
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
+  // The block's timing for the recurrence engine, beside evaluate(), which moves its input's head
+  // when its output has room, one per cycle: an InOrderTiming (rtl/timing.hpp). Both change together.
+  InOrderTiming timing;
 
  private:
   sim::Channel<FootprintReq>& in_;

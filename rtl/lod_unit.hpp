@@ -23,6 +23,7 @@
 #include "cmodel/descriptors.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/trace.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
@@ -55,6 +56,10 @@ class LodUnit : public sim::Module {
   }
   std::string state() const override { return fmt::format("{}, {}, holding {}", in_.state(), out_.state(), holding_); }
   bool busy() const { return holding_; }
+  // The block's timing for the recurrence engine, beside evaluate(), which takes a quad when it
+  // holds none and pushes its pixels one per cycle, the first in the cycle it took the quad: a
+  // SequencerTiming (rtl/timing.hpp), quads in, pixels out. Both change together.
+  SequencerTiming timing;
 
  private:
   sim::Channel<QuadReq>& in_;

@@ -7,9 +7,11 @@
 //   out quad  QuadReq (unit_ports.hpp)   valid/ready
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "cmodel/trace.hpp"
+#include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
 
@@ -45,6 +47,16 @@ class RequestFifo : public sim::Module {
     q.dtdy = r.dtdy;
   }
   std::string state() const override { return out_.state(); }
+  // The block's timing for the recurrence engine, beside evaluate(), which pushes a quad in every
+  // cycle its output has room (rtl/timing.hpp). Both change together.
+  struct Timing {
+    int64_t last_push = -1;  // the previous quad's push cycle (-1: none)
+    // The cycle the next quad is pushed into `out` (its pixels' accept cycle).
+    [[gnu::always_inline]] int64_t push(const ChannelTimes& out) {
+      last_push = std::max(last_push + 1, out.room());
+      return last_push;
+    }
+  } timing;
 
  private:
   const Trace& trace_;

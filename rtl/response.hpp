@@ -56,20 +56,16 @@ class ResponseSink : public sim::Module {
   size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)
   std::vector<uint64_t> latency;  // histogram: latency[c] = pixels that took c cycles
 
-  // The same block's timing for the recurrence engine (rtl/unit_recurrence.cpp); changes with
-  // evaluate(). evaluate() retires the pixel due next, one per cycle, the cycle after its path's
-  // channel made it visible: so pixel j retires at max(pushed + 1, retire of pixel j - 1 + 1), and
-  // since the paths deliver in id order, taking the pixels in id order gives their retire cycles.
+  // The block's timing for the recurrence engine, beside evaluate(), which retires the pixel due
+  // next, one per cycle, the cycle after its path's channel made it visible: pixel j retires at
+  // max(pushed + 1, retire of pixel j - 1 + 1), and since the paths deliver in id order, taking the
+  // pixels in id order gives their retire cycles. An InOrderTiming (rtl/timing.hpp) without an
+  // output, over both inputs. Both change together.
   struct Timing {
-    int64_t last_retire = -1;  // the previous pixel's retire cycle (-1: none)
-    // The cycle a pixel pushed at `pushed` into the response channel `ring` (`count` items so far)
-    // retires; the ring records it as the channel's pop cycle.
-    [[gnu::always_inline]] uint64_t retire_at(Ring<int64_t>& ring, int64_t& count, int64_t pushed) {
-      const int64_t t = std::max(pushed + 1, last_retire + 1);
-      ring[count++] = t;
-      last_retire = t;
-      return static_cast<uint64_t>(t);
-    }
+    InOrderTiming stage;
+    // The cycle a pixel pushed at `pushed` into the response channel `in` retires (and leaves `in`).
+    [[gnu::always_inline]] int64_t retire_at(ChannelTimes& in, int64_t pushed) { return stage.move(pushed, in, nullptr); }
+    int64_t last_retire() const { return stage.last; }  // -1: none yet
   } timing;
 
  private:

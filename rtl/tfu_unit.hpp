@@ -6,8 +6,8 @@
 //
 //   request_fifo --QuadReq--> lod_unit --PixelReq--> address_gen --FootprintReq--> kernel_select
 //     --FootprintReq--> texel_cache (+ memory_model) --FilterReq--> filter ---------Response--+
-//                                                   \--FilterReq--> edge_median --EdgeS1-->     +--> response
-//                                     edge_direction --EdgeS2--> edge_merge ------Response--/
+//                                                   \--FilterReq--> edge_median --EdgeMedianOut-->     +--> response
+//                                     edge_direction --EdgeDirectionOut--> edge_merge ------Response--/
 //
 // Port payloads and widths: rtl/unit_ports.hpp and each block's header. Rates (cache hits):
 // NEAREST, LINEAR and EDGE_PRESERVING 1 pixel/clock; a blending *_MIPMAP_LINEAR pixel 2 clocks (one
@@ -23,6 +23,7 @@
 #include "cmodel/enum_names.hpp"
 #include "cmodel/frame.hpp"
 #include "cmodel/trace.hpp"
+#include "rtl/engine_compare.hpp"
 #include "rtl/unit_config.hpp"
 #include "rtl/unit_output.hpp"
 
@@ -61,7 +62,9 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes
 // and statistics as the clocked run (tested). No waveform. `linear_quads` false runs every quad
 // through the plain per-pixel path, without the LINEAR quad path (software speed only,
-// rtl/unit_recurrence_linear_quads.hpp): for the test that the two are equal.
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true);
+// rtl/unit_recurrence_linear_quads.hpp): for the test that the two are equal. `events`, if given,
+// receives every event of the run (rtl/engine_compare.hpp).
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true,
+                               UnitEvents* events = nullptr);
 
 }  // namespace tfu::rtl

@@ -50,25 +50,25 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   channel(u.c_shape);
   channel(u.c_texels);
   channel(u.c_edge_texels);
-  channel(u.c_s1);
-  channel(u.c_s2);
+  channel(u.c_edge_median_out);
+  channel(u.c_edge_direction_out);
   channel(u.c_resp);
   channel(u.c_edge_resp);
-  vcd.add("tfu.lod_unit.busy", 1, [&u] { return uint64_t{u.lod.busy()}; });
-  vcd.add("tfu.address_gen.busy", 1, [&u] { return uint64_t{u.addr.busy()}; });
-  vcd.add("tfu.texel_cache.busy", 1, [&u] { return uint64_t{u.cst.busy()}; });
-  vcd.add("tfu.texel_cache.id", 32, [&u] { return uint64_t{u.cst.current_id()}; });
-  u.cst.probes(true);
+  vcd.add("tfu.lod_unit.busy", 1, [&u] { return uint64_t{u.lod_unit.busy()}; });
+  vcd.add("tfu.address_gen.busy", 1, [&u] { return uint64_t{u.address_gen.busy()}; });
+  vcd.add("tfu.texel_cache.busy", 1, [&u] { return uint64_t{u.cache_stage.busy()}; });
+  vcd.add("tfu.texel_cache.id", 32, [&u] { return uint64_t{u.cache_stage.current_id()}; });
+  u.cache_stage.probes(true);
   const int line_bits = kAddressBits - std::countr_zero(static_cast<unsigned>(u.cache.config().line_bytes));
-  vcd.add("tfu.texel_cache.accepted_id", 32, [&u] { return uint64_t{u.cst.accepted_id()}; });
-  vcd.add("tfu.texel_cache.accepted_line", line_bits, [&u] { return u.cst.accepted_line(); });
-  vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cst.last_miss_line(); });
-  vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cst.last_misses()); });
-  vcd.add("tfu.texel_cache.accepted_taps", 5, [&u] { return static_cast<uint64_t>(u.cst.accepted_taps()); });
+  vcd.add("tfu.texel_cache.accepted_id", 32, [&u] { return uint64_t{u.cache_stage.accepted_id()}; });
+  vcd.add("tfu.texel_cache.accepted_line", line_bits, [&u] { return u.cache_stage.accepted_line(); });
+  vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cache_stage.last_miss_line(); });
+  vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cache_stage.last_misses()); });
+  vcd.add("tfu.texel_cache.accepted_taps", 5, [&u] { return static_cast<uint64_t>(u.cache_stage.accepted_taps()); });
   for (int k = 0; k < static_cast<int>(std::tuple_size_v<decltype(FilterReq::texels)>); ++k)
     vcd.add(fmt::format("tfu.texel_cache.accepted_tap_addr_{:02}", k), kAddressBits,
-            [&u, k] { return u.cst.accepted_tap_address(k); });
-  vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.sink.retired()}; });
+            [&u, k] { return u.cache_stage.accepted_tap_address(k); });
+  vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.response.retired()}; });
 }
 
 }  // namespace
@@ -81,7 +81,47 @@ namespace {
 
 enum class Schedule { Static, GenericForward, GenericReverse };
 
-UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt, Schedule schedule) {
+// The events of a clocked run (rtl/engine_compare.hpp), read from the channels' committed push and
+// pop counts before each evaluated cycle: what moved since the previous evaluated cycle moved in
+// it (no channel moves in a cycle the simulator skips as idle).
+class EventRecorder {
+ public:
+  EventRecorder(const Unit& u, UnitEvents& events) : u_(u), events_(events) {
+    for (std::vector<int64_t>& row : events_) row.clear();
+  }
+  // Before the cycle `now` is evaluated, and once after the run (`now`: the cycle the run ended).
+  void sample(uint64_t now) {
+    const std::array<uint32_t, kUnitEventCount> count = counts();
+    for (size_t e = 0; e < kUnitEventCount; ++e)
+      for (; seen_[e] != count[e]; ++seen_[e]) events_[e].push_back(last_evaluated_);
+    last_evaluated_ = static_cast<int64_t>(now);
+  }
+
+ private:
+  const Unit& u_;
+  UnitEvents& events_;
+  std::array<uint32_t, kUnitEventCount> seen_{};
+  int64_t last_evaluated_ = -1;
+  // The committed count of each event (in UnitEvent order): a footprint leaves the miss FIFO into
+  // one of the cache's two output channels.
+  std::array<uint32_t, kUnitEventCount> counts() const {
+    return {u_.c_quad.pushes(),
+            u_.c_quad.pops(),
+            u_.c_pixel.pops(),
+            u_.c_addr.pops(),
+            u_.c_shape.pops(),
+            u_.c_texels.pushes() + u_.c_edge_texels.pushes(),
+            u_.c_texels.pops(),
+            u_.c_edge_texels.pops(),
+            u_.c_edge_median_out.pops(),
+            u_.c_edge_direction_out.pops(),
+            u_.c_resp.pops(),
+            u_.c_edge_resp.pops()};
+  }
+};
+
+UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt, Schedule schedule,
+               UnitEvents* events = nullptr) {
   std::ostream* vcd_stream = vcd_opt.out;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
@@ -97,11 +137,20 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
     unit->sim.set_vcd(vcd.get());
   }
   unit->sim.set_idle_skip(ucfg.idle_skip);
-  const ResponseSink& sink = unit->sink;
+  const ResponseSink& sink = unit->response;
   const auto done = [&sink, n] { return sink.retired() == n; };
   const std::function<uint64_t()> retired = [&sink] { return static_cast<uint64_t>(sink.retired()); };
   // No total-cycle cap: the watchdog only.
-  if (schedule == Schedule::Static) {
+  if (events != nullptr) {
+    Unit& u = *unit;
+    EventRecorder recorder(u, *events);
+    const auto evaluate = [&u, &recorder] {
+      recorder.sample(u.sim.cycle());
+      u.evaluate_all();
+    };
+    unit->sim.run_scheduled(evaluate, done, sim::Simulator::kNoCycleLimit, retired, n);
+    recorder.sample(unit->sim.cycle());
+  } else if (schedule == Schedule::Static) {
     Unit& u = *unit;
     unit->sim.run_scheduled([&u] { u.evaluate_all(); }, done, sim::Simulator::kNoCycleLimit, retired, n);
   } else {
@@ -109,7 +158,7 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
     unit->sim.run(done, sim::Simulator::kNoCycleLimit, retired, n);
   }
   out.cycles = unit->sim.cycle();
-  out.edge_shapes = std::move(unit->cst.shapes);
+  out.edge_shapes = std::move(unit->cache_stage.shapes);
   detail::derive_stats(frame, trace, ucfg, *unit, out);
   return out;
 }
@@ -118,6 +167,12 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt) {
   return run(frame, trace, ucfg, vcd_opt, Schedule::Static);
+}
+
+UnitOutput run_unit_recording(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine,
+                              UnitEvents& events) {
+  if (engine == UnitEngine::Recurrence) return run_unit_recurrence(frame, trace, ucfg, true, &events);
+  return run(frame, trace, ucfg, VcdOptions{}, Schedule::Static, &events);
 }
 
 UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool reverse) {

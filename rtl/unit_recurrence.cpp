@@ -5,7 +5,7 @@
 // TfuUnit.InterleavedTexturesFormatsLayoutsAndSamplers compares the two on every filter family,
 // wrap mode, format, layout and trace mode and on random cache organisations, channel and FIFO
 // depths, lane counts and memory timings, and the differential fuzz target on every input.
-// (It is about 20 % faster on the filter path, no faster on the edge path: docs/cycle-model.md.)
+// (It is about 20 % faster on the filter path, no faster on the edge path: docs/speed-log.md.)
 //
 // Why this is exact. Every block takes its inputs in order, one per cycle at most, and talks to
 // its neighbours only through valid/ready channels whose ready is registered: in cycle t a block
@@ -16,26 +16,25 @@
 // names an earlier item, or the same item at an earlier block. Taking the requests in order and
 // each through every block therefore computes the clocked run's cycles exactly, with the datapath
 // functions called in the same order as there (the texel cache's tags and LRU, the memory model's
-// queue, the filters' level and probe registers all see the same sequence). The blocks' rules:
-//   request_fifo  pushes a quad every cycle it can (its pixels' accept cycle).
-//   lod_unit      takes a quad when it holds none (the cycle after it pushed the previous quad's
-//                 last pixel), pushes one pixel per cycle, the first in the cycle it took the quad.
-//   address_gen   the same with pixels and their level footprints (AddressGen::begin / issue).
-//   kernel_select moves a footprint when its input is valid and its output ready.
-//   texel_cache   its output side (before its input side in the same cycle): the miss-FIFO head
-//                 leaves when its lines are in (ready) and its output channel is ready; its input
-//                 side: a footprint is taken when the tag port is free (the previous footprint's
-//                 accept cycle + its bank cycles) and the FIFO has room after this cycle's exit.
-//                 Stall counters: per head, the cycles waiting for lines (stall_cache_miss) and
-//                 then for the output (stall_backpressure); per input, the cycles it waited for
-//                 the port (stall_bank_conflict).
-//   filter        the head keeps the lanes ceil(taps / 4 lanes) - 1 cycles, then leaves when the
-//                 response channel is ready (if it completes a pixel).
-//   edge_median, edge_direction  as kernel_select; edge_merge as the filter without lane cycles.
-//   response      retires pixel ids in order, one per cycle, from either datapath (ResponseSink::Timing).
-// The run ends the cycle after the last retire.
-// The blocks' functions are called per footprint (the plain path), or, for quads of isotropic
-// LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
+// queue, the filters' level and probe registers all see the same sequence).
+//
+// The blocks' rules are their `Timing` parts, each beside the block's evaluate() in its own header
+// (rtl/timing.hpp: the rules they share; rtl/README.md: both change together):
+//   request_fifo   RequestFifo::Timing   a quad in every cycle the quad channel has room (its
+//                                        pixels' accept cycle)
+//   lod_unit       SequencerTiming       a quad when it holds none, then its pixels one per cycle
+//   address_gen    SequencerTiming       the same with a pixel and its level footprints
+//   kernel_select  InOrderTiming         one footprint per cycle when its output has room
+//   texel_cache    CacheStage::Timing    input side (visible, tag port free, miss-FIFO slot),
+//                                        output side (lines in, output room); the stall counters
+//   filter         FilterUnit::Timing    in order, holding the lanes ceil(taps / 4 lanes) - 1
+//                                        cycles; the busy counter
+//   edge_median, edge_direction, edge_merge   InOrderTiming
+//   response       ResponseSink::Timing  pixel ids in order, one per cycle, from either datapath
+// Each channel of the unit (rtl/unit_wiring.hpp), and the texel cache's miss FIFO, is a
+// ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
+// retire. The blocks' functions are called per footprint (the plain path), or, for quads of
+// isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
 // (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
 #include <algorithm>
 #include <functional>
@@ -47,6 +46,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/fast_paths.hpp"
 
+#include "rtl/engine_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/timing.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
@@ -59,7 +59,45 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
                                                                 : run_unit(frame, trace, ucfg, vcd);
 }
 
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads) {
+namespace {
+
+// The unit's channels for the recurrences (rtl/timing.hpp), as in rtl/unit_wiring.hpp, in
+// data-flow order, with the texel cache's miss FIFO.
+struct UnitChannelTimes {
+  explicit UnitChannelTimes(const UnitConfig& c)
+      : quad(depth(c)),
+        pixel(depth(c)),
+        footprint(depth(c)),
+        shaped_footprint(depth(c)),
+        miss_fifo(static_cast<size_t>(c.miss_fifo_depth)),
+        texels(depth(c)),
+        edge_texels(depth(c)),
+        edge_median_out(depth(c)),
+        edge_direction_out(depth(c)),
+        response(depth(c)),
+        edge_response(depth(c)) {}
+  ChannelTimes quad, pixel, footprint, shaped_footprint, miss_fifo, texels, edge_texels, edge_median_out,
+      edge_direction_out, response, edge_response;
+  static size_t depth(const UnitConfig& c) { return static_cast<size_t>(c.channel_depth); }
+};
+
+// The events of the run (rtl/engine_compare.hpp), recorded when kRecord (a template constant, so
+// that a run without the engine compare carries no test per event): at(e, t) records event e at
+// cycle t and returns t. Every block's timing function returns the cycle its item leaves the
+// block's input, which is the event.
+template <bool kRecord>
+struct EventLog {
+  UnitEvents* events;
+  [[gnu::always_inline]] int64_t at(UnitEvent e, int64_t t) const {
+    if constexpr (kRecord) (*events)[static_cast<size_t>(e)].push_back(t);
+    return t;
+  }
+};
+
+template <bool kRecord>
+UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
+                       EventLog<kRecord> log) {
+  using enum UnitEvent;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
@@ -68,110 +106,62 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out);
   detail::Unit& u = *unit;
   detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
-  const auto depth = static_cast<int64_t>(ucfg.channel_depth);
-  const auto fifo_depth = static_cast<int64_t>(ucfg.miss_fifo_depth);
-  const size_t keep = static_cast<size_t>(std::max(depth, fifo_depth)) + 1;
-  // Pop cycles per item of each channel (-1: before the first item), and the items so far. A
-  // channel of depth d has room for item i once item i - d has left it: ring[i - d] + 1. The
-  // footprint channel, the shaped channel and the miss FIFO carry the same footprints (one row
-  // each), as the three edge channels carry the same edge footprints.
-  Ring<int64_t> quads(keep, -1), pixels(keep, -1), texels(keep, -1), responses(keep, -1), edge_responses(keep, -1);
-  Ring<FootprintTimes> footprints(keep, {-1, -1, -1});
-  Ring<EdgeTimes> edges(keep, {-1, -1, -1});
-  int64_t n_quads = 0, n_pixels = 0, n_footprints = 0, n_texels = 0, n_edges = 0, n_responses = 0, n_edge_responses = 0;
-  // The previous item's cycles (-1: none).
-  int64_t quad_push = -1, last_pixel_push = -1, last_footprint_push = -1, last_shaped_push = -1;
-  int64_t prev_accept = -1, prev_port_cycles = 0, last_exit = -1, last_done = -1;
-  EdgeTimes last_edge{-1, -1, -1};
-  uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, lane_busy = 0;
-  const auto span = [](int64_t from, int64_t to) { return static_cast<uint64_t>(std::max<int64_t>(0, to - from)); };
-
-  // The blocks' rules (the list above), one function per step; both the plain path and the LINEAR
-  // quad path take their cycles from these.
-  // lod_unit -> address_gen: pixel k of the quad taken at `quad_taken`; the cycle address_gen takes it.
-  const auto pixel_taken_at = [&](int k, int64_t quad_taken) {
-    last_pixel_push = std::max(k == 0 ? quad_taken : last_pixel_push + 1, pixels[n_pixels - depth] + 1);
-    const int64_t pixel_taken = std::max(last_pixel_push + 1, last_footprint_push + 1);
-    pixels[n_pixels++] = pixel_taken;
-    return pixel_taken;
-  };
-  // address_gen -> kernel_select -> texel_cache: a footprint of the pixel taken at `pixel_taken`
-  // (its first, or the next after the previous footprint), through the cache's input side, where
-  // `admit(accept, bank_cycles)` looks it up and returns the cycle its lines are in, and its output
-  // side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO.
-  const auto cache_exit_at = [&](bool first_footprint, int64_t pixel_taken, bool edge, auto&& admit) {
-    const FootprintTimes& earlier = footprints[n_footprints - depth];
-    last_footprint_push = std::max(first_footprint ? pixel_taken : last_footprint_push + 1, earlier.shaped_push + 1);
-    const int64_t shaped_push = std::max({last_footprint_push + 1, last_shaped_push + 1, earlier.accept + 1});
-    last_shaped_push = shaped_push;
-    // texel_cache: the input side
-    const int64_t visible = std::max(shaped_push + 1, prev_accept + 1);
-    const int64_t port_free = prev_accept + prev_port_cycles;
-    const int64_t accept = std::max({visible, port_free, footprints[n_footprints - fifo_depth].exit});
-    stall_bank += span(visible, std::min(accept, port_free));
+  UnitChannelTimes ch(ucfg);
+  // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
+  // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
+  // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
+  // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO.
+  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, auto&& admit) {
+    const int64_t pushed = u.address_gen.timing.push(first_footprint, pixel_taken, ch.footprint);
+    const int64_t shaped =
+        log.at(KernelSelectTakesFootprint, u.kernel_select.timing.move(pushed, ch.footprint, &ch.shaped_footprint));
+    const int64_t accepted =
+        log.at(CacheAcceptsFootprint, u.cache_stage.timing.accept(shaped, ch.shaped_footprint, ch.miss_fifo));
     int bank_cycles = 1;
-    const auto ready = static_cast<int64_t>(admit(static_cast<uint64_t>(accept), bank_cycles));
-    prev_accept = accept;
-    prev_port_cycles = bank_cycles;
-    // texel_cache: the output side
-    const int64_t words_room = (edge ? edges[n_edges - depth].t1 : texels[n_texels - depth]) + 1;
-    const int64_t head = std::max(accept + 1, last_exit + 1);
-    const int64_t exit = std::max({head, ready, words_room});
-    stall_miss += span(head, std::min(ready, exit));
-    stall_back += span(std::max(head, ready), exit);
-    footprints[n_footprints++] = {shaped_push, accept, exit};
-    last_exit = exit;
-    return exit;
+    const auto ready = static_cast<int64_t>(admit(static_cast<uint64_t>(accepted), bank_cycles));
+    return log.at(CacheEmitsFootprint, u.cache_stage.timing.exit(accepted, bank_cycles, ready, ch.miss_fifo,
+                                                                 edge ? ch.edge_texels : ch.texels));
   };
-  // filter: the cycle a footprint of `ntaps` taps that left the cache at `exit` leaves the lanes
-  // (`emits`: it completes a pixel, whose response needs room).
-  const auto filter_done_at = [&](int64_t exit, int ntaps, bool emits) {
-    const int64_t filter_head = std::max(exit + 1, last_done + 1);
-    const int lanes = u.filter->extra_clocks(ntaps);
-    lane_busy += static_cast<uint64_t>(lanes);
-    const int64_t done = std::max(filter_head + lanes, emits ? responses[n_responses - depth] + 1 : 0);
-    texels[n_texels++] = done;
-    last_done = done;
-    return done;
-  };
-  // response: its rule is ResponseSink::Timing::retire_at (rtl/response.hpp).
-  ResponseSink::Timing& response = u.sink.timing;
   // The blocks' output registers, reused from item to item as the clocked run reuses its channel
   // slots (every field the datapath functions read is written first).
   QuadReq quad;
   FootprintReq f;
   FilterReq texel_words;
-  EdgeS1 median_out;
-  EdgeS2 direction_out;
-  std::array<uint64_t, 4> quad_retire{};
+  EdgeMedianOut median_out;
+  EdgeDirectionOut direction_out;
+  std::array<int64_t, 4> quad_retire{};
   std::array<Rgba8, 4> quad_colour{};
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
-  const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.sink.retired()); };
+  const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
   sim::ProgressBar bar(retired, n);
   for (size_t first = 0, quads_in = 0; first < n; ++quads_in) {
-    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(response.last_retire, 0)));
+    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(u.response.timing.last_retire(), 0)));
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
-    quad_push = std::max(quad_push + 1, quads[n_quads - depth] + 1);
-    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k) u.accept[first + k] = static_cast<uint64_t>(quad_push);
-    const int64_t quad_taken = std::max(quad_push + 1, last_pixel_push + 1);
-    quads[n_quads++] = quad_taken;
+    const int64_t quad_pushed = log.at(RequestFifoPushesQuad, u.request_fifo.timing.push(ch.quad));
+    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k) u.accept[first + k] = static_cast<uint64_t>(quad_pushed);
     first += static_cast<size_t>(quad.npix);
-    const AnisoLod lod = u.lod.quad_lod(quad);
+    const int64_t quad_taken = log.at(LodUnitTakesQuad, u.lod_unit.timing.take(quad_pushed, ch.quad));
+    const AnisoLod lod = u.lod_unit.quad_lod(quad);
+    // lod_unit -> address_gen: the cycle address_gen takes pixel k.
+    const auto pixel_taken_at = [&](int k) {
+      const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
+      return log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
+    };
     if (linear.takes(quad)) {
       // The LINEAR quad path: one or two level footprints per pixel, the functions batched per quad.
       // (The level count is a template constant, so that the loop over levels unrolls.)
       const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
         constexpr int kLevels = decltype(level_count)::value;
         for (int k = 0; k < 4; ++k) {
-          const int64_t pixel_taken = pixel_taken_at(k, quad_taken);
+          const int64_t pixel_taken = pixel_taken_at(k);
           for (int n_level = 0; n_level < kLevels; ++n_level) {  // level0, then level1 when blending
-            const int64_t exit = cache_exit_at(n_level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
+            const int64_t exit = through_cache(n_level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
               return linear.admit(k, n_level, now, bank_cycles);
             });
             const bool emits = n_level + 1 == kLevels;
-            const int64_t done = filter_done_at(exit, 4, emits);
-            if (emits) quad_retire[static_cast<size_t>(k)] = response.retire_at(responses, n_responses, done);
+            const int64_t done = log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response));
+            if (emits) quad_retire[static_cast<size_t>(k)] = log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done));
           }
         }
       };
@@ -181,50 +171,60 @@ UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const Uni
         footprint_times(std::integral_constant<int, 2>{});
       }
       linear.filter(quad_colour);
-      for (size_t k = 0; k < 4; ++k) u.sink.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, quad_retire[k]);
+      for (size_t k = 0; k < 4; ++k)
+        u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
     for (int k = 0; k < quad.npix; ++k) {
-      const int64_t pixel_taken = pixel_taken_at(k, quad_taken);
-      u.addr.begin(LodUnit::pixel(quad, lod, k));
+      const int64_t pixel_taken = pixel_taken_at(k);
+      u.address_gen.begin(LodUnit::pixel(quad, lod, k));
       for (bool first_footprint = true, last = false; !last; first_footprint = false) {
-        last = u.addr.issue(f);
-        u.shape.shape(f);
+        last = u.address_gen.issue(f);
+        u.kernel_select.shape(f);
         const bool edge = f.tag.base == BaseFilter::EdgePreserving;
-        const int64_t exit = cache_exit_at(first_footprint, pixel_taken, edge, [&](uint64_t now, int& bank_cycles) {
-          return u.cst.admit_footprint(f, now, bank_cycles);
+        const int64_t exit = through_cache(first_footprint, pixel_taken, edge, [&](uint64_t now, int& bank_cycles) {
+          return u.cache_stage.admit_footprint(f, now, bank_cycles);
         });
-        u.cst.read_out_footprint(f, texel_words);
+        u.cache_stage.read_out_footprint(f, texel_words);
         const bool emits = texel_words.tag.emits();
         Response r;
         if (!edge) {
           // filter -> response
-          const int64_t done = filter_done_at(exit, texel_words.ntaps, emits);
-          if (u.filter->filter(texel_words, r)) u.sink.retire(r, response.retire_at(responses, n_responses, done));
+          const int64_t done =
+              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response));
+          if (u.filter->filter(texel_words, r))
+            u.response.retire(r, static_cast<uint64_t>(log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done))));
         } else {
           // edge_median -> edge_direction -> edge_merge -> response
-          const EdgeTimes& earlier_edge = edges[n_edges - depth];
-          EdgeTimes e;
-          e.t1 = std::max({exit + 1, last_edge.t1 + 1, earlier_edge.t2 + 1});
+          const int64_t median =
+              log.at(EdgeMedianTakesFootprint, u.edge_median->timing.move(exit, ch.edge_texels, &ch.edge_median_out));
           EdgeMedian::stage(texel_words, median_out);
-          e.t2 = std::max({e.t1 + 1, last_edge.t2 + 1, earlier_edge.t3 + 1});
-          u.e2->stage(median_out, direction_out);
-          e.t3 = std::max({e.t2 + 1, last_edge.t3 + 1, emits ? edge_responses[n_edge_responses - depth] + 1 : 0});
-          edges[n_edges++] = e;
-          last_edge = e;
-          if (u.e3->merge(direction_out, r))
-            u.sink.retire(r, response.retire_at(edge_responses, n_edge_responses, e.t3));
+          const int64_t direction = log.at(EdgeDirectionTakesFootprint,
+                                           u.edge_direction->timing.move(median, ch.edge_median_out, &ch.edge_direction_out));
+          u.edge_direction->stage(median_out, direction_out);
+          const int64_t merged = log.at(EdgeMergeTakesFootprint, u.edge_merge->timing.move(direction, ch.edge_direction_out,
+                                                                                           emits ? &ch.edge_response : nullptr));
+          if (u.edge_merge->merge(direction_out, r))
+            u.response.retire(r, static_cast<uint64_t>(log.at(ResponseRetiresEdgePixel,
+                                                              u.response.timing.retire_at(ch.edge_response, merged))));
         }
       }
     }
   }
-  bar.finish(static_cast<uint64_t>(response.last_retire + 1));
-  u.cst.add_stalls(stall_miss, stall_bank, stall_back);
-  if (u.filter) u.filter->add_busy_cycles(lane_busy);
-  out.cycles = static_cast<uint64_t>(response.last_retire + 1);
-  out.edge_shapes = std::move(u.cst.shapes);
+  out.cycles = static_cast<uint64_t>(u.response.timing.last_retire() + 1);
+  bar.finish(out.cycles);
+  out.edge_shapes = std::move(u.cache_stage.shapes);
   detail::derive_stats(frame, trace, ucfg, u, out);
   return out;
+}
+
+}  // namespace
+
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
+                               UnitEvents* events) {
+  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr});
+  for (std::vector<int64_t>& row : *events) row.clear();
+  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events});
 }
 
 }  // namespace tfu::rtl

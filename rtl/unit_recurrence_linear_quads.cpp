@@ -21,23 +21,23 @@ LinearQuadPath::LinearQuadPath(const Registers& regs, Unit& u, bool enabled)
 int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   texture_ = q.req.texture;
   stage_ = q.req.stage;
-  pick_ = u_.addr.pick_levels(q.req, lod.lambda_q8);
+  pick_ = u_.address_gen.pick_levels(q.req, lod.lambda_q8);
   const int levels = pick_.blend != 0 ? 2 : 1;
   const SamplerDescriptor& c = regs_.samplers[q.req.sampler];
   const TextureDescriptor& tex = regs_.textures[q.req.texture];
-  const AddressGen::GridFn grid = u_.addr.grid_function(q.req.sampler);
+  const AddressGen::GridFn grid = u_.address_gen.grid_function(q.req.sampler);
   for (int n = 0; n < levels; ++n) {
     const int level = n == 0 ? pick_.level0 : pick_.level1;
     const int w = tex.level_width(level), h = tex.level_height(level);
     std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
     for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
   }
-  u_.addr.count_isotropic_pixels(4);
+  u_.address_gen.count_isotropic_pixels(4);
   return levels;
 }
 
 void LinearQuadPath::lerp_level(const std::array<FootprintReq, 4>& f, int level, Rgba8* out) const {
-  const LevelReadout& readout = u_.cst.level_readout(texture_, level);
+  const LevelReadout& readout = u_.cache_stage.level_readout(texture_, level);
   dp::Quad8 q;
   for (size_t k = 0; k < 4; ++k) {
     Rgba8 taps[4];  // (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1): read_out's order

@@ -46,7 +46,7 @@ class LinearQuadPath {
   // `bank_cycles`.
   uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
     FootprintResult r;
-    return u_.cst.admit_lines(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
+    return u_.cache_stage.admit_lines(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
                               footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now, bank_cycles, r);
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.

@@ -47,15 +47,15 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
 void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
   sim::Stats& st = out.stats;
   const size_t n = trace.requests.size();
-  u.cst.publish(st);
-  u.addr.publish(st);
+  u.cache_stage.publish(st);
+  u.address_gen.publish(st);
   add(st, UnitStat::Cycles, out.cycles);
   add(st, UnitStat::Pixels, n);
   add(st, UnitStat::MemoryBytes, u.mem.bytes_read());
   add(st, UnitStat::MemoryRequests, u.mem.requests());
   if (u.filter) add(st, UnitStat::FilterLaneBusyCycles, u.filter->busy_cycles());
-  if (u.e2) st.set_histogram(stat_key(UnitStat::EdgeDirection), std::vector<uint64_t>(u.e2->chosen.begin(), u.e2->chosen.end()));
-  st.set_histogram(stat_key(UnitStat::Latency), u.sink.latency);
+  if (u.edge_direction) st.set_histogram(stat_key(UnitStat::EdgeDirection), std::vector<uint64_t>(u.edge_direction->chosen.begin(), u.edge_direction->chosen.end()));
+  st.set_histogram(stat_key(UnitStat::Latency), u.response.latency);
   // Traffic per texture descriptor and per material stage.
   std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
   std::array<uint64_t, 4> stage_requests{};
@@ -77,8 +77,8 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
     if (stage_requests[k] > 0)
       stages.rows.emplace_back(
           fmt::format("stage {}", k),
-          std::vector<uint64_t>{k, stage_requests[k], u.cst.stage_hits[k], u.cst.stage_misses[k],
-                                u.cst.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
+          std::vector<uint64_t>{k, stage_requests[k], u.cache_stage.stage_hits[k], u.cache_stage.stage_misses[k],
+                                u.cache_stage.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
   st.set_table(stat_key(UnitStat::Stages), std::move(stages));
   derive_rates(st, n, out.cycles);
 }

@@ -39,13 +39,13 @@ struct Unit {
         roms(frame.regs.samplers),
         cache(u.cache, frame.regs.textures),
         mem(u.memory, frame.regs.textures.size()),
-        src(sim, trace, c_quad, accept),
-        lod(sim, c_quad, c_pixel, trace.mode, frame.regs),
-        addr(sim, c_pixel, c_addr, frame.regs, roms),
-        shape(sim, c_addr, c_shape, frame.regs),
-        cst(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
-        sink(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
-    if (cst.records_shapes()) cst.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
+        request_fifo(sim, trace, c_quad, accept),
+        lod_unit(sim, c_quad, c_pixel, trace.mode, frame.regs),
+        address_gen(sim, c_pixel, c_addr, frame.regs, roms),
+        kernel_select(sim, c_addr, c_shape, frame.regs),
+        cache_stage(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth),
+        response(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
+    if (cache_stage.records_shapes()) cache_stage.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
     bool any_edge = false, any_filter = false;
     for (const SamplerDescriptor& s : frame.regs.samplers)
       (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;
@@ -55,10 +55,10 @@ struct Unit {
       for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_texels, &c_resp}) sim.add_clocked(c);
     }
     if (any_edge) {
-      e1.emplace(sim, c_edge_texels, c_s1);
-      e2.emplace(sim, c_s1, c_s2);
-      e3.emplace(sim, c_s2, c_edge_resp);
-      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_s1, &c_s2, &c_edge_resp}) sim.add_clocked(c);
+      edge_median.emplace(sim, c_edge_texels, c_edge_median_out);
+      edge_direction.emplace(sim, c_edge_median_out, c_edge_direction_out);
+      edge_merge.emplace(sim, c_edge_direction_out, c_edge_resp);
+      for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_edge_median_out, &c_edge_direction_out, &c_edge_resp}) sim.add_clocked(c);
     }
   }
   size_t depth;
@@ -70,40 +70,40 @@ struct Unit {
   sim::Channel<FootprintReq> c_shape{"shaped_footprint", depth};
   sim::Channel<FilterReq> c_texels{"texels", depth};
   sim::Channel<FilterReq> c_edge_texels{"edge_texels", depth};
-  sim::Channel<EdgeS1> c_s1{"edge_s1", depth};
-  sim::Channel<EdgeS2> c_s2{"edge_s2", depth};
+  sim::Channel<EdgeMedianOut> c_edge_median_out{"edge_median_out", depth};
+  sim::Channel<EdgeDirectionOut> c_edge_direction_out{"edge_direction_out", depth};
   sim::Channel<Response> c_resp{"response", depth};
   sim::Channel<Response> c_edge_resp{"edge_response", depth};
   WeightRomBank roms;
   TexelCache cache;
   MemoryModel mem;
-  RequestFifo src;
-  LodUnit lod;
-  AddressGen addr;
-  KernelSelect shape;
-  CacheStage cst;
-  ResponseSink sink;
+  RequestFifo request_fifo;
+  LodUnit lod_unit;
+  AddressGen address_gen;
+  KernelSelect kernel_select;
+  CacheStage cache_stage;
+  ResponseSink response;
   std::optional<FilterUnit> filter;
-  std::optional<EdgeMedian> e1;
-  std::optional<EdgeDirection> e2;
-  std::optional<EdgeMerge> e3;
+  std::optional<EdgeMedian> edge_median;
+  std::optional<EdgeDirection> edge_direction;
+  std::optional<EdgeMerge> edge_merge;
   // The static schedule (sim::Simulator::step_scheduled): every block once per cycle, called
   // directly, not through the simulator's module list. Software speed only: evaluate() reads only
   // committed channel state, so the order is free, and runs through the generic module list, in
   // either order, give the same results (run_unit_generic_schedule, tested).
   void evaluate_all() {
-    src.evaluate();
-    lod.evaluate();
-    addr.evaluate();
-    shape.evaluate();
-    cst.evaluate();
+    request_fifo.evaluate();
+    lod_unit.evaluate();
+    address_gen.evaluate();
+    kernel_select.evaluate();
+    cache_stage.evaluate();
     if (filter) filter->evaluate();
-    if (e1) {
-      e1->evaluate();
-      e2->evaluate();
-      e3->evaluate();
+    if (edge_median) {
+      edge_median->evaluate();
+      edge_direction->evaluate();
+      edge_merge->evaluate();
     }
-    sink.evaluate();
+    response.evaluate();
   }
 };
 

@@ -949,7 +949,7 @@ TEST(TfuUnit, VcdDumpsEveryChannel) {
   std::ostringstream vcd;
   const UnitOutput o = run_one(*mesh.stages[0].texture, cfg, st.trace, UnitConfig{}, &vcd);
   const std::string v = vcd.str();
-  for (const char* sig : {"$scope module tfu", "edge_s1", "texel_cache", "$enddefinitions", "valid", "ready"})
+  for (const char* sig : {"$scope module tfu", "edge_median_out", "texel_cache", "$enddefinitions", "valid", "ready"})
     EXPECT_NE(v.find(sig), std::string::npos) << sig;
   EXPECT_NE(v.find(fmt::format("#{}\n", 2 * (o.cycles - 1) + 1)), std::string::npos);  // sampled up to the end (2 stamps per cycle)
 }

@@ -53,6 +53,9 @@ class ChannelBase : public Clocked {
   size_t size() const { return now_.write - now_.read; }
   bool can_push() const { return now_.write - now_.read < depth_; }  // ready, registered
   bool can_pop() const { return now_.write != now_.read; }           // valid
+  // Items pushed and popped so far, committed (modulo 2^32): for observers between cycles.
+  uint32_t pushes() const { return now_.write; }
+  uint32_t pops() const { return now_.read; }
   void commit_state() {  // two 32-bit copies, each load forwarded from its own store
     now_.write = next_.write;
     now_.read = next_.read;
