@@ -70,10 +70,11 @@ std::string compare_engines(const Frame& frame, const Trace& trace, const UnitCo
   if (!d.empty()) return d;
   for (size_t i = 0; i < clocked.pixels.size(); ++i)
     if (!(clocked.pixels[i] == rec.pixels[i]))
-      return fmt::format("pixel {} differs: clocked {:08x}, recurrences {:08x}", i, std::bit_cast<uint32_t>(clocked.pixels[i]),
-                         std::bit_cast<uint32_t>(rec.pixels[i]));
+      return fmt::format("pixel {} differs: clocked {:08x}, recurrences {:08x}", i,
+                         std::bit_cast<uint32_t>(clocked.pixels[i]), std::bit_cast<uint32_t>(rec.pixels[i]));
   if (clocked.response_cycle != rec.response_cycle) return "the response cycles differ";
-  if (clocked.cycles != rec.cycles) return fmt::format("cycles differ: clocked {}, recurrences {}", clocked.cycles, rec.cycles);
+  if (clocked.cycles != rec.cycles)
+    return fmt::format("cycles differ: clocked {}, recurrences {}", clocked.cycles, rec.cycles);
   if (clocked.edge_shapes != rec.edge_shapes) return "the recorded edge shapes differ";
   return first_line_difference(clocked.stats.json_text(), rec.stats.json_text());
 }

@@ -57,11 +57,13 @@ inline constexpr std::array<UnitEventText, kUnitEventCount> kUnitEventTexts{{
     {UnitEvent::ResponseRetiresFilterPixel, "response", "retires filter pixel"},
     {UnitEvent::ResponseRetiresEdgePixel, "response", "retires edge pixel"},
 }};
-static_assert([] {
-  for (size_t i = 0; i < kUnitEventCount; ++i)
-    if (static_cast<size_t>(kUnitEventTexts[i].event) != i) return false;
-  return true;
-}(), "kUnitEventTexts is in UnitEvent order");
+static_assert(
+    [] {
+      for (size_t i = 0; i < kUnitEventCount; ++i)
+        if (static_cast<size_t>(kUnitEventTexts[i].event) != i) return false;
+      return true;
+    }(),
+    "kUnitEventTexts is in UnitEvent order");
 
 // Per event, the cycle of each of its items in order (the items are numbered per event from 0).
 using UnitEvents = std::array<std::vector<int64_t>, kUnitEventCount>;

@@ -57,7 +57,8 @@ class FilterUnit : public sim::Module {
     explicit Timing(FilterUnit& b) : b_(b) {}
     // The cycle the footprint of `ntaps` texels pushed at `pushed` leaves `in` (`emits`: it
     // completes a pixel, pushed into `out`).
-    [[gnu::always_inline]] int64_t done(int64_t pushed, int ntaps, bool emits, ChannelTimes& in, const ChannelTimes& out) {
+    [[gnu::always_inline]] int64_t done(int64_t pushed, int ntaps, bool emits, ChannelTimes& in,
+                                        const ChannelTimes& out) {
       const int hold = b_.extra_clocks(ntaps);
       b_.busy_cycles_ += static_cast<uint64_t>(hold);
       return stage_.move(pushed, in, emits ? &out : nullptr, hold);

@@ -5,9 +5,9 @@
 // texture of the frame (cmodel/texture_memory.hpp); each request names its texture and sampler.
 //
 //   request_fifo --QuadReq--> lod_unit --PixelReq--> address_gen --FootprintReq--> kernel_select
-//     --FootprintReq--> texel_cache (+ memory_model) --FilterReq--> filter ---------Response--+
-//                                                   \--FilterReq--> edge_median --EdgeMedianOut-->     +--> response
-//                                     edge_direction --EdgeDirectionOut--> edge_merge ------Response--/
+//     --FootprintReq--> texel_cache (+ memory_model) --FilterReq--> filter ------------Response--+
+//                                                   \--FilterReq--> edge_median --EdgeMedianOut-->  +--> response
+//                                     edge_direction --EdgeDirectionOut--> edge_merge --Response--/
 //
 // Port payloads and widths: rtl/unit_ports.hpp and each block's header. Rates (cache hits):
 // NEAREST, LINEAR and EDGE_PRESERVING 1 pixel/clock; a blending *_MIPMAP_LINEAR pixel 2 clocks (one

@@ -30,7 +30,9 @@ namespace tfu::rtl {
 class ChannelTimes {
  public:
   explicit ChannelTimes(size_t depth)
-      : v_(std::bit_ceil(2 * depth + 1), -1), mask_(static_cast<uint32_t>(v_.size() - 1)), depth_(static_cast<int64_t>(depth)) {}
+      : v_(std::bit_ceil(2 * depth + 1), -1),
+        mask_(static_cast<uint32_t>(v_.size() - 1)),
+        depth_(static_cast<int64_t>(depth)) {}
   // The first cycle in which the next item may be pushed: the cycle after item count - depth left
   // (ready is registered).
   int64_t room() const { return at(count_ - depth_) + 1; }
@@ -85,6 +87,8 @@ struct SequencerTiming {
 };
 
 // Cycles from `from` to `to` (0 when `to` is not later): the stall counters' span.
-inline uint64_t cycles_between(int64_t from, int64_t to) { return static_cast<uint64_t>(std::max<int64_t>(0, to - from)); }
+inline uint64_t cycles_between(int64_t from, int64_t to) {
+  return static_cast<uint64_t>(std::max<int64_t>(0, to - from));
+}
 
 }  // namespace tfu::rtl

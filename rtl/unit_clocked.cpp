@@ -42,7 +42,8 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
     vcd.add(fmt::format("tfu.{}.count", ch.name()), 8, [&ch] { return uint64_t{ch.size()}; });
     using Payload = std::remove_cvref_t<decltype(ch.front())>;
     if constexpr (kHasId<Payload>)
-      vcd.add(fmt::format("tfu.{}.id", ch.name()), 32, [&ch] { return ch.can_pop() ? payload_id(ch.front()) : uint64_t{0}; });
+      vcd.add(fmt::format("tfu.{}.id", ch.name()), 32,
+              [&ch] { return ch.can_pop() ? payload_id(ch.front()) : uint64_t{0}; });
   };
   channel(u.c_quad);
   channel(u.c_pixel);
@@ -120,8 +121,8 @@ class EventRecorder {
   }
 };
 
-UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt, Schedule schedule,
-               UnitEvents* events = nullptr) {
+UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
+               Schedule schedule, UnitEvents* events = nullptr) {
   std::ostream* vcd_stream = vcd_opt.out;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
@@ -154,7 +155,8 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
     Unit& u = *unit;
     unit->sim.run_scheduled([&u] { u.evaluate_all(); }, done, sim::Simulator::kNoCycleLimit, retired, n);
   } else {
-    unit->sim.set_order(schedule == Schedule::GenericForward ? sim::Simulator::Order::Forward : sim::Simulator::Order::Reverse);
+    unit->sim.set_order(schedule == Schedule::GenericForward ? sim::Simulator::Order::Forward
+                                                             : sim::Simulator::Order::Reverse);
     unit->sim.run(done, sim::Simulator::kNoCycleLimit, retired, n);
   }
   out.cycles = unit->sim.cycle();

@@ -54,7 +54,8 @@
 
 namespace tfu::rtl {
 
-UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd) {
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine,
+                    const VcdOptions& vcd) {
   return engine == UnitEngine::Recurrence && vcd.out == nullptr ? run_unit_recurrence(frame, trace, ucfg)
                                                                 : run_unit(frame, trace, ucfg, vcd);
 }
@@ -131,15 +132,44 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   EdgeDirectionOut direction_out;
   std::array<int64_t, 4> quad_retire{};
   std::array<Rgba8, 4> quad_colour{};
+  // response: the pixel `r` pushed into `in` at `pushed` retires.
+  const auto retire = [&](const Response& r, ChannelTimes& in, int64_t pushed, UnitEvent e) {
+    u.response.retire(r, static_cast<uint64_t>(log.at(e, u.response.timing.retire_at(in, pushed))));
+  };
+  // filter -> response: the texel words that left the cache at `exit`.
+  const auto through_filter = [&](int64_t exit) {
+    const bool emits = texel_words.tag.emits();
+    const int64_t done =
+        log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response));
+    Response r;
+    if (u.filter->filter(texel_words, r)) retire(r, ch.response, done, ResponseRetiresFilterPixel);
+  };
+  // edge_median -> edge_direction -> edge_merge -> response: the same for an edge footprint.
+  const auto through_edge_stages = [&](int64_t exit) {
+    const bool emits = texel_words.tag.emits();
+    const int64_t median =
+        log.at(EdgeMedianTakesFootprint, u.edge_median->timing.move(exit, ch.edge_texels, &ch.edge_median_out));
+    EdgeMedian::stage(texel_words, median_out);
+    const int64_t direction = log.at(EdgeDirectionTakesFootprint,
+                                     u.edge_direction->timing.move(median, ch.edge_median_out, &ch.edge_direction_out));
+    u.edge_direction->stage(median_out, direction_out);
+    const int64_t merged =
+        log.at(EdgeMergeTakesFootprint,
+               u.edge_merge->timing.move(direction, ch.edge_direction_out, emits ? &ch.edge_response : nullptr));
+    Response r;
+    if (u.edge_merge->merge(direction_out, r)) retire(r, ch.edge_response, merged, ResponseRetiresEdgePixel);
+  };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
   sim::ProgressBar bar(retired, n);
   for (size_t first = 0, quads_in = 0; first < n; ++quads_in) {
-    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(u.response.timing.last_retire(), 0)));
+    if ((quads_in & 0xFFFu) == 0)
+      bar.update(static_cast<uint64_t>(std::max<int64_t>(u.response.timing.last_retire(), 0)));
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
     const int64_t quad_pushed = log.at(RequestFifoPushesQuad, u.request_fifo.timing.push(ch.quad));
-    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k) u.accept[first + k] = static_cast<uint64_t>(quad_pushed);
+    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k)
+      u.accept[first + k] = static_cast<uint64_t>(quad_pushed);
     first += static_cast<size_t>(quad.npix);
     const int64_t quad_taken = log.at(LodUnitTakesQuad, u.lod_unit.timing.take(quad_pushed, ch.quad));
     const AnisoLod lod = u.lod_unit.quad_lod(quad);
@@ -155,13 +185,16 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         constexpr int kLevels = decltype(level_count)::value;
         for (int k = 0; k < 4; ++k) {
           const int64_t pixel_taken = pixel_taken_at(k);
-          for (int n_level = 0; n_level < kLevels; ++n_level) {  // level0, then level1 when blending
-            const int64_t exit = through_cache(n_level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
-              return linear.admit(k, n_level, now, bank_cycles);
+          for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
+            const int64_t exit = through_cache(level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
+              return linear.admit(k, level, now, bank_cycles);
             });
-            const bool emits = n_level + 1 == kLevels;
-            const int64_t done = log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response));
-            if (emits) quad_retire[static_cast<size_t>(k)] = log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done));
+            const bool emits = level + 1 == kLevels;
+            const int64_t done =
+                log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response));
+            if (emits)
+              quad_retire[static_cast<size_t>(k)] =
+                  log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done));
           }
         }
       };
@@ -186,28 +219,7 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
           return u.cache_stage.admit_footprint(f, now, bank_cycles);
         });
         u.cache_stage.read_out_footprint(f, texel_words);
-        const bool emits = texel_words.tag.emits();
-        Response r;
-        if (!edge) {
-          // filter -> response
-          const int64_t done =
-              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response));
-          if (u.filter->filter(texel_words, r))
-            u.response.retire(r, static_cast<uint64_t>(log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done))));
-        } else {
-          // edge_median -> edge_direction -> edge_merge -> response
-          const int64_t median =
-              log.at(EdgeMedianTakesFootprint, u.edge_median->timing.move(exit, ch.edge_texels, &ch.edge_median_out));
-          EdgeMedian::stage(texel_words, median_out);
-          const int64_t direction = log.at(EdgeDirectionTakesFootprint,
-                                           u.edge_direction->timing.move(median, ch.edge_median_out, &ch.edge_direction_out));
-          u.edge_direction->stage(median_out, direction_out);
-          const int64_t merged = log.at(EdgeMergeTakesFootprint, u.edge_merge->timing.move(direction, ch.edge_direction_out,
-                                                                                           emits ? &ch.edge_response : nullptr));
-          if (u.edge_merge->merge(direction_out, r))
-            u.response.retire(r, static_cast<uint64_t>(log.at(ResponseRetiresEdgePixel,
-                                                              u.response.timing.retire_at(ch.edge_response, merged))));
-        }
+        edge ? through_edge_stages(exit) : through_filter(exit);
       }
     }
   }

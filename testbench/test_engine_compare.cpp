@@ -43,7 +43,8 @@ TEST(EngineCompare, BothEnginesRecordTheSameEventsOnEveryFilterFamily) {
   UnitConfig u;
   u.cache.capacity_bytes = 4096;  // misses and back-pressure
   u.memory.latency = 40;
-  for (const char* mode : {"NEAREST", "LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_NEAREST", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
+  for (const char* mode :
+       {"NEAREST", "LINEAR_MIPMAP_LINEAR", "CUBIC_MIPMAP_NEAREST", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
     const OneTextureRun run = scene_run("ground_plane", mode, u);
     UnitEvents clocked, rec;
     const UnitOutput a = run_unit_recording(run.frame, run.trace, u, UnitEngine::Clocked, clocked);
@@ -67,14 +68,18 @@ TEST(EngineCompare, BothEnginesRecordTheSameEventsOnEveryFilterFamily) {
     EXPECT_GE(footprints, requests) << mode;
     EXPECT_EQ(row(clocked, UnitEvent::CacheAcceptsFootprint), footprints) << mode;
     EXPECT_EQ(row(clocked, UnitEvent::CacheEmitsFootprint), footprints) << mode;
-    EXPECT_EQ(row(clocked, edge ? UnitEvent::EdgeMedianTakesFootprint : UnitEvent::FilterFinishesFootprint), footprints) << mode;
-    EXPECT_EQ(row(clocked, edge ? UnitEvent::FilterFinishesFootprint : UnitEvent::EdgeMedianTakesFootprint), 0u) << mode;
-    EXPECT_EQ(row(clocked, edge ? UnitEvent::ResponseRetiresEdgePixel : UnitEvent::ResponseRetiresFilterPixel), requests)
+    EXPECT_EQ(row(clocked, edge ? UnitEvent::EdgeMedianTakesFootprint : UnitEvent::FilterFinishesFootprint), footprints)
+        << mode;
+    EXPECT_EQ(row(clocked, edge ? UnitEvent::FilterFinishesFootprint : UnitEvent::EdgeMedianTakesFootprint), 0u)
+        << mode;
+    EXPECT_EQ(row(clocked, edge ? UnitEvent::ResponseRetiresEdgePixel : UnitEvent::ResponseRetiresFilterPixel),
+              requests)
         << mode;
     // At most one item per cycle on each channel, and the last retire is the run's last cycle.
     for (const std::vector<int64_t>& cycles : clocked)
       for (size_t i = 1; i < cycles.size(); ++i) ASSERT_LT(cycles[i - 1], cycles[i]) << mode;
-    const auto& retires = clocked[static_cast<size_t>(edge ? UnitEvent::ResponseRetiresEdgePixel : UnitEvent::ResponseRetiresFilterPixel)];
+    const auto& retires = clocked[static_cast<size_t>(edge ? UnitEvent::ResponseRetiresEdgePixel
+                                                           : UnitEvent::ResponseRetiresFilterPixel)];
     EXPECT_EQ(static_cast<uint64_t>(retires.back()) + 1, a.cycles) << mode;
   }
 }
@@ -87,8 +92,9 @@ TEST(EngineCompare, FirstDifferenceIsTheEarliestCycle) {
   a[static_cast<size_t>(UnitEvent::CacheAcceptsFootprint)] = {5, 9};
   b[static_cast<size_t>(UnitEvent::CacheAcceptsFootprint)] = {5, 8};
   // The texel cache's difference comes later (cycle 8) than lod_unit's (cycle 3).
-  EXPECT_EQ(first_event_difference(a, b),
-            "the engines first disagree where lod_unit takes quad #2: at cycle 3 clocked, at cycle 4 by the recurrences");
+  EXPECT_EQ(
+      first_event_difference(a, b),
+      "the engines first disagree where lod_unit takes quad #2: at cycle 3 clocked, at cycle 4 by the recurrences");
   b[static_cast<size_t>(UnitEvent::CacheAcceptsFootprint)] = {2, 8};
   EXPECT_EQ(first_event_difference(a, b),
             "the engines first disagree where texel_cache accepts footprint #0: at cycle 5 clocked, at cycle 2 by the "
@@ -97,8 +103,9 @@ TEST(EngineCompare, FirstDifferenceIsTheEarliestCycle) {
   UnitEvents c, d;
   c[static_cast<size_t>(UnitEvent::ResponseRetiresEdgePixel)] = {7, 8};
   d[static_cast<size_t>(UnitEvent::ResponseRetiresEdgePixel)] = {7};
-  EXPECT_EQ(first_event_difference(c, d),
-            "the engines first disagree where response retires edge pixel #1: at cycle 8 clocked, never by the recurrences");
+  EXPECT_EQ(
+      first_event_difference(c, d),
+      "the engines first disagree where response retires edge pixel #1: at cycle 8 clocked, never by the recurrences");
 }
 
 // Two runs whose configurations differ in one block's timing first differ at that block.
@@ -117,19 +124,21 @@ TEST(EngineCompare, NamesTheBlockWhoseTimingDiffers) {
   UnitEvents later;
   run_unit_recording(run.frame, run.trace, slower, UnitEngine::Recurrence, later);
   EXPECT_EQ(first_event_difference(base, later),
-            fmt::format("the engines first disagree where texel_cache emits footprint #0: at cycle {} clocked, at cycle {} by "
-                        "the recurrences",
-                        base[emits][0], base[emits][0] + 1));
+            fmt::format(
+                "the engines first disagree where texel_cache emits footprint #0: at cycle {} clocked, at cycle {} by "
+                "the recurrences",
+                base[emits][0], base[emits][0] + 1));
   // Four filter lanes instead of one: a 4 x 4 cubic footprint keeps the lanes 1 cycle instead of
   // 4, so the first footprint finishes 3 cycles earlier.
   UnitConfig wide = u;
   wide.filter_lanes = 4;
   UnitEvents lanes;
   run_unit_recording(run.frame, run.trace, wide, UnitEngine::Clocked, lanes);
-  EXPECT_EQ(first_event_difference(base, lanes),
-            fmt::format("the engines first disagree where filter finishes footprint #0: at cycle {} clocked, at cycle {} by "
-                        "the recurrences",
-                        base[finishes][0], base[finishes][0] - 3));
+  EXPECT_EQ(
+      first_event_difference(base, lanes),
+      fmt::format("the engines first disagree where filter finishes footprint #0: at cycle {} clocked, at cycle {} by "
+                  "the recurrences",
+                  base[finishes][0], base[finishes][0] - 3));
 }
 
 }  // namespace
