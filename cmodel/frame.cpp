@@ -16,8 +16,8 @@ FrameBuilder::FrameBuilder(int line_bytes) {
 }
 
 int FrameBuilder::add_texture(std::shared_ptr<const Texture> tex, TextureSpec spec) {
-  if (const auto it = placed_.find(tex.get()); it != placed_.end()) return it->second;
-  const Texture* key = tex.get();
+  if (const auto it = placed_.find(tex); it != placed_.end()) return it->second;
+  std::shared_ptr<const Texture> key = tex;  // kept alive: its address cannot name another texture
   if (tex->layout == MemoryLayout::Tiled && tex->tile_bytes != frame_.line_bytes) {
     // The driver tiles for the unit's cache line: one tile per line.
     auto t = std::make_shared<Texture>(*tex);
@@ -29,7 +29,7 @@ int FrameBuilder::add_texture(std::shared_ptr<const Texture> tex, TextureSpec sp
   frame_.regs.textures.push_back(place_texture(frame_.memory, *tex, static_cast<uint64_t>(frame_.line_bytes)));
   frame_.textures.push_back({spec.source, std::move(spec), std::move(tex), -1});
   const int index = static_cast<int>(frame_.textures.size()) - 1;
-  placed_[key] = index;
+  placed_.emplace(std::move(key), index);
   return index;
 }
 

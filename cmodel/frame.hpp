@@ -49,7 +49,9 @@ class FrameBuilder {
 
  private:
   Frame frame_;
-  std::map<const Texture*, int> placed_;
+  // The caller's texture objects placed so far, each held (not only its address: a freed texture's
+  // address may be reused by the next one) with its descriptor index.
+  std::map<std::shared_ptr<const Texture>, int> placed_;
   std::map<std::tuple<int, WrapMode, WrapMode>, int> coefficients_;
 };
 

@@ -273,6 +273,37 @@ TEST(Frame, FromTraceBindingsAndBsplineCoefficients) {
   }
 }
 
+// FrameBuilder places each texture object once; a texture the caller frees after adding it must
+// never be taken for a later one allocated at the same address (it once was, when the builder
+// keyed its placements by the caller's pointer and kept only a re-tiled copy).
+TEST(Frame, TexturesFreedBetweenAddsAreNotTakenForEachOther) {
+  for (int line : {64, 256, 1024}) {
+    FrameBuilder b(line);
+    for (int k = 0; k < 8; ++k) {
+      // Same-sized objects, freed after each add (the builder keeps only its re-tiled copy when the
+      // texture is tiled for another line size): an allocator reuses their addresses.
+      auto t = std::make_shared<Texture>(make_procedural(k % 2 == 0 ? "checkerboard" : "lightmap", 64).texture);
+      EXPECT_EQ(b.add_texture(t, {"test", {}}), k) << line;
+      EXPECT_EQ(b.add_texture(t, {"test", {}}), k) << line;  // the same object again: the same index
+    }
+    const Frame f = b.frame();
+    EXPECT_EQ(f.textures.size(), 8u);
+  }
+  // The trace that showed it: two procedural textures bound by a trace, at 256-byte lines.
+  std::istringstream in(
+      "# tfu-trace mode=lod fields=texture,sampler,s,t,lod\n"
+      "# tfu-texture 0 proc:checkerboard:64\n"
+      "# tfu-texture 1 proc:lightmap:64 mipmaps=none\n"
+      "# tfu-sampler 0 filter=linear\n"
+      "# tfu-sampler 1 filter=nearest\n"
+      "0,0,0.3,0.4,0\n"
+      "1,1,0.3,0.4,0\n");
+  Trace t = parse_trace(in, "two.txt");
+  const Frame f = frame_from_trace(t, {}, 256);
+  EXPECT_EQ(f.textures.size(), 2u);
+  EXPECT_EQ(t.requests[1].texture, 1);
+}
+
 TEST(TexEnv, DivisionFreeRoundingIsExact) {
   for (uint32_t x = 0; x <= 255u * 255u; ++x)
     ASSERT_EQ(div255_round(x), static_cast<uint32_t>(std::floor(x / 255.0 + 0.5))) << x;
