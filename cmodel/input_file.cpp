@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/run_files.hpp"
 
 namespace tfu {
 namespace {
@@ -61,6 +62,12 @@ int open_checked(const std::string& path, const std::string& label, uint64_t max
   }
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
+  try {
+    note_run_input(path, label);  // refused if it is an output of this run (cmodel/run_files.hpp)
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
   return fd;
 }
 

@@ -140,6 +140,7 @@ OutputFiles::OutputFiles(bool force) : force_(force) {}
 
 OutputFiles::~OutputFiles() {
   if (!done_) discard();
+  forget_run_outputs(this);
 }
 
 void OutputFiles::check_name(const std::string& option, const std::string& path) const {
@@ -218,6 +219,7 @@ OutputFile& OutputFiles::add(const std::string& option, const std::string& path)
       throw InputError(fmt::format("{} {} is the same file as {}; every output needs its own file", option,
                                    quoted_path(path), files_[i]->label()));
   }
+  note_run_output(this, id, fmt::format("{} {}", option, quoted_path(path)));
   make_parents(option, path);
   const std::string temp = make_temp(option, path);
   files_.push_back(std::unique_ptr<OutputFile>(new OutputFile(option, path, temp)));
@@ -264,6 +266,7 @@ void OutputFiles::commit() {
     f->committed_ = true;
   }
   done_ = true;
+  forget_run_outputs(this);
 }
 
 void OutputFiles::discard() {
@@ -274,6 +277,7 @@ void OutputFiles::discard() {
   }
   for (auto it = made_dirs_.rbegin(); it != made_dirs_.rend(); ++it) ::rmdir(it->c_str());  // only if empty
   done_ = true;
+  forget_run_outputs(this);
 }
 
 }  // namespace tfu

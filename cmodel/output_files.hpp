@@ -14,7 +14,8 @@
 // and hard links are the same file); an existing file is a regular file (a directory, device or
 // pipe is refused) and is only replaced with --force; the missing parent directories can be
 // created; and a temporary file can be created in the target's directory (so "cannot write" is
-// known before the run, not after it).
+// known before the run, not after it); and the file is not an input of this run (cmodel/run_files.hpp:
+// refused even with --force).
 //
 // Everything is written to that temporary file (".tfu-PID-N.tmp" beside the target). commit()
 // flushes and closes every stream, checking the state after writing and after closing, then
@@ -31,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/run_files.hpp"
 #include "cmodel/texture.hpp"
 
 namespace tfu {
@@ -74,11 +76,7 @@ class OutputFiles {
   void commit();
 
  private:
-  struct Identity {
-    std::string canonical;
-    bool exists = false;
-    uint64_t dev = 0, ino = 0;
-  };
+  using Identity = FileIdentity;
   void check_name(const std::string& option, const std::string& path) const;
   void make_parents(const std::string& option, const std::string& path);
   std::string make_temp(const std::string& option, const std::string& path);

@@ -19,6 +19,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/output_files.hpp"
+#include "cmodel/run_files.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
@@ -177,6 +178,38 @@ TEST(OutputFiles, TheSameFileUnderTwoNamesIsRefused) {
   EXPECT_NE(input_error([&] { out.add("--x", "hard.txt"); }).find("same file"), std::string::npos);
   EXPECT_NE(input_error([&] { out.add("--x", "soft.txt"); }).find("same file"), std::string::npos);
   fs::current_path(cwd);
+}
+
+// An output never replaces an input of the same run (cmodel/run_files.hpp, on as in tfu's main()):
+// an input under any of its names is refused as an output, even with --force, and an input that
+// is a pending output is refused as an input; once committed, an output may be read.
+TEST(RunFiles, AnOutputNeverReplacesAnInput) {
+  const fs::path d = scratch_dir();
+  write_text(d / "scene.json", "{}");
+  fs::create_hard_link(d / "scene.json", d / "hard.json");
+  track_run_files(true);
+  (void)read_input_file((d / "scene.json").string(), "scene 'scene.json'", 100);
+  {
+    OutputFiles out(true);
+    for (const fs::path& p : {d / "scene.json", d / "." / "scene.json", d / "hard.json"})
+      EXPECT_EQ(input_error([&] { out.add("--stats", p.string()); }),
+                fmt::format("--stats '{}' is also an input of this run (scene 'scene.json'); an output never replaces an "
+                            "input, even with --force",
+                            p.string()));
+    out.add("--out", (d / "out.txt").string()).stream() << "x";
+    write_text(d / "out.txt", "old");
+    EXPECT_EQ(input_error([&] { (void)read_input_file((d / "out.txt").string(), "--config 'out.txt'", 100); }),
+              fmt::format("--config 'out.txt' is also an output of this run (--out '{}'); an output never replaces an "
+                          "input, even with --force",
+                          (d / "out.txt").string()));
+    out.commit();
+  }
+  EXPECT_EQ(read_input_file((d / "out.txt").string(), "out", 100), "x");  // committed: an input like any other
+  EXPECT_EQ(read_text(d / "scene.json"), "{}");
+  track_run_files(false);
+  // Off (a library user's default): nothing is refused.
+  OutputFiles out(true);
+  out.add("--stats", (d / "scene.json").string());
 }
 
 TEST(OutputFiles, AFileThatAppearsDuringTheRunIsNotReplacedWithoutForce) {

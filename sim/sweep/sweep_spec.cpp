@@ -11,6 +11,7 @@
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/run_files.hpp"
 #include "cmodel/q3_scene.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
@@ -255,6 +256,7 @@ Spec parse_spec(const std::string& text, const std::string& path) {
 Spec load_spec(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f || fs::is_directory(path)) throw InputError(fmt::format("sweep spec '{}': cannot read", quote_input(path, 200)));
+  note_run_input(path, fmt::format("sweep spec '{}'", quote_input(path, 200)));  // never an output of the run
   std::ostringstream ss;
   ss << f.rdbuf();
   return parse_spec(ss.str(), path);

@@ -13,6 +13,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/error_report.hpp"
+#include "cmodel/run_files.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/sweep/version.hpp"
 #include "sim/tfu/commands.hpp"
@@ -39,6 +40,7 @@ int check_stdout(int code) {
 
 int main(int argc, char** argv) {
   tfu::set_command_line(argc, argv);  // recorded in every statistics file (provenance)
+  tfu::track_run_files(true);         // an output never replaces an input of this run (cmodel/run_files.hpp)
   CLI::App app{"tfu: texture filter unit model (golden reference, cycle model, ROM and error tools)"};
   app.set_version_flag("--version", std::string("tfu ") + tfu::tool_version());
   app.footer(kExitCodeHelp);
