@@ -323,15 +323,15 @@ Texel4 Sampler::probes_channels(float s, float t, const AnisoLod& lod, const lee
 
 Texel4 Sampler::sample_channels(float s, float t, const AnisoLod& lod) const { return probes_channels(s, t, lod, nullptr); }
 
-Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambda) {
+Rgba8 Sampler::sample_plain(const Sampler& sm, float s, float t, int32_t lambda) {
   return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
 }
 
-Rgba8 Sampler::aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod) {
+Rgba8 Sampler::aniso_plain(const Sampler& sm, float s, float t, const AnisoLod& lod) {
   return encode_texel(sm.sample_channels(s, t, lod), sm.tex_.format);
 }
 
-void Sampler::batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
+void Sampler::batch_plain(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
   const SampleFn f = sm.sample_fn_;
   for (size_t i = 0; i < n; ++i) out[i] = f(sm, req[i].s, req[i].t, req[i].lambda_q8);
 }

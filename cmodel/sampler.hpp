@@ -143,9 +143,9 @@ class Sampler {
   Texel4 probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
   EdgeFootprint edge_footprint_at(int level, dp::LevelCoord u, dp::LevelCoord v, int mask_override) const;
   Texel4 cubic_at(int level, dp::LevelCoord u, dp::LevelCoord v) const;
-  // sample() dispatches once, at construction, to the generic datapath or to a fast path of the
+  // sample() dispatches once, at construction, to the plain datapath or to a fast path of the
   // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
-  // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
+  // plain datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
   // sampler.cpp.
   // sample_batch() dispatches the same way: LINEAR's fast paths have a batch variant, every other
   // configuration loops over sample_fn_.
@@ -157,9 +157,9 @@ class Sampler {
   SampleFn sample_fn_ = nullptr;
   BatchFn batch_fn_ = nullptr;
   AnisoFn aniso_fn_ = nullptr;
-  static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
-  static Rgba8 aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod);
-  static void batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
+  static Rgba8 sample_plain(const Sampler& sm, float s, float t, int32_t lambda);
+  static Rgba8 aniso_plain(const Sampler& sm, float s, float t, const AnisoLod& lod);
+  static void batch_plain(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
   struct FastPaths;
 };
 

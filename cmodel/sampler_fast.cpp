@@ -1,8 +1,7 @@
 // Speed-only fast paths of the golden sampler (no effect on results): sample() of LINEAR, CUBIC
 // and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, their anisotropic
-// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for bit is
-// sampler.cpp (sample_channels); Properties.FastPathsEqualGenericDatapath and BatchEqualsSample
-// compare them.
+// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for
+// bit is sampler.cpp (sample_channels); Properties.FastPathsEqualPlainPath and BatchEqualsSample compare them.
 #include <algorithm>
 #include <bit>
 #include <utility>
@@ -23,7 +22,7 @@ using sampler_detail::WeightMemo;
 // ---------------------------------------------------------------- fast paths (software speed only)
 // sample() of LINEAR, CUBIC and EDGE_PRESERVING runs one instantiation per pair of wrap modes, so
 // that the wrap unit and the border select fold away, and reads texel words straight from the
-// level. Same arithmetic, bit for bit, as the generic datapath above (sample_channels), which the
+// level. Same arithmetic, bit for bit, as the plain datapath above (sample_channels), which the
 // tests compare them with.
 namespace {
 
@@ -391,7 +390,7 @@ constexpr std::array<Sampler::AnisoFn, 16> Sampler::FastPaths::aniso_table(std::
 
 template <Sampler::FastPaths::Path kP>
 Sampler::AnisoFn Sampler::FastPaths::pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt) {
-  if (!mipmapped) return &aniso_generic;  // never issued with N > 1 (SamplerDescriptor::aniso())
+  if (!mipmapped) return &aniso_plain;  // never issued with N > 1 (SamplerDescriptor::aniso())
   return aniso_table<kP>(std::make_index_sequence<16>())[static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt))];
 }
 
@@ -407,9 +406,9 @@ void Sampler::FastPaths::setup(Sampler& sm) {
   const WrapMode ws = sm.cfg_.wrap_s, wt = sm.cfg_.wrap_t;
   const bool mip = sm.cfg_.mode.mip != MipMode::None;
   const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
-  sm.sample_fn_ = &sample_generic;
-  sm.batch_fn_ = &batch_generic;
-  sm.aniso_fn_ = &aniso_generic;
+  sm.sample_fn_ = &sample_plain;
+  sm.batch_fn_ = &batch_plain;
+  sm.aniso_fn_ = &aniso_plain;
   if (!fast_paths_enabled()) return;  // TFU_PLAIN=1 or --plain: the plain datapath only
   switch (sm.cfg_.mode.base) {
     case BaseFilter::Nearest: break;

@@ -69,7 +69,7 @@ struct Sampler::FastPaths {
   template <Path kP>
   static AnisoFn pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt);
   // Chooses sample()'s path once the configuration is known: the fast path where one exists
-  // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the generic datapath;
+  // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the plain datapath;
   // and sample_batch()'s: LINEAR's batch variant where sample() has the LINEAR fast path, else a
   // loop over sample() (CUBIC and EDGE_PRESERVING spend 500+ instructions a sample, against some 20
   // for the call, so a per-variant batch copy of them would double their code for little).
