@@ -135,8 +135,8 @@ bool AddressGen::issue(FootprintReq& f) {
     f.tag.probe = static_cast<uint8_t>(probe_);
   }
   if (count_ == 2) {
-    f.tag.two = true;
-    f.tag.second = sent_ == 1;
+    f.tag.blends = true;
+    f.tag.is_level1 = sent_ == 1;
     f.tag.blend = pick_.blend;
   }
   if (++sent_ == count_) {

@@ -7,7 +7,7 @@
 // Ports:
 //   in  pixel      PixelReq (descriptor indices, s, t, lambda)             valid/ready
 //   out footprint  FootprintReq: level[3:0], grid (columns x[4], rows y[4], cols, rows, used cells),
-//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], two, second
+//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], blends, is_level1
 //   in  registers  sampler descriptor (filter mode, wraps, LOD bias and clamps), texture descriptor
 //                  (size, level count, format), the weight ROM's tap count (CUBIC)
 // Footprints per base filter, as a grid of wrapped columns and rows (the cache forms the taps):

@@ -13,7 +13,7 @@
 //
 // Ports (between stages, valid/ready channels of depth 2):
 //   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], format[1:0] (each
-//               footprint's own texel format), fu fv, blend, two, second
+//               footprint's own texel format), fu fv, blend, blends, is_level1
 //   s1  EdgeS1: tag, 12 texels (datapath channels), low[12] x [3:0]
 //   s2  EdgeS2: s1 + direction[4:0]
 //   out Response: id, rgba[31:0]
