@@ -39,10 +39,10 @@ void Sampler::build_cubic() {
   impl_->norm.M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
   std::tie(impl_->norm.lo, impl_->norm.hi) = channel_range(tex_.format);
   if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {
-    auto memo = std::make_unique<sampler_detail::WeightMemo>();
+    auto memo = std::make_unique<detail::WeightMemo>();
     memo->entries = impl_->rom->entries();
     const auto entries = static_cast<size_t>(memo->entries);
-    memo->w.resize(entries * entries * sampler_detail::WeightMemo::kStride);
+    memo->w.resize(entries * entries * detail::WeightMemo::kStride);
     // One representative fraction per address: the smallest 8-bit f that maps to it.
     std::vector<int> rep(entries, -1);
     for (uint32_t f = 0; f < 256; ++f) {
@@ -57,7 +57,8 @@ void Sampler::build_cubic() {
           std::array<int32_t, 16> w2{};
           dp::tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[ax]),
                               static_cast<uint32_t>(rep[ay]), w2);
-          std::copy(w2.begin(), w2.end(), memo->w.begin() + static_cast<ptrdiff_t>((ay * entries + ax) * sampler_detail::WeightMemo::kStride));
+          std::copy(w2.begin(), w2.end(),
+                    memo->w.begin() + static_cast<ptrdiff_t>((ay * entries + ax) * detail::WeightMemo::kStride));
         }
     impl_->memo = std::move(memo);
   }
@@ -94,8 +95,8 @@ int Sampler::static_shape_block() const {
 // ---------------------------------------------------------------- texel fetch (wrap unit)
 namespace {
 
+using detail::WeightMemo;
 using dp::LevelCoord;
-using sampler_detail::WeightMemo;
 using dp::texel_coord;
 
 // Wrapped fetch that reads a given level image (the texture or the B-spline coefficients). The
@@ -142,7 +143,7 @@ Texel4 filter_linear(const LevelReader& rd, float s, float t) {
 // Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
 template <int taps>
 std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                          const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
+                                          const detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
   const int m0 = rom.first_tap();
   std::array<int32_t, 16> w2_local;
   const int32_t* w2;
@@ -196,7 +197,7 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
 
 // The cubic datapath's sum at a level coordinate (u, v).
 std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                        const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
+                                        const detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
   return rom.taps() == 4 ? filter_tiled_acc_n<4>(rd, rom, recon, memo, u, v)
                          : filter_tiled_acc_n<2>(rd, rom, recon, memo, u, v);
 }

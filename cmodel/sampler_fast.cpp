@@ -15,9 +15,9 @@
 
 namespace tfu {
 
+using detail::WeightMemo;
 using dp::LevelCoord;
 using dp::texel_coord;
-using sampler_detail::WeightMemo;
 
 // ---------------------------------------------------------------- fast paths (software speed only)
 // sample() of LINEAR, CUBIC and EDGE_PRESERVING runs one instantiation per pair of wrap modes, so
@@ -229,19 +229,21 @@ Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p
                      LevelCoord u1, LevelCoord v1, const AnisoLod& lod) {
   const int n = lod.probes;
   const ProbeRomWord* rom = probe_rom().data() + probe_rom_address(n, 1);  // words (n, 1..n)
-  const int64_t major_du = dp_fast::clamped_major(lod.major_du_q16), major_dv = dp_fast::clamped_major(lod.major_dv_q16);
-  const int64_t cu0 = dp_fast::join_q8(u0), cv0 = dp_fast::join_q8(v0);
-  const int64_t cu1 = dp_fast::join_q8(u1), cv1 = dp_fast::join_q8(v1);
+  const int64_t major_du = dp::fast::clamped_major(lod.major_du_q16),
+                major_dv = dp::fast::clamped_major(lod.major_dv_q16);
+  const int64_t cu0 = dp::fast::join_q8(u0), cv0 = dp::fast::join_q8(v0);
+  const int64_t cu1 = dp::fast::join_q8(u1), cv1 = dp::fast::join_q8(v1);
   // Probe i's offset (Q.16 level-0 texels), and its footprint on level 0 (level0) or 1 (level1).
   const auto offset = [&](int i) __attribute__((always_inline)) {
-    return ProbeOffset{dp_fast::scale_probe_fraction(major_du, rom[i].frac_q16),
-                       dp_fast::scale_probe_fraction(major_dv, rom[i].frac_q16)};
+    return ProbeOffset{dp::fast::scale_probe_fraction(major_du, rom[i].frac_q16),
+                       dp::fast::scale_probe_fraction(major_dv, rom[i].frac_q16)};
   };
   const auto footprint = [&](const ProbeOffset& o, int level) __attribute__((always_inline)) {
     const int l = level == 0 ? p.level0 : p.level1;
-    return lerp_lane<kWs, kWt>(level == 0 ? l0 : l1, border,
-                               dp_fast::split_q8((level == 0 ? cu0 : cu1) + dp_fast::probe_offset_on_level(o.du_q16, l)),
-                               dp_fast::split_q8((level == 0 ? cv0 : cv1) + dp_fast::probe_offset_on_level(o.dv_q16, l)));
+    return lerp_lane<kWs, kWt>(
+        level == 0 ? l0 : l1, border,
+        dp::fast::split_q8((level == 0 ? cu0 : cu1) + dp::fast::probe_offset_on_level(o.du_q16, l)),
+        dp::fast::split_q8((level == 0 ? cv0 : cv1) + dp::fast::probe_offset_on_level(o.dv_q16, l)));
   };
   const auto lerp4 = [](const LerpLane& x0, const LerpLane& x1, const LerpLane& x2, const LerpLane& x3) __attribute__((always_inline)) {
     const auto lanes = [&](uint32_t LerpLane::*field) {

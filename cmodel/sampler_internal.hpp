@@ -13,7 +13,7 @@
 #include "cmodel/sampler.hpp"
 
 namespace tfu {
-namespace sampler_detail {
+namespace detail {
 
 // Memo of tile_weights_2d for nearest reconstruction: the weights depend only on the two ROM
 // addresses, so the software model evaluates the multipliers once per address pair (a pure
@@ -27,14 +27,14 @@ struct WeightMemo {
   const int32_t* weights(uint32_t fu, uint32_t fv) const { return w.data() + kStride * (row[fv] + col[fu]); }
 };
 
-}  // namespace sampler_detail
+}  // namespace detail
 
 struct Sampler::Impl {
   std::unique_ptr<FilterKernel> kernel;              // CUBIC modes
   std::unique_ptr<TileWeightRom> rom;                // CUBIC modes
   bool prefiltered = false;                          // bspline-interp
   BsplineCoefficients coeffs;                        // bspline-interp: codes, exact values, S and B
-  std::unique_ptr<sampler_detail::WeightMemo> memo;  // CUBIC with nearest reconstruction and R <= 128
+  std::unique_ptr<detail::WeightMemo> memo;          // CUBIC with nearest reconstruction and R <= 128
   dp::CubicNormalize norm;                           // CUBIC normalise-and-clamp registers
   Texel4 border{};
   double scale = 255.0;  // channel code -> real

@@ -9,8 +9,8 @@
 
 namespace tfu::rtl {
 
-using address_detail::cells_inside;
-using address_detail::probe_coord;
+using detail::cells_inside;
+using detail::probe_coord;
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
                        const WeightRomBank& roms)
