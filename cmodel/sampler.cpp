@@ -72,11 +72,11 @@ void Sampler::build_cubic() {
 Sampler::~Sampler() = default;
 
 // ---------------------------------------------------------------- LOD -> levels (GL 4.6 Sec. 8.14)
-LodInfo Sampler::lod_info(int32_t lambda_unclamped) const {
+LodInfo Sampler::lod_info(int32_t lambda_q8) const {
   LodInfo li;
-  li.lambda_q8 = lambda_bias_clamp(lambda_unclamped, cfg_.lod);
-  li.magnify = li.lambda_q8 <= 0;
-  const LevelPick p = select_levels(li.lambda_q8, cfg_.mode.mip, tex_.max_level());
+  li.lambda_clamped_q8 = lambda_bias_clamp(lambda_q8, cfg_.lod);
+  li.magnify = li.lambda_clamped_q8 <= 0;
+  const LevelPick p = select_levels(li.lambda_clamped_q8, cfg_.mode.mip, tex_.max_level());
   li.level0 = p.level0;
   li.level1 = p.level1;
   li.blend = p.blend;
@@ -299,8 +299,8 @@ Texel4 Sampler::sample_level(int level, float s, float t) const {
   return sample_level_filter(cfg_.mode.base, level, s, t);
 }
 
-Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
-  const LodInfo li = lod_info(lambda);
+Texel4 Sampler::sample_channels(float s, float t, int32_t lambda_q8) const {
+  const LodInfo li = lod_info(lambda_q8);
   const Texel4 c0 = sample_level(li.level0, s, t);
   if (li.blend == 0) return c0;
   const Texel4 c1 = sample_level(li.level1, s, t);
@@ -324,8 +324,8 @@ Texel4 Sampler::probes_channels(float s, float t, const AnisoLod& lod, const lee
 
 Texel4 Sampler::sample_channels(float s, float t, const AnisoLod& lod) const { return probes_channels(s, t, lod, nullptr); }
 
-Rgba8 Sampler::sample_plain(const Sampler& sm, float s, float t, int32_t lambda) {
-  return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
+Rgba8 Sampler::sample_plain(const Sampler& sm, float s, float t, int32_t lambda_q8) {
+  return encode_texel(sm.sample_channels(s, t, lambda_q8), sm.tex_.format);
 }
 
 Rgba8 Sampler::aniso_plain(const Sampler& sm, float s, float t, const AnisoLod& lod) {

@@ -161,8 +161,8 @@ inline Texel4 probe_channels(const Texel4& c) { return c; }
 
 // Level select of the LOD unit and the blend unit around a filter of one level, f(level).
 template <class F>
-[[gnu::always_inline]] inline auto filter_levels(int32_t lambda, const LodParams& lod, MipMode mip, int q, F&& f) {
-  const LevelPick p = select_levels(lambda_bias_clamp(lambda, lod), mip, q);
+[[gnu::always_inline]] inline auto filter_levels(int32_t lambda_q8, const LodParams& lod, MipMode mip, int q, F&& f) {
+  const LevelPick p = select_levels(lambda_bias_clamp(lambda_q8, lod), mip, q);
   const auto c0 = f(p.level0);
   if (p.blend == 0) return c0;
   return blend_levels(c0, f(p.level1), p.blend);
@@ -195,12 +195,12 @@ template <Sampler::FastPaths::Variant kV>
 
 // One filtered colour: level select, the filter on one or two levels, blend, encode.
 template <Sampler::FastPaths::Variant kV>
-Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda) {
+Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda_q8) {
   const TexelFormat fmt = sm.tex_.format;
   if constexpr (!kV.mipmapped) {
     return output_word(filter<kV>(sm, 0, s, t), fmt);  // GL: no MIP-mapping -> level 0
   } else {
-    return output_word(filter_levels(lambda, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
+    return output_word(filter_levels(lambda_q8, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
                                      [&](int l) { return filter<kV>(sm, l, s, t); }),
                        fmt);
   }

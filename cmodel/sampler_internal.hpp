@@ -55,7 +55,7 @@ struct Sampler::FastPaths {
   template <Variant kV>
   static Rgba8 aniso(const Sampler& sm, float s, float t, const AnisoLod& lod);  // MIP-mapped variants, N > 1
   template <Variant kV>
-  static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda);
+  static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda_q8);
   template <Variant kV>
   static void batch(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);  // Linear8 only
   template <Path kP, bool kMip, size_t... k>

@@ -116,7 +116,7 @@ void AddressGen::evaluate() {
 
 void AddressGen::begin(const PixelReq& p) {
   pixel_ = p;
-  pick_ = pick_levels(p.req, p.lambda);
+  pick_ = pick_levels(p.req, p.lambda_q8);
   count_ = pick_.blend != 0 ? 2 : 1;
   sent_ = 0;
   probe_ = -1;

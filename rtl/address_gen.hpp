@@ -50,12 +50,13 @@ class AddressGen : public sim::Module {
   // each issue() forms its next level footprint in `f` and returns true with the pixel's last.
   void begin(const PixelReq& p);
   bool issue(FootprintReq& f);
-  // The level selection of a pixel of sampler and texture `req` at `lambda` (Q.8, before bias and
+  // The level selection of a pixel of sampler and texture `req` at `lambda_q8` (Q.8, before bias and
   // clamps): level 0 alone without MIP-mapping, else select_levels.
-  LevelPick pick_levels(const RequestTag& req, int32_t lambda) const {
+  LevelPick pick_levels(const RequestTag& req, int32_t lambda_q8) const {
     const SamplerDescriptor& c = regs_.samplers[req.sampler];
     // Without MIP-mapping level 0 alone (GL), whatever lambda.
-    return c.mode.mip == MipMode::None ? LevelPick{} : select_levels(lambda, c, regs_.textures[req.texture].levels - 1);
+    return c.mode.mip == MipMode::None ? LevelPick{}
+                                       : select_levels(lambda_q8, c, regs_.textures[req.texture].levels - 1);
   }
   // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
   // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which

@@ -39,7 +39,7 @@ struct PixelReq {
   uint32_t id = 0;
   RequestTag req;
   float s = 0, t = 0;
-  int32_t lambda = 0;
+  int32_t lambda_q8 = 0;
   int probes = 1;
   int64_t major_du_q16 = 0, major_dv_q16 = 0;
 };
