@@ -218,7 +218,7 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     case BaseFilter::Cubic: return cubic_at(level, texel_coord(s, img.width), texel_coord(t, img.height));
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint(level, s, t);
-      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.fu, fp.fv, tex_.format);
     }
   }
   return {};
@@ -251,7 +251,7 @@ Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, co
     case BaseFilter::Cubic: return cubic_at(level, u, v);
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint_at(level, u, v, mask_override);
-      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.fu, fp.fv, tex_.format);
     }
   }
   return {};
@@ -272,8 +272,8 @@ EdgeFootprint Sampler::edge_footprint_at(int level, LevelCoord u, LevelCoord v, 
   const Image& img = tex_.levels[static_cast<size_t>(level)];
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
   EdgeFootprint fp;
-  fp.xf = u.f;
-  fp.yf = v.f;
+  fp.fu = u.f;
+  fp.fv = v.f;
   // Columns and rows -1..2 around the centre square, wrapped once each.
   wrap_run(cfg_.wrap_s, u.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.width, fp.col.data());
   wrap_run(cfg_.wrap_t, v.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.height, fp.row.data());

@@ -51,7 +51,7 @@ struct LodInfo {
 struct EdgeFootprint {
   std::array<Texel4, lee_jen::kTexels> texels{};
   lee_jen::TexelMask mask = lee_jen::kAllTexels;
-  uint32_t xf = 0, yf = 0;
+  uint32_t fu = 0, fv = 0;
   std::array<int, 4> col{}, row{};  // -1 = border (clamp-to-border outside the texture)
 };
 

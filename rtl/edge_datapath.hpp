@@ -4,7 +4,7 @@
 //   edge_median    texel unpack; RGB->Y (5R + 9G + 2B, shift-and-add); keys Y*16+n; the median
 //                  network of compare cells (rtl/median_network.hpp) -> low[n], the texel number of
 //                  each Eq. 4 median
-//   edge_direction 22 direction-weight ROMs (address (yf>>4)<<4 | xf>>4), weighted differences
+//   edge_direction 22 direction-weight ROMs (address (fv>>4)<<4 | fu>>4), weighted differences
 //                  w_i * dP_i (Eq. 1-2: 8-bit code x 10-bit dP = 18 bits), usable-direction mask of
 //                  the kernel shape, min tree (5 levels, ties to the lower direction index)
 //   edge_merge     directional lerp of the low-pass endpoints (Eq. 3), high-frequency bilinear
@@ -39,7 +39,7 @@ struct EdgeS2 {
 // The direction-select block as a structure: ROM reads, weighted differences, masked min tree.
 // Same result as lee_jen::select_direction (tested exhaustively over shapes and randomly over texels).
 lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
-                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt);
+                                       lee_jen::TexelMask shape, uint32_t fu, uint32_t fv, TexelFormat fmt);
 
 class EdgeMedian : public sim::Module {
  public:

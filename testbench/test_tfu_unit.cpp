@@ -374,11 +374,11 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
     const int range = it % 2 ? 256 : 3;  // small ranges: many equal costs, the tie-break decides
     for (auto& t : c) t = {static_cast<int32_t>(rng() % range), static_cast<int32_t>(rng() % range),
                            static_cast<int32_t>(rng() % range), 255};
-    const uint32_t xf = rng() % 256, yf = rng() % 256;
+    const uint32_t fu = rng() % 256, fv = rng() % 256;
     for (const lee_jen::KernelShape& s : lee_jen::kernel_shapes()) {
       const lee_jen::LowIndex low = lee_jen::median_low_pass(lee_jen::luma_keys(c, s.mask, TexelFormat::RGBA8), s.mask);
-      const lee_jen::EdgeDecision want = lee_jen::select_direction(c, low, s.mask, xf, yf, TexelFormat::RGBA8);
-      const lee_jen::EdgeDecision got = direction_select(c, low, s.mask, xf, yf, TexelFormat::RGBA8);
+      const lee_jen::EdgeDecision want = lee_jen::select_direction(c, low, s.mask, fu, fv, TexelFormat::RGBA8);
+      const lee_jen::EdgeDecision got = direction_select(c, low, s.mask, fu, fv, TexelFormat::RGBA8);
       ASSERT_EQ(got.direction, want.direction) << s.name();
       ASSERT_EQ(got.cost, want.cost);
     }
