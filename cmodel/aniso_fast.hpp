@@ -18,7 +18,7 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/lod.hpp"
 
-namespace tfu::dp_fast {
+namespace tfu::dp::fast {
 
 // sgn(x) ((|x| + 2^(k-1)) >> k), for 1 <= k <= 62 and |x| < 2^62.
 [[gnu::always_inline]] inline int64_t round_half_away_shift(int64_t x, int k) {
@@ -48,4 +48,4 @@ namespace tfu::dp_fast {
 [[gnu::always_inline]] inline int64_t join_q8(dp::LevelCoord c) { return c.i0 * 256 + static_cast<int64_t>(c.f); }
 [[gnu::always_inline]] inline dp::LevelCoord split_q8(int64_t u) { return {u >> 8, static_cast<uint32_t>(u & 255)}; }
 
-}  // namespace tfu::dp_fast
+}  // namespace tfu::dp::fast

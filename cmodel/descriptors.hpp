@@ -146,37 +146,37 @@ struct Registers {
 };
 
 // ---- Level selection (GL 4.6 Sec. 8.14), shared by the golden sampler and the address generator ----
-// lambda after bias and clamp (Q.8) -> the level(s) and the blend weight; `last` is the last level.
+// lambda_clamped_q8 (lambda after bias and clamp, Q.8) -> the level(s) and the blend weight; `last` is the last level.
 struct LevelPick {
   int level0 = 0, level1 = 0;  // level1 == level0 unless blending
   int blend = 0;               // weight of level1 (Q.8), 0 unless MipMode::Linear between two levels
 };
-constexpr LevelPick select_levels(int32_t lambda_q8, MipMode mip, int last) {
+constexpr LevelPick select_levels(int32_t lambda_clamped_q8, MipMode mip, int last) {
   LevelPick p;
-  if (lambda_q8 <= 0) return p;  // c = 0: the magnification filter is the mode's first word
+  if (lambda_clamped_q8 <= 0) return p;  // c = 0: the magnification filter is the mode's first word
   switch (mip) {
     case MipMode::None: break;
     case MipMode::Nearest: {
       // d = lambda <= 1/2 ? 0 : ceil(lambda + 1/2) - 1
-      const int d = lambda_q8 <= 128 ? 0 : (lambda_q8 + 127) >> kLodFracBits;
+      const int d = lambda_clamped_q8 <= 128 ? 0 : (lambda_clamped_q8 + 127) >> kLodFracBits;
       p.level0 = p.level1 = d < last ? d : last;
       break;
     }
     case MipMode::Linear:
-      if (lambda_q8 >= (last << kLodFracBits)) {
+      if (lambda_clamped_q8 >= (last << kLodFracBits)) {
         p.level0 = p.level1 = last;
       } else {
-        p.level0 = lambda_q8 >> kLodFracBits;
+        p.level0 = lambda_clamped_q8 >> kLodFracBits;
         p.level1 = p.level0 + 1;
-        p.blend = lambda_q8 & 255;
+        p.blend = lambda_clamped_q8 & 255;
       }
       break;
   }
   return p;
 }
 // The same from lambda before bias and clamp, with the sampler's LOD registers.
-constexpr LevelPick select_levels(int32_t lambda_q8_unclamped, const SamplerDescriptor& s, int last) {
-  return select_levels(lambda_bias_clamp(lambda_q8_unclamped, s.lod), s.mode.mip, last);
+constexpr LevelPick select_levels(int32_t lambda_q8, const SamplerDescriptor& s, int last) {
+  return select_levels(lambda_bias_clamp(lambda_q8, s.lod), s.mode.mip, last);
 }
 
 // ---- What the descriptors configure in the cubic datapath (both models build it with these) ----

@@ -1,16 +1,16 @@
 // Lee & Jen 2003 direction-weight ROMs and kernel shapes (Eq. 1-3, Sec. 3, Sec. 6).
 //
 // One ROM per measured direction i:
-//   in  xf4 [3:0]  4-bit x fraction of the sample point in the centre square
-//   in  yf4 [3:0]  4-bit y fraction
+//   in  fu4 [3:0]  4-bit x fraction of the sample point in the centre square
+//   in  fv4 [3:0]  4-bit y fraction
 //   out w   [7:0]  weight w_i = 1 / (1 - d_i / ROI_i) (Eq. 2), unsigned 4.4 fixed point:
 //                  code = min(254, round(16 w)); code 255 = "never choose" (d_i >= ROI_i,
 //                  i.e. 1 - d/ROI <= 1e-9)
-// address = (yf4 << 4) | xf4; the 256 sub-regions are sampled at their centres
-// ((xf4 + 1/2)/16, (yf4 + 1/2)/16). Contents are generated here, in double precision, and nowhere
+// address = (fv4 << 4) | fu4; the 256 sub-regions are sampled at their centres
+// ((fu4 + 1/2)/16, (fv4 + 1/2)/16). Contents are generated here, in double precision, and nowhere
 // else (the cycle model and the SystemVerilog read these tables; Lee & Jen Sec. 6: "four-bit
 // precision for each coordinate", 256 sub-regions, eight-bit w, < 550 gates per table).
-// Exact form (see docs/directions.md, checked by the tests): with X = 2 xf4 + 1, Y = 2 yf4 + 1 and
+// Exact form (see docs/directions.md, checked by the tests): with X = 2 fu4 + 1, Y = 2 fv4 + 1 and
 // u = Cq - Cp, C = |(X - 32 px) uy - (Y - 32 py) ux| is an integer and d/ROI = C/16 exactly, so a
 // ROM holds at most 17 codes: round(256 / (16 - C)) (saturated at 254) for C < 16, 255 for C >= 16.
 // ROI (Lee & Jen Sec. 2.2): 0.5 axis, sqrt(2)/4 diagonals, 1/(2 sqrt 5) 2x1, i.e. 1/(2 |u|).
@@ -36,7 +36,7 @@ inline constexpr int kWeightFracBits = 4;  // 4.4 fixed point
 // 1 - d/ROI at or below this counts as d >= ROI (Lee & Jen: "a very small threshold").
 inline constexpr double kNeverChooseThreshold = 1e-9;
 
-enum class BlendAxis { X, Y };  // t of Eq. 3 is xf or yf
+enum class BlendAxis { X, Y };  // t of Eq. 3 is fu or fv
 
 struct Direction {
   int index;        // 0..21, the order used by every block
@@ -52,7 +52,7 @@ const std::array<Direction, kDirections>& directions();
 double distance_to_direction(int dir, double x, double y);
 // Exact weight w = 1/(1 - d/ROI) at (x, y); +infinity when d >= ROI.
 double exact_weight(int dir, double x, double y);
-// The ROM of direction i: 256 codes, address (yf4 << 4) | xf4.
+// The ROM of direction i: 256 codes, address (fv4 << 4) | fu4.
 const std::array<uint8_t, 256>& direction_weight_rom(int dir);
 // The 22 ROMs' never flags at one address, as a 22-bit mask: bit i = direction i's code at
 // `address` (0..255) is not kNeverChoose (read once from the ROMs into a table).

@@ -65,7 +65,7 @@ std::array<int, kTexels + 1> low_pass(const std::array<K, kTexels + 1>& key, Tex
 struct DirectionTable {
   struct Entry {
     uint8_t p, q;  // endpoint texel numbers
-    bool blend_x;  // t of Eq. 3 is xf (else yf)
+    bool blend_x;  // t of Eq. 3 is fu (else fv)
   };
   std::array<Entry, kDirections> dir{};
   std::array<uint32_t, kAllTexels + 1> usable{};
@@ -149,12 +149,11 @@ LowIndex median_low_pass(const LumaKeys& key, TexelMask available) {
   return (available & kAllTexels) == kAllTexels ? low_pass<int32_t, true>(key, available) : low_pass(key, available);
 }
 
-
 EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
-                              uint32_t xf, uint32_t yf, TexelFormat fmt) {
+                              uint32_t fu, uint32_t fv, TexelFormat fmt) {
   // Direction choice (Eq. 1-2): min w_i * dP_i over the usable directions, ties -> lowest index.
   const uint32_t usable = direction_table().usable[available & kAllTexels];
-  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
+  const size_t addr = ((fv >> 4) << 4) | (fu >> 4);
   return fmt == TexelFormat::VS16X2 ? select_direction_keyed<true>(c, low, usable, addr)
                                     : select_direction_keyed<false>(c, low, usable, addr);
 }
@@ -164,16 +163,16 @@ namespace {
 // Stage 4 with the high-frequency sum in Acc: int32_t holds it exactly for 8-bit channels
 // (|H| <= 255, the weights sum to 2^16), VS16X2 needs int64_t.
 template <typename Acc>
-Texel4 edge_merge_acc(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf,
-                      uint32_t yf, int32_t lo, int32_t hi) {
+Texel4 edge_merge_acc(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t fu,
+                      uint32_t fv, int32_t lo, int32_t hi) {
   const auto lowv = [&](int n) -> const Texel4& { return c[static_cast<size_t>(low[static_cast<size_t>(n)] - 1)]; };
   // Low-frequency part along the chosen direction (Eq. 3).
   const DirectionTable::Entry& d = direction_table().dir[static_cast<size_t>(direction)];
-  const int32_t t = static_cast<int32_t>(d.blend_x ? xf : yf);
+  const int32_t t = static_cast<int32_t>(d.blend_x ? fu : fv);
   const Texel4& cp = lowv(d.p);
   const Texel4& cq = lowv(d.q);
   // High-frequency part, bilinear over H4, H5, H8, H9 (Eq. 5).
-  const int32_t fx = static_cast<int32_t>(xf), fy = static_cast<int32_t>(yf);
+  const int32_t fx = static_cast<int32_t>(fu), fy = static_cast<int32_t>(fv);
   const std::array<Acc, 4> bw{(256 - fx) * (256 - fy), fx * (256 - fy), (256 - fx) * fy, fx * fy};
   Texel4 out{};
   for (size_t ch = 0; ch < 4; ++ch) {
@@ -192,24 +191,24 @@ Texel4 edge_merge_acc(const std::array<Texel4, kTexels>& c, const LowIndex& low,
 
 }  // namespace
 
-Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
+Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t fu, uint32_t fv,
                   TexelFormat fmt) {
   const auto [lo, hi] = channel_range(fmt);
-  return fmt == TexelFormat::VS16X2 ? edge_merge_acc<int64_t>(c, low, direction, xf, yf, lo, hi)
-                                    : edge_merge_acc<int32_t>(c, low, direction, xf, yf, lo, hi);
+  return fmt == TexelFormat::VS16X2 ? edge_merge_acc<int64_t>(c, low, direction, fu, fv, lo, hi)
+                                    : edge_merge_acc<int32_t>(c, low, direction, fu, fv, lo, hi);
 }
 
-Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
-                                   uint32_t yf, TexelFormat fmt, EdgeDecision* decision) {
+Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t fu, uint32_t fv,
+                                   TexelFormat fmt, EdgeDecision* decision) {
   const LowIndex low = median_low_pass(luma_keys(c, available, fmt), available);
-  EdgeDecision d = select_direction(c, low, available, xf, yf, fmt);
+  EdgeDecision d = select_direction(c, low, available, fu, fv, fmt);
   d.read = static_cast<TexelMask>(available & kAllTexels);
   if (decision) *decision = d;
-  return edge_merge(c, low, d.direction, xf, yf, fmt);
+  return edge_merge(c, low, d.direction, fu, fv, fmt);
 }
 
-std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c,
-                                            TexelMask available, double xf, double yf, TexelFormat fmt) {
+std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c, TexelMask available,
+                                            double fu, double fv, TexelFormat fmt) {
   std::array<RealKey, kTexels + 1> y{};
   for (int n = 1; n <= kTexels; ++n)
     if (has_texel(available, n)) {
@@ -225,7 +224,7 @@ std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 
   double best_cost = 0;
   for (const Direction& d : directions()) {
     if (!((usable >> d.index) & 1u)) continue;
-    const double w = exact_weight(d.index, xf, yf);
+    const double w = exact_weight(d.index, fu, fv);
     if (!std::isfinite(w)) continue;
     const auto& p = lowv(d.p);
     const auto& q = lowv(d.q);
@@ -238,8 +237,8 @@ std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 
   }
   if (best < 0) best = 0;
   const Direction& d = directions()[static_cast<size_t>(best)];
-  const double t = d.axis == BlendAxis::X ? xf : yf;
-  const std::array<double, 4> bw{(1 - xf) * (1 - yf), xf * (1 - yf), (1 - xf) * yf, xf * yf};
+  const double t = d.axis == BlendAxis::X ? fu : fv;
+  const std::array<double, 4> bw{(1 - fu) * (1 - fv), fu * (1 - fv), (1 - fu) * fv, fu * fv};
   const double lo = fmt == TexelFormat::VS16X2 ? -1.0 : 0.0;
   std::array<double, 4> out{};
   for (size_t ch = 0; ch < 4; ++ch) {

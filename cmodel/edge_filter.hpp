@@ -1,7 +1,7 @@
 // Edge-preserving interpolation of Lee & Jen 2003 (Sec. 2.2, 2.3, 3), bit-accurate.
 //
 // Inputs : the 12 cross-kernel texels C1..C12 (numbering of lee_jen_geometry.hpp), a mask of the
-//          texels the cache can supply (cross, T or L shape), the 8-bit fractions xf, yf of the
+//          texels the cache can supply (cross, T or L shape), the 8-bit fractions fu, fv of the
 //          sample point inside the centre square C4 C5 C8 C9, and the texel format.
 // Output : the interpolated texel (datapath channels, clamped to the format's range).
 //
@@ -16,12 +16,12 @@
 //              neighbours are missing (the corner texel of an L) the median is that of the texel and
 //              its two centre-square neighbours.
 //   dP_i     = |dR| + |dG| + |dB| between the low-pass endpoints (10 bits; VS16X2: (|d0|+|d1|) >> 6)
-//   w_i      = direction ROM code (4.4, 255 = never choose), address (yf >> 4) << 4 | (xf >> 4)
+//   w_i      = direction ROM code (4.4, 255 = never choose), address (fv >> 4) << 4 | (fu >> 4)
 //   choice   = argmin over usable directions of w_i * dP_i (18 bits); ties -> lowest direction index
 //              (the order of lee_jen::directions(): axis, centre diagonals, outer diagonals, 2x1)
-//   C_low    = ((256 - t) Cp_low + t Cq_low + 128) >> 8, t = xf or yf of the direction (Eq. 3)
+//   C_low    = ((256 - t) Cp_low + t Cq_low + 128) >> 8, t = fu or fv of the direction (Eq. 3)
 //   H_n      = C_n - Cn_low (9-bit signed) for n = 4, 5, 8, 9
-//   C_high   = (sum H_n w_n + 2^15) >> 16, w_n the bilinear weights (256 - xf | xf)(256 - yf | yf) (Eq. 5)
+//   C_high   = (sum H_n w_n + 2^15) >> 16, w_n the bilinear weights (256 - fu | fu)(256 - fv | fv) (Eq. 5)
 //   I        = clamp(C_low + C_high) (Eq. 6)
 // Alpha is carried like a colour channel through medians, Eq. 3 and Eq. 5, but takes no part in Y
 // or dP.
@@ -65,19 +65,19 @@ inline uint32_t direction_difference(const Texel4& p, const Texel4& q, TexelForm
 }
 // Stage 3, Eq. 1-2: argmin over usable directions of w_i * dP_i (ties -> lowest index); `read` is 0.
 EdgeDecision select_direction(const std::array<Texel4, kTexels>& c, const LowIndex& low, TexelMask available,
-                              uint32_t xf, uint32_t yf, TexelFormat fmt);
+                              uint32_t fu, uint32_t fv, TexelFormat fmt);
 // Stage 4, Eq. 3, 5, 6: directional lerp of the low-pass endpoints + bilinear high frequency, clamp.
-Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t xf, uint32_t yf,
+Texel4 edge_merge(const std::array<Texel4, kTexels>& c, const LowIndex& low, int direction, uint32_t fu, uint32_t fv,
                   TexelFormat fmt);
 
 // The four stages chained. c[n - 1] is texel Cn. Only texels in `available` are read.
-Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t xf,
-                                   uint32_t yf, TexelFormat fmt, EdgeDecision* decision = nullptr);
+Texel4 edge_preserving_interpolate(const std::array<Texel4, kTexels>& c, TexelMask available, uint32_t fu, uint32_t fv,
+                                   TexelFormat fmt, EdgeDecision* decision = nullptr);
 
 // Double-precision ideal of the same algorithm (quality reference only): channels as reals
 // (0..1, or -1..1 for VS16X2), exact fractions, exact Eq. 2 weights, no rounding.
-std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c,
-                                            TexelMask available, double xf, double yf, TexelFormat fmt);
+std::array<double, 4> edge_preserving_ideal(const std::array<std::array<double, 4>, kTexels>& c, TexelMask available,
+                                            double fu, double fv, TexelFormat fmt);
 
 // Texels that are unavailable at a centre square (x4, y4)-(x5, y8) (wrapped memory coordinates)
 // when only the BxB cache blocks holding the centre square may be read (Sec. 3, Fig. 4).

@@ -38,7 +38,9 @@ class GoldenUnit {
   // anisotropic sampler (SamplerDescriptor::anisotropic()) request_lod with the sampler's fields,
   // else isotropic_lod(lambda(trace, i)) (the same lambda; one probe).
   AnisoLod lod(const Trace& trace, size_t i) const;
-  Rgba8 sample(const TraceRequest& r, int32_t lambda) const { return sampler(r.texture, r.sampler).sample(r.s, r.t, lambda); }
+  Rgba8 sample(const TraceRequest& r, int32_t lambda_q8) const {
+    return sampler(r.texture, r.sampler).sample(r.s, r.t, lambda_q8);
+  }
   Rgba8 sample(const TraceRequest& r, const AnisoLod& lod) const { return sampler(r.texture, r.sampler).sample(r.s, r.t, lod); }
 
  private:

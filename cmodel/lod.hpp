@@ -74,6 +74,8 @@ int32_t lambda_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, in
 // textureLod: explicit lambda (nearest Q.8 value).
 int32_t lambda_explicit(float lod);
 // lambda' = clamp(lambda + bias, min_lod, max_lod) (GL Eq. 8.6 order: bias, then clamp).
+// Names: `lambda_q8` is lambda before bias and clamp (Q.8) everywhere; the result of this function
+// is `lambda_clamped_q8` (LodInfo, select_levels).
 constexpr int32_t lambda_bias_clamp(int32_t lambda_q8, const LodParams& p) {
   const int64_t l = int64_t{lambda_q8} + p.bias_q8;
   return static_cast<int32_t>(l < p.min_lod_q8 ? p.min_lod_q8 : (l > p.max_lod_q8 ? p.max_lod_q8 : l));

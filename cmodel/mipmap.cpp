@@ -57,7 +57,7 @@ Texel4 edge_at(const Image& src, TexelFormat fmt, int x, int y) {
     const lee_jen::TexelPos p = lee_jen::texel_pos(n);
     c[static_cast<size_t>(n - 1)] = texel(src, fmt, cx + p.x, cy + p.y);
   }
-  // Centre of the even square: xf = yf = 1/2 (for a side of length 1 the fraction is 0).
+  // Centre of the even square: fu = fv = 1/2 (for a side of length 1 the fraction is 0).
   return lee_jen::edge_preserving_interpolate(c, lee_jen::kAllTexels, src.width > 1 ? 128u : 0u,
                                               src.height > 1 ? 128u : 0u, fmt);
 }

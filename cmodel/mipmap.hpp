@@ -7,7 +7,7 @@
 //            the finer level): (sum w c + 32) >> 6, neighbours outside the level clamped to the edge.
 //   edge     Lee & Jen Eq. 7: M_{n+1} = ((256 - a) G + a I + 128) >> 8 with G the box of Eq. 8, I the
 //            edge-preserving interpolation (edge_filter.hpp, 12-texel cross, clamp-to-edge fetches) at
-//            the centre of the even square (xf = yf = 1/2, i.e. 128), a = round(alpha 256).
+//            the centre of the even square (fu = fv = 1/2, i.e. 128), a = round(alpha 256).
 // VS16X2 textures filter their signed numerators with the same formulas (arithmetic shifts).
 #pragma once
 

@@ -18,11 +18,12 @@
 //          then for each tap s[m] (sign bit 0/1) and mag[m] (magnitude code),
 //          then row_sum (sum of the signed values) and position (local position sampled, in [0, 1]).
 // Direction-weight ROM (direction_rom.hpp, Lee & Jen):
-//   hex: 256 lines per direction, address (yf4 << 4) | xf4, 2 hex digits (the 8-bit 4.4 code,
+//   hex: 256 lines per direction, address (fv4 << 4) | fu4, 2 hex digits (the 8-bit 4.4 code,
 //        ff = never choose); with all directions, direction i occupies lines [256 i, 256 i + 255]
-//        (`logic [7:0] mem [0:22*256-1]`, i.e. address (i << 8) | (yf4 << 4) | xf4).
+//        (`logic [7:0] mem [0:22*256-1]`, i.e. address (i << 8) | (fv4 << 4) | fu4).
 //   CSV: header "direction,address,xf4,yf4,code,weight", one row per (direction, address);
-//        weight is code / 16 with 4 decimals, or "never" for code 255.
+//        weight is code / 16 with 4 decimals, or "never" for code 255. (The columns xf4, yf4 keep
+//        the paper's names: they are fu4, fv4.)
 #pragma once
 
 #include <cstdint>

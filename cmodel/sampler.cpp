@@ -39,10 +39,10 @@ void Sampler::build_cubic() {
   impl_->norm.M = static_cast<int64_t>(unorm::max_code(impl_->rom->spec().bits));
   std::tie(impl_->norm.lo, impl_->norm.hi) = channel_range(tex_.format);
   if (cfg_.memoize_cubic_weights && cfg_.cubic_recon == RomRecon::Nearest && impl_->rom->entries() <= 129) {
-    auto memo = std::make_unique<sampler_detail::WeightMemo>();
+    auto memo = std::make_unique<detail::WeightMemo>();
     memo->entries = impl_->rom->entries();
     const auto entries = static_cast<size_t>(memo->entries);
-    memo->w.resize(entries * entries * sampler_detail::WeightMemo::kStride);
+    memo->w.resize(entries * entries * detail::WeightMemo::kStride);
     // One representative fraction per address: the smallest 8-bit f that maps to it.
     std::vector<int> rep(entries, -1);
     for (uint32_t f = 0; f < 256; ++f) {
@@ -57,7 +57,8 @@ void Sampler::build_cubic() {
           std::array<int32_t, 16> w2{};
           dp::tile_weights_2d(*impl_->rom, RomRecon::Nearest, static_cast<uint32_t>(rep[ax]),
                               static_cast<uint32_t>(rep[ay]), w2);
-          std::copy(w2.begin(), w2.end(), memo->w.begin() + static_cast<ptrdiff_t>((ay * entries + ax) * sampler_detail::WeightMemo::kStride));
+          std::copy(w2.begin(), w2.end(),
+                    memo->w.begin() + static_cast<ptrdiff_t>((ay * entries + ax) * detail::WeightMemo::kStride));
         }
     impl_->memo = std::move(memo);
   }
@@ -71,11 +72,11 @@ void Sampler::build_cubic() {
 Sampler::~Sampler() = default;
 
 // ---------------------------------------------------------------- LOD -> levels (GL 4.6 Sec. 8.14)
-LodInfo Sampler::lod_info(int32_t lambda_unclamped) const {
+LodInfo Sampler::lod_info(int32_t lambda_q8) const {
   LodInfo li;
-  li.lambda_q8 = lambda_bias_clamp(lambda_unclamped, cfg_.lod);
-  li.magnify = li.lambda_q8 <= 0;
-  const LevelPick p = select_levels(li.lambda_q8, cfg_.mode.mip, tex_.max_level());
+  li.lambda_clamped_q8 = lambda_bias_clamp(lambda_q8, cfg_.lod);
+  li.magnify = li.lambda_clamped_q8 <= 0;
+  const LevelPick p = select_levels(li.lambda_clamped_q8, cfg_.mode.mip, tex_.max_level());
   li.level0 = p.level0;
   li.level1 = p.level1;
   li.blend = p.blend;
@@ -94,8 +95,8 @@ int Sampler::static_shape_block() const {
 // ---------------------------------------------------------------- texel fetch (wrap unit)
 namespace {
 
+using detail::WeightMemo;
 using dp::LevelCoord;
-using sampler_detail::WeightMemo;
 using dp::texel_coord;
 
 // Wrapped fetch that reads a given level image (the texture or the B-spline coefficients). The
@@ -142,7 +143,7 @@ Texel4 filter_linear(const LevelReader& rd, float s, float t) {
 // Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
 template <int taps>
 std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                          const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
+                                          const detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
   const int m0 = rom.first_tap();
   std::array<int32_t, 16> w2_local;
   const int32_t* w2;
@@ -196,7 +197,7 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
 
 // The cubic datapath's sum at a level coordinate (u, v).
 std::array<int64_t, 4> filter_tiled_acc(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
-                                        const sampler_detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
+                                        const detail::WeightMemo* memo, LevelCoord u, LevelCoord v) {
   return rom.taps() == 4 ? filter_tiled_acc_n<4>(rd, rom, recon, memo, u, v)
                          : filter_tiled_acc_n<2>(rd, rom, recon, memo, u, v);
 }
@@ -217,7 +218,7 @@ Texel4 Sampler::sample_level_filter(BaseFilter f, int level, float s, float t) c
     case BaseFilter::Cubic: return cubic_at(level, texel_coord(s, img.width), texel_coord(t, img.height));
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint(level, s, t);
-      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.fu, fp.fv, tex_.format);
     }
   }
   return {};
@@ -250,7 +251,7 @@ Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, co
     case BaseFilter::Cubic: return cubic_at(level, u, v);
     case BaseFilter::EdgePreserving: {
       const EdgeFootprint fp = edge_footprint_at(level, u, v, mask_override);
-      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.xf, fp.yf, tex_.format);
+      return lee_jen::edge_preserving_interpolate(fp.texels, fp.mask, fp.fu, fp.fv, tex_.format);
     }
   }
   return {};
@@ -271,8 +272,8 @@ EdgeFootprint Sampler::edge_footprint_at(int level, LevelCoord u, LevelCoord v, 
   const Image& img = tex_.levels[static_cast<size_t>(level)];
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
   EdgeFootprint fp;
-  fp.xf = u.f;
-  fp.yf = v.f;
+  fp.fu = u.f;
+  fp.fv = v.f;
   // Columns and rows -1..2 around the centre square, wrapped once each.
   wrap_run(cfg_.wrap_s, u.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.width, fp.col.data());
   wrap_run(cfg_.wrap_t, v.i0 + lee_jen::kGridOrigin, lee_jen::kGridSide, img.height, fp.row.data());
@@ -298,8 +299,8 @@ Texel4 Sampler::sample_level(int level, float s, float t) const {
   return sample_level_filter(cfg_.mode.base, level, s, t);
 }
 
-Texel4 Sampler::sample_channels(float s, float t, int32_t lambda) const {
-  const LodInfo li = lod_info(lambda);
+Texel4 Sampler::sample_channels(float s, float t, int32_t lambda_q8) const {
+  const LodInfo li = lod_info(lambda_q8);
   const Texel4 c0 = sample_level(li.level0, s, t);
   if (li.blend == 0) return c0;
   const Texel4 c1 = sample_level(li.level1, s, t);
@@ -323,15 +324,15 @@ Texel4 Sampler::probes_channels(float s, float t, const AnisoLod& lod, const lee
 
 Texel4 Sampler::sample_channels(float s, float t, const AnisoLod& lod) const { return probes_channels(s, t, lod, nullptr); }
 
-Rgba8 Sampler::sample_generic(const Sampler& sm, float s, float t, int32_t lambda) {
-  return encode_texel(sm.sample_channels(s, t, lambda), sm.tex_.format);
+Rgba8 Sampler::sample_plain(const Sampler& sm, float s, float t, int32_t lambda_q8) {
+  return encode_texel(sm.sample_channels(s, t, lambda_q8), sm.tex_.format);
 }
 
-Rgba8 Sampler::aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod) {
+Rgba8 Sampler::aniso_plain(const Sampler& sm, float s, float t, const AnisoLod& lod) {
   return encode_texel(sm.sample_channels(s, t, lod), sm.tex_.format);
 }
 
-void Sampler::batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
+void Sampler::batch_plain(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
   const SampleFn f = sm.sample_fn_;
   for (size_t i = 0; i < n; ++i) out[i] = f(sm, req[i].s, req[i].t, req[i].lambda_q8);
 }

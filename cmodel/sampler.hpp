@@ -37,7 +37,7 @@ namespace tfu {
 
 // What the LOD unit / meta MIP-map supplies for one pixel (Hadwiger 2004 Sec. 3.2).
 struct LodInfo {
-  int32_t lambda_q8 = 0;  // after bias and clamp
+  int32_t lambda_clamped_q8 = 0;  // lambda_q8 after bias and clamp (lambda_bias_clamp)
   bool magnify = false;
   int level0 = 0, level1 = 0;  // level1 == level0 unless blending
   int blend = 0;               // weight of level1, 0..255 (Q.8)
@@ -51,7 +51,7 @@ struct LodInfo {
 struct EdgeFootprint {
   std::array<Texel4, lee_jen::kTexels> texels{};
   lee_jen::TexelMask mask = lee_jen::kAllTexels;
-  uint32_t xf = 0, yf = 0;
+  uint32_t fu = 0, fv = 0;
   std::array<int, 4> col{}, row{};  // -1 = border (clamp-to-border outside the texture)
 };
 
@@ -75,9 +75,9 @@ class Sampler {
   const SamplerDescriptor& descriptor() const { return cfg_; }
   const Texture& texture() const { return tex_; }
 
-  LodInfo lod_info(int32_t lambda_q8_unclamped) const;  // applies bias and clamp
+  LodInfo lod_info(int32_t lambda_q8) const;  // applies bias and clamp
   // One filtered colour, as the RGBA8 word of the texture's format.
-  Rgba8 sample(float s, float t, int32_t lambda_q8_unclamped) const { return sample_fn_(*this, s, t, lambda_q8_unclamped); }
+  Rgba8 sample(float s, float t, int32_t lambda_q8) const { return sample_fn_(*this, s, t, lambda_q8); }
   // The unit's quad interface: out[i] = sample(req[i].s, req[i].t, req[i].lambda_q8) for i < n, bit
   // for bit (the renderer hands it the up to 4 covered pixels of a 2x2 quad). Software speed only:
   // the per-call dispatch is paid once per batch, the sampler's registers (level base, extent,
@@ -85,7 +85,7 @@ class Sampler {
   // the 4-lane lerp unit (dp::bilinear_lerp8x4). Array of structures, as the requests arrive.
   void sample_batch(const SampleRequest* req, size_t n, Rgba8* out) const { batch_fn_(*this, req, n, out); }
   // The same in datapath channels (before encoding).
-  Texel4 sample_channels(float s, float t, int32_t lambda_q8_unclamped) const;
+  Texel4 sample_channels(float s, float t, int32_t lambda_q8) const;
   // Anisotropic filtering (docs/anisotropic.md): `lod` is the LOD unit's result for the pixel
   // (aniso_lod of its quad's or gradients' derivatives with descriptor().aniso(), or isotropic_lod).
   // N = lod.probes probes at lambda = lod.lambda_q8, probe i at the centre's Q.8 coordinate on each
@@ -143,9 +143,9 @@ class Sampler {
   Texel4 probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
   EdgeFootprint edge_footprint_at(int level, dp::LevelCoord u, dp::LevelCoord v, int mask_override) const;
   Texel4 cubic_at(int level, dp::LevelCoord u, dp::LevelCoord v) const;
-  // sample() dispatches once, at construction, to the generic datapath or to a fast path of the
+  // sample() dispatches once, at construction, to the plain datapath or to a fast path of the
   // mode (LINEAR, CUBIC, EDGE_PRESERVING) specialized for the wrap modes (bit-identical to the
-  // generic datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
+  // plain datapath, which sample_channels() keeps; software speed only). FastPaths is defined in
   // sampler.cpp.
   // sample_batch() dispatches the same way: LINEAR's fast paths have a batch variant, every other
   // configuration loops over sample_fn_.
@@ -157,9 +157,9 @@ class Sampler {
   SampleFn sample_fn_ = nullptr;
   BatchFn batch_fn_ = nullptr;
   AnisoFn aniso_fn_ = nullptr;
-  static Rgba8 sample_generic(const Sampler& sm, float s, float t, int32_t lambda);
-  static Rgba8 aniso_generic(const Sampler& sm, float s, float t, const AnisoLod& lod);
-  static void batch_generic(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
+  static Rgba8 sample_plain(const Sampler& sm, float s, float t, int32_t lambda_q8);
+  static Rgba8 aniso_plain(const Sampler& sm, float s, float t, const AnisoLod& lod);
+  static void batch_plain(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);
   struct FastPaths;
 };
 

@@ -1,8 +1,7 @@
 // Speed-only fast paths of the golden sampler (no effect on results): sample() of LINEAR, CUBIC
 // and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, their anisotropic
-// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for bit is
-// sampler.cpp (sample_channels); Properties.FastPathsEqualGenericDatapath and BatchEqualsSample
-// compare them.
+// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for
+// bit is sampler.cpp (sample_channels); Properties.FastPathsEqualPlainPath and BatchEqualsSample compare them.
 #include <algorithm>
 #include <bit>
 #include <utility>
@@ -16,14 +15,14 @@
 
 namespace tfu {
 
+using detail::WeightMemo;
 using dp::LevelCoord;
 using dp::texel_coord;
-using sampler_detail::WeightMemo;
 
 // ---------------------------------------------------------------- fast paths (software speed only)
 // sample() of LINEAR, CUBIC and EDGE_PRESERVING runs one instantiation per pair of wrap modes, so
 // that the wrap unit and the border select fold away, and reads texel words straight from the
-// level. Same arithmetic, bit for bit, as the generic datapath above (sample_channels), which the
+// level. Same arithmetic, bit for bit, as the plain datapath above (sample_channels), which the
 // tests compare them with.
 namespace {
 
@@ -162,8 +161,8 @@ inline Texel4 probe_channels(const Texel4& c) { return c; }
 
 // Level select of the LOD unit and the blend unit around a filter of one level, f(level).
 template <class F>
-[[gnu::always_inline]] inline auto filter_levels(int32_t lambda, const LodParams& lod, MipMode mip, int q, F&& f) {
-  const LevelPick p = select_levels(lambda_bias_clamp(lambda, lod), mip, q);
+[[gnu::always_inline]] inline auto filter_levels(int32_t lambda_q8, const LodParams& lod, MipMode mip, int q, F&& f) {
+  const LevelPick p = select_levels(lambda_bias_clamp(lambda_q8, lod), mip, q);
   const auto c0 = f(p.level0);
   if (p.blend == 0) return c0;
   return blend_levels(c0, f(p.level1), p.blend);
@@ -196,12 +195,12 @@ template <Sampler::FastPaths::Variant kV>
 
 // One filtered colour: level select, the filter on one or two levels, blend, encode.
 template <Sampler::FastPaths::Variant kV>
-Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda) {
+Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t lambda_q8) {
   const TexelFormat fmt = sm.tex_.format;
   if constexpr (!kV.mipmapped) {
     return output_word(filter<kV>(sm, 0, s, t), fmt);  // GL: no MIP-mapping -> level 0
   } else {
-    return output_word(filter_levels(lambda, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
+    return output_word(filter_levels(lambda_q8, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
                                      [&](int l) { return filter<kV>(sm, l, s, t); }),
                        fmt);
   }
@@ -230,19 +229,21 @@ Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p
                      LevelCoord u1, LevelCoord v1, const AnisoLod& lod) {
   const int n = lod.probes;
   const ProbeRomWord* rom = probe_rom().data() + probe_rom_address(n, 1);  // words (n, 1..n)
-  const int64_t major_du = dp_fast::clamped_major(lod.major_du_q16), major_dv = dp_fast::clamped_major(lod.major_dv_q16);
-  const int64_t cu0 = dp_fast::join_q8(u0), cv0 = dp_fast::join_q8(v0);
-  const int64_t cu1 = dp_fast::join_q8(u1), cv1 = dp_fast::join_q8(v1);
+  const int64_t major_du = dp::fast::clamped_major(lod.major_du_q16),
+                major_dv = dp::fast::clamped_major(lod.major_dv_q16);
+  const int64_t cu0 = dp::fast::join_q8(u0), cv0 = dp::fast::join_q8(v0);
+  const int64_t cu1 = dp::fast::join_q8(u1), cv1 = dp::fast::join_q8(v1);
   // Probe i's offset (Q.16 level-0 texels), and its footprint on level 0 (level0) or 1 (level1).
   const auto offset = [&](int i) __attribute__((always_inline)) {
-    return ProbeOffset{dp_fast::scale_probe_fraction(major_du, rom[i].frac_q16),
-                       dp_fast::scale_probe_fraction(major_dv, rom[i].frac_q16)};
+    return ProbeOffset{dp::fast::scale_probe_fraction(major_du, rom[i].frac_q16),
+                       dp::fast::scale_probe_fraction(major_dv, rom[i].frac_q16)};
   };
   const auto footprint = [&](const ProbeOffset& o, int level) __attribute__((always_inline)) {
     const int l = level == 0 ? p.level0 : p.level1;
-    return lerp_lane<kWs, kWt>(level == 0 ? l0 : l1, border,
-                               dp_fast::split_q8((level == 0 ? cu0 : cu1) + dp_fast::probe_offset_on_level(o.du_q16, l)),
-                               dp_fast::split_q8((level == 0 ? cv0 : cv1) + dp_fast::probe_offset_on_level(o.dv_q16, l)));
+    return lerp_lane<kWs, kWt>(
+        level == 0 ? l0 : l1, border,
+        dp::fast::split_q8((level == 0 ? cu0 : cu1) + dp::fast::probe_offset_on_level(o.du_q16, l)),
+        dp::fast::split_q8((level == 0 ? cv0 : cv1) + dp::fast::probe_offset_on_level(o.dv_q16, l)));
   };
   const auto lerp4 = [](const LerpLane& x0, const LerpLane& x1, const LerpLane& x2, const LerpLane& x3) __attribute__((always_inline)) {
     const auto lanes = [&](uint32_t LerpLane::*field) {
@@ -391,7 +392,7 @@ constexpr std::array<Sampler::AnisoFn, 16> Sampler::FastPaths::aniso_table(std::
 
 template <Sampler::FastPaths::Path kP>
 Sampler::AnisoFn Sampler::FastPaths::pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt) {
-  if (!mipmapped) return &aniso_generic;  // never issued with N > 1 (SamplerDescriptor::aniso())
+  if (!mipmapped) return &aniso_plain;  // never issued with N > 1 (SamplerDescriptor::aniso())
   return aniso_table<kP>(std::make_index_sequence<16>())[static_cast<size_t>(4 * static_cast<int>(ws) + static_cast<int>(wt))];
 }
 
@@ -407,9 +408,9 @@ void Sampler::FastPaths::setup(Sampler& sm) {
   const WrapMode ws = sm.cfg_.wrap_s, wt = sm.cfg_.wrap_t;
   const bool mip = sm.cfg_.mode.mip != MipMode::None;
   const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
-  sm.sample_fn_ = &sample_generic;
-  sm.batch_fn_ = &batch_generic;
-  sm.aniso_fn_ = &aniso_generic;
+  sm.sample_fn_ = &sample_plain;
+  sm.batch_fn_ = &batch_plain;
+  sm.aniso_fn_ = &aniso_plain;
   if (!fast_paths_enabled()) return;  // TFU_PLAIN=1 or --plain: the plain datapath only
   switch (sm.cfg_.mode.base) {
     case BaseFilter::Nearest: break;

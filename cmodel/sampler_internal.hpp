@@ -13,7 +13,7 @@
 #include "cmodel/sampler.hpp"
 
 namespace tfu {
-namespace sampler_detail {
+namespace detail {
 
 // Memo of tile_weights_2d for nearest reconstruction: the weights depend only on the two ROM
 // addresses, so the software model evaluates the multipliers once per address pair (a pure
@@ -27,14 +27,14 @@ struct WeightMemo {
   const int32_t* weights(uint32_t fu, uint32_t fv) const { return w.data() + kStride * (row[fv] + col[fu]); }
 };
 
-}  // namespace sampler_detail
+}  // namespace detail
 
 struct Sampler::Impl {
   std::unique_ptr<FilterKernel> kernel;              // CUBIC modes
   std::unique_ptr<TileWeightRom> rom;                // CUBIC modes
   bool prefiltered = false;                          // bspline-interp
   BsplineCoefficients coeffs;                        // bspline-interp: codes, exact values, S and B
-  std::unique_ptr<sampler_detail::WeightMemo> memo;  // CUBIC with nearest reconstruction and R <= 128
+  std::unique_ptr<detail::WeightMemo> memo;          // CUBIC with nearest reconstruction and R <= 128
   dp::CubicNormalize norm;                           // CUBIC normalise-and-clamp registers
   Texel4 border{};
   double scale = 255.0;  // channel code -> real
@@ -55,7 +55,7 @@ struct Sampler::FastPaths {
   template <Variant kV>
   static Rgba8 aniso(const Sampler& sm, float s, float t, const AnisoLod& lod);  // MIP-mapped variants, N > 1
   template <Variant kV>
-  static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda);
+  static Rgba8 sample(const Sampler& sm, float s, float t, int32_t lambda_q8);
   template <Variant kV>
   static void batch(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out);  // Linear8 only
   template <Path kP, bool kMip, size_t... k>
@@ -69,7 +69,7 @@ struct Sampler::FastPaths {
   template <Path kP>
   static AnisoFn pick_aniso(bool mipmapped, WrapMode ws, WrapMode wt);
   // Chooses sample()'s path once the configuration is known: the fast path where one exists
-  // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the generic datapath;
+  // (8-bit formats; for CUBIC also 4 x 4 taps and memoized weights), else the plain datapath;
   // and sample_batch()'s: LINEAR's batch variant where sample() has the LINEAR fast path, else a
   // loop over sample() (CUBIC and EDGE_PRESERVING spend 500+ instructions a sample, against some 20
   // for the call, so a per-variant batch copy of them would double their code for little).

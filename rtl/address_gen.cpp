@@ -9,8 +9,8 @@
 
 namespace tfu::rtl {
 
-using address_detail::cells_inside;
-using address_detail::probe_coord;
+using detail::cells_inside;
+using detail::probe_coord;
 
 AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
                        const WeightRomBank& roms)
@@ -116,7 +116,7 @@ void AddressGen::evaluate() {
 
 void AddressGen::begin(const PixelReq& p) {
   pixel_ = p;
-  pick_ = pick_levels(p.req, p.lambda);
+  pick_ = pick_levels(p.req, p.lambda_q8);
   count_ = pick_.blend != 0 ? 2 : 1;
   sent_ = 0;
   probe_ = -1;
@@ -135,8 +135,8 @@ bool AddressGen::issue(FootprintReq& f) {
     f.tag.probe = static_cast<uint8_t>(probe_);
   }
   if (count_ == 2) {
-    f.tag.two = true;
-    f.tag.second = sent_ == 1;
+    f.tag.blends = true;
+    f.tag.is_level1 = sent_ == 1;
     f.tag.blend = pick_.blend;
   }
   if (++sent_ == count_) {

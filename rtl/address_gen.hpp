@@ -7,7 +7,7 @@
 // Ports:
 //   in  pixel      PixelReq (descriptor indices, s, t, lambda)             valid/ready
 //   out footprint  FootprintReq: level[3:0], grid (columns x[4], rows y[4], cols, rows, used cells),
-//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], two, second
+//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], blends, is_level1
 //   in  registers  sampler descriptor (filter mode, wraps, LOD bias and clamps), texture descriptor
 //                  (size, level count, format), the weight ROM's tap count (CUBIC)
 // Footprints per base filter, as a grid of wrapped columns and rows (the cache forms the taps):
@@ -55,12 +55,13 @@ class AddressGen : public sim::Module {
   // holds none and issues its level footprints one per cycle, the first in the cycle it took the
   // pixel: a SequencerTiming (rtl/timing.hpp), pixels in, footprints out. Both change together.
   SequencerTiming timing;
-  // The level selection of a pixel of sampler and texture `req` at `lambda` (Q.8, before bias and
+  // The level selection of a pixel of sampler and texture `req` at `lambda_q8` (Q.8, before bias and
   // clamps): level 0 alone without MIP-mapping, else select_levels.
-  LevelPick pick_levels(const RequestTag& req, int32_t lambda) const {
+  LevelPick pick_levels(const RequestTag& req, int32_t lambda_q8) const {
     const SamplerDescriptor& c = regs_.samplers[req.sampler];
     // Without MIP-mapping level 0 alone (GL), whatever lambda.
-    return c.mode.mip == MipMode::None ? LevelPick{} : select_levels(lambda, c, regs_.textures[req.texture].levels - 1);
+    return c.mode.mip == MipMode::None ? LevelPick{}
+                                       : select_levels(lambda_q8, c, regs_.textures[req.texture].levels - 1);
   }
   // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
   // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which

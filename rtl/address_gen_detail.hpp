@@ -8,7 +8,7 @@
 #include "cmodel/datapath.hpp"
 #include "rtl/unit_ports.hpp"
 
-namespace tfu::rtl::address_detail {
+namespace tfu::rtl::detail {
 
 // The centre's level coordinate (dp::texel_coord), plus an anisotropic probe's offset on the
 // level (dp::probe_texel_coord) when there is one.
@@ -27,4 +27,4 @@ inline uint16_t cells_inside(const TapGrid& g) {
   return out;
 }
 
-}  // namespace tfu::rtl::address_detail
+}  // namespace tfu::rtl::detail

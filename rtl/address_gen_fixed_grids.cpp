@@ -10,8 +10,8 @@
 
 namespace tfu::rtl {
 
-using address_detail::cells_inside;
-using address_detail::probe_coord;
+using detail::cells_inside;
+using detail::probe_coord;
 
 // LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
 // around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis

@@ -75,7 +75,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     int missing_arms = 0;
     for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
     ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
-    if (record_shapes_) shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.second ? 1u : 0u)] = cur.tag.shape;
+    if (record_shapes_) shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.is_level1 ? 1u : 0u)] = cur.tag.shape;
   }
   return ready;
 }

@@ -70,10 +70,10 @@ void min_tree(std::array<uint32_t, lee_jen::kDirections>& level) {
 }  // namespace
 
 lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
-                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt) {
+                                       lee_jen::TexelMask shape, uint32_t fu, uint32_t fv, TexelFormat fmt) {
   const DirectionTables& tab = direction_tables();
   const uint32_t usable = tab.usable[shape & lee_jen::kAllTexels];
-  const size_t addr = ((yf >> 4) << 4) | (xf >> 4);
+  const size_t addr = ((fv >> 4) << 4) | (fu >> 4);
   // Leaves: one ROM and one weighted-difference multiplier per direction; a direction the shape
   // does not allow is the invalid operand (weighted_differences).
   std::array<uint32_t, lee_jen::kDirections> level;
@@ -131,7 +131,7 @@ bool EdgeMerge::merge(const EdgeDirectionOut& s, Response& out) {
     first_ = c;
     return false;
   }
-  if (tag.two) c = dp::level_blend(first_, c, tag.blend);
+  if (tag.blends) c = dp::level_blend(first_, c, tag.blend);
   if (!probes_.add(tag, c)) return false;
   out = {tag.id, encode_texel(c, tag.format)};
   return true;

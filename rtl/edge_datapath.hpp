@@ -4,7 +4,7 @@
 //   edge_median    texel unpack; RGB->Y (5R + 9G + 2B, shift-and-add); keys Y*16+n; the median
 //                  network of compare cells (rtl/median_network.hpp) -> low[n], the texel number of
 //                  each Eq. 4 median
-//   edge_direction 22 direction-weight ROMs (address (yf>>4)<<4 | xf>>4), weighted differences
+//   edge_direction 22 direction-weight ROMs (address (fv>>4)<<4 | fu>>4), weighted differences
 //                  w_i * dP_i (Eq. 1-2: 8-bit code x 10-bit dP = 18 bits), usable-direction mask of
 //                  the kernel shape, min tree (5 levels, ties to the lower direction index)
 //   edge_merge     directional lerp of the low-pass endpoints (Eq. 3), high-frequency bilinear
@@ -13,7 +13,7 @@
 //
 // Ports (between stages, valid/ready channels of depth 2):
 //   in  texels  FilterReq: 12 texel words (tap k = C(k+1)), shape[11:0], format[1:0] (each
-//               footprint's own texel format), fu fv, blend, two, second
+//               footprint's own texel format), fu fv, blend, blends, is_level1
 //   edge_median_out     EdgeMedianOut: tag, 12 texels (datapath channels), low[12] x [3:0]
 //   edge_direction_out  EdgeDirectionOut: the median stage's output + direction[4:0]
 //   out Response: id, rgba[31:0]
@@ -40,7 +40,7 @@ struct EdgeDirectionOut {
 // The direction-select block as a structure: ROM reads, weighted differences, masked min tree.
 // Same result as lee_jen::select_direction (tested exhaustively over shapes and randomly over texels).
 lee_jen::EdgeDecision direction_select(const std::array<Texel4, lee_jen::kTexels>& c, const lee_jen::LowIndex& low,
-                                       lee_jen::TexelMask shape, uint32_t xf, uint32_t yf, TexelFormat fmt);
+                                       lee_jen::TexelMask shape, uint32_t fu, uint32_t fv, TexelFormat fmt);
 
 class EdgeMedian : public sim::Module {
  public:

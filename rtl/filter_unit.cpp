@@ -59,11 +59,11 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
       return false;
     }
     if (r.tag.probes == 1) {
-      out = {r.tag.id, r.tag.two ? blend_linear8(first8_, c8, r.tag.blend) : c8};
+      out = {r.tag.id, r.tag.blends ? blend_linear8(first8_, c8, r.tag.blend) : c8};
       return true;
     }
     // an anisotropic probe: the probe accumulator
-    const Rgba8 p = r.tag.two ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
+    const Rgba8 p = r.tag.blends ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
     Texel4 c{p.r, p.g, p.b, p.a};
     if (!probes_.add(r.tag, c)) return false;
     out = {r.tag.id, encode_texel(c, r.tag.format)};
@@ -76,7 +76,7 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
     first_ = c;
     return false;
   }
-  if (r.tag.two) c = dp::level_blend(first_, c, r.tag.blend);
+  if (r.tag.blends) c = dp::level_blend(first_, c, r.tag.blend);
   if (!probes_.add(r.tag, c)) return false;
   out = {r.tag.id, encode_texel(c, r.tag.format)};
   return true;

@@ -8,7 +8,7 @@
 //
 // Ports:
 //   in  texels     FilterReq: texel words, tag: base[1:0], format[1:0], sampler[7:0],
-//                  texture[11:0], fu[7:0] fv[7:0], blend[8:0], two, second, probes[4:0],
+//                  texture[11:0], fu[7:0] fv[7:0], blend[8:0], blends, is_level1, probes[4:0],
 //                  probe[3:0]                                                       valid/ready
 //   out response   Response: id[31:0], rgba[31:0]
 //   in  registers  sampler descriptor (rom_linear), texture descriptor (content, S, B), the

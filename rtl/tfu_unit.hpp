@@ -40,7 +40,13 @@ struct VcdOptions {
   std::ostream* out = nullptr;  // nullptr: no waveform
   uint64_t from = 0, to = UINT64_MAX;  // cycles dumped, inclusive
 };
-UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd);
+// How the clocked engine simulates (options of the simulation, not of the hardware: not in UnitConfig
+// nor in its JSON). Results and statistics are the same whatever they are.
+struct ClockedOptions {
+  bool idle_skip = true;  // jump over cycles in which no block can act (sim::Simulator::set_idle_skip)
+};
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd,
+                    const ClockedOptions& clocked = {});
 
 // run_unit through the simulation kernel's generic module list (a virtual evaluate() per block and
 // cycle, forward or reverse) instead of the unit's static schedule: for the test that the schedule

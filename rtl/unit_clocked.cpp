@@ -122,7 +122,7 @@ class EventRecorder {
 };
 
 UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
-               Schedule schedule, UnitEvents* events = nullptr) {
+               const ClockedOptions& clocked, Schedule schedule, UnitEvents* events = nullptr) {
   std::ostream* vcd_stream = vcd_opt.out;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
@@ -137,7 +137,7 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
     add_probes(*vcd, *unit);
     unit->sim.set_vcd(vcd.get());
   }
-  unit->sim.set_idle_skip(ucfg.idle_skip);
+  unit->sim.set_idle_skip(clocked.idle_skip);
   const ResponseSink& sink = unit->response;
   const auto done = [&sink, n] { return sink.retired() == n; };
   const std::function<uint64_t()> retired = [&sink] { return static_cast<uint64_t>(sink.retired()); };
@@ -167,18 +167,20 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
 
 }  // namespace
 
-UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt) {
-  return run(frame, trace, ucfg, vcd_opt, Schedule::Static);
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
+                    const ClockedOptions& clocked) {
+  return run(frame, trace, ucfg, vcd_opt, clocked, Schedule::Static);
 }
 
 UnitOutput run_unit_recording(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine,
                               UnitEvents& events) {
   if (engine == UnitEngine::Recurrence) return run_unit_recurrence(frame, trace, ucfg, true, &events);
-  return run(frame, trace, ucfg, VcdOptions{}, Schedule::Static, &events);
+  return run(frame, trace, ucfg, VcdOptions{}, ClockedOptions{}, Schedule::Static, &events);
 }
 
 UnitOutput run_unit_generic_schedule(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool reverse) {
-  return run(frame, trace, ucfg, VcdOptions{}, reverse ? Schedule::GenericReverse : Schedule::GenericForward);
+  return run(frame, trace, ucfg, VcdOptions{}, ClockedOptions{},
+             reverse ? Schedule::GenericReverse : Schedule::GenericForward);
 }
 
 }  // namespace tfu::rtl

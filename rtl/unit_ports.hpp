@@ -39,7 +39,7 @@ struct PixelReq {
   uint32_t id = 0;
   RequestTag req;
   float s = 0, t = 0;
-  int32_t lambda = 0;
+  int32_t lambda_q8 = 0;
   int probes = 1;
   int64_t major_du_q16 = 0, major_dv_q16 = 0;
 };
@@ -101,9 +101,10 @@ constexpr uint16_t cross_cells(lee_jen::TexelMask shape) {
 // for the shape (set by kernel_select, widened by the cache-aware probe):
 //   id[31:0], descriptor indices, base[1:0] (the sampler's base filter: routes the footprint to
 //   the filter or the edge datapath), format[1:0] (the texture's texel format, for unpack),
-//   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), two/second (a
-//   blending MIPMAP_LINEAR pixel's first/second level), shape[11:0] (edge cross: texels the
-//   kernel may use), probes[4:0] probe[3:0] (an anisotropic pixel's probe count N and this
+//   fu[7:0] fv[7:0] (fractions in the level), blend[8:0] (weight of level1), blends (the pixel
+//   blends two levels: *_MIPMAP_LINEAR), is_level1 (this footprint is the pixel's level1, its
+//   second; else level0), shape[11:0] (edge cross: texels the kernel may use), probes[4:0]
+//   probe[3:0] (an anisotropic pixel's probe count N and this
 //   footprint's probe i - 1: the datapath accumulates the probes and answers at the last one)
 // (address_gen::footprint writes every field into the reused output register: keep it in step.)
 struct LevelTag {
@@ -113,12 +114,12 @@ struct LevelTag {
   TexelFormat format = TexelFormat::RGBA8;
   uint32_t fu = 0, fv = 0;
   int blend = 0;
-  bool two = false, second = false;
+  bool blends = false, is_level1 = false;
   lee_jen::TexelMask shape = lee_jen::kAllTexels;
   uint8_t probes = 1, probe = 0;
-  bool last_level() const { return !two || second; }  // a probe's result is complete after this footprint
+  bool last_level() const { return !blends || is_level1; }  // a probe's result is complete after this footprint
   bool emits() const { return last_level() && probe + 1 == probes; }  // the datapath outputs a pixel
-  bool holds() const { return two && !second; }       // level0 of a blending pair: kept for the blend
+  bool holds() const { return blends && !is_level1; }                 // level0 of a blending pair: kept for the blend
 };
 
 // Kernel shapes of one pixel's edge footprints, [2 probe + k] for probe 0..N-1 and level0 / level1

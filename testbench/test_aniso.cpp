@@ -388,7 +388,7 @@ TEST(AnisoProbes, FastOffsetUnitsEqualThePlainUnits) {
         for (const int64_t sign : {1, -1}) {
           const int64_t x = sign * (q * unit + half + delta);
           if (x > limit || x < -limit) continue;
-          ASSERT_EQ(dp_fast::round_half_away_shift(x, k), sign_magnitude(x, k)) << x << " >> " << k;
+          ASSERT_EQ(dp::fast::round_half_away_shift(x, k), sign_magnitude(x, k)) << x << " >> " << k;
         }
     }
   }
@@ -407,7 +407,7 @@ TEST(AnisoProbes, FastOffsetUnitsEqualThePlainUnits) {
     for (int n = 1; n <= kMaxAniso; ++n)
       for (int i = 1; i <= n; ++i) {
         const int32_t q = probe_rom()[static_cast<size_t>(probe_rom_address(n, i))].frac_q16;
-        ASSERT_EQ(dp_fast::scale_probe_fraction(dp_fast::clamped_major(d), q), dp::scale_probe_fraction(d, q))
+        ASSERT_EQ(dp::fast::scale_probe_fraction(dp::fast::clamped_major(d), q), dp::scale_probe_fraction(d, q))
             << d << " N " << n << " i " << i;
       }
   for (int level = 0; level <= 15; ++level)
@@ -415,11 +415,12 @@ TEST(AnisoProbes, FastOffsetUnitsEqualThePlainUnits) {
       const int64_t tie = (static_cast<int64_t>(rng() % (uint64_t{1} << (22 - level))) << (8 + level)) + (int64_t{1} << (7 + level));
       const int64_t o = k % 2 ? tie + static_cast<int64_t>(k % 5) - 2 : static_cast<int64_t>(rng() % (uint64_t{1} << 30));
       for (const int64_t x : {o, -o}) {
-        ASSERT_EQ(dp_fast::probe_offset_on_level(x, level), dp::probe_offset_on_level(x, level)) << x << " L " << level;
+        ASSERT_EQ(dp::fast::probe_offset_on_level(x, level), dp::probe_offset_on_level(x, level))
+            << x << " L " << level;
         const dp::LevelCoord c{static_cast<int64_t>(rng() % (uint64_t{1} << 40)) - (int64_t{1} << 39),
                                static_cast<uint32_t>(rng() % 256)};
         const dp::LevelCoord want = dp::probe_texel_coord(c, dp::probe_offset_on_level(x, level));
-        const dp::LevelCoord got = dp_fast::split_q8(dp_fast::join_q8(c) + dp_fast::probe_offset_on_level(x, level));
+        const dp::LevelCoord got = dp::fast::split_q8(dp::fast::join_q8(c) + dp::fast::probe_offset_on_level(x, level));
         ASSERT_EQ(got.i0, want.i0);
         ASSERT_EQ(got.f, want.f);
       }

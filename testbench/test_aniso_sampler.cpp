@@ -112,7 +112,7 @@ TEST(AnisoSampler, OneProbeIsTheIsotropicModeBitForBit) {
 }
 
 // The fast probe paths (LINEAR, CUBIC, EDGE_PRESERVING MIP modes on 8-bit formats, one per wrap
-// pair) and the generic dispatch equal the plain probe datapath for every N.
+// pair) and Sampler::sample's dispatch equal the plain probe datapath for every N.
 TEST(AnisoSampler, FastProbePathsEqualTheProbeDatapath) {
   std::mt19937 rng(8);
   std::uniform_real_distribution<float> coord(-2.0f, 2.0f), len(0.05f, 40.0f), angle(0.0f, 6.2831853f);

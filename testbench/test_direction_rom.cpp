@@ -89,22 +89,22 @@ TEST(DirectionRom, ChoosableWordsAreTheRomsNeverFlags) {
 
 TEST(DirectionRom, HandDerivedCodes) {
   const auto& h = direction_weight_rom(0);  // C4-C5, horizontal, ROI 0.5
-  // xf4 = yf4 = 0: d = 1/32, w = 1/(1 - 1/16) = 16/15, code round(17.07) = 17.
+  // fu4 = fv4 = 0: d = 1/32, w = 1/(1 - 1/16) = 16/15, code round(17.07) = 17.
   EXPECT_EQ(h[0x00], 17);
-  // yf4 = 7: d = 15/32, w = 1/(1 - 15/16) = 16, code 256 saturates at 254.
+  // fv4 = 7: d = 15/32, w = 1/(1 - 15/16) = 16, code 256 saturates at 254.
   EXPECT_EQ(h[0x70], 254);
-  // yf4 = 8: d = 17/32 > 1/2: never choose.
+  // fv4 = 8: d = 17/32 > 1/2: never choose.
   EXPECT_EQ(h[0x80], kNeverChoose);
-  // C4-C8 vertical at xf4 = 3: d = 7/32, w = 1/(1 - 7/16) = 16/9, code round(28.44) = 28.
+  // C4-C8 vertical at fu4 = 3: d = 7/32, w = 1/(1 - 7/16) = 16/9, code round(28.44) = 28.
   EXPECT_EQ(direction_weight_rom(2)[0x03], 28);
   EXPECT_EQ(decode_weight(16), 1.0);
   EXPECT_TRUE(std::isinf(decode_weight(kNeverChoose)));
 }
 
 TEST(DirectionRom, CentreDiagonalsAreChosenNearTheirLine) {
-  // On the C4-C9 diagonal (xf = yf) the distance is 0: weight 1.
+  // On the C4-C9 diagonal (fu = fv) the distance is 0: weight 1.
   for (int k = 0; k < 16; ++k) EXPECT_EQ(direction_weight_rom(4)[static_cast<size_t>(k * 17)], 16);
-  // C5-C8 (xf + yf = 1): address (yf4, xf4) with xf4 + yf4 = 15.
+  // C5-C8 (fu + fv = 1): address (fv4, fu4) with fu4 + fv4 = 15.
   for (int k = 0; k < 16; ++k) EXPECT_EQ(direction_weight_rom(5)[static_cast<size_t>((k << 4) | (15 - k))], 16);
 }
 
@@ -113,16 +113,16 @@ TEST(DirectionRom, EndpointsDifferByExactlyOneOnTheBlendAxis) {
     const TexelPos p = texel_pos(d.p), q = texel_pos(d.q);
     const int dt = d.axis == BlendAxis::X ? q.x - p.x : q.y - p.y;
     EXPECT_EQ(dt, 1) << d.name();
-    // x takes precedence: t = yf only when the x coordinates are not exactly {0, 1}.
+    // x takes precedence: t = fv only when the x coordinates are not exactly {0, 1}.
     if (d.axis == BlendAxis::Y) {
       EXPECT_FALSE(std::min(p.x, q.x) == 0 && std::max(p.x, q.x) == 1) << d.name();
     }
     EXPECT_EQ(d.index, &d - directions().data());
   }
   // The brief's examples and the centre diagonals.
-  EXPECT_EQ(directions()[14].p, 3);  // C3-C9: t = yf, Cp = C3
+  EXPECT_EQ(directions()[14].p, 3);  // C3-C9: t = fv, Cp = C3
   EXPECT_EQ(directions()[14].axis, BlendAxis::Y);
-  EXPECT_EQ(directions()[18].p, 1);  // C1-C9: t = xf, Cp = C1
+  EXPECT_EQ(directions()[18].p, 1);  // C1-C9: t = fu, Cp = C1
   EXPECT_EQ(directions()[18].axis, BlendAxis::X);
   EXPECT_EQ(directions()[4].axis, BlendAxis::X);  // C4-C9
   EXPECT_EQ(directions()[5].axis, BlendAxis::X);  // C5-C8: Cp = C8 (x = 0)
@@ -130,9 +130,9 @@ TEST(DirectionRom, EndpointsDifferByExactlyOneOnTheBlendAxis) {
 }
 
 TEST(DirectionRom, DistanceHandValues) {
-  EXPECT_DOUBLE_EQ(distance_to_direction(0, 0.25, 0.3), 0.3);              // C4-C5: d = yf
-  EXPECT_DOUBLE_EQ(distance_to_direction(1, 0.25, 0.3), 0.7);              // C8-C9: d = 1 - yf
-  EXPECT_DOUBLE_EQ(distance_to_direction(3, 0.25, 0.3), 0.75);             // C5-C9: d = 1 - xf
+  EXPECT_DOUBLE_EQ(distance_to_direction(0, 0.25, 0.3), 0.3);              // C4-C5: d = fv
+  EXPECT_DOUBLE_EQ(distance_to_direction(1, 0.25, 0.3), 0.7);              // C8-C9: d = 1 - fv
+  EXPECT_DOUBLE_EQ(distance_to_direction(3, 0.25, 0.3), 0.75);             // C5-C9: d = 1 - fu
   EXPECT_NEAR(distance_to_direction(4, 1.0, 0.0), std::sqrt(0.5), 1e-15);  // C4-C9 to corner C5
   EXPECT_NEAR(distance_to_direction(6, 0.0, 0.0), std::sqrt(0.5), 1e-15);  // C1-C5 to C4
   EXPECT_NEAR(distance_to_direction(14, 0.0, 0.0), 1.0 / std::sqrt(5.0), 1e-15);  // C3-C9 to C4
@@ -143,8 +143,8 @@ TEST(DirectionRom, DistanceHandValues) {
   EXPECT_DOUBLE_EQ(exact_weight(0, 0.5, 0.25), 2.0);    // d = ROI / 2: w = 2
 }
 
-// Exact integer form, independent of floating point: with X = 32 xf = 2 xf4 + 1 and
-// Y = 32 yf = 2 yf4 + 1, C = (X - 32 px) uy - (Y - 32 py) ux is an integer (u = Cq - Cp), and since
+// Exact integer form, independent of floating point: with X = 32 fu = 2 fu4 + 1 and
+// Y = 32 fv = 2 fv4 + 1, C = (X - 32 px) uy - (Y - 32 py) ux is an integer (u = Cq - Cp), and since
 // ROI = 1 / (2 |u|) for all three families, d / ROI = |C| / 16 exactly. Hence
 // d >= ROI <=> |C| >= 16, and otherwise w = 16 / (16 - |C|), code = round(256 / (16 - |C|)).
 TEST(DirectionRom, ExactIntegerFormAndNeverChooseIffOutsideRoi) {
@@ -257,15 +257,15 @@ TEST(RomDump, DirectionHexAndCsvParseBack) {
   n = 0;
   while (std::getline(c, line)) {
     std::istringstream f(line);
-    std::string dir, addr, xf, yf, code;
+    std::string dir, addr, fu, fv, code;
     std::getline(f, dir, ',');
     std::getline(f, addr, ',');
-    std::getline(f, xf, ',');
-    std::getline(f, yf, ',');
+    std::getline(f, fu, ',');
+    std::getline(f, fv, ',');
     std::getline(f, code, ',');
     ASSERT_EQ(std::stoi(dir), 7);
     ASSERT_EQ(std::stoi(addr), n);
-    ASSERT_EQ(std::stoi(xf) + 16 * std::stoi(yf), n);
+    ASSERT_EQ(std::stoi(fu) + 16 * std::stoi(fv), n);
     ASSERT_EQ(std::stoi(code), direction_weight_rom(7)[static_cast<size_t>(n)]);
     ++n;
   }

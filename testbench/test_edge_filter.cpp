@@ -25,11 +25,11 @@ std::array<Texel4, kTexels> vertical_edge() {
 TEST(EdgeFilter, VerticalEdgeStaysSharp) {
   const auto c = vertical_edge();
   EdgeDecision d;
-  // xf4 = 7 (x = 0.47): C4-C8 lies within its ROI, dP = 0 -> low part 0, high part 0.
+  // fu4 = 7 (x = 0.47): C4-C8 lies within its ROI, dP = 0 -> low part 0, high part 0.
   EXPECT_EQ(edge_preserving_interpolate(c, kAllTexels, 120, 64, TexelFormat::RGBA8, &d)[0], 0);
   EXPECT_EQ(directions()[static_cast<size_t>(d.direction)].name(), "C4-C8");
   EXPECT_EQ(d.cost, 0u);
-  // xf4 = 8 (x = 0.53): C4-C8 is out of its ROI; C5-C9 wins -> 255. Bilinear would give 128..136.
+  // fu4 = 8 (x = 0.53): C4-C8 is out of its ROI; C5-C9 wins -> 255. Bilinear would give 128..136.
   EXPECT_EQ(edge_preserving_interpolate(c, kAllTexels, 136, 64, TexelFormat::RGBA8, &d)[0], 255);
   EXPECT_EQ(directions()[static_cast<size_t>(d.direction)].name(), "C5-C9");
   // Alpha is carried (constant 255 here).
@@ -38,12 +38,12 @@ TEST(EdgeFilter, VerticalEdgeStaysSharp) {
 
 TEST(EdgeFilter, HighFrequencyPartRestoresAnIsolatedTexel) {
   // A single bright texel C4 in black: every median removes it (low part 0 everywhere), so the
-  // result is the bilinear high part alone: H4 = 255 with weight (1 - xf)(1 - yf).
+  // result is the bilinear high part alone: H4 = 255 with weight (1 - fu)(1 - fv).
   std::array<Texel4, kTexels> c{};
   for (auto& t : c) t = {0, 0, 0, 255};
   c[3] = {255, 255, 255, 255};
   EXPECT_EQ(edge_preserving_interpolate(c, kAllTexels, 0, 0, TexelFormat::RGBA8)[0], 255);
-  // xf = yf = 128: 255 / 4 = 63.75 -> 64 (round half up on the Q.16 sum)
+  // fu = fv = 128: 255 / 4 = 63.75 -> 64 (round half up on the Q.16 sum)
   EXPECT_EQ(edge_preserving_interpolate(c, kAllTexels, 128, 128, TexelFormat::RGBA8)[0], 64);
 }
 
@@ -61,10 +61,10 @@ TEST(EdgeFilter, ShapesNeverReadUnavailableTexels) {
           b[static_cast<size_t>(n)] = {0, 255, 0, 255};
         }
       }
-      const uint32_t xf = rng() % 256, yf = rng() % 256;
+      const uint32_t fu = rng() % 256, fv = rng() % 256;
       EdgeDecision da, db;
-      const Texel4 ra = edge_preserving_interpolate(a, shape.mask, xf, yf, TexelFormat::RGBA8, &da);
-      const Texel4 rb = edge_preserving_interpolate(b, shape.mask, xf, yf, TexelFormat::RGBA8, &db);
+      const Texel4 ra = edge_preserving_interpolate(a, shape.mask, fu, fv, TexelFormat::RGBA8, &da);
+      const Texel4 rb = edge_preserving_interpolate(b, shape.mask, fu, fv, TexelFormat::RGBA8, &db);
       ASSERT_EQ(ra, rb) << shape.name();
       ASSERT_EQ(da.direction, db.direction);
       ASSERT_EQ(da.read & ~shape.mask, 0) << shape.name();

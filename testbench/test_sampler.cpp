@@ -245,8 +245,8 @@ TEST(Properties, FixedPointCloseToIdeal) {
   }
 }
 
-// The LINEAR fast path of Sampler::sample and the generic datapath (sample_channels) agree bit for bit.
-TEST(Properties, LinearFastPathEqualsGenericPath) {
+// The LINEAR fast path of Sampler::sample and the plain datapath (sample_channels) agree bit for bit.
+TEST(Properties, LinearFastPathEqualsPlainPath) {
   Texture t = random_texture(37, 21, 3);
   generate_mipmaps(t, MipMethod::Box);
   std::mt19937 rng(6);
@@ -397,10 +397,10 @@ TEST(Properties, BatchEqualsSample) {
 }
 
 // Every fast path of Sampler::sample (LINEAR, CUBIC and EDGE_PRESERVING, each specialized per pair
-// of wrap modes and for MIP-mapping) agrees bit for bit with the generic datapath (sample_channels),
+// of wrap modes and for MIP-mapping) agrees bit for bit with the plain datapath (sample_channels),
 // on power-of-two and other extents, over random requests: ordinary coordinates, and random float
 // bit patterns (huge, tiny, denormal, infinite, NaN) for the address generator's uncommon cases.
-TEST(Properties, FastPathsEqualGenericPath) {
+TEST(Properties, FastPathsEqualPlainPath) {
   std::mt19937 rng(21);
   std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
   std::uniform_int_distribution<int32_t> lam(-512, 9 * 256);

@@ -69,9 +69,9 @@ void expect_golden(const Frame& frame, const Trace& tr, const UnitOutput& got, c
 }
 
 UnitOutput run_one(const Texture& tex, const SamplerDescriptor& cfg, const Trace& tr, const UnitConfig& u,
-                   std::ostream* vcd = nullptr) {
+                   std::ostream* vcd = nullptr, const ClockedOptions& clocked = {}) {
   const OneTexture one = one_texture(tex, cfg, tr, u);
-  return run_unit(one.frame, one.trace, u, vcd);
+  return run_unit(one.frame, one.trace, u, VcdOptions{vcd}, clocked);
 }
 
 // Runs the unit and checks every pixel against the golden model; returns the run.
@@ -356,10 +356,8 @@ TEST(TfuUnit, IdleSkippingChangesNothing) {
     u.memory.latency = 300;  // memory-bound: long idle stretches
     u.memory.bytes_per_cycle = 4;
     u.miss_fifo_depth = 8;
-    u.idle_skip = false;
-    const UnitOutput slow = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
-    u.idle_skip = true;
-    const UnitOutput fast = run_one(*mesh.stages[0].texture, cfg, st.trace, u);
+    const UnitOutput slow = run_one(*mesh.stages[0].texture, cfg, st.trace, u, nullptr, ClockedOptions{false});
+    const UnitOutput fast = run_one(*mesh.stages[0].texture, cfg, st.trace, u, nullptr, ClockedOptions{true});
     EXPECT_EQ(fast.pixels, slow.pixels) << mode;
     EXPECT_EQ(fast.response_cycle, slow.response_cycle) << mode;
     EXPECT_EQ(fast.cycles, slow.cycles) << mode;
@@ -376,11 +374,11 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
     const int range = it % 2 ? 256 : 3;  // small ranges: many equal costs, the tie-break decides
     for (auto& t : c) t = {static_cast<int32_t>(rng() % range), static_cast<int32_t>(rng() % range),
                            static_cast<int32_t>(rng() % range), 255};
-    const uint32_t xf = rng() % 256, yf = rng() % 256;
+    const uint32_t fu = rng() % 256, fv = rng() % 256;
     for (const lee_jen::KernelShape& s : lee_jen::kernel_shapes()) {
       const lee_jen::LowIndex low = lee_jen::median_low_pass(lee_jen::luma_keys(c, s.mask, TexelFormat::RGBA8), s.mask);
-      const lee_jen::EdgeDecision want = lee_jen::select_direction(c, low, s.mask, xf, yf, TexelFormat::RGBA8);
-      const lee_jen::EdgeDecision got = direction_select(c, low, s.mask, xf, yf, TexelFormat::RGBA8);
+      const lee_jen::EdgeDecision want = lee_jen::select_direction(c, low, s.mask, fu, fv, TexelFormat::RGBA8);
+      const lee_jen::EdgeDecision got = direction_select(c, low, s.mask, fu, fv, TexelFormat::RGBA8);
       ASSERT_EQ(got.direction, want.direction) << s.name();
       ASSERT_EQ(got.cost, want.cost);
     }
@@ -445,9 +443,10 @@ Texture l8_linear_checkerboard() {
 }
 
 // A random unit configuration around `base` (its line size kept): channel and miss-FIFO depths
-// down to 1, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping,
-// idle skipping; so that stalls of every kind, back-pressure included, occur.
-UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base) {
+// down to 1, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping;
+// so that stalls of every kind, back-pressure included, occur. `clocked`, if given, receives a
+// random idle-skip option of the clocked run (drawn either way: the same configurations follow).
+UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, ClockedOptions* clocked = nullptr) {
   UnitConfig c = base;
   const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
   c.channel_depth = pick({1, 1, 2, 3, 4});
@@ -459,7 +458,8 @@ UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base) {
   c.cache.capacity_bytes = c.cache.line_bytes * c.cache.ways * pick({1, 2, 8, 32});
   c.cache.banks = pick({1, 4});
   c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
-  c.idle_skip = rng() % 2 != 0;
+  const bool idle_skip = rng() % 2 != 0;
+  if (clocked) clocked->idle_skip = idle_skip;
   return c;
 }
 
@@ -574,15 +574,14 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
       };
       same_as_clocked(u, got, "default");
       for (int k = 0; k < 12; ++k) {
-        const UnitConfig c = random_unit_config(rng, u);
+        ClockedOptions opt;
+        const UnitConfig c = random_unit_config(rng, u, &opt);
         const std::string what = fmt::format("line {} {} config {}: {}", line, trace_mode_name(mode), k, unit_config_to_json(c));
-        const UnitOutput clocked = run_unit(frame, tr, c);
+        const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
         expect_golden(frame, tr, clocked, what);
         // Idle-cycle skipping changes nothing (it once jumped over a cycle in which the texel
         // cache could act: a head whose lines arrived, or a port that freed, that very cycle).
-        UnitConfig other_skip = c;
-        other_skip.idle_skip = !c.idle_skip;
-        const UnitOutput other = run_unit(frame, tr, other_skip);
+        const UnitOutput other = run_unit(frame, tr, c, VcdOptions{}, ClockedOptions{!opt.idle_skip});
         EXPECT_EQ(other.response_cycle, clocked.response_cycle) << what;
         EXPECT_EQ(other.stats.json_text(), clocked.stats.json_text()) << what;
         same_as_clocked(c, clocked, what);
@@ -685,11 +684,12 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   bind_requests(b, tr);
   const Frame frame = b.finish();
   for (int k = 0; k < 10; ++k) {
-    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4));
+    ClockedOptions opt;
+    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
     const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
     const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
     const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
-    const UnitOutput clocked = run_unit(frame, tr, c);
+    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
     expect_golden(frame, tr, quad_path, what);
     for (const UnitOutput* other : {&plain, &clocked}) {
       EXPECT_EQ(quad_path.pixels, other->pixels) << what;

@@ -42,7 +42,7 @@ void list_directions(std::ostream& os) {
   os << '\n';
   for (const Direction& d : directions()) {
     os << fmt::format("| {} | {} | {} | C{} | C{} | {:.4f} | {} |", d.index, d.name(), d.family(), d.p, d.q, d.roi,
-                      d.axis == BlendAxis::X ? "xf" : "yf");
+                      d.axis == BlendAxis::X ? "xf" : "yf");  // the paper's names of fu, fv
     for (const auto& s : shapes) os << (usable_directions(s.mask) >> d.index & 1u ? " yes |" : " - |");
     os << '\n';
   }

@@ -86,9 +86,10 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
       const LodInfo li = smp.lod_info(lod.lambda_q8);
       // Px and Py: the axis lengths of the footprint in level-0 texels (floor(sqrt) in Q.16; 0 in
       // lod traces, which have no derivatives), N the probes per pixel.
-      os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{},{:.8g},{:.8g},{}\n", li.lambda_q8 / 256.0, li.magnify ? 1 : 0,
-                        li.level0, li.level1, li.blend / 256.0, li.level0_width, li.level0_height, li.kernel_scale,
-                        axis_length_q16(lod.px2_q32) / 65536.0, axis_length_q16(lod.py2_q32) / 65536.0, lod.probes);
+      os << fmt::format("{:.8g},{},{},{},{:.8g},{},{},{},{:.8g},{:.8g},{}\n", li.lambda_clamped_q8 / 256.0,
+                        li.magnify ? 1 : 0, li.level0, li.level1, li.blend / 256.0, li.level0_width, li.level0_height,
+                        li.kernel_scale, axis_length_q16(lod.px2_q32) / 65536.0, axis_length_q16(lod.py2_q32) / 65536.0,
+                        lod.probes);
     } else if (o.ideal) {
       const auto v = ideal_sample(smp, tr, i, lod.lambda_q8);
       os << fmt::format("{:.6f},{:.6f},{:.6f},{:.6f}\n", v[0], v[1], v[2], v[3]);

@@ -81,7 +81,7 @@ tfu::SamplerDescriptor make_sampler(ByteReader& in) {
   return c;
 }
 
-tfu::rtl::UnitConfig make_unit(ByteReader& in) {
+tfu::rtl::UnitConfig make_unit(ByteReader& in, tfu::rtl::ClockedOptions& clocked) {
   tfu::rtl::UnitConfig u;
   u.cache.line_bytes = in.pick({64, 256, 1024});
   u.cache.ways = static_cast<int>(in.in_range(1, 8));
@@ -94,7 +94,7 @@ tfu::rtl::UnitConfig make_unit(ByteReader& in) {
   u.channel_depth = static_cast<int>(in.in_range(1, 4));
   u.miss_fifo_depth = static_cast<int>(in.in_range(1, 16));
   u.filter_lanes = in.pick({1, 2, 4});
-  u.idle_skip = u.memory.latency > 1000 || !in.flag();  // without skipping, a 10^6-cycle miss is slow
+  clocked.idle_skip = u.memory.latency > 1000 || !in.flag();  // without skipping, a 10^6-cycle miss is slow
   return u;
 }
 
@@ -133,7 +133,8 @@ tfu::Trace make_trace(ByteReader& in, tfu::FrameBuilder& fb, int textures, int s
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size > 8192) return 0;
   ByteReader in(data, size);
-  const tfu::rtl::UnitConfig unit = make_unit(in);
+  tfu::rtl::ClockedOptions clocked;
+  const tfu::rtl::UnitConfig unit = make_unit(in, clocked);
   tfu::Frame frame;
   tfu::Trace trace;
   try {
@@ -149,7 +150,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   tfu::rtl::UnitOutput got;
   try {
-    got = tfu::rtl::run_unit(frame, trace, unit);
+    got = tfu::rtl::run_unit(frame, trace, unit, tfu::rtl::VcdOptions{}, clocked);
   } catch (const tfu::InputError&) {
     return 0;  // a frame the unit refuses
   }

@@ -78,13 +78,13 @@ std::string edge_pkg_sv() {
   s += fmt::format(
       "// The 22 measured directions of Lee & Jen 2003 (Eq. 1-3), in the order of lee_jen::directions()\n"
       "// (cmodel/direction_rom.hpp), which is also the tie order of the direction select (lowest wins).\n"
-      "// Direction i: C_low = ((256 - t) Cp_low + t Cq_low + 128) >> 8 (Eq. 3), t = xf or yf.\n"
+      "// Direction i: C_low = ((256 - t) Cp_low + t Cq_low + 128) >> 8 (Eq. 3), t = fu or fv.\n"
       "//    i  Cp  Cq   blend     family\n"
       "{}"
       "// DIR_P / DIR_Q: texel number (1..12) of Cp / Cq of direction i at bits [4i +: 4];\n"
-      "// DIR_AXIS_Y: bit i = 1 when t = yf.\n"
+      "// DIR_AXIS_Y: bit i = 1 when t = fv.\n"
       "// CENTRE: texel numbers of the centre square (lee_jen::kCentreSquare:{}), in the order of the\n"
-      "// bilinear weights of Eq. 5 ((1 - xf)(1 - yf), xf (1 - yf), (1 - xf) yf, xf yf), k-th at [4k +: 4].\n"
+      "// bilinear weights of Eq. 5 ((1 - fu)(1 - fv), fu (1 - fv), (1 - fu) fv, fu fv), k-th at [4k +: 4].\n"
       "// Not every consumer uses every constant: UNUSEDPARAM is waived for this package only.\n"
       "/* verilator lint_off UNUSEDPARAM */\n"
       "package tfu_edge_pkg;\n"
@@ -108,16 +108,16 @@ std::string dir_rom_sv(int dir) {
       "// Direction-weight ROM of direction {} ({}, {}; Lee & Jen Eq. 2, Sec. 6), from\n"
       "// lee_jen::direction_weight_rom({}): w = 1 / (1 - d/ROI) in unsigned 4.4, 255 = never choose.\n"
       "// Ports:\n"
-      "//   xf, yf [3:0]  the 4-bit fractions (top nibbles of the 8-bit xf, yf); address {{yf, xf}}\n"
+      "//   fu, fv [3:0]  the 4-bit fractions (top nibbles of the 8-bit fu, fv); address {{fv, fu}}\n"
       "//   w      [7:0]  weight code\n"
       "// Combinational; an always_comb case table over all 256 addresses.\n"
       "module {} (\n"
-      "  input  logic [3:0] xf,\n"
-      "  input  logic [3:0] yf,\n"
+      "  input  logic [3:0] fu,\n"
+      "  input  logic [3:0] fv,\n"
       "  output logic [7:0] w\n"
       ");\n"
       "  always_comb begin\n"
-      "    case ({{yf, xf}})\n",
+      "    case ({{fv, fu}})\n",
       dir, d.name(), d.family(), dir, rom_module_name(dir));
   for (int a = 0; a < 256; ++a) s += fmt::format("      8'd{}: w = 8'd{};\n", a, rom[static_cast<size_t>(a)]);
   s +=
@@ -132,16 +132,16 @@ std::string dir_roms_sv() {
   s += fmt::format(
       "// The {} direction-weight ROMs (tfu_edge_dir_rom_NN.sv) on one address.\n"
       "// Ports:\n"
-      "//   xf, yf [3:0]    4-bit fractions\n"
+      "//   fu, fv [3:0]    4-bit fractions\n"
       "//   w      [{}:0]  code of direction i at bits [8i +: 8]\n"
       "module tfu_edge_dir_roms (\n"
-      "  input  logic [3:0]   xf,\n"
-      "  input  logic [3:0]   yf,\n"
+      "  input  logic [3:0]   fu,\n"
+      "  input  logic [3:0]   fv,\n"
       "  output logic [{}:0] w\n"
       ");\n",
       lj::kDirections, 8 * lj::kDirections - 1, 8 * lj::kDirections - 1);
   for (int i = 0; i < lj::kDirections; ++i)
-    s += fmt::format("  {} u_rom_{:02d} (.xf(xf), .yf(yf), .w(w[{} +: 8]));\n", rom_module_name(i), i, 8 * i);
+    s += fmt::format("  {} u_rom_{:02d} (.fu(fu), .fv(fv), .w(w[{} +: 8]));\n", rom_module_name(i), i, 8 * i);
   s += "endmodule\n";
   return s;
 }

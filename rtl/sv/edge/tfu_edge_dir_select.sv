@@ -2,7 +2,7 @@
 // with lee_jen::select_direction (cmodel/edge_filter.cpp):
 //   dP_i   = |dR| + |dG| + |dB| between the low-pass endpoints Cp_low, Cq_low of direction i
 //            (10 bits, 0..765)
-//   w_i    = direction ROM i at {yf4, xf4} (gen/tfu_edge_dir_rom_NN.sv; 8 bits, 4.4, 255 = never)
+//   w_i    = direction ROM i at {fv4, fu4} (gen/tfu_edge_dir_rom_NN.sv; 8 bits, 4.4, 255 = never)
 //   cost_i = w_i * dP_i (18 bits, at most 254 * 765 = 194310)
 //   usable = both endpoints available in `shape` and w_i != 255
 //   dir    = argmin of cost_i over the usable directions, ties to the lowest index; if no direction
@@ -12,7 +12,7 @@
 // Ports:
 //   lowrgb [287:0]  R, G, B of Cn_low at bits [24(n-1) +: 24] (R in the low byte)
 //   shape  [11:0]   available texels, bit n-1 = Cn
-//   xf4, yf4 [3:0]  top nibbles of the 8-bit fractions (the ROM address)
+//   fu4, fv4 [3:0]  top nibbles of the 8-bit fractions (the ROM address)
 //   dir    [4:0]    chosen direction index, 0..21
 //   cost   [17:0]   its cost w * dP
 //
@@ -23,8 +23,8 @@
 module tfu_edge_dir_select (
   input  logic [287:0] lowrgb,
   input  logic [11:0]  shape,
-  input  logic [3:0]   xf4,
-  input  logic [3:0]   yf4,
+  input  logic [3:0]   fu4,
+  input  logic [3:0]   fv4,
   output logic [4:0]   dir,
   output logic [17:0]  cost
 );
@@ -32,7 +32,7 @@ module tfu_edge_dir_select (
   localparam logic [4*NDIR-1:0] DIR_P = tfu_edge_pkg::DIR_P;
   localparam logic [4*NDIR-1:0] DIR_Q = tfu_edge_pkg::DIR_Q;
   logic [8*NDIR-1:0] w;
-  tfu_edge_dir_roms u_roms (.xf(xf4), .yf(yf4), .w(w));
+  tfu_edge_dir_roms u_roms (.fu(fu4), .fv(fv4), .w(w));
 
   function automatic logic [9:0] absdiff(input logic [7:0] a, input logic [7:0] b);
     absdiff = a > b ? {2'b00, a - b} : {2'b00, b - a};

@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < n; ++i) {
       const tfu::EdgeFootprint& f = fps[i % fps.size()];
-      cpp[i] = pack(lj::edge_preserving_interpolate(f.texels, f.mask, f.xf, f.yf, tfu::TexelFormat::RGBA8));
+      cpp[i] = pack(lj::edge_preserving_interpolate(f.texels, f.mask, f.fu, f.fv, tfu::TexelFormat::RGBA8));
     }
     const double t_cpp = seconds_since(t0);
 
@@ -95,8 +95,8 @@ int main(int argc, char** argv) {
         const tfu::EdgeFootprint& f = fps[i % fps.size()];
         for (size_t k = 0; k < f.texels.size(); ++k) m.texels[k] = pack(f.texels[k]);
         m.shape = f.mask;
-        m.xf = static_cast<uint8_t>(f.xf);
-        m.yf = static_cast<uint8_t>(f.yf);
+        m.fu = static_cast<uint8_t>(f.fu);
+        m.fv = static_cast<uint8_t>(f.fv);
       }
       m.clk = 1;
       m.eval();

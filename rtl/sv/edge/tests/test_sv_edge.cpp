@@ -140,15 +140,15 @@ TEST(SvEdgeRom, EveryAddressOfEveryDirectionRomMatchesTheModel) {
   VerilatedContext ctx;
   Vtfu_edge_dir_roms m{&ctx};
   Mismatches bad;
-  for (uint32_t yf = 0; yf < 16; ++yf)
-    for (uint32_t xf = 0; xf < 16; ++xf) {
-      m.xf = static_cast<uint8_t>(xf);
-      m.yf = static_cast<uint8_t>(yf);
+  for (uint32_t fv = 0; fv < 16; ++fv)
+    for (uint32_t fu = 0; fu < 16; ++fu) {
+      m.fu = static_cast<uint8_t>(fu);
+      m.fv = static_cast<uint8_t>(fv);
       m.eval();
       for (int i = 0; i < lj::kDirections; ++i) {
-        const uint32_t want = lj::direction_weight_rom(i)[(yf << 4) | xf];
+        const uint32_t want = lj::direction_weight_rom(i)[(fv << 4) | fu];
         const uint32_t got = field(m.w, 8 * i, 8);
-        if (got != want) bad.add(fmt::format("direction {} xf4 {} yf4 {}: sv {} c++ {}", i, xf, yf, got, want));
+        if (got != want) bad.add(fmt::format("direction {} fu4 {} fv4 {}: sv {} c++ {}", i, fu, fv, got, want));
       }
     }
   EXPECT_EQ(bad.count, 0);
@@ -283,18 +283,18 @@ TEST(SvEdgeLowpass, SelectsTheMedianTexelOfEveryAvailableTexel) {
 struct DirSelectCheck {
   Vtfu_edge_dir_select& m;
   Mismatches& bad;
-  void operator()(const Texels& lowtex, lj::TexelMask shape, uint32_t xf, uint32_t yf) {
+  void operator()(const Texels& lowtex, lj::TexelMask shape, uint32_t fu, uint32_t fv) {
     for (int n = 1; n <= lj::kTexels; ++n) put(m.lowrgb, 24 * (n - 1), 24, pack(at(lowtex, n)) & 0xFFFFFFu);
     m.shape = shape;
-    m.xf4 = static_cast<uint8_t>(xf >> 4);
-    m.yf4 = static_cast<uint8_t>(yf >> 4);
+    m.fu4 = static_cast<uint8_t>(fu >> 4);
+    m.fv4 = static_cast<uint8_t>(fv >> 4);
     m.eval();
     lj::LowIndex identity{};
     for (int n = 1; n <= lj::kTexels; ++n) identity[static_cast<size_t>(n)] = n;
-    const lj::EdgeDecision want = lj::select_direction(lowtex, identity, shape, xf, yf, kFmt);
+    const lj::EdgeDecision want = lj::select_direction(lowtex, identity, shape, fu, fv, kFmt);
     if (static_cast<int>(m.dir) != want.direction || m.cost != want.cost)
-      bad.add(fmt::format("shape {:#05x} xf {} yf {} texels {}: sv dir {} cost {}, c++ dir {} cost {}", shape, xf, yf, str(lowtex),
-                          m.dir, m.cost, want.direction, want.cost));
+      bad.add(fmt::format("shape {:#05x} fu {} fv {} texels {}: sv dir {} cost {}, c++ dir {} cost {}", shape, fu, fv,
+                          str(lowtex), m.dir, m.cost, want.direction, want.cost));
   }
 };
 
@@ -321,19 +321,19 @@ TEST(SvEdgeDirSelect, CornersEveryShapeEveryRomAddress) {
   const Texel4 black{0, 0, 0, 0}, white{255, 255, 255, 255};
   for (const lj::KernelShape& shape : lj::kernel_shapes())
     for (uint32_t a = 0; a < 256; ++a) {
-      const uint32_t xf = (a & 15) << 4 | (a & 1 ? 15 : 0), yf = (a >> 4) << 4 | (a & 2 ? 15 : 0);
+      const uint32_t fu = (a & 15) << 4 | (a & 1 ? 15 : 0), fv = (a >> 4) << 4 | (a & 2 ? 15 : 0);
       Texels c{};
       c.fill(black);  // all equal: every cost 0, the lowest usable index wins
-      check(c, shape.mask, xf, yf);
+      check(c, shape.mask, fu, fv);
       c.fill(white);
-      check(c, shape.mask, xf, yf);
+      check(c, shape.mask, fu, fv);
       for (int n = 1; n <= lj::kTexels; ++n) c[static_cast<size_t>(n - 1)] = (n & 1) ? black : white;  // maximal dP
-      check(c, shape.mask, xf, yf);
+      check(c, shape.mask, fu, fv);
       for (int n = 1; n <= lj::kTexels; ++n) c[static_cast<size_t>(n - 1)] = lj::texel_pos(n).x < 1 ? black : white;
-      check(c, shape.mask, xf, yf);
+      check(c, shape.mask, fu, fv);
       for (int n = 1; n <= lj::kTexels; ++n) c[static_cast<size_t>(n - 1)] = lj::texel_pos(n).y < 1 ? white : black;
-      check(c, shape.mask, xf, yf);
-      check(random_texels(rng), shape.mask, xf, yf);
+      check(c, shape.mask, fu, fv);
+      check(random_texels(rng), shape.mask, fu, fv);
     }
   EXPECT_EQ(bad.count, 0);
 }
@@ -342,21 +342,22 @@ TEST(SvEdgeDirSelect, CornersEveryShapeEveryRomAddress) {
 struct MergeCheck {
   Vtfu_edge_merge& m;
   Mismatches& bad;
-  void operator()(const Texels& c, const lj::LowIndex& low, int dir, uint32_t xf, uint32_t yf) {
+  void operator()(const Texels& c, const lj::LowIndex& low, int dir, uint32_t fu, uint32_t fv) {
     for (int n = 1; n <= lj::kTexels; ++n) m.lowtex[static_cast<size_t>(n - 1)] = pack(at(c, low[static_cast<size_t>(n)]));
     m.centre[0] = pack(at(c, 4));
     m.centre[1] = pack(at(c, 5));
     m.centre[2] = pack(at(c, 8));
     m.centre[3] = pack(at(c, 9));
     m.dir = static_cast<uint8_t>(dir);
-    m.xf = static_cast<uint8_t>(xf);
-    m.yf = static_cast<uint8_t>(yf);
+    m.fu = static_cast<uint8_t>(fu);
+    m.fv = static_cast<uint8_t>(fv);
     m.eval();
-    const Texel4 want = lj::edge_merge(c, low, dir, xf, yf, kFmt);
+    const Texel4 want = lj::edge_merge(c, low, dir, fu, fv, kFmt);
     if (m.c != pack(want)) {
       std::string lows;
       for (int n = 1; n <= lj::kTexels; ++n) lows += fmt::format(" {}", low[static_cast<size_t>(n)]);
-      bad.add(fmt::format("dir {} xf {} yf {} texels {} low{}: sv {} c++ {}", dir, xf, yf, str(c), lows, str(unpack(m.c)), str(want)));
+      bad.add(fmt::format("dir {} fu {} fv {} texels {} low{}: sv {} c++ {}", dir, fu, fv, str(c), lows,
+                          str(unpack(m.c)), str(want)));
     }
   }
 };
@@ -383,8 +384,8 @@ TEST(SvEdgeMerge, CornersEveryDirectionExtremeHighFrequency) {
   const Texel4 black{0, 0, 0, 0}, white{255, 255, 255, 255};
   static constexpr std::array<uint32_t, 7> kF{0, 1, 127, 128, 129, 254, 255};
   for (int dir = 0; dir < lj::kDirections; ++dir)
-    for (const uint32_t xf : kF)
-      for (const uint32_t yf : kF)
+    for (const uint32_t fu : kF)
+      for (const uint32_t fv : kF)
         for (int pattern = 0; pattern < 16; ++pattern) {
           // Centre texels black/white by the pattern bits, every low-pass texel the opposite colour
           // (H_n = +-255: the high-frequency sum at its extremes), plus all-equal texels.
@@ -400,9 +401,9 @@ TEST(SvEdgeMerge, CornersEveryDirectionExtremeHighFrequency) {
             c[static_cast<size_t>(n - 1)] = hi ? white : black;
             low[static_cast<size_t>(n)] = hi ? 1 : 2;  // C1 black, C2 white
           }
-          check(c, low, dir, xf, yf);
+          check(c, low, dir, fu, fv);
           c.fill(pattern & 1 ? white : black);
-          check(c, low, dir, xf, yf);
+          check(c, low, dir, fu, fv);
         }
   EXPECT_EQ(bad.count, 0);
 }
@@ -413,7 +414,7 @@ constexpr int kLatency = 3;  // clocks from a request at the inputs to its resul
 struct Request {
   Texels texels{};  // the model's view: zeros where the shape has no texel
   lj::TexelMask mask = lj::kAllTexels;
-  uint32_t xf = 0, yf = 0;
+  uint32_t fu = 0, fv = 0;
 };
 
 // Drives the top one request (or bubble) per clock and checks each result against the model's
@@ -437,8 +438,8 @@ class TopBench {
       for (int n = 1; n <= lj::kTexels; ++n)
         m_.texels[static_cast<size_t>(n - 1)] = has(r->mask, n) ? pack(at(r->texels, n)) : poison;
       m_.shape = r->mask;
-      m_.xf = static_cast<uint8_t>(r->xf);
-      m_.yf = static_cast<uint8_t>(r->yf);
+      m_.fu = static_cast<uint8_t>(r->fu);
+      m_.fv = static_cast<uint8_t>(r->fv);
     }
     inflight_.push_back({r != nullptr, want, r ? *r : Request{}});
     clock();
@@ -453,14 +454,14 @@ class TopBench {
         const tfu::Rgba8 got{static_cast<uint8_t>(m_.c & 255), static_cast<uint8_t>((m_.c >> 8) & 255),
                              static_cast<uint8_t>((m_.c >> 16) & 255), static_cast<uint8_t>(m_.c >> 24)};
         if (!(got == e.want))
-          bad.add(fmt::format("clock {}: shape {:#05x} xf {} yf {} texels {}: sv ({},{},{},{}) c++ ({},{},{},{})", clocks_, e.req.mask,
-                              e.req.xf, e.req.yf, str(e.req.texels), got.r, got.g, got.b, got.a, e.want.r, e.want.g, e.want.b,
-                              e.want.a));
+          bad.add(fmt::format("clock {}: shape {:#05x} fu {} fv {} texels {}: sv ({},{},{},{}) c++ ({},{},{},{})",
+                              clocks_, e.req.mask, e.req.fu, e.req.fv, str(e.req.texels), got.r, got.g, got.b, got.a,
+                              e.want.r, e.want.g, e.want.b, e.want.a));
       }
     }
   }
   void push(const Request& r, uint32_t poison = 0) {
-    push(&r, poison, tfu::encode_texel(lj::edge_preserving_interpolate(r.texels, r.mask, r.xf, r.yf, kFmt), kFmt));
+    push(&r, poison, tfu::encode_texel(lj::edge_preserving_interpolate(r.texels, r.mask, r.fu, r.fv, kFmt), kFmt));
   }
   void bubble() { push(nullptr, 0, {}); }
   void drain() {
@@ -490,8 +491,8 @@ class TopBench {
   uint64_t clocks_ = 0;
 };
 
-Request make_request(const Texels& c, lj::TexelMask mask, uint32_t xf, uint32_t yf) {
-  Request r{c, mask, xf, yf};
+Request make_request(const Texels& c, lj::TexelMask mask, uint32_t fu, uint32_t fv) {
+  Request r{c, mask, fu, fv};
   for (int n = 1; n <= lj::kTexels; ++n)
     if (!has(mask, n)) r.texels[static_cast<size_t>(n - 1)] = {0, 0, 0, 0};
   return r;
@@ -540,12 +541,12 @@ TEST(SvEdgeTop, CornersEveryShape) {
   static constexpr std::array<uint32_t, 6> kF{0, 1, 127, 128, 254, 255};
   uint64_t n_req = 0;
   for (const lj::KernelShape& shape : lj::kernel_shapes())
-    for (const uint32_t xf : kF)
-      for (const uint32_t yf : kF) {
+    for (const uint32_t fu : kF)
+      for (const uint32_t fv : kF) {
         Texels c{};
         for (const Texel4 fill : {black, white, Texel4{255, 0, 0, 255}, Texel4{0, 0, 255, 0}}) {
           c.fill(fill);  // all-equal texels: the result is the texel
-          tb.push(make_request(c, shape.mask, xf, yf), 0xFFFFFFFFu);
+          tb.push(make_request(c, shape.mask, fu, fv), 0xFFFFFFFFu);
           ++n_req;
         }
         for (int pat = 0; pat < 8; ++pat) {  // checkerboards, stripes, single outliers at 0 / 255
@@ -561,7 +562,7 @@ TEST(SvEdgeTop, CornersEveryShape) {
                                       : (rng() & 1);
             c[static_cast<size_t>(n - 1)] = b ? white : black;
           }
-          tb.push(make_request(c, shape.mask, xf, yf), 0x12345678u);
+          tb.push(make_request(c, shape.mask, fu, fv), 0x12345678u);
           ++n_req;
         }
       }
@@ -600,7 +601,7 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
       const tfu::TraceRequest& q = trace.requests[i];
       const tfu::EdgeFootprint fp = smp.edge_footprint(0, q.s, q.t);
       shapes.insert(fp.mask);
-      const Request r{fp.texels, fp.mask, fp.xf, fp.yf};
+      const Request r{fp.texels, fp.mask, fp.fu, fp.fv};
       tb.push(&r, 0xA5A5A5A5u, smp.sample(q.s, q.t, lambdas[i]));
     }
     tb.drain();
