@@ -220,7 +220,9 @@ TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
       const std::string what = fmt::format("{} line={} cap={} lat={} bw={} fifo={}", mode, c.line_bytes, c.capacity, c.latency,
                                            c.bandwidth, c.fifo);
       rtl::SceneSimResult r;
-      ASSERT_NO_THROW(r = rtl::simulate_scene(s, c.line_bytes == 64 ? render64 : render256, u, {})) << what;
+      rtl::SceneSimOptions so;
+      so.engine = rtl::UnitEngine::Clocked;  // the clocked unit's watchdog
+      ASSERT_NO_THROW(r = rtl::simulate_scene(s, c.line_bytes == 64 ? render64 : render256, u, so)) << what;
       EXPECT_TRUE(r.mismatch.empty()) << what;
       // Every miss waits at least the latency: the run is long (the old total cap, requests x 4096
       // + 10^6, and the old fixed 100,000-cycle watchdog failed the 10^6-cycle latencies).
