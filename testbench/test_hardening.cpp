@@ -1,4 +1,4 @@
-// The model under absurd configurations (TFU-I D1-D4, D15): cache configuration products never
+// The model under absurd configurations: cache configuration products never
 // wrap and every field is range-checked; the rasterizer never runs into undefined behaviour on
 // absurd screen positions; thread counts are checked and a refused thread does not abort; a valid
 // unit configuration never trips the watchdog, whatever its latency and bandwidth; the image does
@@ -27,7 +27,7 @@
 namespace tfu {
 namespace {
 
-// ---- D1: cache configuration ----
+// ---- Cache configuration ----
 
 TEST(CacheConfig, ExtremeValuesAreRangeErrorsNotCrashes) {
   constexpr int kMax = std::numeric_limits<int>::max(), kMin = std::numeric_limits<int>::min();
@@ -88,7 +88,7 @@ TEST(CacheConfig, UnitConfigFieldsAreRangeChecked) {
   EXPECT_EQ(err(R"({"memory": {"latency": 1e400}})"), "u.json: line 1, column 28: at memory.latency: number overflow parsing '1e400'");
 }
 
-// ---- D2: the rasterizer ----
+// ---- The rasterizer ----
 
 TEST(Raster, AbsurdScreenPositionsAreSkippedNotOverflowed) {
   const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
@@ -136,7 +136,7 @@ TEST(Raster, AbsurdScenesRenderOrAreRejected) {
   EXPECT_EQ(r.stats.triangles, 2);
 }
 
-// ---- D3: threads ----
+// ---- Threads ----
 
 TEST(Threads, CountsAreRangeChecked) {
   EXPECT_EQ(checked_thread_count("--threads", 256, true), 256);
@@ -190,7 +190,7 @@ TEST(Threads, ARefusedThreadLeavesTheWorkToTheOthers) {
                InputError);
 }
 
-// ---- D4: no false deadlock on valid configurations ----
+// ---- No false deadlock on valid configurations ----
 
 TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
   Scene s = load_scene("text_quad");
@@ -248,7 +248,7 @@ TEST(Watchdog, TheLimitCoversTheSlowestMemoryResponse) {
 namespace tfu {
 namespace {
 
-// D15 (docs/cycle-model.md "Units and threads"): the cycle model's image does not depend on the
+// Units (docs/cycle-model.md "Units and threads"): the cycle model's image does not depend on the
 // number of units (nor on threads: each unit is deterministic), except for EDGE_PRESERVING under
 // the cache-aware shape policy, whose T/L choices depend on what each unit's own cache holds.
 TEST(Units, TheImageDependsOnUnitsOnlyUnderCacheAwareShapes) {
