@@ -2,7 +2,8 @@
 // dp::probe_offset_on_level, dp::probe_texel_coord), for the golden model's anisotropic fast path
 // (sampler_fast.cpp, aniso_linear8). Equal to the plain units for every input
 // (AnisoProbes.FastOffsetUnitsEqualThePlainUnits); the plain units are the reference and what the
-// cycle model and the SystemVerilog use.
+// cycle model and the SystemVerilog use. Off with the fast-path switch (cmodel/fast_paths.hpp:
+// TFU_PLAIN=1, the CLI's --plain), which turns the whole anisotropic fast path off.
 //
 // The plain units round half away from zero in sign-magnitude form, sgn(x) ((|x| + 2^(k-1)) >> k).
 // In two's complement the same value is (x + 2^(k-1) - [x < 0]) >> k with an arithmetic shift

@@ -1,14 +1,11 @@
 // Per-stage arithmetic of the filter datapath, shared by the golden sampler (sampler.cpp) and the
 // cycle model's pipeline stages (rtl/): one definition of every width and rounding
-// (docs/sampler.md). Nothing here knows about cycles.
+// (docs/sampler.md). Nothing here knows about cycles. The fast paths' speed-only forms of these
+// units (on 8-bit texel words, wrap modes fixed at compile time) are in datapath_fast.hpp.
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cstdint>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "cmodel/fixed_coord.hpp"
 #include "cmodel/texture.hpp"
@@ -25,26 +22,6 @@ struct LevelCoord {
 [[gnu::always_inline]] inline LevelCoord texel_coord(float s, int size) {
   const int64_t u = float_to_fixed_fast(s, static_cast<uint32_t>(size), 8) - 128;
   return {u >> 8, static_cast<uint32_t>(u & 255)};
-}
-
-// Wrap unit for the n taps start, start + 1, ... of one row or column with the mode fixed at
-// compile time (wrap_run with the mode's branches folded away): repeat on a power-of-two extent
-// keeps the low bits, the clamps select per tap; anything else takes wrap_run.
-template <WrapMode kW, int n>
-[[gnu::always_inline]] inline void wrap_taps(int64_t start, int size, int* out) {
-  if constexpr (kW == WrapMode::Repeat) {
-    if ((size & (size - 1)) == 0) {
-      for (int k = 0; k < n; ++k) out[k] = static_cast<int>((start + k) & (size - 1));
-      return;
-    }
-  } else if constexpr (kW == WrapMode::ClampToEdge) {
-    for (int k = 0; k < n; ++k) out[k] = static_cast<int>(start + k < 0 ? 0 : start + k >= size ? size - 1 : start + k);
-    return;
-  } else if constexpr (kW == WrapMode::ClampToBorder) {
-    for (int k = 0; k < n; ++k) out[k] = start + k >= 0 && start + k < size ? static_cast<int>(start + k) : -1;
-    return;
-  }
-  wrap_run(kW, start, n, size, out);
 }
 
 // Bilinear lerp unit: c = (sum c w + 2^15) >> 16 with w = (256 - fu | fu)(256 - fv | fv) in Q.16;
@@ -71,100 +48,6 @@ inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
   Texel4 out{};
   for (size_t ch = 0; ch < 4; ++ch) out[ch] = (c0[ch] * (256 - f) + c1[ch] * f + 128) >> 8;
   return out;
-}
-
-// The same two units on 8-bit texel words (RGBA8, L8: channels 0..255, so the result needs no
-// clamp and encode_texel is the identity). Bit-identical to bilinear_lerp / level_blend followed by
-// encode_texel (tested, both forms of the lerp); written for software speed.
-//   bilinear: sum c w with w = (256 - fu | fu)(256 - fv | fv) = gv (a gu + b fu) + fv (c gu + d fu),
-//   a horizontal lerp at most 255 * 256 < 2^16, the vertical one < 2^24, then (+ 2^15) >> 16.
-// Portable form: two channels per 64-bit word, exact in 32-bit lanes.
-inline uint64_t word_lanes_rb(Rgba8 x) { return uint64_t{x.r} | (uint64_t{x.b} << 32); }  // (R, B)
-inline uint64_t word_lanes_ga(Rgba8 x) { return uint64_t{x.g} | (uint64_t{x.a} << 32); }  // (G, A)
-inline Rgba8 bilinear_lerp8_words(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
-  const uint64_t fu = fu_, fv = fv_, gu = 256 - fu, gv = 256 - fv;
-  constexpr uint64_t kHalf = (uint64_t{1} << 15) | (uint64_t{1} << 47);
-  const uint64_t rb = gv * (word_lanes_rb(a) * gu + word_lanes_rb(b) * fu) +
-                      fv * (word_lanes_rb(c) * gu + word_lanes_rb(d) * fu) + kHalf;
-  const uint64_t ga = gv * (word_lanes_ga(a) * gu + word_lanes_ga(b) * fu) +
-                      fv * (word_lanes_ga(c) * gu + word_lanes_ga(d) * fu) + kHalf;
-  return {static_cast<uint8_t>(rb >> 16), static_cast<uint8_t>(ga >> 16), static_cast<uint8_t>(rb >> 48),
-          static_cast<uint8_t>(ga >> 48)};
-}
-// With SSE2 (every x86-64) the four channels of one sample go side by side in 16-bit lanes, the
-// horizontal lerps (h0, h1) = (a, c) gu + (b, d) fu exact, the vertical one the biased pmaddwd of
-// bilinear_lerp8x4 below; elsewhere the portable form.
-[[gnu::always_inline]] inline Rgba8 bilinear_lerp8(Rgba8 a, Rgba8 b, Rgba8 c, Rgba8 d, uint32_t fu_, uint32_t fv_) {
-#if defined(__SSE2__)
-  const auto pair = [](Rgba8 x, Rgba8 y) {  // 16-bit lanes: x.r x.g x.b x.a y.r y.g y.b y.a
-    const __m128i w = _mm_unpacklo_epi32(_mm_cvtsi32_si128(std::bit_cast<int32_t>(x)), _mm_cvtsi32_si128(std::bit_cast<int32_t>(y)));
-    return _mm_unpacklo_epi8(w, _mm_setzero_si128());
-  };
-  const auto fu = static_cast<int16_t>(fu_);
-  const __m128i h = _mm_add_epi16(_mm_mullo_epi16(pair(a, c), _mm_set1_epi16(static_cast<int16_t>(256 - fu))),
-                                  _mm_mullo_epi16(pair(b, d), _mm_set1_epi16(fu)));  // (h0, h1) per channel
-  const __m128i hb = _mm_xor_si128(h, _mm_set1_epi16(static_cast<int16_t>(0x8000)));  // h - 2^15
-  const __m128i h01 = _mm_unpacklo_epi16(hb, _mm_srli_si128(hb, 8));                  // (h0, h1) pairs per channel
-  const __m128i v = _mm_madd_epi16(h01, _mm_set1_epi32(static_cast<int32_t>((uint32_t{fv_} << 16) | (256 - fv_))));
-  const __m128i ch = _mm_srli_epi32(_mm_add_epi32(v, _mm_set1_epi32((1 << 23) + (1 << 15))), 16);  // 4 x 0..255
-  const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(ch, ch), _mm_setzero_si128());
-  return std::bit_cast<Rgba8>(_mm_cvtsi128_si32(bytes));
-#else
-  return bilinear_lerp8_words(a, b, c, d, fu_, fv_);
-#endif
-}
-
-// Four bilinear lerp units side by side (lane k = request k, as the unit filters a 2x2 quad's
-// samples together): out[k] = bilinear_lerp8(a[k], b[k], c[k], d[k], fu[k], fv[k]), bit for bit
-// (tested over every fraction pair). With SSE2 (every x86-64) the lanes are 32-bit texel words:
-//   horizontal: h = a gu + b fu <= 255 * 256 < 2^16, exact in 16-bit lanes, (R, B) and (G, A);
-//   vertical:   h0 gv + h1 fv = pmaddwd([h0 - 2^15, h1 - 2^15], [gv, fv]) + 2^15 * 256 (gv + fv
-//               = 256), the biased h fitting signed 16 bits; then (+ 2^15) >> 16 as in the scalar unit.
-// Elsewhere, the scalar unit per lane.
-struct Quad8 {
-  std::array<Rgba8, 4> a, b, c, d;  // taps (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1) per lane
-  std::array<uint32_t, 4> fu, fv;   // 8-bit fractions per lane
-};
-#if defined(__SSE2__)
-// The four lanes in registers: a, b, c, d hold the lanes' texel words, fu and fv their fractions
-// in 32-bit lanes; returns the four result words.
-[[gnu::always_inline]] inline __m128i bilinear_lerp8x4_lanes(__m128i a, __m128i b, __m128i c, __m128i d, __m128i fu,
-                                                             __m128i fv) {
-  const __m128i lo8 = _mm_set1_epi32(0x00FF00FF);
-  const __m128i fu2 = _mm_or_si128(fu, _mm_slli_epi32(fu, 16));       // (fu, fu) per word
-  const __m128i gu2 = _mm_sub_epi16(_mm_set1_epi16(256), fu2);         // (256 - fu, 256 - fu)
-  const auto hlerp = [&](__m128i x, __m128i y, bool ga) {              // x gu + y fu - 2^15, 16-bit lanes
-    const __m128i xs = ga ? _mm_srli_epi16(x, 8) : _mm_and_si128(x, lo8);
-    const __m128i ys = ga ? _mm_srli_epi16(y, 8) : _mm_and_si128(y, lo8);
-    const __m128i h = _mm_add_epi16(_mm_mullo_epi16(xs, gu2), _mm_mullo_epi16(ys, fu2));
-    return _mm_xor_si128(h, _mm_set1_epi16(static_cast<int16_t>(0x8000)));
-  };
-  const __m128i gvfv = _mm_or_si128(_mm_sub_epi32(_mm_set1_epi32(256), fv), _mm_slli_epi32(fv, 16));
-  const __m128i wlo = _mm_unpacklo_epi32(gvfv, gvfv), whi = _mm_unpackhi_epi32(gvfv, gvfv);  // lanes 0-1, 2-3
-  const __m128i round = _mm_set1_epi32((1 << 23) + (1 << 15));
-  const auto vlerp = [&](__m128i h0, __m128i h1) {  // 16-bit channel results, lanes 0..3
-    const __m128i l = _mm_madd_epi16(_mm_unpacklo_epi16(h0, h1), wlo);
-    const __m128i h = _mm_madd_epi16(_mm_unpackhi_epi16(h0, h1), whi);
-    return _mm_packs_epi32(_mm_srli_epi32(_mm_add_epi32(l, round), 16), _mm_srli_epi32(_mm_add_epi32(h, round), 16));
-  };
-  const __m128i rb = vlerp(hlerp(a, b, false), hlerp(c, d, false));
-  const __m128i ga = vlerp(hlerp(a, b, true), hlerp(c, d, true));
-  return _mm_or_si128(rb, _mm_slli_epi16(ga, 8));
-}
-#endif
-inline void bilinear_lerp8x4(const Quad8& q, Rgba8* out) {
-#if defined(__SSE2__)
-  const auto lanes = [](const auto& w) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(w.data())); };
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
-                   bilinear_lerp8x4_lanes(lanes(q.a), lanes(q.b), lanes(q.c), lanes(q.d), lanes(q.fu), lanes(q.fv)));
-#else
-  for (size_t k = 0; k < 4; ++k) out[k] = bilinear_lerp8(q.a[k], q.b[k], q.c[k], q.d[k], q.fu[k], q.fv[k]);
-#endif
-}
-
-inline Rgba8 level_blend8(Rgba8 c0, Rgba8 c1, int f) {
-  const auto mix = [f](uint8_t p, uint8_t q) { return static_cast<uint8_t>((p * (256 - f) + q * f + 128) >> 8); };
-  return {mix(c0.r, c1.r), mix(c0.g, c1.g), mix(c0.b, c1.b), mix(c0.a, c1.a)};
 }
 
 // Cubic weight stage: the 2D weights of the separable tiled-ROM filter (T x T taps, T <= 4):

@@ -1,5 +1,5 @@
 // A Quake III level as a tfu::Scene: every drawn face with the material the game gives it, base
-// texture x light map (TFU-F item 2).
+// texture x light map, as the game draws it.
 //
 //   meshes     one per (base texture, light map) pair, in the order of its first drawn face; each
 //              holds the triangles of its faces in BSP face order (vertices copied: uv = uv0,

@@ -1,13 +1,16 @@
 // Speed-only fast paths of the golden sampler (no effect on results): sample() of LINEAR, CUBIC
 // and EDGE_PRESERVING on 8-bit formats, one instantiation per pair of wrap modes, their anisotropic
-// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they must equal bit for
-// bit is sampler.cpp (sample_channels); Properties.FastPathsEqualPlainPath and BatchEqualsSample compare them.
+// probe loops (N > 1), and LINEAR's sample_batch() on the 4-lane lerp unit. The plain datapath they
+// must equal bit for bit is sampler.cpp (sample_channels); Properties.FastPathsEqualPlainPath and
+// BatchEqualsSample compare them. Off with the fast-path switch (cmodel/fast_paths.hpp: TFU_PLAIN=1,
+// the CLI's --plain): a Sampler built then dispatches to the plain datapath only.
 #include <algorithm>
 #include <bit>
 #include <utility>
 
 #include "cmodel/aniso_fast.hpp"
 #include "cmodel/datapath.hpp"
+#include "cmodel/datapath_fast.hpp"
 #include "cmodel/edge_filter.hpp"
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/sampler.hpp"
@@ -46,7 +49,7 @@ template <bool kBorder>
 
 // LINEAR on one level of an 8-bit format: address, wrap and the four texel words of one footprint
 // (a LerpLane), as lane k of q, then the same arithmetic as filter_linear (one rounding of the Q.16
-// sum) in dp::bilinear_lerp8, or in dp::bilinear_lerp8x4 for four lanes. The result of 8-bit
+// sum) in dp::fast::bilinear_lerp8, or in dp::fast::bilinear_lerp8x4 for four lanes. The result of 8-bit
 // inputs is always within 0..255.
 // (Words as integers: a struct of Rgba8 members is copied byte by byte by GCC 12.)
 struct LerpLane {
@@ -56,15 +59,15 @@ struct LerpLane {
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline LerpLane lerp_lane(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
   int xs[2], ys[2];
-  dp::wrap_taps<kWs, 2>(u.i0, img.width, xs);
-  dp::wrap_taps<kWt, 2>(v.i0, img.height, ys);
+  dp::fast::wrap_taps<kWs, 2>(u.i0, img.width, xs);
+  dp::fast::wrap_taps<kWt, 2>(v.i0, img.height, ys);
   constexpr bool kB = kMayBorder<kWs, kWt>;
   const auto word = [&](int x, int y) { return std::bit_cast<uint32_t>(texel_word<kB>(img, x, y, border)); };
   return {word(xs[0], ys[0]), word(xs[1], ys[0]), word(xs[0], ys[1]), word(xs[1], ys[1]), u.f, v.f};
 }
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline void bilinear8_taps_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v, dp::Quad8& q,
-                                                     size_t k) {
+[[gnu::always_inline]] inline void bilinear8_taps_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v,
+                                                     dp::fast::Quad8& q, size_t k) {
   const LerpLane l = lerp_lane<kWs, kWt>(img, border, u, v);
   q.a[k] = std::bit_cast<Rgba8>(l.a);
   q.b[k] = std::bit_cast<Rgba8>(l.b);
@@ -74,14 +77,15 @@ template <WrapMode kWs, WrapMode kWt>
   q.fv[k] = l.fv;
 }
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::Quad8& q, size_t k) {
+[[gnu::always_inline]] inline void bilinear8_taps(LevelView img, Rgba8 border, float s, float t, dp::fast::Quad8& q,
+                                                  size_t k) {
   bilinear8_taps_at<kWs, kWt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height), q, k);
 }
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 bilinear8_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
   const LerpLane l = lerp_lane<kWs, kWt>(img, border, u, v);
-  return dp::bilinear_lerp8(std::bit_cast<Rgba8>(l.a), std::bit_cast<Rgba8>(l.b), std::bit_cast<Rgba8>(l.c),
-                           std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
+  return dp::fast::bilinear_lerp8(std::bit_cast<Rgba8>(l.a), std::bit_cast<Rgba8>(l.b), std::bit_cast<Rgba8>(l.c),
+                                 std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
 }
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
@@ -95,8 +99,8 @@ template <WrapMode kWs, WrapMode kWt>
                                             const dp::CubicNormalize& norm, LevelCoord u, LevelCoord v) {
   const int32_t* w = memo.weights(u.f, v.f);
   int col[4], row[4];
-  dp::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
-  dp::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
+  dp::fast::wrap_taps<kWs, 4>(u.i0 - 1, img.width, col);  // taps -1 .. 2
+  dp::fast::wrap_taps<kWt, 4>(v.i0 - 1, img.height, row);
   // (R, B) and (G, A) in signed 32-bit lanes, as in filter_tiled_acc_n: modular arithmetic keeps
   // x = low + high 2^32 exactly and each lane's true sum is below 2^31 in magnitude.
   // One row of taps per iteration (kept as a loop: fully unrolled, the compiler spills the 16
@@ -108,8 +112,8 @@ template <WrapMode kWs, WrapMode kWt>
     for (int i = 0; i < 4; ++i) {
       const Rgba8 c = texel_word<kMayBorder<kWs, kWt>>(img, col[i], row[j], border);
       const auto wt = static_cast<uint64_t>(static_cast<int64_t>(wr[i]));
-      arb += dp::word_lanes_rb(c) * wt;  // (R, B) and (G, A) in 32-bit lanes
-      aga += dp::word_lanes_ga(c) * wt;
+      arb += dp::fast::word_lanes_rb(c) * wt;  // (R, B) and (G, A) in 32-bit lanes
+      aga += dp::fast::word_lanes_ga(c) * wt;
     }
   }
   const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };
@@ -136,8 +140,8 @@ template <WrapMode kWs, WrapMode kWt>
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Texel4 edge8(LevelView img, Rgba8 border, TexelFormat fmt, int block, LevelCoord u, LevelCoord v) {
   int col[lee_jen::kGridSide], row[lee_jen::kGridSide];  // columns and rows -1 .. 2
-  dp::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
-  dp::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
+  dp::fast::wrap_taps<kWs, lee_jen::kGridSide>(u.i0 + lee_jen::kGridOrigin, img.width, col);
+  dp::fast::wrap_taps<kWt, lee_jen::kGridSide>(v.i0 + lee_jen::kGridOrigin, img.height, row);
   const lee_jen::TexelMask mask = block != 0 ? lee_jen::cache_block_mask_of_grid(col, row, block) : lee_jen::kAllTexels;
   std::array<Texel4, lee_jen::kTexels> c;
   for (size_t k = 0; k < c.size(); ++k) {
@@ -151,7 +155,7 @@ template <WrapMode kWs, WrapMode kWt>
 
 // Trilinear blend unit (dp::level_blend) and output encoding, for the 8-bit paths' texel words
 // (channels within 0..255, so encoding is the identity) and for datapath channels.
-inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::level_blend8(a, b, f); }
+inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::fast::level_blend8(a, b, f); }
 inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
 inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
 inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }
@@ -214,8 +218,8 @@ namespace {
 // level0. The averaging unit sums w_i c_i in 16-bit lanes (sum_i w_i c_i <= 256 * 255 < 2^16, and a
 // blend's p (256 - f) + q f + 128 <= 255 * 256 + 128 as well). A call's missing probes (N not a
 // multiple of its probes) repeat its first with weight 0. The same arithmetic as the plain probe
-// datapath (Sampler::sample_channels): dp::bilinear_lerp8x4_lanes equals bilinear_lerp8 per lane,
-// the blend is dp::level_blend8's, the probe offsets are the offset units' two's-complement forms
+// datapath (Sampler::sample_channels): dp::fast::bilinear_lerp8x4_lanes equals bilinear_lerp8 per lane,
+// the blend is dp::fast::level_blend8's, the probe offsets are the offset units' two's-complement forms
 // (aniso_fast.hpp: one multiply, then one add-and-shift per rounding, onto the centre's Q.8
 // coordinate formed once per pixel), and the result is AnisoAccumulator's (acc + 128) >> 8.
 // Returned as the output word: each probe is an output word of the 8-bit LINEAR path (on which
@@ -250,8 +254,8 @@ Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p
       const auto lane = [&](const LerpLane& x) { return static_cast<int32_t>(x.*field); };
       return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
     };
-    return dp::bilinear_lerp8x4_lanes(lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c), lanes(&LerpLane::d),
-                                      lanes(&LerpLane::fu), lanes(&LerpLane::fv));
+    return dp::fast::bilinear_lerp8x4_lanes(lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c),
+                                           lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv));
   };
   const auto weight = [&](int i, bool used) { return static_cast<int16_t>(used ? rom[i].weight : 0); };
   const __m128i zero = _mm_setzero_si128();
@@ -333,10 +337,10 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
   size_t i = 0;
   if constexpr (!kV.mipmapped) {
     const LevelView img(sm.tex_.levels[0]);
-    dp::Quad8 q;  // every lane is written before each use
+    dp::fast::Quad8 q;  // every lane is written before each use
     for (; i + 4 <= n; i += 4) {
       for (size_t k = 0; k < 4; ++k) bilinear8_taps<kV.ws, kV.wt>(img, border, req[i + k].s, req[i + k].t, q, k);
-      dp::bilinear_lerp8x4(q, out + i);
+      dp::fast::bilinear_lerp8x4(q, out + i);
     }
     for (; i < n; ++i) out[i] = bilinear8<kV.ws, kV.wt>(img, border, req[i].s, req[i].t);
   } else {
@@ -344,7 +348,7 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
     const LodParams lod = sm.cfg_.lod;
     const MipMode mip = sm.cfg_.mode.mip;
     const int top = sm.tex_.max_level();
-    dp::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
+    dp::fast::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
     std::array<Rgba8, 4> c1;
     for (; i + 4 <= n; i += 4) {
       std::array<int, 4> blend;
@@ -357,11 +361,11 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
         blend[k] = p.blend;
         any |= p.blend;
       }
-      dp::bilinear_lerp8x4(q0, out + i);
+      dp::fast::bilinear_lerp8x4(q0, out + i);
       if (any == 0) continue;
-      dp::bilinear_lerp8x4(q1, c1.data());
+      dp::fast::bilinear_lerp8x4(q1, c1.data());
       for (size_t k = 0; k < 4; ++k)
-        if (blend[k] != 0) out[i + k] = dp::level_blend8(out[i + k], c1[k], blend[k]);
+        if (blend[k] != 0) out[i + k] = dp::fast::level_blend8(out[i + k], c1[k], blend[k]);
     }
     for (; i < n; ++i) {
       const float s = req[i].s, t = req[i].t;

@@ -16,6 +16,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/json_input.hpp"
+#include "cmodel/json_keys.hpp"
 #include "cmodel/mipmap.hpp"
 
 #include "cmodel/embedded_scenes.hpp"
@@ -31,8 +32,7 @@ class Obj {
   Obj(const json& j, std::string path, const std::string& source, const std::set<std::string>& allowed)
       : j_(j), path_(std::move(path)), source_(source) {
     if (!j.is_object()) fail(fmt::format("expected an object, got {}", j.type_name()));
-    for (const auto& [key, unused] : j.items())
-      if (!allowed.contains(key)) fail(fmt::format("unknown key '{}'", quote_input(key)));
+    if (const auto key = first_unknown_key(j, allowed)) fail(unknown_key_text(*key));
   }
 
   [[noreturn]] void fail(const std::string& msg) const { throw InputError(where(path_, msg)); }

@@ -3,8 +3,9 @@
 // (AddressGen::fixed_wrap_grid). Software speed only: the plain unit is AddressGen::grid_any
 // in rtl/address_gen.cpp, which reads the wrap modes at run time; these must form the same grid
 // (TfuUnit.FixedWrapGridsEqualThePlainAddressUnit compares them over every wrap pair, level
-// sizes and probe offsets).
-#include "cmodel/datapath.hpp"
+// sizes and probe offsets). Off with the fast-path switch (cmodel/fast_paths.hpp: TFU_PLAIN=1, the
+// CLI's --plain): every descriptor then takes grid_any.
+#include "cmodel/datapath_fast.hpp"
 #include "rtl/address_gen.hpp"
 #include "rtl/address_gen_detail.hpp"
 
@@ -15,7 +16,7 @@ using detail::probe_coord;
 
 // LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
 // around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis
-// with the modes fixed (dp::wrap_taps): the same grid as grid_any's.
+// with the modes fixed (dp::fast::wrap_taps): the same grid as grid_any's.
 template <WrapMode kWs, WrapMode kWt, bool kCross>
 void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
                             const ProbeLevelOffset* o) {
@@ -24,8 +25,8 @@ void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f,
   f.tag.fu = u.f;
   f.tag.fv = v.f;
   int col[kTaps], row[kTaps];
-  dp::wrap_taps<kWs, kTaps>(u.i0 + kFirst, w, col);
-  dp::wrap_taps<kWt, kTaps>(v.i0 + kFirst, h, row);
+  dp::fast::wrap_taps<kWs, kTaps>(u.i0 + kFirst, w, col);
+  dp::fast::wrap_taps<kWt, kTaps>(v.i0 + kFirst, h, row);
   TapGrid& g = f.grid;
   g.cols = g.rows = kTaps;
   for (size_t i = 0; i < kTaps; ++i) {

@@ -1,6 +1,7 @@
 #include "rtl/filter_unit.hpp"
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/datapath_fast.hpp"
 #include "cmodel/fast_paths.hpp"
 
 namespace tfu::rtl {
@@ -50,10 +51,10 @@ void FilterUnit::evaluate() {
 
 bool FilterUnit::filter(const FilterReq& r, Response& out) {
   if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2 && word_lerps_) {
-    // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::*8); speed only, the plain
+    // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::fast::*8); speed only, the plain
     // form is filter_level below (off with TFU_PLAIN=1 or --plain, cmodel/fast_paths.hpp)
     const auto& w = r.texels;
-    const Rgba8 c8 = dp::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
+    const Rgba8 c8 = dp::fast::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.holds()) {
       first8_ = c8;
       return false;
@@ -63,7 +64,7 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
       return true;
     }
     // an anisotropic probe: the probe accumulator
-    const Rgba8 p = r.tag.blends ? dp::level_blend8(first8_, c8, r.tag.blend) : c8;
+    const Rgba8 p = r.tag.blends ? dp::fast::level_blend8(first8_, c8, r.tag.blend) : c8;
     Texel4 c{p.r, p.g, p.b, p.a};
     if (!probes_.add(r.tag, c)) return false;
     out = {r.tag.id, encode_texel(c, r.tag.format)};

@@ -2,8 +2,9 @@
 // (tile-weight ROM + tile-weight multipliers, adder tree, normalise and clamp), then the trilinear
 // blend, the probe accumulator of anisotropic pixels (probe_accumulator.hpp: one response per
 // pixel, after its last probe) and the encode to the texture's word. Calls the golden arithmetic (cmodel/datapath.hpp:
-// dp::bilinear_lerp (dp::bilinear_lerp8 on 8-bit words), dp::tile_weights_2d, dp::cubic_accumulate,
-// dp::cubic_normalize, dp::level_blend (dp::level_blend8)). Every footprint carries its own mode:
+// dp::bilinear_lerp, dp::tile_weights_2d, dp::cubic_accumulate, dp::cubic_normalize, dp::level_blend;
+// on 8-bit words the fast forms of cmodel/datapath_fast.hpp, dp::fast::bilinear_lerp8 and level_blend8,
+// off with the fast-path switch, cmodel/fast_paths.hpp). Every footprint carries its own mode:
 // requests of different samplers and textures follow each other freely.
 //
 // Ports:
@@ -19,6 +20,7 @@
 #pragma once
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/datapath_fast.hpp"
 #include "cmodel/descriptors.hpp"
 #include "rtl/probe_accumulator.hpp"
 #include "rtl/timing.hpp"
@@ -41,12 +43,14 @@ class FilterUnit : public sim::Module {
   // `out` when the footprint completes one (LevelTag::emits()).
   int extra_clocks(int ntaps) const { return extra_clocks_[static_cast<size_t>(ntaps)]; }
   bool filter(const FilterReq& r, Response& out);
-  // filter()'s LINEAR lerp on 8-bit words (dp::bilinear_lerp8) for four footprints of one level
-  // at once (isotropic pixels), lane k the footprint of q's lane k (dp::bilinear_lerp8x4,
-  // equal to dp::bilinear_lerp8 per lane): the recurrences' LINEAR quad path.
-  static void filter_linear8x4(const dp::Quad8& q, Rgba8* out) { dp::bilinear_lerp8x4(q, out); }
+  // filter()'s LINEAR lerp on 8-bit words (dp::fast::bilinear_lerp8) for four footprints of one level
+  // at once (isotropic pixels), lane k the footprint of q's lane k (dp::fast::bilinear_lerp8x4,
+  // equal to bilinear_lerp8 per lane): the recurrences' LINEAR quad path.
+  static void filter_linear8x4(const dp::fast::Quad8& q, Rgba8* out) { dp::fast::bilinear_lerp8x4(q, out); }
   // filter()'s blend unit on 8-bit words (a blending pixel's level0 and level1 colours).
-  static Rgba8 blend_linear8(Rgba8 level0, Rgba8 level1, int blend) { return dp::level_blend8(level0, level1, blend); }
+  static Rgba8 blend_linear8(Rgba8 level0, Rgba8 level1, int blend) {
+    return dp::fast::level_blend8(level0, level1, blend);
+  }
   // The block's timing for the recurrence engine (rtl/timing.hpp), beside evaluate(), which it
   // restates item by item; the two change together. evaluate() keeps the head footprint in the
   // lanes for extra_clocks(ntaps) cycles (counted in busy_cycles), then pops it in the first cycle
@@ -80,8 +84,8 @@ class FilterUnit : public sim::Module {
   std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
   uint64_t busy_cycles_ = 0;
   // The level0 result of a blending pixel (register): as channels, or as the texel word when
-  // LINEAR on an 8-bit format runs dp::bilinear_lerp8 / level_blend8 on the words (the same units
-  // as dp::bilinear_lerp / level_blend + encode, bit-identical and tested; fewer instructions).
+  // LINEAR on an 8-bit format runs dp::fast::bilinear_lerp8 / level_blend8 on the words (the same
+  // units as dp::bilinear_lerp / level_blend + encode, bit-identical and tested; fewer instructions).
   Texel4 first_{};
   Rgba8 first8_{};
   ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)

@@ -2,11 +2,25 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/fast_paths.hpp"
+
 namespace tfu::rtl {
+
+namespace {
+
+// The plain golden datapath of one request, whatever dispatch the sampler was built with:
+// Sampler::sample's plain targets (sample_generic, aniso_generic) spelled with the public calls.
+Rgba8 plain_sample(const Sampler& smp, float s, float t, const AnisoLod& lod) {
+  const Texel4 c = lod.probes == 1 ? smp.sample_channels(s, t, lod.lambda_q8) : smp.sample_channels(s, t, lod);
+  return encode_texel(c, smp.texture().format);
+}
+
+}  // namespace
 
 std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, const UnitOutput& out) {
   std::vector<Rgba8> want(trace.requests.size());
   const Registers& regs = golden.frame().regs;
+  const bool fast = fast_paths_enabled();
   AnisoLod lod;
   for (size_t i = 0; i < trace.requests.size(); ++i) {
     const TraceRequest& r = trace.requests[i];
@@ -16,7 +30,7 @@ std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, 
     if (s.mode.base == BaseFilter::EdgePreserving && s.edge_shape == EdgeShape::CacheAware)
       want[i] = smp.sample_edge_masks(r.s, r.t, lod, out.edge_shapes.at(i).data());
     else
-      want[i] = smp.sample(r.s, r.t, lod);
+      want[i] = fast ? smp.sample(r.s, r.t, lod) : plain_sample(smp, r.s, r.t, lod);
   }
   return want;
 }

@@ -1,6 +1,6 @@
 // median_network: the twelve medians of Lee & Jen Eq. 4 as a network of explicit compare cells and
 // three-point selectors (Lee & Jen Sec. 6, Fig. 10), cells on the same two inputs merged: 40 cells
-// (TFU-C; TFU-D generates its SystemVerilog from this same netlist).
+// (rtl/sv/ generates its SystemVerilog from this same netlist).
 //
 // Ports:
 //   in  key[n]  n = 1..12   luma key Y * 16 + n (RGBA8/L8: Y = 5R + 9G + 2B is 12 bits, key 16 bits;

@@ -1,4 +1,4 @@
-// memory_model: texture memory behind the texel cache (TFU-C).
+// memory_model: texture memory behind the texel cache.
 //
 // Ports:
 //   in  req_valid, req_line[63:0], req_bytes[15:0], req_texture[11:0]   one line request per call

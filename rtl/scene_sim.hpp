@@ -27,9 +27,9 @@ struct SceneSimOptions {
   std::ostream* vcd = nullptr;  // VCD of unit 0
   std::vector<std::ostream*> unit_vcds;  // if not empty: unit k's VCD (nullptr: none); replaces `vcd`
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles dumped, inclusive
-  // Clocked, the reference (the tests' default); `tfu sim` and `tfu sweep` take Recurrence, with
-  // which a unit that writes a waveform still runs clocked.
-  UnitEngine engine = UnitEngine::Clocked;
+  // The timing recurrences, as `tfu sim`, `tfu sweep` and UnitEngine{} (the clocked run's results,
+  // tested); a unit that writes a waveform still runs clocked. Clocked: the reference blocks.
+  UnitEngine engine = UnitEngine::Recurrence;
 };
 
 struct SceneSimResult {

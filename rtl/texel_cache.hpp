@@ -1,4 +1,4 @@
-// texel_cache: blocked, set-associative, banked texel cache of the texture filter unit (TFU-C).
+// texel_cache: blocked, set-associative, banked texel cache of the texture filter unit.
 //
 // Ports (per cycle, one footprint request):
 //   in  texture [11:0]  texture descriptor (its level addresses, pitches and layout locate the lines)

@@ -4,7 +4,8 @@
 // plain form is TexelCache::group_lines in rtl/texel_cache.cpp, which handles any grid; this one
 // must give the same lines in the same order and the same bank reads
 // (TexelCache.GridAccessEqualsAPerTapReferenceModel checks both against a per-tap reference
-// model, with cross-shaped 4 x 4 grids among its cases).
+// model, with cross-shaped 4 x 4 grids among its cases). Off with the fast-path switch
+// (cmodel/fast_paths.hpp: TFU_PLAIN=1, the CLI's --plain): every grid then takes group_lines.
 #include <algorithm>
 #include <bit>
 

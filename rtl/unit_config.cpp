@@ -8,6 +8,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/json_input.hpp"
+#include "cmodel/json_keys.hpp"
 
 namespace tfu::rtl {
 
@@ -109,21 +110,28 @@ void UnitConfig::validate() const {
   memory.validate();
 }
 
-// Reads the fields of a JSON object (nested objects are the dotted key's groups) into `c`.
+// Reads the fields of a JSON object (nested objects are the dotted key's groups) into `c`; every
+// key of the object is checked before any value is read.
 void read_object(const nlohmann::json& obj, const std::string& prefix, UnitConfig& c, const std::string& name) {
   if (!obj.is_object()) throw InputError(fmt::format("{}: {}expected a JSON object", name, prefix.empty() ? "" : prefix + ": "));
+  const auto dotted = [&](const std::string& k) { return prefix.empty() ? k : prefix + "." + k; };
+  const auto known = [&](const std::string& k, const nlohmann::json& v) {
+    const std::string key = dotted(k);
+    if (!v.is_object()) return find_unit_field(key) != nullptr;
+    for (const UnitField& f : fields())
+      if (std::string(f.key).rfind(key + ".", 0) == 0) return true;  // a group of dotted keys
+    return false;
+  };
+  if (const auto k = first_unknown_key(obj, known))
+    throw InputError(fmt::format("{}: {}", name, unknown_key_text(dotted(*k))));
   for (const auto& item : obj.items()) {
-    const std::string key = prefix.empty() ? item.key() : prefix + "." + item.key();
+    const std::string key = dotted(item.key());
     const nlohmann::json& v = item.value();
     if (v.is_object()) {
-      bool is_group = false;
-      for (const UnitField& f : fields()) is_group = is_group || std::string(f.key).rfind(key + ".", 0) == 0;
-      if (!is_group) throw InputError(fmt::format("{}: unknown key '{}'", name, quote_input(key)));
       read_object(v, key, c, name);
       continue;
     }
     const UnitField* f = find_unit_field(key);
-    if (!f) throw InputError(fmt::format("{}: unknown key '{}'", name, quote_input(key)));
     try {
       if (!f->names.empty()) {
         if (!v.is_string()) throw InputError("must be a string");

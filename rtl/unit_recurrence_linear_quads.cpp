@@ -38,7 +38,7 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
 
 void LinearQuadPath::lerp_level(const std::array<FootprintReq, 4>& f, int level, Rgba8* out) const {
   const LevelReadout& readout = u_.cache_stage.level_readout(texture_, level);
-  dp::Quad8 q;
+  dp::fast::Quad8 q;
   for (size_t k = 0; k < 4; ++k) {
     Rgba8 taps[4];  // (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1): read_out's order
     read_square_taps<2>(f[k].grid, readout, taps);

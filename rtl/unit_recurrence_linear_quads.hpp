@@ -1,5 +1,6 @@
-// The timing recurrences' LINEAR quad path (software speed only; internal to
-// rtl/unit_recurrence.cpp). A quad of four pixels whose sampler is LINEAR, LINEAR_MIPMAP_NEAREST
+// The timing recurrences' LINEAR quad path (software speed only, off with TFU_PLAIN=1 or --plain:
+// cmodel/fast_paths.hpp; internal to rtl/unit_recurrence.cpp). A quad of four pixels whose sampler is
+// LINEAR, LINEAR_MIPMAP_NEAREST
 // or LINEAR_MIPMAP_LINEAR, isotropic (max anisotropy 1) and without clamp-to-border, on an 8-bit
 // texture, takes one or two level footprints of 2 x 2 taps per pixel through the plain blocks (the
 // quad's pixels share lambda, so they share the levels and the blend weight). This path forms the
@@ -13,7 +14,7 @@
 //                 level0 then level1: the tags, the LRU and the memory queue see the same
 //                 sequence), then read_square_taps<2>;
 //   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes,
-//                 per level, then the blend unit (dp::level_blend8) per pixel. (The plain filter
+//                 per level, then the blend unit (dp::fast::level_blend8) per pixel. (The plain filter
 //                 keeps a blending pixel's level0 colour in a register until its level1 arrives;
 //                 here the four level0 colours wait in lanes. No later footprint reads that
 //                 register before writing it.)

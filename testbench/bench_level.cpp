@@ -4,7 +4,7 @@
 //
 // BM_LoadLevelCold/<level>: a new TextureCache per iteration (the first level of a run: every image
 // decoded). BM_LoadLevelWarm/<level>: the cache kept across iterations (another spawn point or a
-// reload within one run: no image decoded again). Target (issue TFU-F item 6): a level and its
+// reload within one run: no image decoded again). Target: a level and its
 // textures load in under 3 s. Needs the game data (scripts/bootstrap; docs/real-frames.md).
 #include <string>
 #include <vector>

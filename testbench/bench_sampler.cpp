@@ -10,9 +10,9 @@
 // per request, for comparison. The side-by-side table times sample_batch against TextureSystem's
 // per-point texture() and its batched texture(TextureOptBatch) call (the ratio is against the
 // faster of the two).
-// Targets (issue TFU-B item 8): bilinear >= 50 M samples/s, trilinear >= 20 M, cubic >= 10 M,
+// Targets: bilinear >= 50 M samples/s, trilinear >= 20 M, cubic >= 10 M,
 // edge-preserving >= 3 M, ours >= 3x TextureSystem, 1080p trilinear frame < 0.5 s.
-// Anisotropic (TFU-G item 7): BM_Aniso/N samples the grazing scene's quads (512x384, the same
+// Anisotropic: BM_Aniso/N samples the grazing scene's quads (512x384, the same
 // 1024^2 texture) through sample(s, t, AnisoLod) with LINEAR_MIPMAP_LINEAR probes and maxAniso N
 // (AnisoLod from the LOD unit, computed beforehand, not timed); the table after the benchmarks
 // puts each against N x the trilinear time of the same pixels (target: time per anisotropic
@@ -220,7 +220,7 @@ void BM_OiioBicubic(benchmark::State& s) { run_oiio(s, OIIO::TextureOpt::InterpB
 BENCHMARK(BM_OiioBilinear)->Arg(0)->Arg(1)->Arg(2);
 BENCHMARK(BM_OiioBicubic)->Arg(0)->Arg(1)->Arg(2);
 
-// ---- Anisotropic sampling (TFU-G item 7) ----
+// ---- Anisotropic sampling ----
 // The grazing scene's quads at 512x384 on the 1024^2 texture: (s, t) and the LOD unit's result for
 // maxAniso 1 (isotropic: trilinear's lambda), 2, 4, 8 and 16.
 constexpr std::array<int, 5> kAnisoSteps = {1, 2, 4, 8, 16};

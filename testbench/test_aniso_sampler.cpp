@@ -281,7 +281,7 @@ TEST(AnisoSampler, IdealTakesTheSpecsProbes) {
   EXPECT_NEAR(iso[0], smp.sample_ideal(0.3, 0.5, 2.0)[0], 1e-12);
 }
 
-// Quality (TFU-G item 5): on the scenes with surfaces at grazing angles, rendered at a reduced
+// Quality: on the scenes with surfaces at grazing angles, rendered at a reduced
 // size, LINEAR_MIPMAP_LINEAR with maxAniso 16 beats plain trilinear in PSNR and SSIM against the
 // supersampled truth (tfu report measures the full-size renders: docs/results.md).
 TEST(AnisoQuality, SixteenProbesBeatTrilinearOnGrazingScenes) {

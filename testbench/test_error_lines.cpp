@@ -1,4 +1,4 @@
-// Error messages and exit codes (TFU-I D5, D11-D14, D4's deadlock report, D18): one line of at most
+// Error messages and exit codes (the deadlock report included): one line of at most
 // 300 characters naming the input, quoted input cut to about 60 characters, JSON errors with file,
 // position and key, third-party stderr text carried in our line, the decimal trace number syntax.
 #include <unistd.h>
@@ -86,7 +86,7 @@ TEST(ErrorLines, ADeadlockIsOneSummaryLineNamingTheFileWithTheDump) {
   fs::remove(path);
 }
 
-// D13: a 3 MB garbage trace line and a 1 MB unknown scene key are not echoed whole.
+// A 3 MB garbage trace line and a 1 MB unknown scene key are not echoed whole.
 TEST(ErrorLines, HugeInputsAreQuotedShortly) {
   std::istringstream trace("0.5,0.5\n" + std::string(3 << 20, 'g') + ",1\n");
   const std::string t = input_error([&] { parse_trace(trace, "big.txt"); });
@@ -96,7 +96,7 @@ TEST(ErrorLines, HugeInputsAreQuotedShortly) {
   EXPECT_EQ(s, "big.json: unknown key '" + std::string(57, 'q') + "...'");
 }
 
-// D14: the number syntax of docs/traces.md, nothing more (strtof alone takes hex floats and stops at NUL).
+// Trace numbers: the syntax of docs/traces.md, nothing more (strtof alone takes hex floats and stops at NUL).
 TEST(ErrorLines, TraceNumbersAreDecimal) {
   const auto parses = [](const std::string& field) {
     std::istringstream in(field + ",0,0\n");  // a lod trace: one request
@@ -116,7 +116,7 @@ TEST(ErrorLines, TraceNumbersAreDecimal) {
   EXPECT_EQ(input_error([&] { parse_trace(nul, "n.txt"); }), "n.txt:1: field 1 '0.5?x' is not a decimal number");
 }
 
-// D5: numbers out of the range of double, with file, position and key path.
+// JSON numbers out of the range of double, with file, position and key path.
 TEST(ErrorLines, JsonErrorsNameFilePositionAndKey) {
   EXPECT_EQ(input_error([] { parse_json_input("{\"memory\": {\"latency\": 1e400}}", "u.json"); }),
             "u.json: line 1, column 28: at memory.latency: number overflow parsing '1e400'");  // its last character
@@ -133,7 +133,7 @@ TEST(ErrorLines, JsonErrorsNameFilePositionAndKey) {
       << input_error([] { parse_json_input("[1, 2 3]", "a.json"); });
 }
 
-// D11: every key checked, errors naming the file and the key, values spelled as in the file.
+// Every key checked, errors naming the file and the key, values spelled as in the file.
 TEST(ErrorLines, ConfigAndSceneValuesAreCheckedAndNamed) {
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"cache\": {\"ways\": 18446744073709551615}}", "c.json"); }),
             "c.json: 'cache.ways' value 18446744073709551615 is out of range");
@@ -163,7 +163,7 @@ TEST(ErrorLines, ConfigAndSceneValuesAreCheckedAndNamed) {
             "s.json: camera.fov_y: expected a finite number within +-1e+06, got -1e+300");
 }
 
-// D12: libpng prints "libpng error: ..." on stderr before OpenImageIO fails; our one line carries it
+// libpng prints "libpng error: ..." on stderr before OpenImageIO fails; our one line carries it
 // and nothing reaches stderr.
 TEST(ErrorLines, LibpngMessagesAreCarriedInOurLine) {
   const fs::path d = fs::temp_directory_path() / fmt::format("tfu_error_lines_{}", ::getpid());

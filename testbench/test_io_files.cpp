@@ -1,4 +1,4 @@
-// Input and output files (TFU-I D6-D10): every input must be a regular file of bounded size (a
+// Input and output files: every input must be a regular file of bounded size (a
 // directory, FIFO or device is refused without hanging), and every output goes through
 // OutputFiles: distinct files by canonical path and identity, nothing overwritten without force,
 // streams checked after writing and closing, temporaries renamed on commit and removed on failure.
@@ -221,7 +221,7 @@ TEST(OutputFiles, AFileThatAppearsDuringTheRunIsNotReplacedWithoutForce) {
   EXPECT_EQ(read_text(d / "late.txt"), "theirs");
 }
 
-// D7: a write error that only shows when the stream is flushed or closed. RLIMIT_FSIZE makes every
+// A write error that only shows when the stream is flushed or closed. RLIMIT_FSIZE makes every
 // write beyond 1000 bytes fail with EFBIG (SIGXFSZ ignored), as a full disk would.
 TEST(OutputFiles, AWriteFailureIsReportedAtCommitAndNothingIsLeft) {
   const fs::path d = scratch_dir();

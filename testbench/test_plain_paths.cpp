@@ -1,13 +1,20 @@
 // The off switch for every fast path (cmodel/fast_paths.hpp, TFU_PLAIN=1, the CLI's --plain): every
 // built-in scene renders to the same bytes with the fast paths on and off, and the cycle model (both
-// engines) gives the same image and cycles and equals the golden model either way.
+// engines) gives the same image and cycles and equals the golden model either way; the golden
+// compare follows the switch.
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "cmodel/fast_paths.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/golden_unit.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 
 using namespace tfu;
@@ -59,4 +66,48 @@ TEST(PlainPaths, EveryBuiltinSceneIsTheSameWithAndWithoutFastPaths) {
       EXPECT_EQ(s->cycles, fast.clocked.cycles) << name;
     }
   }
+}
+
+// The golden compare (rtl::golden_outputs) runs Sampler::sample with the fast paths on and the plain
+// datapath with them off, whatever the sampler was built with. The two datapaths are equal on
+// every valid texture, so the test tells them apart on a texture whose format changes from RGBA8 to
+// VS16X2 after its sampler was built with the fast paths on: the LINEAR fast path chosen then keeps
+// lerping 8-bit words, the plain datapath decodes the signed pairs the format now names.
+TEST(PlainPaths, GoldenCompareRunsThePlainDatapathWithTheSwitchOff) {
+  const FastPathsGuard fast(true);
+  auto tex = std::make_shared<Texture>();
+  tex->format = TexelFormat::RGBA8;
+  tex->levels.emplace_back(8, 8);
+  std::mt19937 rng(5);
+  for (Rgba8& w : tex->levels[0].texels)
+    w = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()),
+         static_cast<uint8_t>(rng())};
+  FrameBuilder b(64);
+  b.add_texture(tex, {"test", {}});
+  SamplerDescriptor cfg;
+  cfg.mode = filter_mode_from_name("LINEAR");
+  b.add_sampler(cfg);
+  Trace tr;
+  tr.mode = TraceMode::Lod;
+  for (int i = 0; i < 16; ++i) {
+    TraceRequest r;
+    r.s = (static_cast<float>(i) + 0.3f) / 16.0f;
+    r.t = (static_cast<float>(i % 5) + 0.7f) / 5.0f;
+    tr.requests.push_back(r);
+  }
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  const GoldenUnit golden(frame);
+  const Sampler& smp = golden.sampler(0, 0);  // built now, with the fast paths on
+  tex->format = TexelFormat::VS16X2;
+  std::vector<Rgba8> fast_path, plain;
+  for (const TraceRequest& r : tr.requests) {
+    fast_path.push_back(smp.sample(r.s, r.t, 0));
+    plain.push_back(encode_texel(smp.sample_channels(r.s, r.t, 0), TexelFormat::VS16X2));
+  }
+  ASSERT_NE(fast_path, plain);  // the two datapaths differ here, so the compare's choice shows
+  const rtl::UnitOutput none;   // no cache-aware edge shapes: a LINEAR trace
+  EXPECT_EQ(rtl::golden_outputs(golden, tr, none), fast_path);
+  set_fast_paths(false);
+  EXPECT_EQ(rtl::golden_outputs(golden, tr, none), plain);
 }

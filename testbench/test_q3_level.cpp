@@ -508,7 +508,7 @@ TEST(OpenArena, AggressorCountsCheckedByHand) {
   EXPECT_EQ(r.stats.triangles, 3300);
 }
 
-// A real frame through both models (TFU-F items 3 and 5): aggressor from spawn 0 at 320x180, base
+// A real frame through both models (game levels as workloads): aggressor from spawn 0 at 320x180, base
 // texture x light map. The cycle model equals the golden model on every request of both stages in
 // trilinear and edge-preserving modes; statistics that fail on garbage (a wrong UV set, a light
 // map on the wrong faces, an upside-down texture) hold: the frame is covered, its brightness and
@@ -548,7 +548,7 @@ TEST(OpenArena, RealFrameThroughBothModels) {
   }
 }
 
-// TFU-G on a real level: 16 probes beat trilinear against the supersampled truth (measured at
+// Anisotropic filtering on a real level: 16 probes beat trilinear against the supersampled truth (measured at
 // 320x180: 36.5 -> 41.8 dB, SSIM 0.938 -> 0.985), and the anisotropic frame, trilinear and
 // edge-preserving probes, goes through the cycle model bit for bit.
 TEST(OpenArena, AnisotropicRealFrame) {

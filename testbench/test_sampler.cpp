@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "cmodel/datapath.hpp"
+#include "cmodel/datapath_fast.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/sampler.hpp"
 
@@ -305,13 +306,15 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
       const Rgba8 want = encode_texel(
           dp::bilinear_lerp({channels(w[0]), channels(w[1]), channels(w[2]), channels(w[3])}, fu, fv, TexelFormat::RGBA8),
           TexelFormat::RGBA8);
-      ASSERT_EQ(dp::bilinear_lerp8(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
-      ASSERT_EQ(dp::bilinear_lerp8_words(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
+      ASSERT_EQ(dp::fast::bilinear_lerp8(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
+      ASSERT_EQ(dp::fast::bilinear_lerp8_words(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
     }
   for (int f = 0; f <= 256; ++f)
     for (int k = 0; k < 64; ++k) {
       const Rgba8 a = k == 0 ? full : word(), b = k == 0 ? zero : word();
-      ASSERT_EQ(dp::level_blend8(a, b, f), encode_texel(dp::level_blend(channels(a), channels(b), f), TexelFormat::RGBA8)) << f;
+      ASSERT_EQ(dp::fast::level_blend8(a, b, f),
+                encode_texel(dp::level_blend(channels(a), channels(b), f), TexelFormat::RGBA8))
+          << f;
     }
 }
 
@@ -325,7 +328,7 @@ TEST(Properties, QuadLerpEqualsScalarLerp) {
   const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255}, mixed{255, 0, 255, 0};
   for (uint32_t fu = 0; fu < 256; ++fu)
     for (uint32_t fv = 0; fv < 256; ++fv) {
-      dp::Quad8 q;
+      dp::fast::Quad8 q;
       q.fu = {fu, fv, 255 - fu, fu};
       q.fv = {fv, fu, fv, 255 - fv};
       for (size_t k = 0; k < 4; ++k) {
@@ -336,9 +339,9 @@ TEST(Properties, QuadLerpEqualsScalarLerp) {
         q.d[k] = sel == 0 ? full : sel == 1 ? full : sel == 2 ? mixed : word();
       }
       std::array<Rgba8, 4> out;
-      dp::bilinear_lerp8x4(q, out.data());
+      dp::fast::bilinear_lerp8x4(q, out.data());
       for (size_t k = 0; k < 4; ++k)
-        ASSERT_EQ(out[k], dp::bilinear_lerp8(q.a[k], q.b[k], q.c[k], q.d[k], q.fu[k], q.fv[k]))
+        ASSERT_EQ(out[k], dp::fast::bilinear_lerp8(q.a[k], q.b[k], q.c[k], q.d[k], q.fu[k], q.fv[k]))
             << "lane " << k << " at " << q.fu[k] << "," << q.fv[k];
     }
 }

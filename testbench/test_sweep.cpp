@@ -117,7 +117,9 @@ TEST(Provenance, RecordedConfigurationReproducesTheStatistics) {
     ro.line_bytes = c.cache.line_bytes;
     ro.filter = filter_mode_from_name("LINEAR_MIPMAP_LINEAR");
     const RenderResult render = render_scene(scene, ro);
-    const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, c, {});
+    rtl::SceneSimOptions so;
+    so.engine = rtl::UnitEngine::Clocked;
+    const rtl::SceneSimResult r = rtl::simulate_scene(scene, render, c, so);
     EXPECT_TRUE(r.mismatch.empty());
     RunRecord rec;
     rec.command = "sim";
@@ -126,7 +128,7 @@ TEST(Provenance, RecordedConfigurationReproducesTheStatistics) {
     rec.height = 48;
     rec.filter = "LINEAR_MIPMAP_LINEAR";
     rec.config = &c;
-    rec.engine = rtl::UnitEngine::Clocked;  // simulate_scene's default, as run above
+    rec.engine = so.engine;
     rec.textures = frame_texture_names(render.frame->frame);
     return stats_document(r.stats, provenance_json(rec));
   };

@@ -1,5 +1,5 @@
 // Cycle model (rtl/) against the golden model, bit for bit: every scene x every filter mode x two
-// cache line sizes (the CI matrix of TFU-C), every kernel-shape policy, vs16x2, lod and grad
+// cache line sizes (the CI matrix of the cycle model), every kernel-shape policy, vs16x2, lod and grad
 // traces, every wrap mode; requests of several textures (formats, layouts) and samplers
 // interleaved at random; rates, latencies, the Lee & Jen bandwidth claim; the edge datapath's
 // blocks against the cmodel functions they implement; config and VCD; anisotropic pixels (N = 1..16
@@ -505,7 +505,7 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     s.edge_shape = static_cast<EdgeShape>(rng() % 3);
     samplers.push_back(s);
   }
-  for (const FilterMode& m : all_filter_modes()) {  // anisotropic samplers of every MIP mode (TFU-G)
+  for (const FilterMode& m : all_filter_modes()) {  // anisotropic samplers of every MIP mode
     if (m.mip == MipMode::None) continue;
     SamplerDescriptor s;
     s.mode = m;
@@ -700,7 +700,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   }
 }
 
-// ---- Anisotropic filtering (TFU-G, docs/anisotropic.md) ----
+// ---- Anisotropic filtering (docs/anisotropic.md) ----
 
 // A 64 x 64 random RGBA8 texture (or VS16X2) with box MIP-maps: holds in hot_cache().
 Texture random_mip_texture(TexelFormat fmt, unsigned seed) {
@@ -818,7 +818,7 @@ TEST(TfuUnit, AnisotropicScenesBitExact) {
   }
 }
 
-// TFU-G item 3: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
+// Anisotropic probes: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
 // so anisotropic EDGE_PRESERVING_MIPMAP_LINEAR probes read exactly the bytes of trilinear probes on
 // the same footprints (the same probes per pixel); the full cross reads more on minified scenes.
 TEST(TfuUnit, AnisotropicStaticEdgeProbesReadExactlyTheTrilinearBytes) {

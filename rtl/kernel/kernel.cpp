@@ -51,7 +51,7 @@ void Stats::merge(const Stats& from, bool add_counters) {
   }
 }
 
-Module::Module(Simulator& sim, std::string name, Module* parent) : sim_(sim), name_(std::move(name)), parent_(parent) {
+Module::Module(Simulator& sim, std::string name) : sim_(sim), name_(std::move(name)) {
   sim_.add_module(this);
 }
 
@@ -181,7 +181,7 @@ std::string Simulator::dump() const {
   std::string s = fmt::format("cycle {}, last progress at cycle {}:", cycle_, last_progress_);
   for (const Module* m : modules_) {
     const std::string st = m->state();
-    if (!st.empty()) s += fmt::format(" [{}: {}]", m->path(), st);
+    if (!st.empty()) s += fmt::format(" [{}: {}]", m->name(), st);
   }
   return s;
 }

@@ -207,15 +207,14 @@ class ProgressBar {
   bool printed_ = false;
 };
 
-// A hardware block. Modules form a tree; path() is the hierarchical name used in VCD and dumps.
+// A hardware block; its name is the one deadlock dumps give it.
 class Module {
  public:
-  Module(Simulator& sim, std::string name, Module* parent = nullptr);
+  Module(Simulator& sim, std::string name);
   virtual ~Module() = default;
   Module(const Module&) = delete;
   Module& operator=(const Module&) = delete;
   const std::string& name() const { return name_; }
-  std::string path() const { return parent_ ? parent_->path() + "." + name_ : name_; }
   virtual void evaluate() = 0;
   // Idle-cycle skipping. After a cycle in which no block made progress, nothing changes until a
   // time-based event (a memory return, a bank port freeing): wake_cycle(now) is the first cycle
@@ -230,13 +229,9 @@ class Module {
 
  protected:
   Simulator& sim_;
-  // Registers and channels owned by this block are clocked by the simulator.
-  template <typename C>
-  C& clocked(C& c);
 
  private:
   std::string name_;
-  Module* parent_;
 };
 
 // Value-change dump of chosen signals (opens in GTKWave). Signals are sampled after each edge.
@@ -352,11 +347,5 @@ class Simulator {
   uint64_t skipped_ = 0;
   Stats stats_;
 };
-
-template <typename C>
-C& Module::clocked(C& c) {
-  sim_.add_clocked(&c);
-  return c;
-}
 
 }  // namespace tfu::sim

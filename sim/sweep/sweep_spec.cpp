@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/run_files.hpp"
+#include "cmodel/json_keys.hpp"
 #include "cmodel/q3_scene.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
@@ -221,10 +223,10 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   s.path = path;
   s.text = text;
   s.dir = fs::path(path).parent_path().string();
-  for (const auto& [k, v] : j.items())
-    if (k != "scenes" && k != "filters" && k != "width" && k != "height" && k != "units" && k != "game_dir" && k != "base" &&
-        k != "grid" && k != "points")
-      throw where(k, "unknown key (expected scenes, filters, width, height, units, game_dir, base, grid, points)");
+  static const std::set<std::string> kSpecKeys{"scenes", "filters", "width", "height", "units",
+                                               "game_dir", "base", "grid", "points"};
+  if (const auto k = first_unknown_key(j, kSpecKeys))
+    throw where(*k, "unknown key (expected scenes, filters, width, height, units, game_dir, base, grid, points)");
   if (!j.contains("scenes")) throw where("scenes", "missing (a list of scene names, files or oa: levels)");
   s.scenes = string_list(j["scenes"], "scenes", where);
   s.filters = {kSceneFilter};

@@ -1,4 +1,4 @@
-// tfu aniso-compare: anisotropic filtering against an outside implementation (TFU-G item 5). A
+// tfu aniso-compare: anisotropic filtering against an outside implementation (OpenImageIO). A
 // scene (built-in, JSON or an OpenArena level oa:MAP[:SPAWN]) is rendered to get its quads; every covered pixel becomes a grad-mode request
 // (s, t of the pixel, the quad's coarse derivatives ds/dx = s(1,0) - s(0,0), ... as gradients), and
 // the same requests are filtered by

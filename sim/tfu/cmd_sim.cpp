@@ -3,7 +3,6 @@
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <iterator>
 #include <iostream>
@@ -28,11 +27,11 @@
 #include "sim/sweep/provenance.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
+#include "sim/tfu/sim_bench.hpp"
 
 namespace tfu::cli {
 namespace {
 
-constexpr int kBenchRuns = 7;  // --bench: best of this many runs
 // Sampler keys a scene run takes from the command line for every base stage (besides --filter).
 constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding"};
 
@@ -157,45 +156,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   so.vcd_from = o.vcd_from;
   so.vcd_to = o.vcd_to;
   so.engine = o.unit_engine;
-  if (o.bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
-  // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
-  // seconds, so that the figures do not depend on other work on the machine; the two alternate
-  // run by run, so that a slow spell of the (virtual) machine falls on both sides of the ratio.
-  const int runs = o.bench ? kBenchRuns : 1;
-  double render_secs = 1e300, wall = 0;
-  RenderResult render;
-  rtl::SceneSimResult res;
-  std::vector<double> pair_ratio;  // cycle model / golden LOD + sampler of each run (the same requests)
-  // --bench with the timing recurrences also times the clocked blocks on the same requests.
-  const bool bench_clocked = o.bench && o.unit_engine == rtl::UnitEngine::Recurrence;
-  std::vector<double> clocked_ratio;
-  double clocked_secs = 1e300;
-  for (int run = 0; run < runs; ++run) {
-    const double tr = rtl::thread_cpu_seconds();
-    render = render_scene(scene, ro);
-    render_secs = std::min(render_secs, rtl::thread_cpu_seconds() - tr);
-    const auto t0 = std::chrono::steady_clock::now();
-    rtl::SceneSimResult r = rtl::simulate_scene(scene, render, unit, so);
-    if (run == 0) {
-      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      res = std::move(r);
-    } else {
-      res.cycle_seconds = std::min(res.cycle_seconds, r.cycle_seconds);
-      res.golden_seconds = std::min(res.golden_seconds, r.golden_seconds);
-    }
-    pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
-    if (bench_clocked) {
-      rtl::SceneSimOptions clocked = so;
-      clocked.engine = rtl::UnitEngine::Clocked;
-      const rtl::SceneSimResult c = rtl::simulate_scene(scene, render, unit, clocked);
-      if (c.cycles != res.cycles || c.stats.json_text() != res.stats.json_text())
-        throw CheckFailed("--bench: the clocked unit and the timing recurrences disagree (cycles or statistics)");
-      clocked_secs = std::min(clocked_secs, c.cycle_seconds);
-      clocked_ratio.push_back(c.cycle_seconds / c.golden_seconds);
-    }
-  }
-  std::sort(pair_ratio.begin(), pair_ratio.end());
-  std::sort(clocked_ratio.begin(), clocked_ratio.end());
+  SceneRun run = render_and_simulate(scene, ro, unit, so, o.bench);
+  const RenderResult& render = run.render;
+  rtl::SceneSimResult& res = run.res;
   rec.scene = {name, o.width, o.height, o.game_dir};
   rec.width = scene.width;
   rec.height = scene.height;
@@ -214,31 +177,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
                             res.requests, name, scene.width, scene.height, o.units, o.units == 1 ? "" : "s", res.requests),
                 res.requests, res.cycles, res.stats);
-  if (o.bench) {
-    const auto n = static_cast<double>(res.requests);
-    std::cout << fmt::format(
-        "  speed, one thread each, CPU seconds, best of {} runs, on the same {} requests:\n"
-        "    cycle model ({}) {:.3f} s = {:.2f} M simulated requests/s\n"
-        "    golden LOD + sampler {:.3f} s = {:.2f} M requests/s\n"
-        "    cost of cycle accuracy: cycle model / golden LOD + sampler = {:.2f}x (per run: median {:.2f}x, range {:.2f}-{:.2f}x)\n",
-        runs, res.requests, rtl::unit_engine_name(o.unit_engine), res.cycle_seconds, n / res.cycle_seconds / 1e6,
-        res.golden_seconds, n / res.golden_seconds / 1e6, res.cycle_seconds / res.golden_seconds,
-        pair_ratio[pair_ratio.size() / 2], pair_ratio.front(), pair_ratio.back());
-    if (bench_clocked)
-      std::cout << fmt::format(
-          "    the clocked blocks on the same requests (the reference; same cycles and statistics): {:.3f} s = {:.2f} M "
-          "simulated requests/s, {:.2f}x the golden (per run: median {:.2f}x)\n",
-          clocked_secs, n / clocked_secs / 1e6, clocked_secs / res.golden_seconds, clocked_ratio[clocked_ratio.size() / 2]);
-    std::cout << fmt::format(
-        "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
-        "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
-        render_secs, wall, o.units);
-    if (const uint64_t probes = rtl::counter(res.stats, rtl::UnitStat::Probes); probes != res.requests)
-      std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s{}\n", probes,
-                               static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6,
-                               bench_clocked ? fmt::format(" (clocked blocks {:.2f} M)", static_cast<double>(probes) / clocked_secs / 1e6)
-                                             : std::string());
-  }
+  if (o.bench) print_bench(run, o.unit_engine, o.units);
   return res.stats;
 }
 
@@ -329,7 +268,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   if (!mismatch.empty()) throw CheckFailed(mismatch);
 }
 
-// ---- tfu sim-results: the cycle model's measured results (TFU-C item 5) ----
+// ---- tfu sim-results: the cycle model's measured results (the cycle model section of docs/results.md) ----
 struct ResultsOptions {
   int width = 256, height = 192;      // 0: each scene's own size
   std::vector<std::string> scenes;    // empty: every built-in scene
@@ -415,7 +354,7 @@ void run_results(const ResultsOptions& o) {
       ratio_table += fmt::format("| {} | {} | {} | {:.4f} | {:.4f} | {:.4f} |\n", name, line, lin.bytes, ratio(st), ratio(ca),
                                  ratio(fc));
     }
-    // TFU-G: LINEAR_MIPMAP_LINEAR (and EDGE_PRESERVING_MIPMAP_LINEAR, static shapes) probes per maxAniso.
+    // Anisotropic filtering: LINEAR_MIPMAP_LINEAR (and EDGE_PRESERVING_MIPMAP_LINEAR, static shapes) probes per maxAniso.
     for (int n : {1, 2, 4, 8, 16}) {
       const ResultRow tri = measure(scene, name, base, filter_mode_from_name("LINEAR_MIPMAP_LINEAR"), EdgeShape::Static, line0, n);
       const ResultRow ep = measure(scene, name, base, filter_mode_from_name("EDGE_PRESERVING_MIPMAP_LINEAR"), EdgeShape::Static, line0, n);
@@ -432,7 +371,7 @@ void run_results(const ResultsOptions& o) {
           ? std::string("default unit configuration of docs/cycle-model.md: 16 KiB 4-way cache of 64-byte lines, textures tiled "
                         "4x4 (RGBA8), block-parity banks, memory latency 100 cycles and 16 bytes/cycle, one filter lane")
           : fmt::format("unit configuration of {}: `{}`", o.config, nlohmann::json::parse(rtl::unit_config_to_json(base)).dump());
-  md << fmt::format("\n## Cycle model (TFU-C)\n\nGenerated by `scripts/results` (`tfu sim-results`, {}, {}; every texture of a "
+  md << fmt::format("\n## Cycle model\n\nGenerated by `scripts/results` (`tfu sim-results`, {}, {}; every texture of a "
                     "scene resident in one texel memory, no flush between meshes). Every output of every run below was compared "
                     "with the golden model bit for bit (all equal). Cycles per pixel include the memory stalls.\n\n",
                     size, unit_text);
@@ -441,7 +380,7 @@ void run_results(const ResultsOptions& o) {
      << ratio_table
      << "\nWith the `static` policy the edge-preserving filter reads exactly the bytes of bilinear (ratio 1.0000), as Lee & "
         "Jen Sec. 3 designs it; `cross` pays for the neighbouring tiles' lines.\n\n";
-  md << "### Anisotropic filtering (TFU-G): pixels per clock and bytes per pixel per maxAniso\n\n"
+  md << "### Anisotropic filtering: pixels per clock and bytes per pixel per maxAniso\n\n"
         "Base stages LINEAR_MIPMAP_LINEAR with maxAniso N (the probe count of a pixel is at most N, any integer, docs/anisotropic.md); "
         "the last two columns run the same footprints as EDGE_PRESERVING_MIPMAP_LINEAR probes with static T/L shapes "
         "(Lee & Jen Sec. 3): its pixels per clock, and its memory bytes over LINEAR_MIPMAP_LINEAR's. As in the tables below a pixel is one request: "

@@ -16,6 +16,9 @@
 //   requests   lod, grad or quad mode; each request (each quad) names a texture and a sampler;
 //              coordinates mostly in [-2, 2], sometimes any 32-bit pattern (NaN, infinities,
 //              denormals, huge values)
+//   paths      the fast-path switch (cmodel/fast_paths.hpp), drawn after the requests (past the
+//              input's end: on): off runs the plain datapaths of both models and the golden
+//              compare against the plain golden datapath; restored after the run
 // A configuration the models refuse (InputError) is skipped; a mismatch aborts with the details.
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +26,7 @@
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/frame.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/mipmap.hpp"
@@ -128,6 +132,15 @@ tfu::Trace make_trace(ByteReader& in, tfu::FrameBuilder& fb, int textures, int s
   return tr;
 }
 
+// Sets the fast-path switch for one run and restores it after.
+struct FastPathsForRun {
+  bool saved = tfu::fast_paths_enabled();
+  explicit FastPathsForRun(bool on) { tfu::set_fast_paths(on); }
+  ~FastPathsForRun() { tfu::set_fast_paths(saved); }
+  FastPathsForRun(const FastPathsForRun&) = delete;
+  FastPathsForRun& operator=(const FastPathsForRun&) = delete;
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -137,6 +150,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const tfu::rtl::UnitConfig unit = make_unit(in, clocked);
   tfu::Frame frame;
   tfu::Trace trace;
+  bool plain = false;
   try {
     tfu::FrameBuilder fb(unit.cache.line_bytes);
     const int textures = 1 + (in.byte() & 1);
@@ -144,10 +158,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const int samplers = static_cast<int>(in.in_range(1, 3));
     for (int k = 0; k < samplers; ++k) fb.add_sampler(make_sampler(in), false);
     trace = make_trace(in, fb, textures, samplers);
+    plain = in.flag();
     frame = fb.finish();
   } catch (const tfu::InputError&) {
     return 0;  // a descriptor the driver refuses (e.g. a ROM the kernel does not fit)
   }
+  const FastPathsForRun paths(!plain);
   tfu::rtl::UnitOutput got;
   try {
     got = tfu::rtl::run_unit(frame, trace, unit, tfu::rtl::VcdOptions{}, clocked);
@@ -159,8 +175,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!mismatch.empty()) {
     const tfu::TraceRequest& r0 = trace.requests.front();
     const tfu::SamplerDescriptor& s0 = frame.regs.samplers[r0.sampler];
-    std::fprintf(stderr, "mismatch (%s trace, first sampler %s, line %d bytes): %s\n", tfu::trace_mode_name(trace.mode),
-                 tfu::filter_mode_name(s0.mode).c_str(), unit.cache.line_bytes, mismatch.c_str());
+    std::fprintf(stderr, "mismatch (%s trace, first sampler %s, line %d bytes, fast paths %s): %s\n",
+                 tfu::trace_mode_name(trace.mode), tfu::filter_mode_name(s0.mode).c_str(), unit.cache.line_bytes,
+                 plain ? "off" : "on", mismatch.c_str());
     std::abort();
   }
   // The timing recurrences (rtl/unit_recurrence.cpp) must give the clocked run's pixels, cycles

@@ -1,0 +1,89 @@
+#include "sim/tfu/sim_bench.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cmodel/error.hpp"
+#include "rtl/unit_stats.hpp"
+
+namespace tfu::cli {
+
+SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit,
+                             const rtl::SceneSimOptions& so, bool bench) {
+  if (bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
+  // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
+  // seconds, so that the figures do not depend on other work on the machine; the two alternate
+  // run by run, so that a slow spell of the (virtual) machine falls on both sides of the ratio.
+  SceneRun out;
+  out.runs = bench ? kBenchRuns : 1;
+  out.render_secs = 1e300;
+  out.clocked_secs = 1e300;
+  // --bench with the timing recurrences also times the clocked blocks on the same requests.
+  out.clocked = bench && so.engine == rtl::UnitEngine::Recurrence;
+  rtl::SceneSimResult& res = out.res;
+  for (int run = 0; run < out.runs; ++run) {
+    const double tr = rtl::thread_cpu_seconds();
+    out.render = render_scene(scene, ro);
+    out.render_secs = std::min(out.render_secs, rtl::thread_cpu_seconds() - tr);
+    const auto t0 = std::chrono::steady_clock::now();
+    rtl::SceneSimResult r = rtl::simulate_scene(scene, out.render, unit, so);
+    if (run == 0) {
+      out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      res = std::move(r);
+    } else {
+      res.cycle_seconds = std::min(res.cycle_seconds, r.cycle_seconds);
+      res.golden_seconds = std::min(res.golden_seconds, r.golden_seconds);
+    }
+    out.pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
+    if (out.clocked) {
+      rtl::SceneSimOptions clocked = so;
+      clocked.engine = rtl::UnitEngine::Clocked;
+      const rtl::SceneSimResult c = rtl::simulate_scene(scene, out.render, unit, clocked);
+      if (c.cycles != res.cycles || c.stats.json_text() != res.stats.json_text())
+        throw CheckFailed("--bench: the clocked unit and the timing recurrences disagree (cycles or statistics)");
+      out.clocked_secs = std::min(out.clocked_secs, c.cycle_seconds);
+      out.clocked_ratio.push_back(c.cycle_seconds / c.golden_seconds);
+    }
+  }
+  std::sort(out.pair_ratio.begin(), out.pair_ratio.end());
+  std::sort(out.clocked_ratio.begin(), out.clocked_ratio.end());
+  return out;
+}
+
+void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units) {
+  const rtl::SceneSimResult& res = run.res;
+  const auto n = static_cast<double>(res.requests);
+  std::cout << fmt::format(
+      "  speed, one thread each, CPU seconds, best of {} runs, on the same {} requests:\n"
+      "    cycle model ({}) {:.3f} s = {:.2f} M simulated requests/s\n"
+      "    golden LOD + sampler {:.3f} s = {:.2f} M requests/s\n"
+      "    cost of cycle accuracy: cycle model / golden LOD + sampler = {:.2f}x (per run: median {:.2f}x, range "
+      "{:.2f}-{:.2f}x)\n",
+      run.runs, res.requests, rtl::unit_engine_name(engine), res.cycle_seconds, n / res.cycle_seconds / 1e6,
+      res.golden_seconds, n / res.golden_seconds / 1e6, res.cycle_seconds / res.golden_seconds,
+      run.pair_ratio[run.pair_ratio.size() / 2], run.pair_ratio.front(), run.pair_ratio.back());
+  if (run.clocked)
+    std::cout << fmt::format(
+        "    the clocked blocks on the same requests (the reference; same cycles and statistics): {:.3f} s = {:.2f} M "
+        "simulated requests/s, {:.2f}x the golden (per run: median {:.2f}x)\n",
+        run.clocked_secs, n / run.clocked_secs / 1e6, run.clocked_secs / res.golden_seconds,
+        run.clocked_ratio[run.clocked_ratio.size() / 2]);
+  std::cout << fmt::format(
+      "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
+      "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
+      run.render_secs, run.wall, units);
+  if (const uint64_t probes = rtl::counter(res.stats, rtl::UnitStat::Probes); probes != res.requests) {
+    const std::string clocked =
+        run.clocked ? fmt::format(" (clocked blocks {:.2f} M)", static_cast<double>(probes) / run.clocked_secs / 1e6)
+                    : std::string();
+    std::cout << fmt::format("    anisotropic: {} probes ({:.2f} per pixel): cycle model {:.2f} M simulated probes/s{}\n",
+                             probes, static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6,
+                             clocked);
+  }
+}
+
+}  // namespace tfu::cli

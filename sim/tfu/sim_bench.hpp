@@ -1,0 +1,37 @@
+// tfu sim --bench: the speed of the cycle model against the golden model on one scene's requests
+// (docs/cycle-model.md). The scene is rendered by the golden model and simulated once, or with
+// --bench kBenchRuns times; the figures are the best runs in thread CPU seconds, and with the timing
+// recurrences the clocked blocks run on the same requests too (they must give the same cycles and
+// statistics).
+#pragma once
+
+#include <vector>
+
+#include "cmodel/raster.hpp"
+#include "cmodel/scene.hpp"
+#include "rtl/scene_sim.hpp"
+#include "rtl/unit_config.hpp"
+
+namespace tfu::cli {
+
+inline constexpr int kBenchRuns = 7;  // --bench: best of this many runs
+
+struct SceneRun {
+  RenderResult render;     // the last run's golden render
+  rtl::SceneSimResult res; // the first run's simulation; with --bench its seconds the best of all runs
+  // --bench only:
+  int runs = 1;
+  double render_secs = 0, wall = 0;  // best golden render; the first simulation's wall clock
+  std::vector<double> pair_ratio;    // cycle model / golden LOD + sampler of each run, sorted
+  bool clocked = false;              // the clocked blocks were timed too (the recurrences ran)
+  double clocked_secs = 0;           // their best run
+  std::vector<double> clocked_ratio; // their ratio of each run, sorted
+};
+
+// Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`).
+SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit,
+                             const rtl::SceneSimOptions& so, bool bench);
+// The --bench lines of a run of `units` units by `engine`.
+void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units);
+
+}  // namespace tfu::cli
