@@ -48,6 +48,11 @@ class OutputFile {
   void write_image(const Image& img);
   // "OPTION 'PATH'" for messages.
   std::string label() const;
+  // The temporary's name, for another process that reads what stream() wrote (after a flush) or
+  // writes the file itself (e.g. a script, opening it without following links); then mark_written(),
+  // so that commit() renames it into place.
+  const std::string& temp_path() const { return temp_; }
+  void mark_written() { written_ = true; }
 
  private:
   friend class OutputFiles;

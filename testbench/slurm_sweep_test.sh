@@ -6,6 +6,9 @@
 # through), waits for the array, collects it, and requires results.csv to equal the local runner's
 # byte for byte. Every daemon it started is stopped on exit (trap), by its pid file.
 #
+# The array's directory has a hostile name: the batch script must quote it (the task logs land in it
+# and no injected command runs).
+#
 #   testbench/slurm_sweep_test.sh BUILD/bin/tfu [WORK]
 #
 # Needs root (munged runs as the munge user) and Debian's slurm-wlm and munge (scripts/bootstrap
@@ -30,6 +33,9 @@ rm -rf "$work" && mkdir -p "$work"
 chmod 755 "$work"
 work=$(realpath "$work")
 mkdir -p "$work/munge" "$work/slurm/state" "$work/slurm/spool"
+# The array's directory has a hostile name (spaces, quotes, $(...), backticks, ;, #, glob characters):
+# the batch script quotes it, and sbatch reads the quoted #SBATCH --output line (the task logs below).
+run="$work/slurm run 'q' \"d\" \$(touch MARK1) \`touch MARK2\`;touch MARK3 #*?[ab]"
 chown munge:munge "$work/munge" && chmod 755 "$work/munge"
 
 cleanup() {
@@ -44,7 +50,7 @@ cleanup() {
   done
   if [[ $rc -ne 0 ]]; then
     echo "slurm_sweep_test: FAILED (exit $rc); logs:"
-    tail -n 15 "$work"/slurm/*.log "$work"/munge/*.log "$work"/slurm-run/slurm/*.log 2>/dev/null || true
+    tail -n 15 "$work"/slurm/*.log "$work"/munge/*.log "$run"/slurm/*.log 2>/dev/null || true
   fi
   exit $rc
 }
@@ -98,21 +104,24 @@ cat >"$work/spec.json" <<'EOF'
  "grid": {"cache.capacity_bytes": [4096, 16384], "cache.ways": [1, 4]}}
 EOF
 "$tfu" sweep "$work/spec.json" --out "$work/local-run" --workers 2 --quiet >"$work/local.txt"
-out=$("$tfu" sweep "$work/spec.json" --out "$work/slurm-run" --slurm --tasks 4 --sbatch-arg=--partition=debug \
+out=$(cd "$work" && "$tfu" sweep "$work/spec.json" --out "$run" --slurm --tasks 4 --sbatch-arg=--partition=debug \
       --sbatch-arg=--time=10)
 echo "$out"
 job=$(sed -n 's/.* submitted as Slurm job \([0-9][0-9]*\).*/\1/p' <<<"$out")
 [[ -n $job ]] || { echo "slurm_sweep_test: no job id in the output"; exit 1; }
-grep -q -- '--partition=debug' "$work/slurm-run/slurm/sweep.sbatch" && { echo "sbatch options belong on the command line"; exit 1; }
+grep -q -- '--partition=debug' "$run/slurm/sweep.sbatch" &&
+  { echo "sbatch options belong on the command line"; exit 1; }
 for i in $(seq 600); do
   [[ -z $(squeue -h -j "$job" 2>/dev/null) ]] && break
   [[ $i == 600 ]] && { echo "slurm_sweep_test: job $job still queued after 120 s"; exit 1; }
   sleep 0.2
 done
-tasks=$(ls "$work/slurm-run/slurm"/task-*.log | wc -l)
+tasks=$(ls "$run/slurm"/task-*.log | wc -l)
 [[ $tasks == 4 ]] || { echo "slurm_sweep_test: expected 4 array task logs, found $tasks"; exit 1; }
-"$tfu" sweep --collect "$work/slurm-run"
-cmp "$work/local-run/results.csv" "$work/slurm-run/results.csv"
-rows=$(($(wc -l <"$work/slurm-run/results.csv") - 1))
+"$tfu" sweep --collect "$run"
+cmp "$work/local-run/results.csv" "$run/results.csv"
+marks=$(ls "$work" | grep '^MARK' || true)
+[[ -z $marks ]] || { echo "slurm_sweep_test: an injected command ran: $marks"; exit 1; }
+rows=$(($(wc -l <"$run/results.csv") - 1))
 [[ $rows == 8 ]] || { echo "slurm_sweep_test: expected 8 rows, found $rows"; exit 1; }
 echo "slurm_sweep_test: job $job, 4 array tasks, 8 points: results.csv equals the local runner's byte for byte"

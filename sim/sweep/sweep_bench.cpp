@@ -1,26 +1,23 @@
 #include "sim/sweep/sweep_bench.hpp"
 
-#include <unistd.h>
-
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <cstdio>
-#include <filesystem>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
-#include "rtl/scene_sim.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "rtl/kernel/kernel.hpp"
+#include "rtl/scene_sim.hpp"
 #include "sim/sweep/sweep_run.hpp"
 
 namespace tfu::sweep {
 namespace {
 
-namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 // One point as `tfu sim` runs it: open the scene, render with the trace, simulate with the golden compare.
@@ -55,21 +52,14 @@ BenchFigures bench(const Spec& spec, const std::vector<Point>& points, int worke
   std::fputc('\n', stderr);
   const std::clock_t c1 = std::clock();
   f.single_cpu = static_cast<double>(c1 - c0) / CLOCKS_PER_SEC;
-  const fs::path dir = fs::temp_directory_path() / fmt::format("tfu-sweep-bench-{}", ::getpid());
-  fs::remove_all(dir);
   RunOptions opt;
   opt.workers = workers;
   opt.progress = true;
   const RunSummary sum = [&] {
-    try {
-      return run_points(spec, points, dir.string(), opt);
-    } catch (...) {
-      fs::remove_all(dir);
-      throw;
-    }
+    const TempDir dir("tfu-sweep-bench");  // the sweep's point files: a private directory, removed after
+    return run_points(spec, points, dir.path().string(), opt);
   }();
   f.sweep_cpu = static_cast<double>(std::clock() - c1) / CLOCKS_PER_SEC;
-  fs::remove_all(dir);
   f.workers = static_cast<int>(std::min<size_t>(points.size(), opt.workers > 0 ? static_cast<size_t>(opt.workers)
                                                                               : std::max(1u, std::thread::hardware_concurrency())));
   f.wall = sum.wall_seconds;

@@ -1,6 +1,9 @@
 #include "sim/sweep/sweep_plot.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -8,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
 #include "sim/sweep/process.hpp"
 
 namespace tfu::sweep {
@@ -32,12 +36,32 @@ std::string plot_script() {
   return std::string(TFU_SOURCE_DIR) + "/scripts/plot";
 }
 
-void plot(const PlotRequest& r) {
+OutputFile& add_plot_output(OutputFiles& outputs, const std::string& option, const std::string& path, bool force) {
+  // The script's own checks first, with its messages: the file type, then an existing file.
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".png") != 0)
+    throw InputError(fmt::format("{} {}: must be a .png file", option, quoted_path(path)));
+  struct stat st {};
+  if (!force && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode))
+    throw InputError(fmt::format("{} {} exists (use --force to overwrite)", option, quoted_path(path)));
+  return outputs.add(option, path);
+}
+
+std::string checked_plot_script() {
   const std::string script = plot_script();
   if (!fs::exists(script)) throw InputError(fmt::format("plot script '{}' not found (set TFU_PLOT_SCRIPT)", script));
-  const fs::path csv = fs::path(r.dir) / "results.csv";
+  return script;
+}
+
+void plot(const PlotRequest& r, OutputFile& out) {
+  const std::string script = checked_plot_script();
+  const std::string csv = r.csv.empty() ? (fs::path(r.dir) / "results.csv").string() : r.csv;
   if (!fs::exists(csv)) throw InputError(fmt::format("'{}' has no results.csv (run tfu sweep, or tfu sweep --collect)", r.dir));
-  std::vector<std::string> argv = {kPython, script, "--csv", csv.string(), "--x", r.x, "--y", r.y, "--kind", r.kind, "--out", r.out};
+  // --out names the chart in the script's messages; the PNG goes into the temporary (--write-to).
+  std::vector<std::string> argv = {kPython, script, "--csv", csv, "--x", r.x, "--y", r.y, "--kind", r.kind};
+  argv.insert(argv.end(), {"--out", out.path(), "--write-to", out.temp_path()});
+  if (!r.columns.empty()) argv.insert(argv.end(), {"--columns", r.columns});
   if (!r.series.empty()) {
     std::string s;
     for (const std::string& c : r.series) s += (s.empty() ? "" : ",") + c;
@@ -48,7 +72,6 @@ void plot(const PlotRequest& r) {
   if (!r.title.empty()) argv.insert(argv.end(), {"--title", r.title});
   if (r.log_x) argv.push_back("--log-x");
   if (r.log_y) argv.push_back("--log-y");
-  if (r.force) argv.push_back("--force");
   const ProcessResult res = run_process(argv);
   if (res.status == -1) throw InputError(fmt::format("cannot run {} (scripts/bootstrap installs python3-matplotlib)", kPython));
   if (res.status != 0) {
@@ -56,9 +79,11 @@ void plot(const PlotRequest& r) {
     if (line.rfind("plot: error: ", 0) == 0) line = line.substr(13);
     throw InputError(fmt::format("plot: {}", line.empty() ? fmt::format("{} exited with status {}", script, res.status) : line));
   }
+  out.mark_written();
 }
 
-std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& points, const std::string& dir) {
+std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& points, const std::string& dir,
+                                OutputFiles& outputs, const std::string& csv, const std::string& columns) {
   std::vector<Plot> plots;
   size_t xk = spec.keys.size();
   for (size_t k = 0; k < spec.grid_keys && xk == spec.keys.size(); ++k)
@@ -71,10 +96,10 @@ std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& poin
   if (series.empty()) series.push_back("filter");
   const auto make = [&](PlotRequest r, const std::string& file, const std::string& caption) {
     r.dir = dir;
+    r.csv = csv;
+    r.columns = columns;
     r.series = series;
-    r.out = (fs::path(dir) / file).string();
-    r.force = true;
-    plot(r);
+    plot(r, add_plot_output(outputs, "--plot", (fs::path(dir) / file).string(), /*force=*/true));
     plots.push_back({file, caption});
   };
   if (xk < spec.keys.size()) {

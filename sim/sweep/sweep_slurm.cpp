@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
 #include "sim/sweep/process.hpp"
 
 namespace tfu::sweep {
@@ -22,7 +23,27 @@ std::string self_executable() {
   return p.string();
 }
 
+void check_script_value(const std::string& what, const std::string& value) {
+  if (value.find_first_of("\n\r") != std::string::npos)
+    throw InputError(fmt::format("{} {}: a name with a newline or carriage return cannot go into a batch script", what,
+                                 quoted_path(value)));
+}
+
+namespace {
+
+// Every value the batch script or the sbatch command line holds, checked before either is made.
+void check_job(const SlurmJob& job) {
+  check_script_value("--out", job.dir);
+  check_script_value("the tfu binary", job.tfu);
+  for (const std::string& a : job.sbatch_args) check_script_value("--sbatch-arg", a);
+}
+
+}  // namespace
+
 std::string batch_script(const SlurmJob& job) {
+  check_job(job);
+  // Each value in the script is single-quoted (shell_quote); sbatch reads the #SBATCH line's quotes
+  // the same way. Without newlines and carriage returns no value can end a line of the script.
   const std::string logs = (std::filesystem::path(job.dir) / "slurm" / "task-%a.log").string();
   return fmt::format(
       "#!/bin/bash\n"
@@ -40,6 +61,7 @@ std::string batch_script(const SlurmJob& job) {
 }
 
 std::vector<std::string> sbatch_command(const SlurmJob& job, const std::string& script_path) {
+  check_job(job);
   std::vector<std::string> argv = {"sbatch", "--parsable"};
   argv.insert(argv.end(), job.sbatch_args.begin(), job.sbatch_args.end());
   argv.push_back(script_path);

@@ -17,8 +17,10 @@ struct SlurmJob {
   std::vector<std::string> sbatch_args;   // passed to sbatch before the script (e.g. --partition=x)
 };
 
-// The batch script (bash, #SBATCH lines for the array, log files DIR/slurm/task-%a.log and the
-// CPUs per task; the task line runs `tfu sweep --run-task $SLURM_ARRAY_TASK_ID --tasks N --out DIR`).
+// The batch script (bash, #SBATCH lines for the array, log files DIR/slurm/task-%a.log and the CPUs
+// per task; the task line runs `tfu sweep --run-task $SLURM_ARRAY_TASK_ID --tasks N --out DIR`).
+// Every value in it is single-quoted by shell_quote; InputError (check_script_value) for a value
+// with a newline or carriage return.
 std::string batch_script(const SlurmJob& job);
 // sbatch --parsable [sbatch_args...] SCRIPT
 std::vector<std::string> sbatch_command(const SlurmJob& job, const std::string& script_path);
@@ -27,7 +29,10 @@ std::string submit(const SlurmJob& job, const std::string& script_path);
 
 // The absolute path of the running binary (/proc/self/exe).
 std::string self_executable();
-// Single-quoted for bash.
+// Single-quoted for bash ('\'' for a quote inside): every value placed in a generated script.
 std::string shell_quote(const std::string& s);
+// InputError naming WHAT when `value` holds a newline or carriage return (it would end a line of a
+// generated script, or of the dry run's printed command); batch_script and sbatch_command check every value.
+void check_script_value(const std::string& what, const std::string& value);
 
 }  // namespace tfu::sweep

@@ -20,8 +20,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 #include <fmt/format.h>
@@ -35,6 +33,7 @@
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -191,19 +190,15 @@ void run(const AnisoCompareOptions& o) {
   OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
   const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir});
   const RenderResult iso = render_quads(scene, 1, true), aniso = render_quads(scene, o.max_aniso, false);
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("tfu_aniso_compare_{}", ::getpid());
-  std::filesystem::create_directories(dir);
   std::vector<Lookup> looks;
-  try {
+  {
+    // OIIO reads the textures from files: a private directory of this run (mkdtemp), removed after.
+    const TempDir dir("tfu-aniso-compare");
     looks = {{"ours trilinear", ours(scene, iso)},
              {fmt::format("ours aniso {}", o.max_aniso), ours(scene, aniso)},
-             {fmt::format("OIIO aniso {}", o.max_aniso), oiio(scene, aniso, dir)},
-             {"OIIO trilinear", oiio(scene, iso, dir)}};
-  } catch (...) {
-    std::filesystem::remove_all(dir);
-    throw;
+             {fmt::format("OIIO aniso {}", o.max_aniso), oiio(scene, aniso, dir.path())},
+             {"OIIO trilinear", oiio(scene, iso, dir.path())}};
   }
-  std::filesystem::remove_all(dir);
   nlohmann::json js;
   std::cout << fmt::format("tfu aniso-compare: scene {} at {}x{}, {} grad-mode requests\n", o.scene, scene.width, scene.height,
                            iso.trace.requests.size());

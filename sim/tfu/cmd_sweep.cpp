@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/output_files.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/sweep/sweep_bench.hpp"
 #include "sim/sweep/sweep_plot.hpp"
@@ -39,14 +40,22 @@ struct SweepOptions {
   std::vector<std::string> sbatch_args;
 };
 
-// results.csv, columns.json, the plots and summary.md from the point files; CheckFailed when a
+// results.csv, columns.json, the plots and summary.md from the point files, all or nothing: each is
+// written to a temporary (the plots drawn from results.csv's and columns.json's) and all are renamed
+// into place together at the end, so a failed plot step leaves DIR as it was. CheckFailed when a
 // point failed its golden compare or could not run.
 void finish(const Spec& spec, const std::vector<Point>& points, const std::string& dir, bool plots) {
   const std::vector<nlohmann::json> files = read_point_files(dir, points);
-  write_file_atomic((fs::path(dir) / "results.csv").string(), results_csv(spec, points, files), "results.csv");
-  write_file_atomic((fs::path(dir) / "columns.json").string(), columns_json(spec), "columns.json");
-  const std::vector<Plot> charts = plots ? default_plots(spec, points, dir) : std::vector<Plot>{};
-  write_file_atomic((fs::path(dir) / "summary.md").string(), summary_markdown(spec, points, files, charts), "summary.md");
+  OutputFiles outputs(/*force=*/true);  // the sweep's own files in its own directory: replaced
+  OutputFile& csv = outputs.add("results.csv", (fs::path(dir) / "results.csv").string());
+  OutputFile& columns = outputs.add("columns.json", (fs::path(dir) / "columns.json").string());
+  OutputFile& summary = outputs.add("summary.md", (fs::path(dir) / "summary.md").string());
+  csv.stream() << results_csv(spec, points, files) << std::flush;  // flushed: the plot script reads it
+  columns.stream() << columns_json(spec) << std::flush;
+  const std::vector<Plot> charts =
+      plots ? default_plots(spec, points, dir, outputs, csv.temp_path(), columns.temp_path()) : std::vector<Plot>{};
+  summary.stream() << summary_markdown(spec, points, files, charts);
+  outputs.commit();
   std::cout << fmt::format("tfu sweep: {} points -> {}/results.csv, summary.md{}\n", points.size(), dir,
                            charts.empty() ? "" : fmt::format(", {} plots", charts.size()));
   if (const size_t failed = failed_points(files); failed > 0)
@@ -84,6 +93,7 @@ void run(const SweepOptions& o) {
   if (!o.collect.empty()) {
     if (!o.spec.empty() || !o.out.empty()) throw InputError("--collect DIR takes no spec and no --out");
     const Spec spec = load_sweep_dir(o.collect);
+    if (o.plot) (void)checked_plot_script();  // a missing plot step is found before anything is written
     finish(spec, expand(spec), o.collect, o.plot);
     return;
   }
@@ -110,6 +120,7 @@ void run(const SweepOptions& o) {
     run_slurm(o, spec, points);
     return;
   }
+  if (o.plot) (void)checked_plot_script();  // a missing plot step is found before anything runs
   prepare_sweep_dir(o.out, spec, o.force);
   const RunSummary s = run_points(spec, points, o.out, {o.workers, 0, 1, !o.quiet});
   std::cerr << fmt::format("tfu sweep: {} points ran, {} already done, {:.1f} s\n", s.ran, s.skipped, s.wall_seconds);
@@ -141,9 +152,9 @@ void run_plot(const PlotOptions& o) {
   if (o.kind != "line" && o.kind != "bar") throw InputError(fmt::format("--kind '{}': expected line or bar", o.kind));
   r.kind = o.kind;
   r.title = o.title;
-  r.out = o.out;
-  r.force = o.force;
-  plot(r);
+  OutputFiles outputs(o.force);  // the chart is renamed into place only when the script has drawn it
+  plot(r, add_plot_output(outputs, "--out", o.out, o.force));
+  outputs.commit();
   std::cout << o.out << '\n';
 }
 
