@@ -10,6 +10,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/parallel.hpp"
+#include "rtl/engine_compare.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/unit_stats.hpp"
 
@@ -69,6 +70,9 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     job.cycle_seconds = t1 - t0;
     job.golden_seconds = t2 - t1;
     job.mismatch = first_mismatch(job.trace, want, job.out, fmt::format("unit {}", job.unit));
+    if (job.mismatch.empty() && opt.compare_engines)  // both engines again, every event (rtl/engine_compare.hpp)
+      if (const std::string d = rtl::compare_engines(frame, job.trace, u); !d.empty())
+        job.mismatch = fmt::format("unit {}: {}", job.unit, d);
   };
   // Units are handed out to up to hardware_threads() workers (each unit on
   // one thread); results do not depend on which worker runs which unit.

@@ -30,6 +30,9 @@ struct SceneSimOptions {
   // The timing recurrences, as `tfu sim`, `tfu sweep` and UnitEngine{} (the clocked run's results,
   // tested); a unit that writes a waveform still runs clocked. Clocked: the reference blocks.
   UnitEngine engine = UnitEngine::Recurrence;
+  // Also run each unit's requests through both engines with every event recorded; the first event,
+  // pixel or statistic at which they differ is a mismatch (rtl/engine_compare.hpp; a debugging aid).
+  bool compare_engines = false;
 };
 
 struct SceneSimResult {

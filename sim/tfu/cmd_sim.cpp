@@ -48,7 +48,7 @@ struct SimOptions {
   int units = 1;
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
-  bool force = false, bench = false, config_fields = false, stats_fields = false;
+  bool force = false, bench = false, config_fields = false, stats_fields = false, compare_engines = false;
   std::string engine;  // empty: recurrence, or clocked when a waveform is asked for
   rtl::UnitEngine unit_engine = rtl::UnitEngine::Recurrence;  // from engine
 };
@@ -124,6 +124,7 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
       rtl::run_unit(frame, trace, unit, o.unit_engine, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
   const GoldenUnit golden(frame);
   mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
+  if (mismatch.empty() && o.compare_engines) mismatch = rtl::compare_engines(frame, trace, unit);
   std::string modes;
   for (const SamplerDescriptor& s : frame.regs.samplers) modes += (modes.empty() ? "" : ", ") + filter_mode_name(s.mode);
   rec.filter = modes;
@@ -132,6 +133,7 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   print_summary(fmt::format("tfu sim: {} {} requests ({}), golden compare: all {} equal\n", modes, trace.requests.size(),
                             o.requests, trace.requests.size()),
                 trace.requests.size(), got.cycles, got.stats);
+  if (o.compare_engines) std::cout << "  engine compare: both engines agree on every event, pixel and statistic\n";
   return got.stats;
 }
 
@@ -156,6 +158,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   so.vcd_from = o.vcd_from;
   so.vcd_to = o.vcd_to;
   so.engine = o.unit_engine;
+  so.compare_engines = o.compare_engines;
   SceneRun run = render_and_simulate(scene, ro, unit, so, o.bench);
   const RenderResult& render = run.render;
   rtl::SceneSimResult& res = run.res;
@@ -177,6 +180,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   print_summary(fmt::format("tfu sim: {} {} requests (scene {} at {}x{}, {} unit{}), golden compare: all {} equal\n", mode,
                             res.requests, name, scene.width, scene.height, o.units, o.units == 1 ? "" : "s", res.requests),
                 res.requests, res.cycles, res.stats);
+  if (o.compare_engines) std::cout << "  engine compare: both engines agree on every event, pixel and statistic\n";
   if (o.bench) print_bench(run, o.unit_engine, o.units);
   return res.stats;
 }
@@ -461,6 +465,8 @@ void register_sim(CLI::App& app) {
                   "reference, and the one that writes --vcd; the default with --vcd); the same outputs, cycles and "
                   "statistics (tested)");
   add_plain_option(*cmd);
+  cmd->add_flag("--compare-engines", o->compare_engines,
+                "Also run both engines with every event recorded; name the first block and item where they disagree");
   cmd->add_flag("--bench", o->bench, "Print the simulation speed (with the recurrences, of the clocked blocks too)");
   cmd->add_flag("--force", o->force, "Overwrite output files that exist");
   cmd->callback([o, cmd] { run(*o, *cmd); });

@@ -185,8 +185,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const tfu::rtl::UnitOutput rec = tfu::rtl::run_unit_recurrence(frame, trace, unit);
   if (rec.pixels != got.pixels || rec.response_cycle != got.response_cycle || rec.cycles != got.cycles ||
       rec.edge_shapes != got.edge_shapes || rec.stats.json_text() != got.stats.json_text()) {
-    std::fprintf(stderr, "the timing recurrences differ from the clocked unit: %llu against %llu cycles\n",
-                 static_cast<unsigned long long>(rec.cycles), static_cast<unsigned long long>(got.cycles));
+    // Where they part: both engines again with every event recorded (rtl/engine_compare.hpp).
+    std::fprintf(stderr, "the timing recurrences differ from the clocked unit: %llu against %llu cycles; %s\n",
+                 static_cast<unsigned long long>(rec.cycles), static_cast<unsigned long long>(got.cycles),
+                 tfu::rtl::compare_engines(frame, trace, unit).c_str());
     std::abort();
   }
   return 0;
