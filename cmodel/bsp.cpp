@@ -84,6 +84,9 @@ std::vector<BspTexture> read_textures(const LumpReader& r) {
     const uint8_t* p = r.lump(kLumpTextures).data() + i * kTextureRecord;
     const char* name = reinterpret_cast<const char*>(p);
     out[i].name.assign(name, strnlen(name, 64));
+    if (has_control_characters(out[i].name))  // never to reach a trace binding or a report
+      r.fail(kLumpTextures, fmt::format("texture {} is named '{}', with a control character (names must be printable)", i,
+                                        quote_input(out[i].name)));
     out[i].surface_flags = get_i32(p + 64);
     out[i].content_flags = get_i32(p + 68);
   }

@@ -17,6 +17,12 @@ std::string cut(std::string s, size_t max_chars) {
 
 }  // namespace
 
+bool has_control_characters(std::string_view text) {
+  for (const char c : text)
+    if (is_control(c)) return true;
+  return false;
+}
+
 std::string quote_input(std::string_view text, size_t max_chars) {
   std::string s(text.substr(0, max_chars + 4));  // enough to know whether it is cut
   for (char& c : s)

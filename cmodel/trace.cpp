@@ -260,6 +260,17 @@ Trace load_trace(const std::string& path) {
 }
 
 void write_trace(std::ostream& out, const Trace& trace) {
+  // A binding is one line of words: a control character (a newline above all) in its spec or a
+  // parameter would start a line of its own, so it is refused before anything is written.
+  for (const auto* bindings : {&trace.textures, &trace.samplers})
+    for (const TraceBinding& b : *bindings) {
+      bool bad = has_control_characters(b.spec);
+      for (const auto& [k, v] : b.params) bad = bad || has_control_characters(k) || has_control_characters(v);
+      if (bad)
+        throw InputError(fmt::format("trace binding {} {} ('{}'): a control character cannot be written into a trace line",
+                                     bindings == &trace.textures ? "tfu-texture" : "tfu-sampler", b.index,
+                                     quote_input(b.spec)));
+    }
   bool indexed = !trace.textures.empty() || !trace.samplers.empty();
   for (const TraceRequest& r : trace.requests) indexed = indexed || r.texture != 0 || r.sampler != 0 || r.stage != 0;
   out << "# tfu-trace mode=" << trace_mode_name(trace.mode);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The batch script of `tfu sweep --slurm` against hostile names, without Slurm (docs/inputs-outputs.md,
-# TFU-P item 1). The tfu binary is copied into a directory whose name holds every character the shell
-# treats specially (spaces, quotes, $(...), backticks, ;, #, glob characters, a backslash), and the
+# "Temporary files and generated scripts"). The tfu binary is copied into a directory whose name holds
+# every character the shell treats specially (spaces, quotes, $(...), backticks, ;, #, glob characters,
+# a backslash), and the
 # sweep goes to --out directories of the same kind, with an --sbatch-arg of the same kind:
 #   - the --slurm-dry-run script and the script that --slurm hands to a fake sbatch (which records
 #     its arguments) are run under bash, with the binary replaced by a stub that records its

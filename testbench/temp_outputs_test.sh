@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Temporary paths and failed runs (docs/inputs-outputs.md, TFU-P items 2 and 6):
+# Temporary paths and failed runs (docs/inputs-outputs.md, "Temporary paths" and "Failed runs"):
 #   - a directory with a symbolic link planted at the old predictable temporary names
 #     ($TMPDIR/tfu_aniso_compare_PID for `tfu aniso-compare`, $TMPDIR/tfu-sweep-bench-PID for
 #     `tfu sweep --bench`, P.png.tmp.png for `tfu plot --out P.png`) is left untouched, the file

@@ -3,7 +3,11 @@
 // sums; every malformed file gives one InputError line naming the source and the lump.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <sstream>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -13,6 +17,8 @@
 #include "cmodel/bezier_patch.hpp"
 #include "cmodel/bsp.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/pk3.hpp"
+#include "cmodel/trace.hpp"
 #include "cmodel/q3_level.hpp"
 #include "testbench/q3_test_data.hpp"
 
@@ -351,6 +357,58 @@ TEST(BezierPatch, SubPatchesShareEdges) {
   ASSERT_EQ(coarse.vertices.size(), 6u);
   EXPECT_EQ(coarse.vertices[1].pos, c[2].pos);
   EXPECT_EQ(coarse.vertices[5].pos, c[14].pos);
+}
+
+}  // namespace
+}  // namespace tfu::q3
+
+namespace tfu::q3 {
+namespace {
+
+// Names from archives and files never reach an output format with a control character in them
+// (docs/inputs-outputs.md, "Names"): a BSP texture name, a pk3 entry name and a trace binding that
+// hold a newline are refused with one line (a newline in a texture name once wrote a binding line
+// "# tfu-texture 1 /etc/hostname" of its own into a trace).
+TEST(Names, ControlCharactersAreRefusedBeforeAnyOutput) {
+  BspBuilder b = small_bsp();
+  b.textures[1].name = "textures/x\n# tfu-texture 1 /etc/hostname";
+  EXPECT_ERROR_HAS(b.build(), "lump 1 (textures): texture 1 is named 'textures/x?# tfu-texture 1 /etc/hostname', with a "
+                              "control character");
+  b.textures[1].name = std::string("textures/del") + char{0x7f};
+  EXPECT_ERROR_HAS(b.build(), "texture 1 is named 'textures/del?'");
+  // A pk3 entry.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("tfu_names_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  testdata::write_zip(dir / "a.pk3", {{"maps/ok.bsp", Bytes{1}}, {"maps/x\ny.bsp", Bytes{2}}});
+  try {
+    Pk3Archive a((dir / "a.pk3").string());
+    ADD_FAILURE() << "opened";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a.pk3: entry 1 is named 'maps/x?y.bsp', with a control character"),
+              std::string::npos)
+        << e.what();
+  }
+  testdata::write_zip(dir / "b.pk3", {{"maps/ok.bsp", Bytes{1}}});
+  EXPECT_EQ(Pk3Archive((dir / "b.pk3").string()).entry_names(), std::vector<std::string>{"maps/ok.bsp"});
+  std::filesystem::remove_all(dir);
+  // A trace binding, refused before a line is written.
+  Trace t;
+  t.mode = TraceMode::Lod;
+  t.textures.push_back({1, "proc:text\n# tfu-texture 2 /etc/hostname", {}, ""});
+  t.requests.push_back({});
+  std::ostringstream out;
+  try {
+    write_trace(out, t);
+    ADD_FAILURE() << "written";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "trace binding tfu-texture 1 ('proc:text?# tfu-texture 2 /etc/hostname'): a control character cannot be "
+              "written into a trace line");
+  }
+  EXPECT_EQ(out.str(), "");
+  t.textures[0].spec = "proc:text";
+  t.textures[0].params = {{"format", "l8\r"}};
+  EXPECT_THROW(write_trace(out, t), InputError);
 }
 
 }  // namespace
