@@ -7,7 +7,7 @@
 //   level_blend8                          dp::level_blend + encode_texel
 //   wrap_taps                             wrap_run (texture.hpp), the mode fixed at compile time
 // Tests: Properties.WordLerpAndBlendEqualChannelDatapath and Properties.QuadLerpEqualsScalarLerp
-// (the units), Properties.FastPathsEqualGenericPath and TfuUnit.FixedWrapGridsEqualThePlainAddressUnit
+// (the units), Properties.FastPathsEqualPlainPath and TfuUnit.FixedWrapGridsEqualThePlainAddressUnit
 // (their users). The fast-path switch (cmodel/fast_paths.hpp: TFU_PLAIN=1, the CLI's --plain) turns
 // every user over to the plain twins.
 #pragma once

@@ -9,7 +9,7 @@ namespace tfu::rtl {
 namespace {
 
 // The plain golden datapath of one request, whatever dispatch the sampler was built with:
-// Sampler::sample's plain targets (sample_generic, aniso_generic) spelled with the public calls.
+// Sampler::sample's plain targets (sample_plain, aniso_plain) spelled with the public calls.
 Rgba8 plain_sample(const Sampler& smp, float s, float t, const AnisoLod& lod) {
   const Texel4 c = lod.probes == 1 ? smp.sample_channels(s, t, lod.lambda_q8) : smp.sample_channels(s, t, lod);
   return encode_texel(c, smp.texture().format);
