@@ -109,6 +109,8 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
 
 // "# tfu-texture N SPEC key=value..." / "# tfu-sampler N key=value..."
 TraceBinding parse_binding(const std::string& line, bool texture, const std::string& where) {
+  // Names never carry a control character (docs/inputs-outputs.md, "Names"; write_trace refuses them).
+  if (has_control_characters(line)) throw InputError(fmt::format("{}: a control character in a binding line", where));
   const std::vector<std::string> w = words(line);
   TraceBinding b;
   b.where = where;

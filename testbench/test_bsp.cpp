@@ -409,6 +409,14 @@ TEST(Names, ControlCharactersAreRefusedBeforeAnyOutput) {
   t.textures[0].spec = "proc:text";
   t.textures[0].params = {{"format", "l8\r"}};
   EXPECT_THROW(write_trace(out, t), InputError);
+  // ... nor read from one: so what the reader accepts, the writer writes back.
+  std::istringstream in("# tfu-texture 0 proc:te\x01xt\n0.5,0.5,0\n");
+  try {
+    parse_trace(in, "n.txt");
+    ADD_FAILURE() << "parsed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "n.txt:1: a control character in a binding line");
+  }
 }
 
 }  // namespace
