@@ -42,9 +42,13 @@ Pk3Archive::Pk3Archive(std::string path) : path_(std::move(path)) {
     const char* name = zip_get_name(archive_, static_cast<zip_uint64_t>(i), ZIP_FL_ENC_RAW);
     if (name == nullptr || *name == '\0') continue;
     std::string s(name);
-    if (has_control_characters(s))  // never to reach a level list, a trace or a report
-      throw InputError(fmt::format("{}: entry {} is named '{}', with a control character (entry names must be printable)",
-                                   path_, i, quote_input(s)));
+    if (has_control_characters(s)) {  // never to reach a level list, a trace or a report
+      const std::string what = fmt::format("{}: entry {} is named '{}', with a control character (entry names must be printable)",
+                                           path_, i, quote_input(s));
+      zip_discard(archive_);  // the destructor does not run for a constructor that throws
+      archive_ = nullptr;
+      throw InputError(what);
+    }
     if (s.back() == '/') continue;  // directory entry
     names_.push_back(s);
     index_[ascii_lower(s)] = static_cast<uint64_t>(i);
