@@ -8,6 +8,7 @@
 #include "cmodel/scene.hpp"
 #include "rtl/engine_compare.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "testbench/scene_trace.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -19,14 +20,9 @@ struct OneTextureRun {
   Trace trace;
 };
 OneTextureRun scene_run(const std::string& scene_name, const char* mode, const UnitConfig& u) {
-  Scene scene = load_scene(scene_name);
-  scene.width = 48;
-  scene.height = 32;
-  RenderOptions o;
-  o.trace = true;
-  o.threads = 1;
-  Trace tr = render_scene(scene, o).trace;
-  const Mesh& mesh = scene.meshes.front();
+  const test::SceneTrace st = test::scene_trace(scene_name, 48, 32);
+  Trace tr = st.trace;
+  const Mesh& mesh = st.scene.meshes.front();
   SamplerDescriptor s = mesh.stages[0].sampler;
   s.mode = filter_mode_from_name(mode);
   FrameBuilder b(u.cache.line_bytes);

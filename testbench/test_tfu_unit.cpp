@@ -25,26 +25,14 @@
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "testbench/iterations.hpp"
+#include "testbench/scene_trace.hpp"
 #include "testbench/docs_text.hpp"
 
 namespace tfu::rtl {
 namespace {
 
-struct SceneTrace {
-  Scene scene;
-  Trace trace;
-};
-
-SceneTrace scene_trace(const std::string& name, int w, int h) {
-  SceneTrace st{load_scene(name), {}};
-  st.scene.width = w;
-  st.scene.height = h;
-  RenderOptions o;
-  o.trace = true;
-  o.threads = 1;
-  st.trace = render_scene(st.scene, o).trace;
-  return st;
-}
+using test::scene_trace;
+using test::SceneTrace;
 
 // A frame of one texture and one sampler, tiled for the unit's lines; the trace bound to it.
 struct OneTexture {
