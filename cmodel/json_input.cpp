@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_output.hpp"
 
 namespace tfu {
 namespace {
@@ -124,6 +125,6 @@ json parse_json_input(const std::string& text, const std::string& source) {
   return root;
 }
 
-std::string json_number_text(const json& v) { return quote_input(v.dump(), 40); }
+std::string json_number_text(const json& v) { return quote_input(json_dump(v), 40); }
 
 }  // namespace tfu

@@ -17,6 +17,7 @@
 #include "cmodel/input_file.hpp"
 #include "cmodel/json_input.hpp"
 #include "cmodel/json_keys.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/mipmap.hpp"
 
 #include "cmodel/embedded_scenes.hpp"
@@ -184,7 +185,7 @@ using TextureCache = std::map<std::pair<std::string, Params>, LoadedTexture>;
 std::string value_text(const Obj& o, const std::string& key) {
   const json& v = o.raw(key);
   if (v.is_string()) return v.get<std::string>();
-  if (v.is_number() || v.is_boolean()) return v.dump();
+  if (v.is_number() || v.is_boolean()) return json_dump(v);
   o.fail_key(key, fmt::format("expected a string, number or boolean, got {}", v.type_name()));
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 
 #include "cmodel/error.hpp"
@@ -64,7 +65,11 @@ std::string StderrCapture::text(size_t max_chars) {
 }
 
 std::string with_captured(const std::string& message, StderrCapture& capture) {
-  const std::string t = capture.text();
+  // The captured text gets what room the error line has left (kMaxMessageChars): the message, which
+  // names the input, is never what is cut.
+  const size_t used = message.size() + 3;  // " (" and ")"
+  if (used + 20 > kMaxMessageChars) return message;
+  const std::string t = capture.text(std::min<size_t>(120, kMaxMessageChars - used));
   return t.empty() ? message : message + " (" + t + ")";
 }
 

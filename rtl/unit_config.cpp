@@ -9,6 +9,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/json_input.hpp"
 #include "cmodel/json_keys.hpp"
+#include "cmodel/json_output.hpp"
 
 namespace tfu::rtl {
 
@@ -169,7 +170,7 @@ std::string unit_config_to_json(const UnitConfig& c) {
     for (size_t dot; (dot = key.find('.')) != std::string::npos; key = key.substr(dot + 1)) at = &(*at)[key.substr(0, dot)];
     (*at)[key] = nlohmann::json::parse(f.value_text(c));
   }
-  return j.dump(2);
+  return json_dump(j, 2);
 }
 
 std::string unit_config_markdown() {

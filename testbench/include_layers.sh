@@ -2,7 +2,9 @@
 # The house's layering, checked from the sources: no include arrow runs from a lower room to a
 # higher one. Rooms, lowest first:
 #   cmodel/       the golden model                    may include cmodel/
-#   rtl/kernel/   the simulation kernel               may include rtl/kernel/ and cmodel/error_kinds.hpp only
+#   rtl/kernel/   the simulation kernel               may include rtl/kernel/ and two leaf headers of
+#                                                     cmodel/ (no project includes of their own):
+#                                                     error_kinds.hpp and json_output.hpp
 #   rtl/          the cycle model and the SV tools    may include cmodel/, rtl/
 #   sim/          the CLI and the sweeps              may include cmodel/, rtl/, sim/
 #   testbench/ and every tests/ folder (rtl/sv/*/tests/): above all, may include anything
@@ -21,7 +23,7 @@ check() {
     [[ $file == */tests/* || $room == testbench ]] && continue
     case $file in
       rtl/kernel/*)
-        [[ $target == rtl/kernel/* || $target == cmodel/error_kinds.hpp ]] && continue
+        [[ $target == rtl/kernel/* || $target == cmodel/error_kinds.hpp || $target == cmodel/json_output.hpp ]] && continue
         room=rtl/kernel ;;
       cmodel/*) [[ $target == cmodel/* ]] && continue ;;
       rtl/*) [[ $target == cmodel/* || $target == rtl/* ]] && continue ;;

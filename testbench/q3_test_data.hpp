@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include "cmodel/bsp.hpp"
+#include "cmodel/q3_archives.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "cmodel/texture.hpp"
 
 namespace tfu::q3::testdata {
@@ -184,6 +186,51 @@ inline Vertex vtx(glm::dvec3 pos, glm::dvec2 uv0, glm::dvec2 uv1 = {0, 0}, std::
   v.normal = normal;
   v.colour = colour;
   return v;
+}
+
+// ---- The real game data, exactly the archives the tests were checked against ----
+//
+// The OpenArena tests' figures (level counts, texture sources, frame statistics) were counted on
+// Debian's openarena-081-maps (pak1-maps.pk3, 50 levels) and openarena-081-textures
+// (pak4-textures.pk3). Other archives installed in the same game directory change them: Debian's
+// full `openarena` 0.8.8 adds archives that override 38 levels and at least 88 textures, and Quake
+// III's search order lets the later archive win. So the tests read a private game directory of
+// symbolic links to exactly these two archives of the installed one (q3::openarena_dir(): the
+// Debian path or $TFU_OPENARENA_DIR), and give the same figures with or without the full game.
+inline constexpr std::array<const char*, 2> kCheckedArchives = {"pak1-maps.pk3", "pak4-textures.pk3"};
+
+class CheckedGameData {
+ public:
+  // Links the checked archives of `installed`; present() is false when one of them is missing.
+  explicit CheckedGameData(const std::string& installed = openarena_dir()) : installed_(installed) {
+    for (const char* name : kCheckedArchives) {
+      const std::filesystem::path from = std::filesystem::path(installed) / name;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(from, ec)) return;
+      std::filesystem::create_symlink(std::filesystem::absolute(from), dir_.path() / name, ec);
+      if (ec) return;
+    }
+    present_ = true;
+  }
+  bool present() const { return present_; }
+  // The private game directory (as --game-dir or SceneRequest::game_dir).
+  std::string dir() const { return dir_.path().string(); }
+  // For GTEST_SKIP when the data is not installed.
+  std::string missing() const {
+    return "OpenArena game data (" + std::string(kCheckedArchives[0]) + ", " + kCheckedArchives[1] + ") not installed in " +
+           installed_;
+  }
+
+ private:
+  std::string installed_;
+  TempDir dir_{"tfu-game-data"};
+  bool present_ = false;
+};
+
+// One private directory for the whole test program.
+inline const CheckedGameData& checked_game_data() {
+  static const CheckedGameData data;
+  return data;
 }
 
 }  // namespace tfu::q3::testdata

@@ -33,9 +33,10 @@ rm -rf "$work" && mkdir -p "$work"
 chmod 755 "$work"
 work=$(realpath "$work")
 mkdir -p "$work/munge" "$work/slurm/state" "$work/slurm/spool"
-# The array's directory has a hostile name (spaces, quotes, $(...), backticks, ;, #, glob characters):
-# the batch script quotes it, and sbatch reads the quoted #SBATCH --output line (the task logs below).
-run="$work/slurm run 'q' \"d\" \$(touch MARK1) \`touch MARK2\`;touch MARK3 #*?[ab]"
+# The array's directory has a hostile name (spaces, quotes, $(...), backticks, ;, #, glob characters,
+# and sbatch's own pattern characters %j and %%): the batch script quotes it and writes its '%' as %%,
+# and sbatch reads the quoted #SBATCH --output line (the four task logs land in DIR/slurm below).
+run="$work/slurm run 'q' \"d\" \$(touch MARK1) \`touch MARK2\`;touch MARK3 #*?[ab] %j %% 100%"
 chown munge:munge "$work/munge" && chmod 755 "$work/munge"
 
 cleanup() {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "cmodel/json_input.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/stderr_capture.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/tfu_unit.hpp"
@@ -194,6 +196,28 @@ TEST(ErrorLines, LibpngMessagesAreCarriedInOurLine) {
   EXPECT_NE(msg.find("(libpng error: "), std::string::npos) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos);
   fs::remove_all(d);
+}
+
+// A texture file with a long name (found by the texture fuzz target's hostile names): OpenImageIO
+// repeats the whole path in its error text, which made a 422-character message. The library's text
+// names the file "the file" and is cut, and libpng's captured text gets only the room left: the
+// message stays within kMaxMessageChars and still starts with the (shortened) path.
+TEST(ErrorLines, LongTextureNamesGiveShortLines) {
+  const TempDir d("tfu-error-lines");
+  const std::string stem(200, 'n');
+  const fs::path good = d.path() / "good.png", bad_png = d.path() / (stem + ".png"), bad_jpg = d.path() / (stem + ".jpg");
+  save_image(Image(64, 64, Rgba8{10, 20, 30, 255}), good.string(), true);
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(bad_png, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  std::ofstream(bad_jpg, std::ios::binary) << std::string("\xff\xd8\xff\xe0\x00\x10JFIF\x00", 11) << std::string(40, '\x01');
+  for (const fs::path& p : {bad_png, bad_jpg}) {
+    const std::string msg = input_error([&] { load_texture(p.string()); });
+    EXPECT_LE(msg.size(), kMaxMessageChars) << msg;
+    EXPECT_FALSE(has_control_characters(msg)) << msg;
+    EXPECT_EQ(msg.rfind(quote_path(p.string()) + ": ", 0), 0u) << msg;
+    EXPECT_EQ(msg.find(stem), std::string::npos) << msg;  // the full name is not repeated
+  }
 }
 
 TEST(ErrorLines, StderrCaptureJoinsLinesAndRestoresStderr) {

@@ -464,11 +464,35 @@ TEST(Q3Level, TriangleBudget) {
 
 // ---- The real game data (Debian openarena-081-maps / -textures; scripts/bootstrap installs them) ----
 
-bool game_data_present() { return fs::exists(fs::path(openarena_dir()) / "pak1-maps.pk3"); }
+using testdata::checked_game_data;
+
+// The private game directory holds exactly the checked archives of the installed one, whatever else
+// is installed beside them: a full game's archive that overrides a level and adds one is not read.
+TEST(OpenArena, TestsReadExactlyTheCheckedArchives) {
+  const TempDir installed("tfu-installed-game");
+  const fs::path dir = installed.path();
+  const Bytes bsp = BspBuilder{}.build();
+  testdata::write_zip(dir / "pak1-maps.pk3", {{"maps/arena.bsp", bsp}});
+  testdata::write_zip(dir / "pak4-textures.pk3", {{"textures/base/wall.tga", testdata::make_tga({{Rgba8{1, 2, 3, 255}}})}});
+  testdata::write_zip(dir / "pak6-patch088.pk3", {{"maps/arena.bsp", bsp}, {"maps/extra.bsp", bsp}});
+  const GameArchives everything(dir.string());
+  EXPECT_EQ(everything.level_names(), (std::vector<std::string>{"arena", "extra"}));
+  EXPECT_EQ(everything.describe(everything.locate_level("arena")), "pak6-patch088.pk3:maps/arena.bsp");
+
+  const testdata::CheckedGameData checked(dir.string());
+  ASSERT_TRUE(checked.present());
+  const GameArchives exactly(checked.dir());
+  EXPECT_EQ(exactly.archives().size(), 2u);
+  EXPECT_EQ(exactly.level_names(), (std::vector<std::string>{"arena"}));
+  EXPECT_EQ(exactly.describe(exactly.locate_level("arena")), "pak1-maps.pk3:maps/arena.bsp");
+
+  fs::remove(dir / "pak4-textures.pk3");
+  EXPECT_FALSE(testdata::CheckedGameData(dir.string()).present());
+}
 
 TEST(OpenArena, AggressorCountsCheckedByHand) {
-  if (!game_data_present()) GTEST_SKIP() << "OpenArena game data not installed in " << openarena_dir();
-  const GameArchives a(openarena_dir());
+  if (!checked_game_data().present()) GTEST_SKIP() << checked_game_data().missing();
+  const GameArchives a(checked_game_data().dir());
   EXPECT_EQ(a.level_names().size(), 50u);
   TextureCache cache(a);
   const Level l = load_level(a, "aggressor", cache);
@@ -515,8 +539,8 @@ TEST(OpenArena, AggressorCountsCheckedByHand) {
 // contrast are those of the checked render (mean luma 25.3, standard deviation 22.2 on 0..255),
 // and it is close to the supersampled truth.
 TEST(OpenArena, RealFrameThroughBothModels) {
-  if (!game_data_present()) GTEST_SKIP() << "OpenArena game data not installed in " << openarena_dir();
-  const Scene s = open_scene({"oa:aggressor:0", 320, 180, {}});
+  if (!checked_game_data().present()) GTEST_SKIP() << checked_game_data().missing();
+  const Scene s = open_scene({"oa:aggressor:0", 320, 180, checked_game_data().dir()});
   ASSERT_EQ(s.meshes.front().stages.size(), 2u);
   RenderOptions ro;
   ro.trace = true;
@@ -552,8 +576,8 @@ TEST(OpenArena, RealFrameThroughBothModels) {
 // 320x180: 36.5 -> 41.8 dB, SSIM 0.938 -> 0.985), and the anisotropic frame, trilinear and
 // edge-preserving probes, goes through the cycle model bit for bit.
 TEST(OpenArena, AnisotropicRealFrame) {
-  if (!game_data_present()) GTEST_SKIP() << "OpenArena game data not installed in " << openarena_dir();
-  const Scene s = open_scene({"oa:aggressor:0", 320, 180, {}});
+  if (!checked_game_data().present()) GTEST_SKIP() << checked_game_data().missing();
+  const Scene s = open_scene({"oa:aggressor:0", 320, 180, checked_game_data().dir()});
   RenderOptions ro;
   ro.trace = true;
   ro.ground_truth = true;

@@ -12,6 +12,8 @@
 #include <random>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cmodel/error.hpp"
 #include "cmodel/frame.hpp"
 #include "cmodel/golden_unit.hpp"
@@ -257,6 +259,34 @@ TEST(TfuUnit, LodAndGradTraces) {
     run_and_compare(*mesh.stages[0].texture, cfg, lod, UnitConfig{}, fmt::format("lod {}", mode));
     run_and_compare(*mesh.stages[0].texture, cfg, grad, UnitConfig{}, fmt::format("grad {}", mode));
   }
+}
+
+// A texture's name reaches the statistics as the file system or archive spelled it; JSON output is
+// UTF-8 (cmodel/json_output.hpp), so a byte that is not UTF-8 (a Latin-1 file name) is written as
+// U+FFFD, and a UTF-8 name exactly. Before, nlohmann threw on the byte after the run: exit 3.
+TEST(TfuUnit, TextureNamesThatAreNotUtf8StillGiveValidStatistics) {
+  const auto tex = std::make_shared<Texture>(make_procedural("checkerboard", 16).texture);
+  const auto tex2 = std::make_shared<Texture>(make_procedural("text", 16).texture);
+  FrameBuilder fb(64);
+  const std::string latin1 = "textures/\xff\xfe.png", utf8 = "textures/caf\xc3\xa9.png";
+  fb.add_texture(tex, TextureSpec{latin1, {}});
+  fb.add_texture(tex2, TextureSpec{utf8, {}});
+  fb.add_sampler(SamplerDescriptor{}, false);
+  Trace tr;
+  tr.mode = TraceMode::Lod;
+  for (int t = 0; t < 2; ++t) {
+    TraceRequest r;
+    r.texture = static_cast<uint16_t>(t);
+    r.s = r.t = 0.3f;
+    tr.requests.push_back(r);
+  }
+  const Frame frame = fb.finish();
+  const UnitOutput out = run_unit(frame, tr, UnitConfig{});
+  const nlohmann::json j = nlohmann::json::parse(out.stats.json_text());
+  const nlohmann::json& rows = j["tables"]["textures"];
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["name"], "0 textures/\xef\xbf\xbd\xef\xbf\xbd.png");
+  EXPECT_EQ(rows[1]["name"], "1 textures/caf\xc3\xa9.png");
 }
 
 // A cache holding the whole texture and a memory without latency: only the datapath rates remain.
@@ -898,7 +928,7 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
   const std::string j = unit_config_to_json(UnitConfig{});
   for (const UnitField& f : unit_config_fields()) {
     const std::string key = f.key;
-    EXPECT_NE(j.find("\"" + key.substr(key.rfind('.') + 1) + "\""), std::string::npos) << key;
+    EXPECT_NE(j.find(fmt::format("\"{}\"", key.substr(key.rfind('.') + 1))), std::string::npos) << key;
   }
   EXPECT_EQ(unit_config_from_json(j, "defaults"), UnitConfig{});
   const auto error = [](const std::string& text) {

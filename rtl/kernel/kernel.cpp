@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cmodel/json_output.hpp"
+
 namespace tfu::sim {
 
 std::string Stats::json_text() const {
@@ -24,7 +26,7 @@ std::string Stats::json_text() const {
     }
     j["tables"][k] = rows;
   }
-  return j.dump(2);
+  return json_dump(j, 2);
 }
 
 void Stats::write_json(std::ostream& os) const { os << json_text() << '\n'; }

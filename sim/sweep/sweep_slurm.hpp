@@ -20,7 +20,8 @@ struct SlurmJob {
 // The batch script (bash, #SBATCH lines for the array, log files DIR/slurm/task-%a.log and the CPUs
 // per task; the task line runs `tfu sweep --run-task $SLURM_ARRAY_TASK_ID --tasks N --out DIR`).
 // Every value in it is single-quoted by shell_quote; InputError (check_script_value) for a value
-// with a newline or carriage return.
+// with a newline or carriage return. The log path is an sbatch filename pattern: a '%' of DIR is
+// written %%, and a DIR with a backslash (which turns sbatch's replacements off) is refused.
 std::string batch_script(const SlurmJob& job);
 // sbatch --parsable [sbatch_args...] SCRIPT
 std::vector<std::string> sbatch_command(const SlurmJob& job, const std::string& script_path);

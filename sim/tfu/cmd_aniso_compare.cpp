@@ -27,6 +27,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/montage.hpp"
 #include "cmodel/output_files.hpp"
@@ -225,7 +226,7 @@ void run(const AnisoCompareOptions& o) {
     }
     montage_file->write_image(montage(tiles, labels, static_cast<int>(tiles.size())));
   }
-  if (json_file) json_file->stream() << js.dump(2) << '\n';
+  if (json_file) json_file->stream() << json_dump(js, 2) << '\n';
   outputs.commit();
   if (montage_file) std::cout << "  montage -> " << o.montage << '\n';
 }

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/mipmap.hpp"
@@ -267,7 +268,7 @@ void run(const ReportOptions& o) {
     p["scenes"] = scenes;
     js["provenance"] = p;
   }
-  outputs.add("--out-dir", (fs::path(o.out_dir) / "results.json").string()).stream() << js.dump(2) << '\n';
+  outputs.add("--out-dir", (fs::path(o.out_dir) / "results.json").string()).stream() << json_dump(js, 2) << '\n';
 
   // ---- Markdown ----
   md << "# Measured results\n\n"

@@ -19,10 +19,23 @@
 //   paths      the fast-path switch (cmodel/fast_paths.hpp), drawn after the requests (past the
 //              input's end: on): off runs the plain datapaths of both models and the golden
 //              compare against the plain golden datapath; restored after the run
+//   names      each texture's name (its spec, as a file or archive spells it), drawn last
+//              (ByteReader::name: control characters, bytes that are not UTF-8, very long, path
+//              separators and `..`, the line formats' own characters)
 // A configuration the models refuse (InputError) is skipped; a mismatch aborts with the details.
+// Names must reach every output intact or be refused: the statistics' JSON parses back with each
+// texture's name (a name that is not UTF-8: with U+FFFD, cmodel/json_output.hpp), and the frame's
+// trace bindings (describe_frame, write_trace) are refused with an InputError exactly when a name
+// cannot be written (a control character, an empty spec), else read back to the same names.
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
@@ -132,6 +145,51 @@ tfu::Trace make_trace(ByteReader& in, tfu::FrameBuilder& fb, int textures, int s
   return tr;
 }
 
+bool is_utf8(const std::string& s) {
+  try {
+    (void)nlohmann::json(s).dump();  // the strict writer throws on a byte that is not UTF-8
+    return true;
+  } catch (const nlohmann::json::type_error&) {
+    return false;
+  }
+}
+
+// The names' way into the statistics and the trace (see the header).
+void check_names(const tfu::Frame& frame, const tfu::Trace& trace, const tfu::rtl::UnitOutput& got) {
+  const nlohmann::json stats = nlohmann::json::parse(got.stats.json_text());  // must not throw
+  for (const nlohmann::json& row : stats["tables"]["textures"]) {
+    const std::string label = row["name"].get<std::string>();
+    const size_t k = static_cast<size_t>(row["index"].get<uint64_t>());
+    if (k >= frame.textures.size()) std::abort();
+    const std::string& name = frame.textures[k].name;
+    if (is_utf8(name) && label != fmt::format("{} {}", k, name)) {
+      std::fprintf(stderr, "texture %zu's name did not reach the statistics intact\n", k);
+      std::abort();
+    }
+  }
+  tfu::Trace described = trace;
+  tfu::describe_frame(frame, described);
+  bool writable = true;
+  for (const tfu::TraceBinding& b : described.textures) writable = writable && !b.spec.empty() && !tfu::has_control_characters(b.spec);
+  std::ostringstream out;
+  try {
+    tfu::write_trace(out, described);
+  } catch (const tfu::InputError&) {
+    if (writable) std::abort();  // a name the trace could carry was refused
+    if (!out.str().empty()) std::abort();  // nothing is written before the refusal
+    return;
+  }
+  if (!writable) std::abort();  // a name that breaks the line format was written
+  std::istringstream in(out.str());
+  const tfu::Trace back = tfu::parse_trace(in, "written.trace");  // must not throw
+  if (back.textures.size() != described.textures.size()) std::abort();
+  for (size_t i = 0; i < back.textures.size(); ++i)
+    if (back.textures[i].spec != described.textures[i].spec || back.textures[i].params != described.textures[i].params) {
+      std::fprintf(stderr, "texture binding %zu did not read back as written\n", i);
+      std::abort();
+    }
+}
+
 // Sets the fast-path switch for one run and restores it after.
 struct FastPathsForRun {
   bool saved = tfu::fast_paths_enabled();
@@ -154,12 +212,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     tfu::FrameBuilder fb(unit.cache.line_bytes);
     const int textures = 1 + (in.byte() & 1);
-    for (int k = 0; k < textures; ++k) fb.add_texture(make_texture(in), {"fuzz", {}});
+    std::vector<int> placed;
+    for (int k = 0; k < textures; ++k) placed.push_back(fb.add_texture(make_texture(in), {"fuzz", {}}));
     const int samplers = static_cast<int>(in.in_range(1, 3));
     for (int k = 0; k < samplers; ++k) fb.add_sampler(make_sampler(in), false);
     trace = make_trace(in, fb, textures, samplers);
     plain = in.flag();
     frame = fb.finish();
+    for (const int k : placed) {  // names last: the inputs of the corpus keep their meaning
+      tfu::FrameTexture& t = frame.textures[static_cast<size_t>(k)];
+      t.name = t.spec.source = in.name();
+    }
   } catch (const tfu::InputError&) {
     return 0;  // a descriptor the driver refuses (e.g. a ROM the kernel does not fit)
   }
@@ -180,6 +243,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                  plain ? "off" : "on", mismatch.c_str());
     std::abort();
   }
+  check_names(frame, trace, got);
   // The timing recurrences (rtl/unit_recurrence.cpp) must give the clocked run's pixels, cycles
   // and statistics.
   const tfu::rtl::UnitOutput rec = tfu::rtl::run_unit_recurrence(frame, trace, unit);

@@ -49,6 +49,49 @@ class ByteReader {
   const T& pick(const T (&choices)[N]) {
     return choices[byte() % N];
   }
+  // A name as files, archives and users spell them, hostile ones included (docs/fuzzing.md): past
+  // the input's end the ordinary "fuzz"; else one of
+  //   raw bytes of the input (0..64: control characters, NUL, bytes that are not UTF-8),
+  //   very long (256..4,096 bytes, with separators), path-like (`..` runs, an absolute path,
+  //   backslashes, a trailing separator), words of the line formats (spaces, '%', '=', '#', '|',
+  //   ',', quotes, braces), UTF-8 text, or an ordinary name with one control character in it.
+  std::string name() {
+    switch (byte() % 8) {
+      case 0:
+        return "fuzz";
+      case 1: {
+        std::string s;
+        for (size_t n = byte() % 65; n > 0; --n) s += static_cast<char>(byte());
+        return s;
+      }
+      case 2: {
+        std::string s(static_cast<size_t>(in_range(256, 4096)), 'n');
+        for (size_t k = byte() % 16; k < s.size(); k += 1 + byte() % 200) s[k] = byte() & 1 ? '/' : ' ';
+        return s;
+      }
+      case 3: {
+        static const char* const kPaths[] = {"../../../../etc/passwd", "/etc/hostname", "..", "./a/../../b",
+                                             "a\\..\\b.png", "dir/", "//double//slash", "-rf"};
+        return pick(kPaths);
+      }
+      case 4: {
+        static const char* const kWords[] = {"a b.png", "c.png mipmaps=none", "100% real", "k=v",
+                                             "# tfu-texture 1 /etc/hostname", "a|b,c", "\"quoted\" 'single'",
+                                             "{} %s %n $(x) `y`"};
+        return pick(kWords);
+      }
+      case 5: {
+        static const char* const kText[] = {"caf\xc3\xa9", "\xe6\xbc\xa2\xe5\xad\x97", "\xf0\x9f\x98\x80", "\xef\xbb\xbf" "bom"};
+        return pick(kText);
+      }
+      default: {
+        std::string s = "tex_name.png";
+        const uint8_t c = byte();
+        s.insert(s.begin() + static_cast<std::ptrdiff_t>(byte() % (s.size() + 1)), static_cast<char>(c % 2 ? 0x7f : c % 32));
+        return s;
+      }
+    }
+  }
 
  private:
   const uint8_t* data_;

@@ -4,7 +4,8 @@
 //
 // Cost limits of the harness (not of the parser, whose own limits are larger): procedural textures
 // of at most 64 texels, at most 8 meshes, tessellation and sphere segments of at most 32, and no
-// texture files (the texture target fuzzes image decoding).
+// texture files but the three of testbench/fuzz/fuzz_texture_files.hpp, relative to their
+// directory (`"file": "b b.png"`; the texture target fuzzes image decoding).
 #include <cstdlib>
 #include <exception>
 
@@ -14,6 +15,7 @@
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "testbench/fuzz/fuzz_input.hpp"
+#include "testbench/fuzz/fuzz_texture_files.hpp"
 
 namespace {
 
@@ -29,7 +31,7 @@ bool too_costly(const json& j) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& key = it.key();
     const json& v = it.value();
-    if (key == "file") return true;
+    if (key == "file" && !(v.is_string() && tfu::fuzz::is_texture_file(v.get<std::string>()))) return true;
     if (key == "meshes" && v.is_array() && v.size() > 8) return true;
     const auto over = [&](double limit) {
       if (v.is_number()) return !(v.get<double>() <= limit);
@@ -55,7 +57,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!pre.is_discarded() && too_costly(pre)) return 0;
   }
   try {
-    tfu::Scene scene = tfu::parse_scene(text, "fuzz.json");
+    tfu::Scene scene = tfu::parse_scene(text, "fuzz.json", tfu::fuzz::texture_file_dir().string());
     scene.width = scene.height = 16;
     tfu::RenderOptions o;
     o.threads = 1;
