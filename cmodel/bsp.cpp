@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/scene.hpp"
 
 namespace tfu::q3 {
 namespace {
@@ -105,8 +106,12 @@ void read_vertices(const LumpReader& r, Bsp& bsp) {
     std::array<double, 10> f{};
     for (size_t k = 0; k < f.size(); ++k) {
       f[k] = get_f32(p + 4 * k);
-      if (std::isfinite(f[k])) continue;
-      if (!is_lightmap_uv_field(k)) r.fail(kLumpVertices, fmt::format("vertex {}: field {} is not a finite number", i, k));
+      // The scene format's bound on coordinates holds here too: BSP floats have none, and a uv of 1e15 left
+      // the ground truth's texel index outside int (TFU-S E17).
+      if (std::isfinite(f[k]) && std::fabs(f[k]) <= kMaxSceneMagnitude) continue;
+      if (!is_lightmap_uv_field(k))
+        r.fail(kLumpVertices, fmt::format("vertex {}: field {} is not a finite number within +-{:g}: {:g}", i, k,
+                                          kMaxSceneMagnitude, f[k]));
       f[k] = 0.0;
       if (bsp.nonfinite_lightmap_uv.empty()) bsp.nonfinite_lightmap_uv.resize(n, false);
       bsp.nonfinite_lightmap_uv[i] = true;
@@ -193,8 +198,8 @@ void check_face(const LumpReader& r, size_t i, const BspFace& f, const Bsp& bsp)
   if (f.lightmap >= 0 && !bsp.nonfinite_lightmap_uv.empty())
     for (int32_t k = 0; k < f.vertex_count; ++k)
       if (bsp.nonfinite_lightmap_uv[static_cast<size_t>(f.first_vertex + k)])
-        r.fail(kLumpVertices, fmt::format("vertex {} (face {}, lightmap {}): lightmap uv is not a finite number",
-                                          f.first_vertex + k, i, f.lightmap));
+        r.fail(kLumpVertices, fmt::format("vertex {} (face {}, lightmap {}): lightmap uv is not a finite number within +-{:g}",
+                                          f.first_vertex + k, i, f.lightmap, kMaxSceneMagnitude));
   if (f.type == FaceType::Patch) check_patch_size(r, i, f);
   if (f.type == FaceType::Polygon || f.type == FaceType::Mesh) check_meshverts(r, i, f, bsp.meshverts);
 }

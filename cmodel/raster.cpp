@@ -250,12 +250,27 @@ std::array<double, 4> border_colour(const SamplerDescriptor& cfg) {
   return {cfg.border.r / 255.0, cfg.border.g / 255.0, cfg.border.b / 255.0, cfg.border.a / 255.0};
 }
 
+// The first texel index of a truth footprint, floor(x) of a position x in texels, as an integer wrap_index takes.
+// wrap_continuous has brought every mode but repeat into [0, 1], so only repeat can be far outside the texture
+// (a uv of 1e6 on a texture 4,096 wide is 4e9 texels): it is reduced modulo the size with fmod, which is exact,
+// before the integer step, so the texel is the one the unreduced index would wrap to (TFU-S E17: the cast of
+// floor(x) to int overflowed). The clamp only bounds what cannot occur (a non-finite position).
+int64_t truth_texel_index(WrapMode m, double floor_x, int size) {
+  if (!std::isfinite(floor_x)) return 0;
+  if (m == WrapMode::Repeat) {
+    floor_x = std::fmod(floor_x, size);
+    if (floor_x < 0) floor_x += size;
+  }
+  return static_cast<int64_t>(std::clamp(floor_x, -1.0, static_cast<double>(size)));
+}
+
 // File textures have no analytic function: bilinear reconstruction of level 0 in double precision.
 std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerDescriptor& cfg, double s, double t) {
   const Image& im = tex.levels.front();
   const double x = s * im.width - 0.5, y = t * im.height - 0.5;
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const double fx = x - x0, fy = y - y0;
+  const double fx0 = std::floor(x), fy0 = std::floor(y);
+  const double fx = x - fx0, fy = y - fy0;
+  const int64_t x0 = truth_texel_index(cfg.wrap_s, fx0, im.width), y0 = truth_texel_index(cfg.wrap_t, fy0, im.height);
   std::array<double, 4> out{};
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) {

@@ -18,8 +18,10 @@
 #include "cmodel/bsp.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/pk3.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "cmodel/trace.hpp"
 #include "cmodel/q3_level.hpp"
+#include "testbench/input_error.hpp"
 #include "testbench/q3_test_data.hpp"
 
 namespace tfu::q3 {
@@ -210,6 +212,20 @@ TEST(Bsp, NonFiniteVertexFields) {
   b = small_bsp();
   b.vertices[1].uv1.x = std::numeric_limits<double>::quiet_NaN();
   EXPECT_ERROR_HAS(b.build(), "lump 10 (vertices): vertex 1 (face 0, lightmap 0): lightmap uv is not a finite number");
+  // TFU-S E17: finite but beyond the scene format's bound (a uv of 1e15 overflowed the ground truth's
+  // texel index): refused like a NaN, the bound named.
+  b = small_bsp();
+  b.vertices[3].uv0.x = 1e15;
+  EXPECT_ERROR_HAS(b.build(), "vertex 3: field 3 is not a finite number within +-1e+06: 1e+15");
+  b = small_bsp();
+  b.vertices[2].pos.z = -2e6;
+  EXPECT_ERROR_HAS(b.build(), "vertex 2: field 2 is not a finite number within +-1e+06: -2e+06");
+  b = small_bsp();
+  b.vertices[3].uv0.x = 1e6;  // the bound itself is allowed
+  EXPECT_NO_THROW(parse_bsp(b.build(), "t.bsp"));
+  b = small_bsp();
+  b.vertices[1].uv1.x = 3e7;
+  EXPECT_ERROR_HAS(b.build(), "vertex 1 (face 0, lightmap 0): lightmap uv is not a finite number within +-1e+06");
 }
 
 TEST(Bsp, Entities) {
@@ -377,8 +393,8 @@ TEST(Names, ControlCharactersAreRefusedBeforeAnyOutput) {
   b.textures[1].name = std::string("textures/del") + char{0x7f};
   EXPECT_ERROR_HAS(b.build(), "texture 1 is named 'textures/del?'");
   // A pk3 entry.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / fmt::format("tfu_names_{}", ::getpid());
-  std::filesystem::create_directories(dir);
+  const TempDir scratch("tfu-names");
+  const std::filesystem::path dir = scratch.path();
   testdata::write_zip(dir / "a.pk3", {{"maps/ok.bsp", Bytes{1}}, {"maps/x\ny.bsp", Bytes{2}}});
   try {
     Pk3Archive a((dir / "a.pk3").string());
@@ -390,7 +406,6 @@ TEST(Names, ControlCharactersAreRefusedBeforeAnyOutput) {
   }
   testdata::write_zip(dir / "b.pk3", {{"maps/ok.bsp", Bytes{1}}});
   EXPECT_EQ(Pk3Archive((dir / "b.pk3").string()).entry_names(), std::vector<std::string>{"maps/ok.bsp"});
-  std::filesystem::remove_all(dir);
   // A trace binding, refused before a line is written.
   Trace t;
   t.mode = TraceMode::Lod;
@@ -417,6 +432,40 @@ TEST(Names, ControlCharactersAreRefusedBeforeAnyOutput) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "n.txt:1: a control character in a binding line");
   }
+}
+
+// A file name with a space, a '%' or what looks like a parameter ("a.png mipmaps=none") is one word
+// of a binding line: the writer encodes ' ', '%' and a key's '=' as %20, %25, %3D and the reader
+// decodes them (docs/traces.md). Before, "# tfu-texture 0 a b.png" was written, and read as the
+// spec "a" with a parameter "b.png" (refused), or "c.png mipmaps=none" as c.png without MIP levels.
+TEST(Names, SpacesPercentAndEqualsInNamesRoundTripThroughTraces) {
+  Trace t;
+  t.mode = TraceMode::Lod;
+  t.textures.push_back({0, "my textures/a b.png", {{"layout", "linear"}}, ""});
+  t.textures.push_back({1, "c.png mipmaps=none", {}, ""});
+  t.textures.push_back({2, "100%25 real%.png", {{"odd=key", "v=1 2"}}, ""});
+  t.samplers.push_back({0, "", {{"filter", "LINEAR"}}, ""});
+  t.requests.push_back({});
+  std::ostringstream out;
+  write_trace(out, t);
+  EXPECT_NE(out.str().find("# tfu-texture 0 my%20textures/a%20b.png layout=linear\n"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("# tfu-texture 1 c.png%20mipmaps=none\n"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("# tfu-texture 2 100%2525%20real%25.png odd%3Dkey=v=1%202\n"), std::string::npos) << out.str();
+  std::istringstream in(out.str());
+  const Trace back = parse_trace(in, "w.txt");
+  ASSERT_EQ(back.textures.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(back.textures[k].spec, t.textures[k].spec);
+    EXPECT_EQ(back.textures[k].params, t.textures[k].params);
+  }
+  // A '%' that starts no %XX is refused with the word.
+  std::istringstream bad("# tfu-texture 0 50%.png\n0.5,0.5,0\n");
+  EXPECT_EQ(input_error([&] { parse_trace(bad, "b.txt"); }), "b.txt:1: '50%.png': a '%' starts %XX, two hex digits (a '%' itself is %25)");
+  // What the reader could not take back is refused before a line is written.
+  t.textures = {{0, "", {}, ""}};
+  std::ostringstream none;
+  EXPECT_EQ(input_error([&] { write_trace(none, t); }), "trace binding tfu-texture 0: a texture binding needs a spec");
+  EXPECT_EQ(none.str(), "");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <vector>
 
+#include "cmodel/mipmap.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 
@@ -257,6 +258,49 @@ TEST(Raster, TruthBackgroundRoundsLikeTheRender) {
   EXPECT_EQ(t.g, sky.g);
   EXPECT_EQ(t.b, sky.b);
   EXPECT_EQ(t.a, sky.a);
+}
+
+// TFU-S E17: the truth of a file texture cast floor(s * width - 0.5) to int, which overflowed for a repeating uv
+// of 1e6 (inside the scene bound) on a texture wider than 2,147 texels (UBSan float-cast-overflow; in Release
+// garbage truth pixels, exit 0). A whole-number uv offset is the same image under repeat, so the truth of a quad
+// whose uv start at 1e6 must equal that of the same quad at 0, up to the rounding of 1e6 + u in double.
+TEST(Raster, TruthOfARepeatingUvFarOutsideAWideTexture) {
+  constexpr int kWide = 4096;  // > 2^31 / 1e6 texels
+  auto tex = std::make_shared<Texture>();
+  Image base(kWide, 4);
+  for (int y = 0; y < base.height; ++y)
+    for (int x = 0; x < kWide; ++x)
+      base.at(x, y) = Rgba8{static_cast<uint8_t>(x * 37), static_cast<uint8_t>(x >> 4), static_cast<uint8_t>(y * 60), 255};
+  tex->levels.push_back(base);
+  generate_mipmaps(*tex, MipMethod::Box);
+  auto truth_at_offset = [&](double offset) {
+    Scene s;
+    s.width = 32;
+    s.height = 24;
+    s.camera.position = {0, 0, 1.5};
+    Mesh m = make_quad_mesh({glm::dvec3{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}},
+                            {glm::dvec2{offset, offset}, {offset + 0.01, offset}, {offset + 0.01, offset + 1},
+                             {offset, offset + 1}});
+    TextureStage st;
+    st.spec.source = "wide.png";
+    st.texture = tex;
+    st.sampler.wrap_s = st.sampler.wrap_t = WrapMode::Repeat;
+    m.stages.push_back(st);
+    s.meshes.push_back(m);
+    RenderOptions o;
+    o.ground_truth = true;
+    return render_scene(s, o).truth;
+  };
+  const Image near = truth_at_offset(0.0), far = truth_at_offset(1e6);
+  ASSERT_EQ(near.texels.size(), far.texels.size());
+  int worst = 0, textured = 0;
+  for (size_t i = 0; i < near.texels.size(); ++i) {
+    const Rgba8 a = near.texels[i], b = far.texels[i];
+    if (a.b != 0 || a.g != 0 || a.r != 0) ++textured;
+    worst = std::max({worst, std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b), std::abs(a.a - b.a)});
+  }
+  EXPECT_GT(textured, 200);  // the quad covers most of the frame
+  EXPECT_LE(worst, 2) << "truth at uv 1e6 differs from the truth at uv 0";
 }
 
 }  // namespace
