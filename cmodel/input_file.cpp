@@ -46,7 +46,7 @@ void check_size(const std::string& label, uint64_t size, uint64_t max_bytes) {
 }
 
 // Opens `path` for reading after checking its type and size; returns the descriptor.
-int open_checked(const std::string& path, const std::string& label, uint64_t max_bytes) {
+int open_checked(const std::string& path, const std::string& label, uint64_t max_bytes, bool run_input = true) {
   if (path.empty()) fail(label, "empty file name");
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) fail(label, errno_reason(errno));
@@ -63,7 +63,7 @@ int open_checked(const std::string& path, const std::string& label, uint64_t max
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   try {
-    note_run_input(path, label);  // refused if it is an output of this run (cmodel/run_files.hpp)
+    if (run_input) note_run_input(path, label);  // refused if it is an output of this run (cmodel/run_files.hpp)
   } catch (...) {
     ::close(fd);
     throw;
@@ -114,8 +114,9 @@ class InputFile::Buffer : public std::streambuf {
   std::array<char, 65536> block_{};
 };
 
-InputFile::InputFile(const std::string& path, const std::string& label, uint64_t max_bytes)
-    : buffer_(std::make_unique<Buffer>(open_checked(path, label, max_bytes), label, max_bytes)), stream_(buffer_.get()) {
+InputFile::InputFile(const std::string& path, const std::string& label, uint64_t max_bytes, Use use)
+    : buffer_(std::make_unique<Buffer>(open_checked(path, label, max_bytes, use == Use::RunInput), label, max_bytes)),
+      stream_(buffer_.get()) {
   // A streambuf's exception sets badbit; with badbit in the mask the stream rethrows it, so the
   // InputError reaches the caller instead of looking like the end of the file.
   stream_.exceptions(std::ios::badbit);
@@ -127,8 +128,8 @@ void check_input_file(const std::string& path, const std::string& label, uint64_
   ::close(open_checked(path, label, max_bytes));
 }
 
-std::string read_input_file(const std::string& path, const std::string& label, uint64_t max_bytes) {
-  InputFile f(path, label, max_bytes);
+std::string read_input_file(const std::string& path, const std::string& label, uint64_t max_bytes, InputFile::Use use) {
+  InputFile f(path, label, max_bytes, use);
   std::string text;
   std::array<char, 65536> block{};
   while (f.stream().read(block.data(), block.size()) || f.stream().gcount() > 0)

@@ -33,14 +33,15 @@ std::string file_kind(mode_t mode);
 // opened for reading. For inputs opened by a library (OpenImageIO).
 void check_input_file(const std::string& path, const std::string& label, uint64_t max_bytes);
 
-// The whole file (checked as above).
-std::string read_input_file(const std::string& path, const std::string& label, uint64_t max_bytes);
-
 // A checked input file read as a stream. A read error or a file that grows past `max_bytes` while
 // being read throws InputError out of the stream's read operations.
 class InputFile {
  public:
-  InputFile(const std::string& path, const std::string& label, uint64_t max_bytes);
+  // RunInput: noted as an input of the run (cmodel/run_files.hpp), which no output may then replace.
+  // OwnState: a file a command keeps for itself and replaces by design, checked all the same (a
+  // sweep directory's sweep.json and point files, which a resumed run reads and writes again).
+  enum class Use { RunInput, OwnState };
+  InputFile(const std::string& path, const std::string& label, uint64_t max_bytes, Use use = Use::RunInput);
   ~InputFile();
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
@@ -51,5 +52,9 @@ class InputFile {
   std::unique_ptr<Buffer> buffer_;
   std::istream stream_;
 };
+
+// The whole file (checked as above).
+std::string read_input_file(const std::string& path, const std::string& label, uint64_t max_bytes,
+                            InputFile::Use use = InputFile::Use::RunInput);
 
 }  // namespace tfu

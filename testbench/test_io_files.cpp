@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <fmt/format.h>
@@ -92,6 +93,15 @@ TEST(InputFiles, SizeIsBoundedBeforeAndWhileReading) {
   std::string line;
   EXPECT_THROW(
       while (std::getline(f.stream(), line)) {}, InputError);
+}
+
+// The Python scripts' input checks (scripts/tfu_inputs.py) use the same bound for text inputs.
+TEST(InputFiles, ThePythonScriptsShareTheTextInputBound) {
+  std::ifstream f(std::string(TFU_DOCS_DIR) + "/../scripts/tfu_inputs.py");
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::string line = "\nMAX_TEXT_INPUT_BYTES = 64 << 20\n";
+  EXPECT_NE(text.find(line), std::string::npos) << "scripts/tfu_inputs.py lost its MAX_TEXT_INPUT_BYTES line";
+  EXPECT_EQ(kMaxTextInputBytes, uint64_t{64} << 20) << "change scripts/tfu_inputs.py's MAX_TEXT_INPUT_BYTES with it";
 }
 
 // ---- Outputs ----

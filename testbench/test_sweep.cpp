@@ -4,9 +4,11 @@
 // runner's results independent of the worker count, with resume.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <set>
 #include <fstream>
@@ -17,10 +19,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/temp_paths.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
 #include "rtl/cost_model.hpp"
 #include "rtl/scene_sim.hpp"
+#include "sim/sweep/process.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/sweep/sweep_point.hpp"
 #include "sim/sweep/sweep_report.hpp"
@@ -226,6 +230,147 @@ TEST(SweepSpec, ExpansionOrderAndExplicitPoints) {
   for (const auto& p : pts) ids.insert(p.id);
   EXPECT_EQ(ids.size(), pts.size());
   EXPECT_EQ(sweep::expand(s)[5].id, pts[5].id);
+}
+
+// TFU-S E10: the duplicate checks are a hash set. A duplicate at the far end of a long list is still
+// found (the speed is shown by build/bin/tfu_bench_sweep, not timed here).
+TEST(SweepSpec, DuplicatesAreFoundAtTheFarEndOfLongLists) {
+  std::string values, scenes;
+  for (int i = 0; i < 100000; ++i) values += fmt::format("{},", i);
+  EXPECT_NE(spec_error(fmt::format(R"({{"scenes": ["ground_plane"], "grid": {{"memory.latency": [{}7]}}}})", values))
+                .find("s.json: grid.memory.latency: value 7 is listed twice"),
+            std::string::npos);
+  const sweep::Spec ok = sweep::parse_spec(
+      fmt::format(R"({{"scenes": ["ground_plane"], "grid": {{"memory.latency": [{}100000]}}}})", values), "s.json");
+  EXPECT_EQ(ok.grid_values.at(0).size(), 100001u);
+  for (int i = 0; i < 30000; ++i) scenes += fmt::format("\"s{}.json\",", i);
+  EXPECT_NE(spec_error(fmt::format(R"({{"scenes": [{}"s29999.json"], "grid": {{"cache.ways": [1]}}}})", scenes))
+                .find("s.json: scenes: 's29999.json' is listed twice"),
+            std::string::npos);
+}
+
+TEST(Provenance, Fnv1a64ContinuesOverBlocks) {
+  EXPECT_EQ(fnv1a64_update(fnv1a64("ab"), "cde"), fnv1a64("abcde"));
+  EXPECT_EQ(fnv1a64_update(fnv1a64("abcde"), ""), fnv1a64("abcde"));
+}
+
+// TFU-S E5: every file a sweep reads goes through the input checks: a FIFO is refused without
+// waiting for a writer, /dev/zero behind a link is refused without reading it.
+TEST(SweepInputs, EveryFileTheSweepReadsIsCheckedFirst) {
+  const TempDir tmp("tfu-test-sweep-inputs");
+  const fs::path fifo = tmp.path() / "fifo.json", zero = tmp.path() / "zero.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", zero);
+  const auto error = [](auto&& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error([&] { (void)sweep::load_spec(fifo.string()); }).find("sweep spec '" + fifo.string() + "': is a named pipe"),
+            std::string::npos);
+  EXPECT_NE(error([&] { (void)sweep::load_spec(zero.string()); }).find("is a character device, not a regular file"),
+            std::string::npos);
+  // the sweep directory's record
+  const fs::path dir = tmp.path() / "sw";
+  fs::create_directories(dir / "points");
+  ASSERT_EQ(::mkfifo((dir / "sweep.json").c_str(), 0600), 0);
+  EXPECT_NE(error([&] { (void)sweep::load_sweep_dir(dir.string()); }).find("sweep record '"), std::string::npos);
+  // a point's file, on resume and --collect
+  const sweep::Spec spec = sweep::parse_spec(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": [1]}})", "s.json");
+  const std::vector<sweep::Point> pts = sweep::expand(spec);
+  fs::create_symlink("/dev/zero", sweep::point_path(dir.string(), pts[0]));
+  const std::string e = error([&] { (void)sweep::read_point_files(dir.string(), pts); });
+  EXPECT_EQ(e.find("point file '" + sweep::point_path(dir.string(), pts[0]) + "': is a character device"), 0u) << e;
+}
+
+// TFU-S E6: a point file marked complete is checked before it is read: one line naming the file and the
+// key (it was nlohmann's out_of_range or type_error, exit 3). A file not marked complete runs again.
+TEST(SweepInputs, APointFileMarkedCompleteIsCheckedLikeASpec) {
+  const TempDir tmp("tfu-test-sweep-points");
+  const std::string dir = tmp.path().string();
+  fs::create_directories(tmp.path() / "points");
+  const sweep::Spec spec = sweep::parse_spec(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": [1]}})", "s.json");
+  const std::vector<sweep::Point> pts = sweep::expand(spec);
+  const sweep::Point& p = pts.at(0);
+  const std::string path = sweep::point_path(dir, p);
+  nlohmann::json result;
+  for (const sweep::Column& c : sweep::result_columns()) {
+    if (c.type == sweep::ResultType::Number) result[c.name] = 1.5;
+    if (c.type == sweep::ResultType::NumberOrInf) result[c.name] = "inf";
+    if (c.type == sweep::ResultType::Bool) result[c.name] = true;
+  }
+  const nlohmann::json good = {{"complete", true}, {"point", {{"id", p.id}}}, {"result", result}};
+  const auto read_with = [&](const nlohmann::json& doc) -> std::string {
+    std::ofstream(path, std::ios::trunc) << (doc.is_string() ? doc.get<std::string>() : doc.dump());
+    try {
+      return sweep::read_point_file(dir, p) ? "done" : "not done";
+    } catch (const InputError& e) {
+      return e.what();
+    }
+  };
+  EXPECT_EQ(read_with(good), "done");
+  EXPECT_EQ(read_with(std::string("{\"complete\": tr")), "not done");  // a write cut short
+  nlohmann::json doc = good;
+  doc["complete"] = false;
+  EXPECT_EQ(read_with(doc), "not done");
+  const std::string label = "point file '" + path + "': ";
+  const auto refused = [&](nlohmann::json d, const std::string& key_and_why) {
+    const std::string e = read_with(d);
+    EXPECT_EQ(e.find(label + key_and_why), 0u) << e;
+  };
+  doc = good;
+  doc["complete"] = "yes";
+  refused(doc, "complete: must be true or false");
+  doc = good;
+  doc.erase("result");
+  refused(doc, "result: missing or not an object");
+  doc = good;
+  doc["result"]["golden_equal"] = "yes";
+  refused(doc, "result.golden_equal: must be true or false");
+  doc = good;
+  doc["result"]["psnr"] = "high";
+  refused(doc, "result.psnr: must be a number or \"inf\"");
+  doc = good;
+  doc["result"].erase("cycles");
+  refused(doc, "result.cycles: missing");
+  doc = good;
+  doc["result"]["hit_rate"] = true;
+  refused(doc, "result.hit_rate: must be a number");
+  doc = good;
+  doc.erase("result");
+  doc["error"] = 5;
+  refused(doc, "error: must be a one-line string");
+  doc["error"] = "two\nlines";
+  refused(doc, "error: must be a one-line string");
+  doc["error"] = "the point's configuration is refused";
+  EXPECT_EQ(read_with(doc), "done");
+  doc = good;
+  doc["point"]["id"] = "0123";
+  refused(doc, "point.id: '0123' is not this point's id");
+  doc = good;
+  doc.erase("point");
+  refused(doc, "point: missing or not an object");
+  // and the reports read what was checked
+  std::ofstream(path, std::ios::trunc) << good.dump();
+  const std::vector<nlohmann::json> files = sweep::read_point_files(dir, {p});
+  EXPECT_NE(sweep::results_csv(spec, {p}, files).find(",inf,true,"), std::string::npos);
+}
+
+// tfu ignores SIGPIPE (sim/tfu/main.cpp, TFU-S E15); a child it runs (the plot script, sbatch) starts
+// with the default disposition, as from a shell: its SigIgn mask has no bit 13 (0x1000).
+TEST(Process, AChildStartsWithSigpipeAtItsDefault) {
+  const auto old = std::signal(SIGPIPE, SIG_IGN);
+  const sweep::ProcessResult r = sweep::run_process({"/bin/sh", "-c", "grep '^SigIgn' /proc/self/status"});
+  std::signal(SIGPIPE, old);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string mask = r.out.substr(r.out.find_first_of("0123456789abcdef", 7));
+  EXPECT_EQ(std::stoull(mask, nullptr, 16) & 0x1000u, 0u) << r.out;
+  // failure_line: a traceback is named by its exception
+  EXPECT_EQ(sweep::failure_line("Traceback (most recent call last):\n  File \"x\", line 1\nValueError: bad\n\n"), "ValueError: bad");
+  EXPECT_EQ(sweep::failure_line("\nplot: error: --csv 'a': no rows\nmore\n"), "plot: error: --csv 'a': no rows");
 }
 
 // ---- the local runner ----

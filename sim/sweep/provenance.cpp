@@ -4,12 +4,13 @@
 #include <cctype>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/q3_archives.hpp"
 #include "cmodel/q3_scene.hpp"
@@ -26,12 +27,17 @@ std::vector<std::string>& command_line_storage() {
   return args;
 }
 
-std::string read_bytes(const std::string& path, const std::string& what) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f || fs::is_directory(path)) throw InputError(fmt::format("{} '{}': cannot read", what, path.substr(0, 200)));
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
+// The FNV-1a hash of an input file read in blocks, through the input checks (a regular file of at
+// most `max_bytes`: a FIFO or /dev/zero named by a scene is refused, never hashed forever).
+uint64_t file_hash(const std::string& path, const std::string& label, uint64_t max_bytes) {
+  InputFile in(path, label, max_bytes);
+  uint64_t h = fnv1a64({});
+  std::string block(1 << 16, '\0');
+  while (in.stream()) {
+    in.stream().read(block.data(), static_cast<std::streamsize>(block.size()));
+    h = fnv1a64_update(h, std::string_view(block.data(), static_cast<size_t>(in.stream().gcount())));
+  }
+  return h;
 }
 
 std::string absolute_text(const std::string& path) {
@@ -70,7 +76,7 @@ nlohmann::json texture_files(const Scene& scene, const std::string& scene_path) 
       fs::path p(src);
       std::error_code ec;
       if (!fs::is_regular_file(p, ec) && p.is_relative()) p = dir / p;
-      if (fs::is_regular_file(p, ec)) list.push_back({{"path", src}, {"fnv1a64", file_fnv1a64(p.string(), "texture")}});
+      if (fs::is_regular_file(p, ec)) list.push_back({{"path", src}, {"fnv1a64", file_fnv1a64(p.string(), "texture", kMaxImageBytes)}});
     }
   return list;
 }
@@ -84,15 +90,18 @@ void set_command_line(int argc, const char* const* argv) {
 
 const std::vector<std::string>& command_line() { return command_line_storage(); }
 
-uint64_t fnv1a64(std::string_view bytes) {
-  uint64_t h = 14695981039346656037ull;
+uint64_t fnv1a64_update(uint64_t h, std::string_view bytes) {
   for (const char c : bytes) h = (h ^ static_cast<uint8_t>(c)) * 1099511628211ull;
   return h;
 }
 
+uint64_t fnv1a64(std::string_view bytes) { return fnv1a64_update(14695981039346656037ull, bytes); }
+
 std::string hex64(uint64_t v) { return fmt::format("{:016x}", v); }
 
-std::string file_fnv1a64(const std::string& path, const std::string& what) { return hex64(fnv1a64(read_bytes(path, what))); }
+std::string file_fnv1a64(const std::string& path, const std::string& what, uint64_t max_bytes) {
+  return hex64(file_hash(path, fmt::format("{} {}", what, quoted_path(path)), max_bytes));
+}
 
 nlohmann::json scene_fingerprint(const SceneRequest& r) {
   if (q3::is_level_scene(r.name)) {
@@ -104,7 +113,7 @@ nlohmann::json scene_fingerprint(const SceneRequest& r) {
   const auto& names = builtin_scene_names();
   if (std::find(names.begin(), names.end(), r.name) != names.end())
     return {{"kind", "builtin"}, {"name", r.name}, {"fnv1a64", hex64(fnv1a64(builtin_scene_json(r.name)))}};
-  const std::string bytes = read_bytes(r.name, "scene");
+  const std::string bytes = read_input_file(r.name, fmt::format("scene {}", quoted_path(r.name)), kMaxTextInputBytes);
   nlohmann::json j = {{"kind", "file"},
                       {"path", r.name},
                       {"absolute", absolute_text(r.name)},
@@ -123,7 +132,7 @@ nlohmann::json provenance_json(const RunRecord& run) {
   if (run.has_scene) {
     j["scene"] = scene_fingerprint(run.scene);
   } else {
-    j["scene"] = {{"kind", "trace"}, {"path", run.trace}, {"fnv1a64", file_fnv1a64(run.trace, "--requests")}};
+    j["scene"] = {{"kind", "trace"}, {"path", run.trace}, {"fnv1a64", file_fnv1a64(run.trace, "--requests", kMaxTraceBytes)}};
   }
   j["width"] = run.width;
   j["height"] = run.height;
@@ -178,7 +187,7 @@ nlohmann::json stats_definitions() {
 std::string unit_config_text(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_object() && j.contains("provenance") && j["provenance"].is_object() && j["provenance"].contains("unit_config"))
-    return j["provenance"]["unit_config"].dump();
+    return json_dump(j["provenance"]["unit_config"]);
   return text;
 }
 
@@ -186,7 +195,7 @@ std::string stats_document(const sim::Stats& stats, const nlohmann::json& proven
   nlohmann::json j = nlohmann::json::parse(stats.json_text());
   j["provenance"] = provenance;
   j["definitions"] = stats_definitions();
-  return j.dump(2) + "\n";
+  return json_dump(j, 2) + "\n";
 }
 
 void write_file_atomic(const std::string& path, const std::string& text, const std::string& what) {

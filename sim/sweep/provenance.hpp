@@ -31,9 +31,12 @@ const std::vector<std::string>& command_line();
 // FNV-1a 64 (offset basis 14695981039346656037, prime 1099511628211) of a byte string, and its
 // 16-digit lower-case hex form: the content hash of scene files and sweep points.
 uint64_t fnv1a64(std::string_view bytes);
+// The hash `h` continued over more bytes: fnv1a64(a + b) == fnv1a64_update(fnv1a64(a), b).
+uint64_t fnv1a64_update(uint64_t h, std::string_view bytes);
 std::string hex64(uint64_t v);
-// The FNV-1a 64 of a file's bytes as hex; InputError naming `what` and the path if unreadable.
-std::string file_fnv1a64(const std::string& path, const std::string& what);
+// The FNV-1a 64 of a file's bytes as hex, read through the input checks (cmodel/input_file.hpp: a
+// regular file of at most `max_bytes`); InputError naming `what` and the path otherwise.
+std::string file_fnv1a64(const std::string& path, const std::string& what, uint64_t max_bytes);
 
 // What identifies a scene's source, by kind:
 //   built-in  {"kind": "builtin", "name", "fnv1a64" (of the embedded JSON text)}

@@ -3,13 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
@@ -205,7 +204,7 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
     doc["error"] = what.substr(0, what.find('\n'));
     doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
   }
-  std::string text = doc.dump(2) + "\n";
+  std::string text = json_dump(doc, 2) + "\n";
   if (timing) {
     timing->seconds = seconds_since(t0);
     timing->simulation_seconds = sim_seconds;
@@ -214,18 +213,5 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
 }
 
 std::string point_path(const std::string& dir, const Point& p) { return (fs::path(dir) / "points" / (p.id + ".json")).string(); }
-
-bool point_done(const std::string& dir, const Point& p) {
-  std::ifstream f(point_path(dir, p), std::ios::binary);
-  if (!f) return false;
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  try {
-    const nlohmann::json j = nlohmann::json::parse(ss.str());
-    return j.value("complete", false) && j.at("point").at("id") == p.id;
-  } catch (const nlohmann::json::exception&) {
-    return false;
-  }
-}
 
 }  // namespace tfu::sweep

@@ -71,9 +71,7 @@ inline rtl::SceneSimOptions scene_sim_options(const Spec& s) {
   return so;
 }
 
-// DIR/points/ID.json
+// DIR/points/ID.json (read back by read_point_file, sim/sweep/sweep_report.hpp)
 std::string point_path(const std::string& dir, const Point& p);
-// The file exists, parses, is complete and belongs to this point.
-bool point_done(const std::string& dir, const Point& p);
 
 }  // namespace tfu::sweep

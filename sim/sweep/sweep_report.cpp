@@ -1,7 +1,6 @@
 #include "sim/sweep/sweep_report.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -9,6 +8,8 @@
 #include <fmt/ranges.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/json_output.hpp"
 #include "rtl/cost_model.hpp"
 #include "sim/sweep/sweep_point.hpp"
 
@@ -39,7 +40,7 @@ std::string number_text(const nlohmann::json& v, int decimals) {
   if (v.is_null()) return "";
   if (v.is_string()) return v.get<std::string>();
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_integer()) return v.dump();
+  if (v.is_number_integer()) return json_dump(v);
   return fmt::format("{:.{}f}", v.get<double>(), decimals);
 }
 
@@ -70,20 +71,23 @@ double result_number(const nlohmann::json& f, const char* c) {
 
 const std::vector<Column>& result_columns() {
   static const std::vector<Column> cols = {
-      {"cycles", "cycles", "clock cycles of the frame (the slowest unit's)"},
-      {"pixels", "requests", "requests simulated: every pixel of every shaded quad, helper pixels included, per material stage"},
-      {"pixels_per_clock", "pixels/clock", "requests per cycle"},
-      {"hit_rate", "fraction", "texel cache line lookups that hit"},
-      {"bytes_per_pixel", "bytes/pixel", "memory bytes read per request"},
-      {"memory_bytes", "bytes", "memory bytes read"},
-      {"stall_cache_miss", "cycles", "cycles the miss-FIFO head waited for memory (summed over units)"},
-      {"stall_bank_conflict", "cycles", "cycles the tag port was held by a multi-cycle footprint (may overlap the other two)"},
-      {"stall_backpressure", "cycles", "cycles the cache stage's output was full"},
-      {"latency_mean", "cycles", "mean request latency, accept to response"},
-      {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth"},
-      {"golden_equal", "", "every output of the cycle model equals the golden model's"},
-      {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)"},
-      {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)"},
+      {"cycles", "cycles", "clock cycles of the frame (the slowest unit's)", ResultType::Number},
+      {"pixels", "requests", "requests simulated: every pixel of every shaded quad, helper pixels included, per material stage",
+       ResultType::Number},
+      {"pixels_per_clock", "pixels/clock", "requests per cycle", ResultType::Number},
+      {"hit_rate", "fraction", "texel cache line lookups that hit", ResultType::Number},
+      {"bytes_per_pixel", "bytes/pixel", "memory bytes read per request", ResultType::Number},
+      {"memory_bytes", "bytes", "memory bytes read", ResultType::Number},
+      {"stall_cache_miss", "cycles", "cycles the miss-FIFO head waited for memory (summed over units)", ResultType::Number},
+      {"stall_bank_conflict", "cycles", "cycles the tag port was held by a multi-cycle footprint (may overlap the other two)",
+       ResultType::Number},
+      {"stall_backpressure", "cycles", "cycles the cache stage's output was full", ResultType::Number},
+      {"latency_mean", "cycles", "mean request latency, accept to response", ResultType::Number},
+      {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth", ResultType::NumberOrInf},
+      {"golden_equal", "", "every output of the cycle model equals the golden model's", ResultType::Bool},
+      {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)", ResultType::Number},
+      {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)",
+       ResultType::Number},
       {"point", "", "the point's id: its file DIR/points/ID.json"},
       {"error", "", "why the point could not run (empty when it ran)"},
   };
@@ -100,20 +104,67 @@ std::vector<Column> csv_columns(const Spec& spec) {
   return cols;
 }
 
+std::optional<nlohmann::json> read_point_file(const std::string& dir, const Point& p) {
+  const std::string path = point_path(dir, p);
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return std::nullopt;
+  const std::string label = fmt::format("point file {}", quoted_path(path));
+  // Checked (TFU-S E5: never a FIFO or /dev/zero), but the sweep's own state: a point not done is written again.
+  const std::string text = read_input_file(path, label, kMaxTextInputBytes, InputFile::Use::OwnState);
+  nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("complete")) return std::nullopt;
+  // Marked complete: every key read below is checked first (TFU-S E6: a mistyped one was exit 3).
+  const auto bad = [&](const std::string& key, const std::string& why) {
+    return InputError(fmt::format("{}: {}: {} (remove the file to run the point again)", label, key, why));
+  };
+  const nlohmann::json& complete = j["complete"];
+  if (!complete.is_boolean()) throw bad("complete", "must be true or false");
+  if (!complete.get<bool>()) return std::nullopt;
+  if (!j.contains("point") || !j["point"].is_object()) throw bad("point", "missing or not an object");
+  const nlohmann::json& point = j["point"];
+  if (!point.contains("id") || !point["id"].is_string()) throw bad("point.id", "missing or not a string");
+  if (point["id"].get<std::string>() != p.id)
+    throw bad("point.id", fmt::format("'{}' is not this point's id ({})", quote_input(point["id"].get<std::string>(), 40), p.id));
+  if (j.contains("error")) {
+    const nlohmann::json& e = j["error"];
+    if (!e.is_string() || e.get<std::string>().find_first_of("\n\r") != std::string::npos)
+      throw bad("error", "must be a one-line string");
+    return j;
+  }
+  if (!j.contains("result") || !j["result"].is_object()) throw bad("result", "missing or not an object (and no \"error\")");
+  const nlohmann::json& r = j["result"];
+  for (const Column& c : result_columns()) {
+    if (c.type == ResultType::None) continue;
+    const std::string key = "result." + c.name;
+    if (!r.contains(c.name)) throw bad(key, "missing");
+    const nlohmann::json& v = r[c.name];
+    const bool number = v.is_number() && !v.is_boolean();
+    switch (c.type) {
+      case ResultType::Number:
+        if (!number) throw bad(key, "must be a number");
+        break;
+      case ResultType::NumberOrInf:
+        if (!number && v != "inf") throw bad(key, "must be a number or \"inf\"");
+        break;
+      case ResultType::Bool:
+        if (!v.is_boolean()) throw bad(key, "must be true or false");
+        break;
+      case ResultType::None:
+        break;
+    }
+  }
+  return j;
+}
+
+bool point_done(const std::string& dir, const Point& p) { return read_point_file(dir, p).has_value(); }
+
 std::vector<nlohmann::json> read_point_files(const std::string& dir, const std::vector<Point>& points) {
   std::vector<nlohmann::json> files;
   std::vector<std::string> missing;
   for (const Point& p : points) {
-    nlohmann::json j;
-    if (point_done(dir, p)) {
-      std::ifstream f(point_path(dir, p), std::ios::binary);
-      std::ostringstream ss;
-      ss << f.rdbuf();
-      j = nlohmann::json::parse(ss.str());
-    } else {
-      missing.push_back(fmt::format("{} ({})", p.index, p.id));
-    }
-    files.push_back(std::move(j));
+    std::optional<nlohmann::json> j = read_point_file(dir, p);
+    if (!j) missing.push_back(fmt::format("{} ({})", p.index, p.id));
+    files.push_back(j ? std::move(*j) : nlohmann::json());
   }
   if (!missing.empty()) {
     std::string list;
@@ -145,7 +196,7 @@ std::string results_csv(const Spec& spec, const std::vector<Point>& points, cons
 std::string columns_json(const Spec& spec) {
   nlohmann::json j = nlohmann::json::array();
   for (const Column& c : csv_columns(spec)) j.push_back({{"name", c.name}, {"unit", c.unit}, {"meaning", c.meaning}});
-  return j.dump(2) + "\n";
+  return json_dump(j, 2) + "\n";
 }
 
 size_t failed_points(const std::vector<nlohmann::json>& files) {
@@ -172,8 +223,8 @@ std::string summary_markdown(const Spec& spec, const std::vector<Point>& points,
   md << "| key | values |\n|---|---|\n";
   md << fmt::format("| scenes | {} |\n| filters | {} |\n", fmt::join(spec.scenes, ", "), fmt::join(spec.filters, ", "));
   for (size_t k = 0; k < spec.grid_keys; ++k) md << fmt::format("| {} | {} |\n", spec.keys[k].name, fmt::join(spec.grid_values[k], ", "));
-  md << fmt::format("\nBase configuration (every point starts from it): `{}`", nlohmann::json::parse(rtl::unit_config_to_json(spec.base)).dump());
-  if (!spec.base_sampler.empty()) md << fmt::format("; base-stage sampler keys: `{}`", nlohmann::json(spec.base_sampler).dump());
+  md << fmt::format("\nBase configuration (every point starts from it): `{}`", json_dump(nlohmann::json::parse(rtl::unit_config_to_json(spec.base))));
+  if (!spec.base_sampler.empty()) md << fmt::format("; base-stage sampler keys: `{}`", json_dump(nlohmann::json(spec.base_sampler)));
   md << ".\n\nCost columns: `sram_bits` is the texel cache's data, tag, valid and LRU bits (formula in rtl/cost_model.hpp); "
         "`filter_gates` the Yosys gate equivalents of the filter datapaths the frame's filters need ("
      << rtl::filter_gate_source() << ").\n";

@@ -8,17 +8,18 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
-#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/json_output.hpp"
 #include "rtl/kernel/kernel.hpp"
 #include "sim/sweep/provenance.hpp"
+#include "sim/sweep/sweep_report.hpp"
 
 namespace tfu::sweep {
 namespace {
@@ -145,17 +146,20 @@ void prepare_sweep_dir(const std::string& dir, const Spec& spec, bool force) {
   if (ec) throw InputError(fmt::format("--out '{}' cannot be created: {}", dir, ec.message()));
   const fs::path abs = fs::absolute(spec.path, ec).lexically_normal();
   const nlohmann::json j = {{"spec_path", abs.string()}, {"spec_text", spec.text}};
-  write_file_atomic(record.string(), j.dump(2) + "\n", "--out");
+  write_file_atomic(record.string(), json_dump(j, 2) + "\n", "--out");
 }
 
 Spec load_sweep_dir(const std::string& dir) {
   const fs::path record = fs::path(dir) / "sweep.json";
-  std::ifstream f(record, std::ios::binary);
-  if (!f) throw InputError(fmt::format("'{}' holds no sweep.json (not a sweep directory)", dir));
-  std::ostringstream ss;
-  ss << f.rdbuf();
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(record, ec)))
+    throw InputError(fmt::format("'{}' holds no sweep.json (not a sweep directory)", dir));
+  // A regular file (TFU-S E5: a FIFO or a link to /dev/zero is refused), bounded by the spec's bound
+  // with the spec's text JSON-escaped (at most six bytes for one: \u001f) and two paths.
+  const std::string text = read_input_file(record.string(), fmt::format("sweep record {}", quoted_path(record.string())),
+                                           7 * kMaxTextInputBytes, InputFile::Use::OwnState);
   try {
-    const nlohmann::json j = nlohmann::json::parse(ss.str());
+    const nlohmann::json j = nlohmann::json::parse(text);
     return parse_spec(j.at("spec_text").get<std::string>(), j.at("spec_path").get<std::string>());
   } catch (const nlohmann::json::exception&) {
     throw InputError(fmt::format("'{}': malformed (expected spec_path and spec_text)", record.string()));

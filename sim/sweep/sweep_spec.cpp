@@ -2,16 +2,17 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
+#include <unordered_set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/input_file.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/run_files.hpp"
 #include "cmodel/json_keys.hpp"
 #include "cmodel/q3_scene.hpp"
@@ -64,7 +65,7 @@ std::string value_text(const Key& key, const Json& v, const Where& where, const 
     } else {
       if (!v.is_number_integer()) throw where(where_key, "values must be integers");
       if (v.is_number_unsigned() && v.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX))
-        throw where(where_key, fmt::format("{} is out of range", v.dump()));
+        throw where(where_key, fmt::format("{} is out of range", json_dump(v)));
       text = std::to_string(v.get<int64_t>());
     }
     rtl::UnitConfig probe;
@@ -79,7 +80,7 @@ std::string value_text(const Key& key, const Json& v, const Where& where, const 
   if (v.is_string()) {
     text = v.get<std::string>();
   } else if (v.is_number() && !v.is_boolean()) {
-    text = v.dump();
+    text = json_dump(v);
   } else {
     throw where(where_key, "values must be strings or numbers");
   }
@@ -95,11 +96,13 @@ std::string value_text(const Key& key, const Json& v, const Where& where, const 
 std::vector<std::string> string_list(const Json& j, const std::string& key, const Where& where) {
   if (!j.is_array() || j.empty()) throw where(key, "must be a non-empty list of strings");
   std::vector<std::string> out;
+  std::unordered_set<std::string> seen;  // linear time: a list may hold 10^6 names (TFU-S E10)
+  seen.reserve(j.size());
+  out.reserve(j.size());
   for (const Json& v : j) {
     if (!v.is_string() || v.get<std::string>().empty()) throw where(key, "must be a non-empty list of strings");
-    const std::string s = v.get<std::string>();
-    for (const std::string& seen : out)
-      if (seen == s) throw where(key, fmt::format("'{}' is listed twice", quote_input(s, 60)));
+    const std::string& s = v.get_ref<const std::string&>();
+    if (!seen.insert(s).second) throw where(key, fmt::format("'{}' is listed twice", quote_input(s, 60)));
     out.push_back(s);
   }
   return out;
@@ -136,7 +139,7 @@ void parse_base(const Json& j, Spec& s, const Where& where) {
     unit.erase("sampler");
   }
   try {
-    s.base = rtl::unit_config_from_json(unit.dump(), "base");
+    s.base = rtl::unit_config_from_json(json_dump(unit), "base");
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", quote_input(s.path, 100), e.what()));
   }
@@ -157,10 +160,12 @@ void parse_grid(const Json& j, Spec& s, const Where& where) {
     if (!values.is_array()) throw where(wk, "must be a list of values");
     if (values.empty()) throw where(wk, "is an empty list (a grid key needs at least one value)");
     std::vector<std::string> texts;
+    texts.reserve(values.size());
+    std::unordered_set<std::string> seen;  // linear time: a key may hold 10^6 values (TFU-S E10)
+    seen.reserve(values.size());
     for (const Json& v : values) {
       std::string t = value_text(s.keys.back(), v, where, wk);
-      for (const std::string& seen : texts)
-        if (seen == t) throw where(wk, fmt::format("value {} is listed twice", quote_input(t, 40)));
+      if (!seen.insert(t).second) throw where(wk, fmt::format("value {} is listed twice", quote_input(t, 40)));
       texts.push_back(std::move(t));
     }
     s.grid_values.push_back(std::move(texts));
@@ -256,12 +261,10 @@ Spec parse_spec(const std::string& text, const std::string& path) {
 }
 
 Spec load_spec(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f || fs::is_directory(path)) throw InputError(fmt::format("sweep spec '{}': cannot read", quote_input(path, 200)));
-  note_run_input(path, fmt::format("sweep spec '{}'", quote_input(path, 200)));  // never an output of the run
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return parse_spec(ss.str(), path);
+  const std::string label = fmt::format("sweep spec '{}'", quote_input(path, 200));
+  std::string text = read_input_file(path, label, kMaxTextInputBytes);  // a regular file, bounded (TFU-S E5)
+  note_run_input(path, label);  // never an output of the run
+  return parse_spec(text, path);
 }
 
 std::vector<Point> expand(const Spec& s) {
@@ -274,7 +277,7 @@ std::vector<Point> expand(const Spec& s) {
     if (it != fingerprint.end()) return it->second;
     try {
       (void)open_scene({path, s.width, s.height, s.game_dir});
-      return fingerprint[path] = scene_fingerprint({path, s.width, s.height, s.game_dir}).dump();
+      return fingerprint[path] = json_dump(scene_fingerprint({path, s.width, s.height, s.game_dir}));
     } catch (const InputError& e) {
       throw where(where_key, e.what());
     }
@@ -340,7 +343,7 @@ std::vector<Point> expand(const Spec& s) {
                          {"units", s.units},
                          {"unit_config", nlohmann::json::parse(rtl::unit_config_to_json(p.config))},
                          {"sampler", p.sampler}};
-    p.id = hex64(fnv1a64(id.dump()));
+    p.id = hex64(fnv1a64(json_dump(id)));
     if (const auto [it, fresh] = seen_ids.emplace(p.id, p.index); !fresh)
       throw where(pr.where_key, fmt::format("point {} ({}) repeats point {}", p.index, describe(s, p), it->second));
     points.push_back(std::move(p));
