@@ -165,7 +165,8 @@ Params sampler_to_params(const SamplerDescriptor& s) {
 
 std::span<const char* const> texture_param_keys() { return kTextureParamKeys; }
 
-LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir) {
+LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir,
+                                const std::string& game_dir) {
   for (const auto& [key, value] : spec.params) {
     bool known = false;
     for (const char* k : kTextureParamKeys) known = known || key == k;
@@ -181,7 +182,7 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   LoadedTexture out;
   if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
     if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
-    out.texture = level_texture(spec.source, where);
+    out.texture = level_texture(spec.source, where, game_dir);
     return out;
   }
   Texture tex;
@@ -207,7 +208,12 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   } else {
     std::filesystem::path path(spec.source);
     if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-    tex = load_texture(path.string());  // its errors name the file
+    try {
+      tex = load_texture(path.string());  // its errors name the file ...
+    } catch (const InputError& e) {
+      // ... and `where` the scene key, trace line or option that named it (TFU-S E13)
+      throw InputError(fmt::format("{}: {}", where, e.what()));
+    }
   }
   const std::string format = param("format", "auto");
   if (format != "auto") {

@@ -47,6 +47,9 @@ struct LoadedTexture {
   std::shared_ptr<const Texture> texture;
   ColourFn truth;  // analytic colour (procedural textures), empty for files
 };
-LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir = {});
+// `base_dir`: where a relative file name is found; `game_dir`: the OpenArena data of oa:MAP:... textures
+// (empty: $TFU_OPENARENA_DIR, else Debian's).
+LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir = {},
+                                const std::string& game_dir = {});
 
 }  // namespace tfu

@@ -101,7 +101,7 @@ Frame frame_from_trace(Trace& trace, const FrameDefaults& defaults, int line_byt
   }
   for (const TraceBinding* bd : tex) {
     const TextureSpec spec{bd->spec, bd->params};
-    const LoadedTexture t = load_texture_spec(spec, bd->where, base_dir);
+    const LoadedTexture t = load_texture_spec(spec, bd->where, base_dir, defaults.game_dir);
     b.add_texture(t.texture, spec);  // binding N is descriptor N (each binding loads its own texture)
   }
   const auto make_sampler = [&](const Params& p, const std::string& where) {

@@ -68,6 +68,7 @@ struct FrameDefaults {
   std::optional<Params> sampler;
   std::optional<FilterMode> filter;  // replaces every sampler's filter mode
   Params sampler_overrides;          // applied over every sampler (e.g. edge_shape from --shape-policy)
+  std::string game_dir;              // OpenArena data of oa:MAP:... textures (empty: $TFU_OPENARENA_DIR or Debian's)
 };
 Frame frame_from_trace(Trace& trace, const FrameDefaults& defaults, int line_bytes = 64);
 

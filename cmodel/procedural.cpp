@@ -232,7 +232,9 @@ const std::vector<std::string>& procedural_names() {
   return names;
 }
 
-Procedural make_procedural(const std::string& name, int size) {
+namespace {
+
+Procedural make_procedural_texels(const std::string& name, int size) {
   if (name == "checkerboard") return make_checkerboard(size, std::clamp(size / 8, 1, 16));
   if (name == "text") return make_text(size, std::clamp(size / 32, 2, 32));
   if (name == "zoneplate") return make_zoneplate(size);
@@ -240,6 +242,17 @@ Procedural make_procedural(const std::string& name, int size) {
   if (name == "noise") return make_noise(size, std::clamp(size / 16, 2, 16));
   throw InputError(fmt::format("unknown procedural texture '{}' (valid: checkerboard, text, zoneplate, lightmap, noise)",
                                quote_input(name)));
+}
+
+}  // namespace
+
+Procedural make_procedural(const std::string& name, int size) {
+  // Charged before the texels are made, for the chain load_texture_spec generates (cmodel/memory_budget.hpp).
+  auto charge = std::make_shared<MemoryCharge>(mip_chain_bytes(size, size),
+                                               fmt::format("texture 'proc:{}:{}'", quote_input(name, 40), size), "decoded texels");
+  Procedural p = make_procedural_texels(name, size);
+  p.texture.memory = std::move(charge);
+  return p;
 }
 
 }  // namespace tfu

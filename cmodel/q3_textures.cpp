@@ -68,12 +68,15 @@ Texture decode_image(std::span<const uint8_t> bytes, const std::string& name) {
     throw InputError(fmt::format("{}: image of {}x{}x{} outside 1..{} per side", name, spec.width, spec.height,
                                  spec.nchannels, kMaxTextureSize));
   const int use = std::min(spec.nchannels, 4);
+  // charged before decoding: a small RLE TGA can hold 16384 x 16384 texels (cmodel/memory_budget.hpp)
+  auto charge = std::make_shared<MemoryCharge>(mip_chain_bytes(spec.width, spec.height), name, "decoded texels");
   std::vector<uint8_t> raw(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(use));
   if (!in->read_image(0, 0, 0, use, OIIO::TypeDesc::UINT8, raw.data()))
     throw InputError(fmt::format("{}: cannot decode pixels: {}", name, first_line(in->geterror())));
   Texture tex;
   tex.format = TexelFormat::RGBA8;
   tex.levels.push_back(to_rgba8(raw, spec.width, spec.height, use));
+  tex.memory = std::move(charge);
   in->close();
   return tex;
 }

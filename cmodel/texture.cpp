@@ -56,27 +56,37 @@ const std::vector<std::string>& wrap_mode_names() {
 
 namespace {
 
-// One-line message from OpenImageIO's (possibly multi-line) error text.
-std::string first_line(std::string s) {
+// OpenImageIO's (possibly multi-line) error text for our one line, which names the file already:
+// the first line, with the file's path (OIIO repeats it in full, however long) as "the file",
+// control characters as '?', cut to kMaxLibraryTextChars.
+inline constexpr size_t kMaxLibraryTextChars = 120;
+std::string library_text(std::string s, const std::string& path) {
   const auto nl = s.find('\n');
   if (nl != std::string::npos) s.resize(nl);
-  return s.empty() ? std::string("unknown error") : s;
+  for (size_t at = path.empty() ? std::string::npos : s.find(path); at != std::string::npos; at = s.find(path, at + 8))
+    s.replace(at, path.size(), "the file");
+  return s.empty() ? std::string("unknown error") : quote_input(s, kMaxLibraryTextChars);
 }
 
-Image read_level(OIIO::ImageInput& in, int subimage, int miplevel, const std::string& path, bool* is_gray) {
+// `path` the file, `name` it quoted for messages.
+// `charge`, when given: the memory budget's charge for the whole MIP chain of this level's size, made
+// before the pixels are read (cmodel/memory_budget.hpp).
+Image read_level(OIIO::ImageInput& in, int subimage, int miplevel, const std::string& path, const std::string& name,
+                 bool* is_gray, std::shared_ptr<MemoryCharge>* charge = nullptr) {
   if (!in.seek_subimage(subimage, miplevel))
-    throw InputError(fmt::format("{}: cannot read MIP level {}: {}", path, miplevel, first_line(in.geterror())));
+    throw InputError(fmt::format("{}: cannot read MIP level {}: {}", name, miplevel, library_text(in.geterror(), path)));
   const OIIO::ImageSpec& spec = in.spec();
   if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTextureSize || spec.height > kMaxTextureSize)
-    throw InputError(fmt::format("{}: image size {}x{} outside 1..{} per side", path, spec.width, spec.height,
+    throw InputError(fmt::format("{}: image size {}x{} outside 1..{} per side", name, spec.width, spec.height,
                                  kMaxTextureSize));
   const int nch = spec.nchannels;
-  if (nch < 1) throw InputError(fmt::format("{}: image has no channels", path));
+  if (nch < 1) throw InputError(fmt::format("{}: image has no channels", name));
   const int use = std::min(nch, 4);
+  if (charge) *charge = std::make_shared<MemoryCharge>(mip_chain_bytes(spec.width, spec.height), name, "decoded texels");
   std::vector<uint8_t> raw(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
                            static_cast<size_t>(use));
   if (!in.read_image(subimage, miplevel, 0, use, OIIO::TypeDesc::UINT8, raw.data()))
-    throw InputError(fmt::format("{}: cannot decode pixels: {}", path, first_line(in.geterror())));
+    throw InputError(fmt::format("{}: cannot decode pixels: {}", name, library_text(in.geterror(), path)));
   Image img(spec.width, spec.height);
   for (size_t i = 0; i < img.texels.size(); ++i) {
     const uint8_t* p = &raw[i * static_cast<size_t>(use)];
@@ -97,7 +107,7 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // filter the stored values, as GL does
   auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) throw InputError(fmt::format("{}: cannot open image: {}", quote_path(path), first_line(OIIO::geterror())));
+  if (!in) throw InputError(fmt::format("{}: cannot open image: {}", quote_path(path), library_text(OIIO::geterror(), path)));
   return in;
 }
 
@@ -106,12 +116,12 @@ Texture load_texture_file(const std::string& path) {
   Texture tex;
   bool gray = false;
   const std::string name = quote_path(path);  // for messages
-  tex.levels.push_back(read_level(*in, 0, 0, name, &gray));
+  tex.levels.push_back(read_level(*in, 0, 0, path, name, &gray, &tex.memory));
   tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
   const int w = tex.levels[0].width, h = tex.levels[0].height;
   for (int l = 1; l < mip_level_count(w, h); ++l) {
     if (!in->seek_subimage(0, l)) break;  // the file holds no more levels
-    tex.levels.push_back(read_level(*in, 0, l, name, nullptr));
+    tex.levels.push_back(read_level(*in, 0, l, path, name, nullptr));
   }
   in->close();
   tex.validate(name);
@@ -137,17 +147,18 @@ namespace {
 Texture load_level_directory(const std::string& dir) {
   const auto level_path = [&dir](int l) { return (std::filesystem::path(dir) / fmt::format("level_{:02d}.png", l)).string(); };
   if (!std::filesystem::is_regular_file(level_path(0)))
-    throw InputError(fmt::format("{}: a directory without level_00.png (tfu mipmap --out writes level_NN.png)", dir));
+    throw InputError(fmt::format("{}: a directory without level_00.png (tfu mipmap --out writes level_NN.png)", quote_path(dir)));
   Texture tex;
   bool gray = false;
   const int max_levels = mip_level_count(kMaxTextureSize, kMaxTextureSize);
   for (int l = 0; l < max_levels && std::filesystem::is_regular_file(level_path(l)); ++l) {
     auto in = open_input(level_path(l));
-    tex.levels.push_back(read_level(*in, 0, 0, level_path(l), l == 0 ? &gray : nullptr));
+    tex.levels.push_back(read_level(*in, 0, 0, level_path(l), quote_path(level_path(l)), l == 0 ? &gray : nullptr,
+                                    l == 0 ? &tex.memory : nullptr));
     in->close();
   }
   tex.format = gray ? TexelFormat::L8 : TexelFormat::RGBA8;
-  tex.validate(dir);
+  tex.validate(quote_path(dir));
   return tex;
 }
 }  // namespace
@@ -161,7 +172,7 @@ Texture load_texture(const std::string& path) {
 Image load_image(const std::string& path) {
   return with_stderr_captured([&] {
     auto in = open_input(path);
-    Image img = read_level(*in, 0, 0, quote_path(path), nullptr);
+    Image img = read_level(*in, 0, 0, path, quote_path(path), nullptr);
     in->close();
     return img;
   });
@@ -171,14 +182,14 @@ void write_image_file(const Image& img, const std::string& type_path, const std:
   with_stderr_captured([&] {
     auto out = OIIO::ImageOutput::create(type_path);
     if (!out)
-      throw InputError(fmt::format("{}: no image writer for this file type: {}", quote_path(type_path), first_line(OIIO::geterror())));
+      throw InputError(fmt::format("{}: no image writer for this file type: {}", quote_path(type_path), library_text(OIIO::geterror(), file_path)));
     OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     if (!out->open(file_path, spec))
-      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
+      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), library_text(out->geterror(), file_path)));
     if (!out->write_image(OIIO::TypeDesc::UINT8, img.texels.data()))
-      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
-    if (!out->close()) throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), first_line(out->geterror())));
+      throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), library_text(out->geterror(), file_path)));
+    if (!out->close()) throw InputError(fmt::format("{}: cannot write: {}", quote_path(type_path), library_text(out->geterror(), file_path)));
     return 0;
   });
 }

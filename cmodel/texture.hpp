@@ -20,11 +20,13 @@
 #include <array>
 #include <cstdint>
 #include <climits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cmodel/enum_names.hpp"
+#include "cmodel/memory_budget.hpp"
 
 namespace tfu {
 
@@ -114,6 +116,9 @@ struct Texture {
   // 64-byte cache line unless the driver chooses otherwise.
   MemoryLayout layout = MemoryLayout::Tiled;
   int tile_bytes = 64;
+  // The memory budget's charge for the decoded chain (cmodel/memory_budget.hpp), shared by copies;
+  // null for textures no input decoded (light maps, built in code).
+  std::shared_ptr<MemoryCharge> memory;
   int tile_side() const { return 1 << tile_side_log2(tile_bytes, format); }
 
   int width() const { return levels.front().width; }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <istream>
 #include <ostream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -107,6 +108,39 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
   }
 }
 
+// The words of a binding line (docs/traces.md, "Descriptor indices and bindings"): a texture's spec
+// is a file name as the user or the archive spelled it, which may hold a space ("my textures/a.png")
+// or look like a parameter ("a.png mipmaps=none"). So a word is written with each space, '%' and,
+// in a key, '=' as %20, %25, %3D, and read back with every %XX decoded (two hex digits); names
+// without these bytes are written as they are.
+std::string encode_word(std::string_view w, bool key) {
+  std::string out;
+  for (const char c : w) {
+    if (c == ' ' || c == '%' || (key && c == '=')) {
+      out += fmt::format("%{:02X}", static_cast<unsigned>(static_cast<unsigned char>(c)));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string decode_word(const std::string& w, const std::string& where) {
+  std::string out;
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (w[i] != '%') {
+      out += w[i];
+      continue;
+    }
+    const auto hex = [&](size_t k) { return k < w.size() && std::isxdigit(static_cast<unsigned char>(w[k])); };
+    if (!hex(i + 1) || !hex(i + 2))
+      throw InputError(fmt::format("{}: '{}': a '%' starts %XX, two hex digits (a '%' itself is %25)", where, quote_input(w)));
+    out += static_cast<char>(std::stoi(w.substr(i + 1, 2), nullptr, 16));
+    i += 2;
+  }
+  return out;
+}
+
 // "# tfu-texture N SPEC key=value..." / "# tfu-sampler N key=value..."
 TraceBinding parse_binding(const std::string& line, bool texture, const std::string& where) {
   // Names never carry a control character (docs/inputs-outputs.md, "Names"; write_trace refuses them).
@@ -125,14 +159,15 @@ TraceBinding parse_binding(const std::string& line, bool texture, const std::str
   k = 3;
   if (texture) {
     if (w.size() < 4) throw InputError(fmt::format("{}: texture binding {} names no texture", where, b.index));
-    b.spec = w[3];
+    b.spec = decode_word(w[3], where);
     k = 4;
   }
   for (; k < w.size(); ++k) {
     const auto eq = w[k].find('=');
     if (eq == std::string::npos || eq == 0) throw InputError(fmt::format("{}: '{}' is not key=value", where, quote_input(w[k])));
-    if (!b.params.emplace(w[k].substr(0, eq), w[k].substr(eq + 1)).second)
-      throw InputError(fmt::format("{}: key '{}' twice", where, quote_input(w[k].substr(0, eq))));
+    std::string key = decode_word(w[k].substr(0, eq), where);
+    if (b.params.contains(key)) throw InputError(fmt::format("{}: key '{}' twice", where, quote_input(key)));
+    b.params.emplace(std::move(key), decode_word(w[k].substr(eq + 1), where));
   }
   return b;
 }
@@ -249,6 +284,14 @@ Trace parse_trace(std::istream& in, const std::string& name) {
       if (q.texture != r.texture || q.sampler != r.sampler || q.stage != r.stage)
         throw InputError(fmt::format("{}: the four pixels of a quad name one texture, sampler and stage", where));
     }
+    if (tr.requests.size() == tr.requests.capacity()) {
+      // The vector grows by doubling, reserved here so that what it holds is what the budget is charged
+      // (cmodel/memory_budget.hpp): a 4 GiB trace of short lines holds some 400 million requests.
+      const size_t grow = std::max<size_t>(4096, tr.requests.capacity());
+      if (!tr.memory) tr.memory = std::make_shared<MemoryCharge>(0, "trace " + quote_input(name, 100), "requests");
+      tr.memory->add(grow * sizeof(TraceRequest));
+      tr.requests.reserve(tr.requests.capacity() + grow);
+    }
     tr.requests.push_back(r);
   }
   if (tr.mode == TraceMode::Quad && tr.requests.size() % 4 != 0)
@@ -263,15 +306,21 @@ Trace load_trace(const std::string& path) {
 
 void write_trace(std::ostream& out, const Trace& trace) {
   // A binding is one line of words: a control character (a newline above all) in its spec or a
-  // parameter would start a line of its own, so it is refused before anything is written.
+  // parameter would start a line of its own, so it is refused before anything is written; so are
+  // the words the reader could not take back (a texture with no spec, an empty key). Spaces, '%'
+  // and a key's '=' are encoded (encode_word).
   for (const auto* bindings : {&trace.textures, &trace.samplers})
     for (const TraceBinding& b : *bindings) {
+      const char* kind = bindings == &trace.textures ? "tfu-texture" : "tfu-sampler";
       bool bad = has_control_characters(b.spec);
       for (const auto& [k, v] : b.params) bad = bad || has_control_characters(k) || has_control_characters(v);
       if (bad)
         throw InputError(fmt::format("trace binding {} {} ('{}'): a control character cannot be written into a trace line",
-                                     bindings == &trace.textures ? "tfu-texture" : "tfu-sampler", b.index,
-                                     quote_input(b.spec)));
+                                     kind, b.index, quote_input(b.spec)));
+      if (bindings == &trace.textures && b.spec.empty())
+        throw InputError(fmt::format("trace binding {} {}: a texture binding needs a spec", kind, b.index));
+      if (b.params.contains(""))
+        throw InputError(fmt::format("trace binding {} {} ('{}'): a parameter with an empty key", kind, b.index, quote_input(b.spec)));
     }
   bool indexed = !trace.textures.empty() || !trace.samplers.empty();
   for (const TraceRequest& r : trace.requests) indexed = indexed || r.texture != 0 || r.sampler != 0 || r.stage != 0;
@@ -283,8 +332,8 @@ void write_trace(std::ostream& out, const Trace& trace) {
   out << '\n';
   const auto binding = [&out](const char* kind, const TraceBinding& b) {
     out << "# " << kind << ' ' << b.index;
-    if (!b.spec.empty()) out << ' ' << b.spec;
-    for (const auto& [k, v] : b.params) out << ' ' << k << '=' << v;
+    if (!b.spec.empty()) out << ' ' << encode_word(b.spec, false);
+    for (const auto& [k, v] : b.params) out << ' ' << encode_word(k, true) << '=' << encode_word(v, false);
     out << '\n';
   };
   for (const TraceBinding& b : trace.textures) binding("tfu-texture", b);

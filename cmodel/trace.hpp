@@ -23,6 +23,7 @@
 #include <functional>
 #include <iosfwd>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "cmodel/aniso.hpp"
 #include "cmodel/enum_names.hpp"
 #include "cmodel/lod.hpp"
+#include "cmodel/memory_budget.hpp"
 
 namespace tfu {
 
@@ -61,6 +63,8 @@ struct Trace {
   std::vector<TraceRequest> requests;  // quad mode: a multiple of 4, in quad order
   std::vector<TraceBinding> textures, samplers;  // header bindings, in file order
   std::string source;  // the file it was read from (relative texture paths resolve against its directory)
+  // The memory budget's charge for `requests` as parse_trace reserved them (cmodel/memory_budget.hpp).
+  std::shared_ptr<MemoryCharge> memory;
 };
 
 // Throws InputError "<name>:<line>: ..." on malformed input.

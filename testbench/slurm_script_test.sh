@@ -2,15 +2,20 @@
 # The batch script of `tfu sweep --slurm` against hostile names, without Slurm (docs/inputs-outputs.md,
 # "Temporary files and generated scripts"). The tfu binary is copied into a directory whose name holds
 # every character the shell treats specially (spaces, quotes, $(...), backticks, ;, #, glob characters,
-# a backslash), and the
-# sweep goes to --out directories of the same kind, with an --sbatch-arg of the same kind:
+# a backslash), and the sweep goes to --out directories of the same kind (with '%' patterns of
+# sbatch's --output, %j and %%, and no backslash, which sbatch's patterns cannot carry), with an
+# --sbatch-arg of the first kind:
 #   - the --slurm-dry-run script and the script that --slurm hands to a fake sbatch (which records
 #     its arguments) are run under bash, with the binary replaced by a stub that records its
 #     arguments: the stub must receive exactly `sweep --run-task T --tasks N --workers C --out DIR`,
 #     the fake sbatch exactly `--parsable ARG SCRIPT`, the #SBATCH --output value must read back as
-#     DIR/slurm/task-%a.log, and none of the injected commands may have run;
-#   - names with a newline or a carriage return (--out, --sbatch-arg) are refused with one line
-#     naming the option (exit 2), before anything is written or submitted.
+#     DIR/slurm/task-%a.log with DIR's '%' written %% (sbatch then reads it as DIR), and none of
+#     the injected commands may have run;
+#   - names with a newline or a carriage return (--out, --sbatch-arg), and an --out with a
+#     backslash, are refused with one line naming the option (exit 2), before anything is written
+#     or submitted;
+#   - a submission that fails (sbatch exits 1) removes the --out it created, and leaves an existing
+#     sweep directory as it was.
 #
 #   testbench/slurm_script_test.sh BUILD/bin/tfu [WORK]
 set -euo pipefail
@@ -25,6 +30,8 @@ fail() {
 
 # Injected commands touch MARK* files in the current directory, which is $work/cwd while anything runs.
 hostile=" a b'c\"d\$(touch MARK1)\`touch MARK2\`;touch MARK3 &touch MARK4|x #*?[ab]{1,2}~!\\e"
+# An --out directory: the same without the backslash, with sbatch's own pattern characters.
+hostile_dir=" a b'c\"d\$(touch MARK1)\`touch MARK2\`;touch MARK3 &touch MARK4|x #*?[ab]{1,2}~! %j %% 100%"
 mkdir -p "$work/cwd" "$work/fakebin"
 cwd=$work/cwd
 bindir="$work/bin$hostile"
@@ -51,7 +58,7 @@ no_marks() {
 }
 
 # 1. The dry run: the script is the output without its last line (the sbatch command, a comment).
-out_dry="$work/dry$hostile"
+out_dry="$work/dry$hostile_dir"
 (cd "$cwd" && "$bindir/tfu" sweep "$work/spec.json" --out "$out_dry" --slurm-dry-run --tasks 2 \
   --sbatch-arg="--comment=$hostile") >"$work/dry.txt"
 no_marks "the dry run"
@@ -61,7 +68,7 @@ tail -n 1 "$work/dry.txt" | grep -q "^# 2 points in 2 array tasks; would run: 's
 [[ ! -e $out_dry ]] || fail "the dry run created --out"
 
 # 2. --slurm with the fake sbatch: the script written to DIR/slurm/sweep.sbatch and submitted.
-out_sub="$work/sub$hostile"
+out_sub="$work/sub$hostile_dir"
 (cd "$cwd" && "$bindir/tfu" sweep "$work/spec.json" --out "$out_sub" --slurm --tasks 2 \
   --sbatch-arg="--comment=$hostile") >"$work/sub.txt"
 no_marks "--slurm"
@@ -93,7 +100,7 @@ run_script() {
   line=$(grep '^#SBATCH --output=' "$script") || fail "$script has no #SBATCH --output line"
   value=$(cd "$cwd" && eval "printf '%s' ${line#\#SBATCH --output=}")
   no_marks "the #SBATCH --output value of $script"
-  [[ $value == "$dir/slurm/task-%a.log" ]] || fail "$script: #SBATCH --output reads back as '$value'"
+  [[ $value == "${dir//%/%%}/slurm/task-%a.log" ]] || fail "$script: #SBATCH --output reads back as '$value'"
 }
 run_script "$work/dry.sbatch" "$out_dry"
 run_script "$out_sub/slurm/sweep.sbatch" "$out_sub"
@@ -122,5 +129,29 @@ for mode in --slurm-dry-run --slurm; do
       "--sbatch-arg=--comment=x${c}touch MARK6"
     [[ ! -e $work/ok ]] || fail "--sbatch-arg with a control character ($mode): --out was created"
   done
+  bad="$work/back\\slash"
+  refused "--out ($mode)" sweep "$work/spec.json" --out "$bad" "$mode"
+  [[ ! -e $bad ]] || fail "--out with a backslash ($mode) was created"
 done
-echo "slurm_script_test: hostile names ran nothing but the sweep; newline and carriage return refused"
+
+# 4. A submission that fails leaves what it found (TFU-S E8): a new --out is removed; in a sweep
+#    directory that existed (a local run's), its files stay and the batch script is not left.
+mkdir -p "$work/failbin"
+printf '#!/bin/bash\necho "sbatch: error: invalid partition specified: test" >&2\nexit 1\n' >"$work/failbin/sbatch"
+chmod +x "$work/failbin/sbatch"
+rc=0
+(cd "$cwd" && PATH="$work/failbin:$PATH" "$tfu" sweep "$work/spec.json" --out "$work/failed" --slurm) \
+  >"$work/r.out" 2>"$work/r.err" || rc=$?
+[[ $rc == 2 && $(wc -l <"$work/r.err") == 1 ]] || fail "a failing sbatch: exit $rc ($(cat "$work/r.err"))"
+grep -q "sbatch failed (status 1): sbatch: error: invalid partition" "$work/r.err" || fail "a failing sbatch: $(cat "$work/r.err")"
+[[ ! -e $work/failed ]] || fail "a failing sbatch left the new --out: $(find "$work/failed")"
+"$tfu" sweep "$work/spec.json" --out "$work/local" --quiet >/dev/null 2>&1 || fail "the local sweep: exit $?"
+before=$(cd "$work/local" && find . -type f | sort | xargs md5sum)
+rc=0
+(cd "$cwd" && PATH="$work/failbin:$PATH" "$tfu" sweep "$work/spec.json" --out "$work/local" --slurm) \
+  >"$work/r.out" 2>"$work/r.err" || rc=$?
+[[ $rc == 2 ]] || fail "a failing sbatch on a sweep directory: exit $rc"
+after=$(cd "$work/local" && find . -type f | sort | xargs md5sum)
+[[ $before == "$after" && ! -e $work/local/slurm ]] || fail "a failing sbatch changed the sweep directory: $(find "$work/local")"
+no_marks "a failing sbatch"
+echo "slurm_script_test: hostile names ran nothing but the sweep; newline, carriage return and an --out backslash refused; a failed submission leaves nothing"

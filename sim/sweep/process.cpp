@@ -2,12 +2,15 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
 #include <cerrno>
+
+#include "cmodel/error.hpp"
 
 extern char** environ;
 
@@ -31,8 +34,18 @@ ProcessResult run_process(const std::vector<std::string>& argv) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  // tfu ignores SIGPIPE (a closed stdout is an error it reports, sim/tfu/main.cpp); the child gets the
+  // default disposition back, as a program started from a shell has.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), environ);
+  const int rc = posix_spawnp(&pid, args[0], &fa, &attr, args.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
   close(out_pipe[1]);
   close(err_pipe[1]);
@@ -80,6 +93,16 @@ std::string first_line(const std::string& text, size_t max) {
     p = e + 1;
   }
   return {};
+}
+
+std::string failure_line(const std::string& err, size_t max) {
+  std::string line = first_line(err, max);
+  if (line.rfind("Traceback (most recent call last)", 0) == 0) {
+    size_t e = err.find_last_not_of(" \t\r\n");
+    const size_t b = err.rfind('\n', e);
+    line = first_line(err.substr(b == std::string::npos ? 0 : b + 1, e + 1 - (b == std::string::npos ? 0 : b + 1)), max);
+  }
+  return one_line(line, max);
 }
 
 }  // namespace tfu::sweep

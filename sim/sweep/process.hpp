@@ -17,5 +17,9 @@ ProcessResult run_process(const std::vector<std::string>& argv);
 
 // The first non-empty line of `text`, at most `max` characters.
 std::string first_line(const std::string& text, size_t max = 200);
+// Why a child failed, from its standard error: the first non-empty line, or, when that opens a Python
+// traceback, the traceback's last non-empty line (the exception); control characters as spaces, at
+// most `max` characters (TFU-S E7: "Traceback (most recent call last):" was the error line).
+std::string failure_line(const std::string& err, size_t max = 200);
 
 }  // namespace tfu::sweep

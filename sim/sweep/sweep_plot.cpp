@@ -75,7 +75,7 @@ void plot(const PlotRequest& r, OutputFile& out) {
   const ProcessResult res = run_process(argv);
   if (res.status == -1) throw InputError(fmt::format("cannot run {} (scripts/bootstrap installs python3-matplotlib)", kPython));
   if (res.status != 0) {
-    std::string line = first_line(res.err, 260);
+    std::string line = failure_line(res.err, 260);
     if (line.rfind("plot: error: ", 0) == 0) line = line.substr(13);
     throw InputError(fmt::format("plot: {}", line.empty() ? fmt::format("{} exited with status {}", script, res.status) : line));
   }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/montage.hpp"
@@ -65,7 +66,7 @@ void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m, 
     j["psnr_db"] = "inf";
   else
     j["psnr_db"] = m.psnr_db;
-  out << j.dump(2) << '\n';
+  out << json_dump(j, 2) << '\n';
 }
 
 void run_compare(const CompareOptions& o) {
@@ -84,8 +85,8 @@ void run_compare(const CompareOptions& o) {
   if (json_file) write_json(o, a, m, json_file->stream());
   outputs.commit();
   print_metrics(m);
-  if (diff_file) fmt::print(stderr, "tfu compare: wrote {}\n", o.diff);
-  if (json_file) fmt::print(stderr, "tfu compare: wrote {}\n", o.json);
+  if (diff_file) print_summary_line(fmt::format("tfu compare: wrote {}", o.diff));
+  if (json_file) print_summary_line(fmt::format("tfu compare: wrote {}", o.json));
   if (o.fail_below_psnr && m.psnr_db < *o.fail_below_psnr)
     throw CheckFailed(fmt::format("PSNR {:.4f} dB is below --fail-below-psnr {}", m.psnr_db, *o.fail_below_psnr));
 }
@@ -121,7 +122,7 @@ void run_montage(const MontageOptions& o) {
   out.write_image(m);
   outputs.commit();
   if (!drawn) fmt::print(stderr, "tfu montage: warning: font {} not available, labels omitted\n", kMontageFont);
-  fmt::print(stderr, "tfu montage: wrote {} ({}x{})\n", o.out, m.width, m.height);
+  print_summary_line(fmt::format("tfu montage: wrote {} ({}x{})", o.out, m.width, m.height));
 }
 
 void register_montage(CLI::App& app) {

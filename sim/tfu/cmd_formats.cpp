@@ -20,10 +20,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/parallel.hpp"
 #include "cmodel/signed_formats.hpp"
 #include "cmodel/unorm.hpp"
+#include "sim/tfu/choices.hpp"
 #include "sim/tfu/commands.hpp"
 
 namespace tfu::cli {
@@ -220,10 +222,9 @@ void run(const FormatsOptions& o) {
   if (!o.exhaustive) out["vs16"]["seed"] = o.seed;
 
   if (json_file) {
-    json_file->stream() << out.dump(2) << '\n';
+    json_file->stream() << json_dump(out, 2) << '\n';
     outputs.commit();
-    std::fflush(stdout);
-    std::fprintf(stderr, "tfu formats: wrote %s\n", o.json.c_str());
+    print_summary_line(fmt::format("tfu formats: wrote {}", o.json));
   }
   std::fflush(stdout);
   if (!ok) throw CheckFailed("formats: a measured error exceeds its analytic bound (see the tables)");
@@ -240,7 +241,7 @@ void register_formats(CLI::App& app) {
       "16-bit (Vs16) add/sub and multiply (random pairs, or all 2^32 with --exhaustive). Exit 1 if a bound is exceeded.");
   auto* pairs = cmd->add_option("--pairs", o->pairs, fmt::format("Random Vs16 operand pairs (1..{})", kMaxPairs))
                     ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed of the std::mt19937_64 pair generator")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the std::mt19937_64 pair generator")->capture_default_str()->check(unsigned_integer());
   cmd->add_flag("--exhaustive", o->exhaustive, "Check all 2^32 Vs16 pairs instead (multi-threaded, ~40 s on 2 cores)")
       ->excludes(pairs);
   cmd->add_option("--json", o->json, "Also write the figures as JSON to this file");

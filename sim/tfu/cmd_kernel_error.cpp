@@ -118,7 +118,7 @@ void register_kernel_error(CLI::App& app) {
   cmd->add_option("--kernel", opts->spec.kernel, "Kernel: bspline, catmull-rom, mitchell, kaiser, blackman, tent, box")
       ->capture_default_str();
   cmd->add_option("--samples", opts->spec.samples, "Samples per tile and dimension R (16..512)")->capture_default_str();
-  cmd->add_option("--bits", opts->spec.bits, "Bits per ROM weight b (4..16)")->capture_default_str();
+  cmd->add_option("--bits", opts->spec.bits, "Bits per ROM weight b (4..16)")->capture_default_str()->check(unsigned_integer(UINT32_MAX));
   cmd->add_option("--recon", opts->recon, "ROM reconstruction: nearest (box) or linear")->capture_default_str();
   cmd->add_option("--dims", opts->spec.dims, "Dimensions: 2 (1024^2 locations), 3 (256^3), or 1 (one set of weights, 1024 locations)")->capture_default_str();
   cmd->add_option("--locations", opts->spec.locations, "Resampling locations per dimension (0 = 1024 in 2D, 256 in 3D)")

@@ -108,10 +108,10 @@ void run(const RenderCliOptions& o) {
   std::cout << out << '\n';
   if (trace_file) std::cout << o.trace_out << '\n';
   if (truth_file) std::cout << o.truth_out << '\n';
-  std::cerr << fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels\n",
-                           scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
-                           r.stats.clipped_away, r.stats.quads, r.stats.pixels);
-  if (level_scene) std::cerr << "tfu render: " << scene.description << '\n';
+  print_summary_line(fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels",
+                                 scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
+                                 r.stats.clipped_away, r.stats.quads, r.stats.pixels));
+  if (level_scene) print_summary_line("tfu render: " + scene.description);
 }
 
 }  // namespace

@@ -110,7 +110,7 @@ void run(const RomOptions& o) {
     format == Format::Csv ? dump_direction_rom_csv(dir, *os) : dump_direction_rom_hex(dir, *os);
   }
   outputs.commit();
-  if (!o.out.empty()) std::cerr << "tfu rom: wrote " << o.out << '\n';
+  if (!o.out.empty()) print_summary_line("tfu rom: wrote " + o.out);
 }
 
 }  // namespace
@@ -122,7 +122,7 @@ void register_rom(CLI::App& app) {
   cmd->add_option("--kernel", o->kernel, "tile: kernel (bspline, catmull-rom, mitchell, kaiser, blackman, tent, box)")
       ->capture_default_str();
   cmd->add_option("--samples", o->samples, "tile: samples per tile R (16..512)")->capture_default_str();
-  cmd->add_option("--bits", o->bits, "tile: magnitude bits b (4..16)")->capture_default_str();
+  cmd->add_option("--bits", o->bits, "tile: magnitude bits b (4..16)")->capture_default_str()->check(unsigned_integer(UINT32_MAX));
   cmd->add_option("--pos", o->pos, "tile: sample positions centre ((k+.5)/R) or corner (k/R)")->capture_default_str();
   cmd->add_option("--rounding", o->rounding, "tile: sum (sum-preserving rows) or nearest (Eq. 3.4)")->capture_default_str();
   cmd->add_option("--dir", o->dir, "direction: index 0..21 or all")->capture_default_str();

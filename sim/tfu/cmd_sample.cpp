@@ -26,6 +26,7 @@ struct SampleOptions {
   SamplerOptions smp;
   std::string requests;
   std::string out;
+  std::string game_dir;  // OpenArena data of a level trace's oa: textures
   bool force = false;
   bool query_lod = false;
   bool ideal = false;
@@ -67,7 +68,7 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
       throw InputError(fmt::format("--tile-bytes '{}' must be 64, 256 or 1024", quote_input(text)));
     line_bytes = static_cast<int>(v);
   }
-  const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes);
+  const Frame frame = frame_for_trace(cmd, o.tex, o.smp, tr, line_bytes, o.game_dir);
   const GoldenUnit golden(frame);
 
   std::ostream& os = file ? file->stream() : std::cout;
@@ -100,7 +101,7 @@ void run(const SampleOptions& o, const CLI::App& cmd) {
   }
   outputs.commit();
   if (file) {
-    std::cerr << fmt::format("tfu sample: {} requests ({} trace) -> {}\n", tr.requests.size(), trace_mode_name(tr.mode), o.out);
+    print_summary_line(fmt::format("tfu sample: {} requests ({} trace) -> {}", tr.requests.size(), trace_mode_name(tr.mode), o.out));
   }
 }
 
@@ -114,6 +115,7 @@ void register_sample(CLI::App& app) {
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--requests", o->requests, "Request trace (docs/traces.md)")->required();
   cmd->add_option("--out", o->out, "Output: one r,g,b,a line per request ('-' = stdout)")->required();
+  cmd->add_option("--game-dir", o->game_dir, "OpenArena data directory for a level trace's oa: textures (default: $TFU_OPENARENA_DIR or Debian's)");
   cmd->add_flag("--force", o->force, "Overwrite --out if it exists");
   cmd->add_flag("--query-lod", o->query_lod,
                 "Write the LOD unit's report per request instead: lambda, magnify, levels, blend, level size, kernel scale, "

@@ -18,6 +18,7 @@
 #include "sim/sweep/sweep_report.hpp"
 #include "sim/sweep/sweep_run.hpp"
 #include "sim/sweep/sweep_slurm.hpp"
+#include "sim/tfu/choices.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
 
@@ -80,10 +81,32 @@ void run_slurm(const SweepOptions& o, const Spec& spec, const std::vector<Point>
     std::cout << fmt::format("# {} points in {} array tasks; would run: {}\n", points.size(), job.tasks, cmd);
     return;
   }
-  prepare_sweep_dir(o.out, spec, o.force);
-  write_file_atomic(script_path, script, "--slurm batch script");
-  fs::permissions(script_path, fs::perms::owner_exec, fs::perm_options::add);
-  const std::string id = submit(job, script_path);
+  // A submission that fails (no sbatch, sbatch refuses) leaves what it found (TFU-S E8): the directory
+  // if this run created it, else the record and the script if this run wrote them, are removed.
+  std::error_code ec;
+  const fs::path dir(job.dir), record = dir / "sweep.json";
+  const bool dir_existed = fs::exists(fs::symlink_status(dir, ec));
+  const bool record_existed = fs::exists(fs::symlink_status(record, ec));
+  const bool script_existed = fs::exists(fs::symlink_status(script_path, ec));
+  std::string id;
+  try {
+    prepare_sweep_dir(o.out, spec, o.force);
+    write_file_atomic(script_path, script, "--slurm batch script");
+    fs::permissions(script_path, fs::perms::owner_exec, fs::perm_options::add);
+    id = submit(job, script_path);
+  } catch (...) {
+    if (!dir_existed) {
+      fs::remove_all(dir, ec);
+    } else {
+      if (!script_existed) fs::remove(script_path, ec);
+      fs::remove(dir / "slurm", ec);  // only if empty
+      if (!record_existed) {
+        fs::remove(record, ec);
+        fs::remove(dir / "points", ec);  // only if empty
+      }
+    }
+    throw;
+  }
   std::cout << fmt::format("tfu sweep: {} points in {} array tasks submitted as Slurm job {} (script {}); when it has "
                            "finished: tfu sweep --collect {}\n",
                            points.size(), job.tasks, id, script_path, job.dir);
@@ -123,8 +146,16 @@ void run(const SweepOptions& o) {
   if (o.plot) (void)checked_plot_script();  // a missing plot step is found before anything runs
   prepare_sweep_dir(o.out, spec, o.force);
   const RunSummary s = run_points(spec, points, o.out, {o.workers, 0, 1, !o.quiet});
-  std::cerr << fmt::format("tfu sweep: {} points ran, {} already done, {:.1f} s\n", s.ran, s.skipped, s.wall_seconds);
-  finish(spec, points, o.out, o.plot);
+  // The run's line after finish (TFU-S E14: before it, a failed plot step's error was the second line);
+  // a failed golden compare (exit 1) keeps it.
+  const std::string ran = fmt::format("tfu sweep: {} points ran, {} already done, {:.1f} s", s.ran, s.skipped, s.wall_seconds);
+  try {
+    finish(spec, points, o.out, o.plot);
+  } catch (const CheckFailed&) {
+    print_summary_line(ran);
+    throw;
+  }
+  print_summary_line(ran);
 }
 
 struct PlotOptions {
@@ -175,7 +206,7 @@ void register_sweep(CLI::App& app) {
                                      "per-point overhead (writes nothing)");
   cmd->add_flag("--slurm", o->slurm, "Submit the points as one Slurm job array (DIR must be on a shared file system)");
   cmd->add_flag("--slurm-dry-run", o->slurm_dry_run, "Print the batch script and the sbatch command; submit nothing");
-  cmd->add_option("--tasks", o->tasks, "Slurm array tasks (default: one per point, at most 100)");
+  cmd->add_option("--tasks", o->tasks, "Slurm array tasks (default: one per point, at most 100)")->check(unsigned_integer());
   cmd->add_option("--cpus-per-task", o->cpus_per_task, "CPUs (worker threads) per array task")->capture_default_str();
   cmd->add_option("--sbatch-arg", o->sbatch_args, "An extra sbatch option, e.g. --sbatch-arg=--partition=big (repeatable)");
   cmd->add_option("--collect", o->collect, "Check that every point of the sweep in DIR has its result; write results.csv, summary.md");

@@ -21,6 +21,11 @@ void register_descriptors(CLI::App& app);   // cmd_descriptors.cpp: descriptor r
 void register_aniso_compare(CLI::App& app); // cmd_aniso_compare.cpp: anisotropic filtering vs OpenImageIO
 void register_sweep(CLI::App& app);         // cmd_sweep.cpp: `sweep` (design-space sweeps, Slurm) and `plot`
 
+// A command's closing summary on stderr ("tfu render: 1024 triangles ..."), after its outputs: stdout
+// is flushed and checked first, so that when it fails (a full disk, a closed pipe) the error is the
+// only line on stderr, not the second (TFU-S E14). Throws InputError("cannot write to standard output").
+void print_summary_line(const std::string& line);
+
 // Output files go through tfu::OutputFiles (cmodel/output_files.hpp), input files through
 // cmodel/input_file.hpp: one place each for every command.
 

@@ -4,15 +4,18 @@
 // model or a measured value fails its threshold; 2 bad input or usage; 3 internal error (a bug:
 // please report it); 4 deadlock of the cycle model. Every error is one line on stderr of at most 300
 // characters that names the offending input (cmodel/error_report.hpp).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "cmodel/error.hpp"
 #include "cmodel/error_report.hpp"
+#include "cmodel/memory_budget.hpp"
 #include "cmodel/run_files.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/sweep/version.hpp"
@@ -36,9 +39,55 @@ int check_stdout(int code) {
   return code;
 }
 
+// No option takes an empty value (TFU-S E12): an empty string is what "not given" is held as, so
+// `--out ''` drew to the default path and `--scene ''` rendered the default scene. Every option of
+// every subcommand that takes a value gets the check, so a new option cannot forget it.
+void refuse_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty([](std::string& text) { return text.empty() ? std::string("an empty value names nothing") : std::string(); },
+                                 "");
+  for (CLI::Option* opt : app.get_options([](CLI::Option* o) { return o->get_type_size_max() > 0; })) opt->check(non_empty);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
+}
+
+// --memory-budget SIZE on every subcommand (cmodel/memory_budget.hpp; TFU-S E11).
+void add_memory_budget_option(CLI::App& app) {
+  const std::string help = fmt::format("Memory budget for decoded texels and request traces, e.g. 8G or 512M (default: 3/4 of "
+                                       "this machine's memory and limits, here {})",
+                                       tfu::memory_size_text(tfu::default_memory_budget()));
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    sub->add_option_function<std::string>(
+           "--memory-budget", [](const std::string& text) { tfu::set_memory_budget(tfu::parse_memory_size(text, "--memory-budget")); },
+           help)
+        ->check(CLI::Validator(
+            [](std::string& text) {
+              try {
+                (void)tfu::parse_memory_size(text, "--memory-budget");
+              } catch (const tfu::InputError& e) {
+                const std::string m = e.what();
+                return m.substr(m.find(": ") + 2);
+              }
+              return std::string();
+            },
+            ""))
+        ->type_name("SIZE");
+}
+
 }  // namespace
 
+namespace tfu::cli {
+
+void print_summary_line(const std::string& line) {
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) throw InputError("cannot write to standard output");
+  std::fputs((line + "\n").c_str(), stderr);
+}
+
+}  // namespace tfu::cli
+
 int main(int argc, char** argv) {
+  // A closed pipe behind stdout (`tfu rom --tile 4 | head -1`) is reported as every output error is
+  // (check_stdout: exit 2, one line), not by SIGPIPE's exit 141 (TFU-S E15).
+  std::signal(SIGPIPE, SIG_IGN);
   tfu::set_command_line(argc, argv);  // recorded in every statistics file (provenance)
   tfu::track_run_files(true);         // an output never replaces an input of this run (cmodel/run_files.hpp)
   CLI::App app{"tfu: texture filter unit model (golden reference, cycle model, ROM and error tools)"};
@@ -58,6 +107,8 @@ int main(int argc, char** argv) {
   tfu::cli::register_descriptors(app);
   tfu::cli::register_aniso_compare(app);
   tfu::cli::register_sweep(app);
+  add_memory_budget_option(app);
+  refuse_empty_values(app);
   int code = tfu::kExitSuccess;
   try {
     app.parse(argc, argv);

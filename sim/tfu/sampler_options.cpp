@@ -78,8 +78,10 @@ Params sampler_params_given(const CLI::App& cmd, const SamplerOptions& o) {
   return p;
 }
 
-Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes) {
+Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes,
+                      const std::string& game_dir) {
   FrameDefaults d;
+  d.game_dir = game_dir;
   d.texture = texture_spec_given(cmd, t);
   if (d.texture && !trace.textures.empty())
     throw InputError(fmt::format("--texture: {} binds its own textures (give it no --texture)", trace.textures.front().where));

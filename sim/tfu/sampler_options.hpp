@@ -35,8 +35,10 @@ Params sampler_params_given(const CLI::App& cmd, const SamplerOptions& o);
 // The frame of a request trace (cmodel/frame.hpp): the textures and samplers its header binds, or,
 // when it binds none, texture 0 from --texture and sampler 0 from the sampler flags. Sampler flags
 // given with a trace that binds samplers override those keys of every bound sampler. Textures are
-// tiled for `line_bytes` lines. The trace's requests are bound (bind_requests) in place.
-Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes);
+// tiled for `line_bytes` lines. The trace's requests are bound (bind_requests) in place. `game_dir`:
+// the OpenArena data of a level trace's oa:MAP:... textures (--game-dir).
+Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const SamplerOptions& s, Trace& trace, int line_bytes,
+                      const std::string& game_dir = {});
 
 // `--plain`: run the plain datapaths instead of every speed-only fast path (cmodel/fast_paths.hpp);
 // it also sets TFU_PLAIN=1 so that processes this one starts (sweep points) run plain too.
