@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 #include "cmodel/fixed_coord.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/q3_scene.hpp"
@@ -136,7 +137,10 @@ std::span<const SamplerParam> sampler_params() { return kSamplerParams; }
 void set_sampler_param(SamplerDescriptor& s, const std::string& key, const std::string& value) {
   for (const SamplerParam& q : kSamplerParams)
     if (key == q.key) return q.set(s, value);
-  throw InputError(fmt::format("unknown sampler key '{}'", quote_input(key)));
+  std::vector<std::string> keys;
+  for (const SamplerParam& q : kSamplerParams) keys.emplace_back(q.key);
+  const std::string hint = did_you_mean(key, keys);
+  throw InputError(fmt::format("unknown sampler key '{}'{}", quote_input(key), hint.empty() ? "" : " (" + hint.substr(0, hint.size() - 1) + ")"));
 }
 
 SamplerDescriptor sampler_from_params(const Params& params, const std::string& where, SamplerDescriptor s) {

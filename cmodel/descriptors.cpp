@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 #include "cmodel/kernels.hpp"
 #include "cmodel/unorm.hpp"
 
@@ -33,8 +34,13 @@ FilterMode filter_mode_from_name(const std::string& name) {
   for (const FilterMode& m : all_filter_modes())
     if (filter_mode_name(m) == n) return m;
   std::string list;
-  for (const FilterMode& m : all_filter_modes()) list += (list.empty() ? "" : ", ") + filter_mode_name(m);
-  throw InputError(fmt::format("unknown filter '{}' (expected one of {}, or bilinear, trilinear)", quote_input(name), list));
+  std::vector<std::string> accepted{"bilinear", "trilinear"};
+  for (const FilterMode& m : all_filter_modes()) {
+    list += (list.empty() ? "" : ", ") + filter_mode_name(m);
+    accepted.push_back(filter_mode_name(m));
+  }
+  throw InputError(fmt::format("unknown filter '{}' ({}expected one of {}, or bilinear, trilinear)", quote_input(name),
+                               did_you_mean(name, accepted), list));
 }
 
 std::string filter_mode_name(FilterMode m) {
@@ -69,7 +75,7 @@ int cubic_kernel_index(const std::string& name) {
   if (it != names.end()) return static_cast<int>(it - names.begin());
   std::string list;
   for (const auto& k : names) list += (list.empty() ? "" : ", ") + k;
-  throw InputError(fmt::format("unknown kernel '{}' (valid: {})", quote_input(name), list));
+  throw InputError(fmt::format("unknown kernel '{}' ({}valid: {})", quote_input(name), did_you_mean(name, names), list));
 }
 
 EdgeShape edge_shape_from_name(const std::string& name) { return kEdgeShapeNames.from_name(name); }

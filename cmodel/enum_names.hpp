@@ -7,8 +7,9 @@
 //   constexpr EnumNames<WrapMode, 4> kWrapModeNames{"wrap mode", {{
 //       {WrapMode::Repeat, "repeat"}, {WrapMode::MirroredRepeat, "mirrored-repeat"}, ...}}};
 //   kWrapModeNames.name(WrapMode::Repeat)      -> "repeat"
-//   kWrapModeNames.from_name("repat")          -> InputError "unknown wrap mode 'repat' (expected
-//                                                 repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)"
+//   kWrapModeNames.from_name("repat")          -> InputError "unknown wrap mode 'repat' (did you mean
+//                                                 'repeat'? expected repeat, mirrored-repeat, clamp-to-edge
+//                                                 or clamp-to-border)"  (the suggestion: nearest_name.hpp)
 //
 // An alias (a second name accepted for a value, not listed in the error) follows the listed names
 // with `listed = false`; name() returns the first entry of a value.
@@ -23,6 +24,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 
 namespace tfu {
 
@@ -57,13 +59,19 @@ struct EnumNames {
   E from_name(std::string_view s) const {
     E v{};
     if (find(s, v)) return v;
-    throw InputError(fmt::format("unknown {} '{}' (expected {})", what, quote_input(s), expected()));
+    throw InputError(fmt::format("unknown {} '{}' ({}expected {})", what, quote_input(s), did_you_mean(s, all_names()), expected()));
   }
   // The listed names, in table order.
   std::vector<std::string> names() const {
     std::vector<std::string> v;
     for (const EnumName<E>& e : entries)
       if (e.listed) v.emplace_back(e.name);
+    return v;
+  }
+  // Every accepted name, aliases included (what a mistyped name is compared with: nearest_name.hpp).
+  std::vector<std::string> all_names() const {
+    std::vector<std::string> v;
+    for (const EnumName<E>& e : entries) v.emplace_back(e.name);
     return v;
   }
   // "a, b or c": the listed names for a message.

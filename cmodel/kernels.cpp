@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 
 namespace tfu {
 namespace {
@@ -91,7 +92,7 @@ FilterKernel FilterKernel::by_name(std::string_view name) {
   if (name == "blackman") return blackman_sinc();
   std::string valid;
   for (const auto& n : names()) valid += (valid.empty() ? "" : ", ") + n;
-  throw InputError("unknown kernel '" + std::string(name) + "' (valid: " + valid + ")");
+  throw InputError("unknown kernel '" + quote_input(name) + "' (" + did_you_mean(name, names()) + "valid: " + valid + ")");
 }
 
 bool FilterKernel::symmetric() const {

@@ -9,8 +9,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 
 namespace tfu {
 namespace {
@@ -240,8 +242,8 @@ Procedural make_procedural_texels(const std::string& name, int size) {
   if (name == "zoneplate") return make_zoneplate(size);
   if (name == "lightmap") return make_lightmap(size);
   if (name == "noise") return make_noise(size, std::clamp(size / 16, 2, 16));
-  throw InputError(fmt::format("unknown procedural texture '{}' (valid: checkerboard, text, zoneplate, lightmap, noise)",
-                               quote_input(name)));
+  throw InputError(fmt::format("unknown procedural texture '{}' ({}valid: {})", quote_input(name),
+                               did_you_mean(name, procedural_names()), fmt::join(procedural_names(), ", ")));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/json_input.hpp"
 #include "cmodel/json_keys.hpp"
@@ -479,7 +480,8 @@ const std::string& builtin_scene_json(const std::string& name) {
   }();
   const auto it = texts.find(name);
   if (it == texts.end())
-    throw InputError(fmt::format("unknown built-in scene '{}' (valid: {})", quote_input(name), fmt::join(builtin_scene_names(), ", ")));
+    throw InputError(fmt::format("unknown built-in scene '{}' ({}valid: {})", quote_input(name),
+                                 did_you_mean(name, builtin_scene_names()), fmt::join(builtin_scene_names(), ", ")));
   return it->second;
 }
 
@@ -489,8 +491,8 @@ Scene load_scene(const std::string& name_or_path) {
     return parse_scene(builtin_scene_json(name_or_path), name_or_path + ".json");
   std::error_code ec;
   if (!std::filesystem::exists(name_or_path, ec) && !ec)
-    throw InputError(fmt::format("scene '{}' is neither a built-in scene ({}) nor a readable file", quote_input(name_or_path),
-                                 fmt::join(names, ", ")));
+    throw InputError(fmt::format("scene '{}' is neither a built-in scene ({}{}) nor a readable file", quote_input(name_or_path),
+                                 did_you_mean(name_or_path, names), fmt::join(names, ", ")));
   const std::string text = read_input_file(name_or_path, "scene " + quoted_path(name_or_path), kMaxTextInputBytes);
   return parse_scene(text, name_or_path, std::filesystem::path(name_or_path).parent_path().string());
 }

@@ -80,10 +80,10 @@ TEST(EnumNames, NameFunctionsReadTheTables) {
 }
 
 TEST(EnumNames, UnknownNameErrorLines) {
-  EXPECT_EQ(error_of(kTexelFormatNames, "rgb8"), "unknown texel format 'rgb8' (expected rgba8, l8 or vs16x2)");
+  EXPECT_EQ(error_of(kTexelFormatNames, "rgb8"), "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8 or vs16x2)");
   EXPECT_EQ(error_of(kMemoryLayoutNames, "morton"), "unknown memory layout 'morton' (expected linear or tiled)");
   EXPECT_EQ(error_of(kWrapModeNames, "clamp"),
-            "unknown wrap mode 'clamp' (expected repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)");
+            "unknown wrap mode 'clamp' (did you mean 'clamp-to-edge'? expected repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)");
   EXPECT_EQ(error_of(kMipMethodNames, "lanczos"), "unknown MIP method 'lanczos' (expected box, gaussian or edge)");
   EXPECT_EQ(error_of(kTexEnvNames, "blend"),
             "unknown texture environment 'blend' (expected replace, modulate, add or decal)");

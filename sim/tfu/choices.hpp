@@ -11,11 +11,13 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 
 namespace tfu::cli {
 
@@ -25,7 +27,9 @@ E parse_choice(const std::string& option, const std::string& value, const std::m
   if (it != choices.end()) return it->second;
   std::string valid;
   for (const auto& [name, unused] : choices) valid += (valid.empty() ? "" : ", ") + name;
-  throw InputError("unknown " + option + " '" + quote_input(value) + "' (valid: " + valid + ")");
+  std::vector<std::string> names;
+  for (const auto& [name, unused] : choices) names.push_back(name);
+  throw InputError("unknown " + option + " '" + quote_input(value) + "' (" + did_you_mean(value, names) + "valid: " + valid + ")");
 }
 
 inline CLI::Validator unsigned_integer(uint64_t max = UINT64_MAX) {

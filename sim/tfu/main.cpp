@@ -8,14 +8,18 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <regex>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cmodel/error.hpp"
 #include "cmodel/error_report.hpp"
 #include "cmodel/memory_budget.hpp"
+#include "cmodel/nearest_name.hpp"
 #include "cmodel/run_files.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "sim/sweep/version.hpp"
@@ -72,6 +76,80 @@ void add_memory_budget_option(CLI::App& app) {
         ->type_name("SIZE");
 }
 
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  return names;
+}
+
+// A usage error in words that help (the user's next step, a near name), from CLI11's exception and
+// the command line. CLI11's own text is kept where nothing better is known.
+std::string usage_error_text(const CLI::App& app, int argc, char** argv, const CLI::ParseError& e) {
+  const std::vector<std::string> commands = command_names(app);
+  const std::string command_list = fmt::format("{}", fmt::join(commands, ", "));
+  std::vector<CLI::App*> parsed = const_cast<CLI::App&>(app).get_subcommands();
+  if (parsed.empty()) {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a.empty() || a[0] == '-') continue;
+      return fmt::format("unknown command '{}' ({}commands: {}; `tfu help COMMAND` shows a command's options)",
+                         tfu::quote_input(a, 40), tfu::did_you_mean(a, commands), command_list);
+    }
+    return fmt::format("a command is required (commands: {}; `tfu help COMMAND` shows a command's options)", command_list);
+  }
+  const CLI::App& sub = *parsed.front();
+  std::vector<std::string> options;
+  for (const CLI::Option* o : sub.get_options({}))
+    for (const std::string& n : o->get_lnames()) options.push_back("--" + n);
+  if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
+    for (int i = 1; i < argc; ++i) {
+      std::string a = argv[i];
+      if (a.rfind("--", 0) != 0 || a == "--") continue;
+      a = a.substr(0, a.find('='));
+      if (const_cast<CLI::App&>(sub).get_option_no_throw(a) != nullptr) continue;
+      return fmt::format("unknown option '{}' of tfu {} ({}`tfu help {}` lists its options)", tfu::quote_input(a, 40),
+                         sub.get_name(), tfu::did_you_mean(a, options), sub.get_name());
+    }
+  }
+  if (dynamic_cast<const CLI::ConversionError*>(&e) != nullptr) {
+    // CLI11 2.1: "Could not convert: --width = 1280x720"
+    static const std::regex form("Could not convert: (--[A-Za-z0-9-]+) = (.*)");
+    std::smatch m;
+    const std::string what = e.what();
+    if (std::regex_match(what, m, form)) {
+      const std::string name = m[1], value = m[2];
+      const CLI::Option* o = const_cast<CLI::App&>(sub).get_option_no_throw(name);
+      const std::string type = o != nullptr ? o->get_type_name() : std::string();
+      std::string text = fmt::format("{} '{}': expected {}", name, tfu::quote_input(value, 40),
+                                     type == "UINT" ? "an integer >= 0" : type == "INT" ? "an integer" : "a number");
+      static const std::regex size_form("([0-9]+)[xX*]([0-9]+)");
+      std::smatch sz;
+      if ((name == "--width" || name == "--height") && std::regex_match(value, sz, size_form))
+        text += fmt::format(" (a size is two options: --width {} --height {})", sz[1].str(), sz[2].str());
+      return text;
+    }
+  }
+  return e.what();
+}
+
+// `tfu help [COMMAND]`: the help of the tool or of one command, as --help prints it.
+int print_help(const CLI::App& app, int argc, char** argv) {
+  if (argc <= 2) {
+    std::cout << app.help();
+    return tfu::kExitSuccess;
+  }
+  const std::string name = argv[2];
+  for (const CLI::App* sub : app.get_subcommands({}))
+    if (sub->get_name() == name) {
+      std::cout << sub->help();
+      return tfu::kExitSuccess;
+    }
+  const std::vector<std::string> commands = command_names(app);
+  tfu::print_error_line(stderr, "error", fmt::format("unknown command '{}' ({}commands: {})", tfu::quote_input(name, 40),
+                                                     tfu::did_you_mean(name, commands), fmt::join(commands, ", ")));
+  return tfu::kExitBadInput;
+}
+
 }  // namespace
 
 namespace tfu::cli {
@@ -109,6 +187,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_sweep(app);
   add_memory_budget_option(app);
   refuse_empty_values(app);
+  if (argc >= 2 && std::string(argv[1]) == "help") return check_stdout(print_help(app, argc, argv));
   int code = tfu::kExitSuccess;
   try {
     app.parse(argc, argv);
@@ -119,7 +198,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return check_stdout(app.exit(e));
   } catch (const CLI::ParseError& e) {
-    tfu::print_error_line(stderr, "error", e.what());
+    tfu::print_error_line(stderr, "error", usage_error_text(app, argc, argv, e));
     code = tfu::kExitBadInput;
   } catch (...) {
     code = tfu::report_error(std::current_exception());
