@@ -21,7 +21,7 @@ int bit(uint64_t w, int pos) { return static_cast<int>((w >> pos) & 1); }
 // 3-bit two's complement (dR, dG, dB): -4..3.
 int sext3(int v) { return v >= 4 ? v - 8 : v; }
 int clamp255(int v) { return std::clamp(v, 0, 255); }
-int extend4(int v) { return v * 17; }                 // (v << 4) | v
+int extend4(int v) { return v * 17; }  // (v << 4) | v
 int extend5(int v) { return (v << 3) | (v >> 2); }
 int extend6(int v) { return (v << 2) | (v >> 4); }
 int extend7(int v) { return (v << 1) | (v >> 6); }
@@ -70,7 +70,8 @@ void decode_colour(uint64_t w, bool punchthrough, Rgba8 out[16]) {
       return clamp255((x * (h - o) + y * (v - o) + 4 * o + 2) >> 2);
     };
     for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) put(x, y, {plane(ro, rh, rv, x, y), plane(go, gh, gv, x, y), plane(bo, bh, bv, x, y)});
+      for (int x = 0; x < 4; ++x)
+        put(x, y, {plane(ro, rh, rv, x, y), plane(go, gh, gv, x, y), plane(bo, bh, bv, x, y)});
     return;
   }
 
@@ -143,7 +144,9 @@ struct EacBlock {
   int multiplier() const { return bits(w, 55, 52); }
   const std::array<int, 8>& table() const { return kEacModifiers[static_cast<size_t>(bits(w, 51, 48))]; }
   // Texel (x, y): 3-bit index at bits 47 - 3j .. 45 - 3j, j = 4 x + y.
-  int modifier(int x, int y) const { return table()[static_cast<size_t>(bits(w, 47 - 3 * (4 * x + y), 45 - 3 * (4 * x + y)))]; }
+  int modifier(int x, int y) const {
+    return table()[static_cast<size_t>(bits(w, 47 - 3 * (4 * x + y), 45 - 3 * (4 * x + y)))];
+  }
 };
 
 void check_size(int width, int height) {
@@ -169,8 +172,8 @@ void for_each_block(const EtcFormatInfo& info, int width, int height, std::span<
     for (int bx = 0; bx < bw; ++bx) {
       const size_t offset = (static_cast<size_t>(by) * static_cast<size_t>(bw) + static_cast<size_t>(bx)) *
                             static_cast<size_t>(info.block_bytes);
-      decode(blocks.data() + offset, bx * kEtcBlockDim, by * kEtcBlockDim, std::min(kEtcBlockDim, width - bx * kEtcBlockDim),
-             std::min(kEtcBlockDim, height - by * kEtcBlockDim));
+      decode(blocks.data() + offset, bx * kEtcBlockDim, by * kEtcBlockDim,
+             std::min(kEtcBlockDim, width - bx * kEtcBlockDim), std::min(kEtcBlockDim, height - by * kEtcBlockDim));
     }
 }
 
@@ -228,7 +231,8 @@ size_t etc_block_count(int width, int height) {
 std::vector<Rgba8> decode_etc_image(EtcFormat f, int width, int height, std::span<const uint8_t> blocks) {
   const EtcFormatInfo& info = etc_format_info(f);
   if (info.is_signed)
-    throw InputError(std::string(info.name) + " has no RGBA8 form (signed 11-bit channels); decode it as 11-bit values");
+    throw InputError(std::string(info.name) +
+                     " has no RGBA8 form (signed 11-bit channels); decode it as 11-bit values");
   check_blocks(info, width, height, blocks);
   std::vector<Rgba8> image(static_cast<size_t>(width) * static_cast<size_t>(height));
   for_each_block(info, width, height, blocks, [&](const uint8_t* b, int x0, int y0, int nx, int ny) {
@@ -248,7 +252,8 @@ std::vector<Rgba8> decode_etc_image(EtcFormat f, int width, int height, std::spa
     }
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x)
-        image[static_cast<size_t>(y0 + y) * static_cast<size_t>(width) + static_cast<size_t>(x0 + x)] = texels[4 * y + x];
+        image[static_cast<size_t>(y0 + y) * static_cast<size_t>(width) + static_cast<size_t>(x0 + x)] =
+            texels[4 * y + x];
   });
   return image;
 }
@@ -273,8 +278,8 @@ std::vector<int16_t> decode_eac11_image(EtcFormat f, int width, int height, std:
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x)
         for (size_t c = 0; c < channels; ++c)
-          image[(static_cast<size_t>(y0 + y) * static_cast<size_t>(width) + static_cast<size_t>(x0 + x)) * channels + c] =
-              values[c][4 * y + x];
+          image[(static_cast<size_t>(y0 + y) * static_cast<size_t>(width) + static_cast<size_t>(x0 + x)) * channels +
+                c] = values[c][4 * y + x];
   });
   return image;
 }

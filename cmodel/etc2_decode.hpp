@@ -39,7 +39,7 @@
 //                clamp((x (H - O) + y (V - O) + 4 O + 2) >> 2): the spec's round-half-up of
 //                O + x (H - O) / 4 + y (V - O) / 4 (sum -508..1532: 11 bits + sign; >> 2 is an
 //                arithmetic shift, floor)
-// Punch-through (RGB8A1), opaque bit = 0: in individual-free differential mode the modifiers of
+// Punch-through (RGB8A1), opaque bit = 0: in differential mode the modifiers of
 //   indices 00 and 10 are 0; in differential, T and H mode index 10 decodes to (0, 0, 0, 0);
 //   planar mode ignores the opaque bit. Every other texel has alpha 255.
 //
@@ -66,7 +66,7 @@
 
 namespace tfu {
 
-inline constexpr int kEtcBlockDim = 4;     // texels per block side
+inline constexpr int kEtcBlockDim = 4;  // texels per block side
 inline constexpr int kEtcBlockTexels = 16;
 
 // The ETC/EAC formats. GL names: COMPRESSED_RGB8_ETC2, _SRGB8_ETC2, _RGB8_PUNCHTHROUGH_ALPHA1_ETC2,
@@ -88,11 +88,11 @@ enum class EtcFormat {
 struct EtcFormatInfo {
   EtcFormat format;
   const char* name;
-  int block_bytes;   // 8 or 16
-  int channels;      // 3 (RGB), 4 (RGBA), 1 (R), 2 (RG)
-  bool srgb;         // the RGB channels are sRGB-encoded (alpha never is)
-  bool eac11;        // R11/RG11: 11-bit channels (decode_eac11_image)
-  bool is_signed;    // signed R11/RG11
+  int block_bytes;  // 8 or 16
+  int channels;     // 3 (RGB), 4 (RGBA), 1 (R), 2 (RG)
+  bool srgb;        // the RGB channels are sRGB-encoded (alpha never is)
+  bool eac11;       // R11/RG11: 11-bit channels (decode_eac11_image)
+  bool is_signed;   // signed R11/RG11
 };
 inline constexpr std::array<EtcFormatInfo, 10> kEtcFormats{{
     {EtcFormat::Rgb8, "etc2_rgb8", 8, 3, false, false, false},
@@ -141,11 +141,11 @@ inline constexpr int kEtc2ModeCount = 5;
 Etc2Mode etc2_block_mode(const uint8_t block[8], bool punchthrough);
 
 // One block to 16 texels, out[4 * y + x].
-void decode_etc2_rgb_block(const uint8_t block[8], Rgba8 out[16]);     // RGB8 (and ETC1), alpha 255
-void decode_etc2_rgb8a1_block(const uint8_t block[8], Rgba8 out[16]);  // RGB8 punch-through alpha
-void decode_etc2_rgba8_block(const uint8_t block[16], Rgba8 out[16]);  // EAC alpha + ETC2 colour
-void decode_eac_alpha8_block(const uint8_t block[8], uint8_t out[16]);  // RGBA8's 8-bit EAC alpha
-void decode_eac_r11_block(const uint8_t block[8], uint16_t out[16]);    // 0..2047
+void decode_etc2_rgb_block(const uint8_t block[8], Rgba8 out[16]);          // RGB8 (and ETC1), alpha 255
+void decode_etc2_rgb8a1_block(const uint8_t block[8], Rgba8 out[16]);       // RGB8 punch-through alpha
+void decode_etc2_rgba8_block(const uint8_t block[16], Rgba8 out[16]);       // EAC alpha + ETC2 colour
+void decode_eac_alpha8_block(const uint8_t block[8], uint8_t out[16]);      // RGBA8's 8-bit EAC alpha
+void decode_eac_r11_block(const uint8_t block[8], uint16_t out[16]);        // 0..2047
 void decode_eac_r11_signed_block(const uint8_t block[8], int16_t out[16]);  // -1023..1023
 
 // The 11-bit results in other widths (KDFS "Format Unsigned R11 EAC", "Format Signed R11 EAC"):
