@@ -572,5 +572,19 @@ TEST(Etc2Mesa, EightBitFormsMatchMesaForEvery11BitValue) {
   }
 }
 
+// Mesa 22.3.6 read back as GL_RGB returns wrong ETC2 texels (mesa_decoder.hpp); mesa_decode reads
+// four components and drops the fourth, so a GL_RGB read-back equals the model's RGB.
+TEST(Etc2Mesa, ThreeComponentReadBack) {
+  if (!mesa_available()) GTEST_SKIP() << "no OSMesa context";
+  std::mt19937_64 rng(0x3c0);
+  std::vector<uint8_t> blocks(etc_block_count(13, 7) * 8);
+  for (auto& v : blocks) v = static_cast<uint8_t>(rng());
+  const auto mesa = mesa_decode(GL_COMPRESSED_RGB8_ETC2, 13, 7, blocks, GL_RGB, GL_UNSIGNED_BYTE);
+  ASSERT_TRUE(mesa);
+  std::vector<uint8_t> ours;
+  for (const Rgba8& t : decode_etc_image(EtcFormat::Rgb8, 13, 7, blocks)) ours.insert(ours.end(), {t.r, t.g, t.b});
+  EXPECT_EQ(*mesa, ours);
+}
+
 }  // namespace
 }  // namespace tfu::test
