@@ -9,10 +9,12 @@
 #include <GL/glext.h>
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cmodel/error.hpp"
@@ -389,6 +391,8 @@ constexpr MesaCase kMesaCases[] = {
     {EtcFormat::Rg11Signed, GL_COMPRESSED_SIGNED_RG11_EAC, GL_RG, GL_SHORT},
 };
 
+static_assert(kMesaCases[0].format == EtcFormat::Rgb8 && kMesaCases[4].format == EtcFormat::Rgba8);  // used below
+
 void PrintTo(const MesaCase& c, std::ostream* os) { *os << etc_format_info(c.format).name; }
 
 // Our decode of an image in Mesa's read-back layout (bytes as glGetTexImage writes them).
@@ -584,6 +588,26 @@ TEST(Etc2Mesa, ThreeComponentReadBack) {
   std::vector<uint8_t> ours;
   for (const Rgba8& t : decode_etc_image(EtcFormat::Rgb8, 13, 7, blocks)) ours.insert(ours.end(), {t.r, t.g, t.b});
   EXPECT_EQ(*mesa, ours);
+}
+
+// mesa_decode from several threads at once (one context, serialized by its mutex): every call
+// still returns its own image.
+TEST(Etc2Mesa, ConcurrentCalls) {
+  if (!mesa_available()) GTEST_SKIP() << "no OSMesa context";
+  std::atomic<int> bad{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([t, &bad] {
+      std::mt19937_64 rng(0xc0c0 + static_cast<unsigned>(t));
+      for (int i = 0; i < 10; ++i) {
+        std::vector<uint8_t> blocks(etc_block_count(9, 6) * 16);
+        for (auto& v : blocks) v = static_cast<uint8_t>(rng());
+        const auto mesa = mesa_decode(GL_COMPRESSED_RGBA8_ETC2_EAC, 9, 6, blocks, GL_RGBA, GL_UNSIGNED_BYTE);
+        if (!mesa || *mesa != model_readback(kMesaCases[4], 9, 6, blocks)) ++bad;
+      }
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(bad.load(), 0);
 }
 
 }  // namespace
