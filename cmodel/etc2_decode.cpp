@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "cmodel/error.hpp"
 
 namespace tfu {
@@ -282,6 +284,25 @@ std::vector<int16_t> decode_eac11_image(EtcFormat f, int width, int height, std:
                 c] = values[c][4 * y + x];
   });
   return image;
+}
+
+std::string etc_formats_markdown() {
+  std::string md =
+      "| model name | GL internal format | bytes / 4x4 block | decodes to | sRGB |\n"
+      "|---|---|---|---|---|\n";
+  for (const EtcFormatInfo& f : kEtcFormats) {
+    std::string to;
+    if (f.eac11)
+      to = std::to_string(f.channels) + " x 11-bit " + (f.is_signed ? "signed" : "unsigned");
+    else if (f.channels == 3)
+      to = "RGB8, alpha 255";
+    else if (f.block_bytes == 8)
+      to = "RGB8, alpha 0 or 255";
+    else
+      to = "RGBA8";
+    md += fmt::format("| `{}` | `{}` | {} | {} | {} |\n", f.name, f.gl_name, f.block_bytes, to, f.srgb ? "yes" : "no");
+  }
+  return md;
 }
 
 }  // namespace tfu

@@ -60,6 +60,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "cmodel/texture.hpp"
@@ -69,9 +70,7 @@ namespace tfu {
 inline constexpr int kEtcBlockDim = 4;  // texels per block side
 inline constexpr int kEtcBlockTexels = 16;
 
-// The ETC/EAC formats. GL names: COMPRESSED_RGB8_ETC2, _SRGB8_ETC2, _RGB8_PUNCHTHROUGH_ALPHA1_ETC2,
-// _SRGB8_PUNCHTHROUGH_ALPHA1_ETC2, _RGBA8_ETC2_EAC, _SRGB8_ALPHA8_ETC2_EAC, _R11_EAC,
-// _SIGNED_R11_EAC, _RG11_EAC, _SIGNED_RG11_EAC.
+// The ETC/EAC formats (kEtcFormats: names, GL names, block sizes).
 enum class EtcFormat {
   Rgb8,
   Srgb8,
@@ -88,24 +87,31 @@ enum class EtcFormat {
 struct EtcFormatInfo {
   EtcFormat format;
   const char* name;
-  int block_bytes;  // 8 or 16
-  int channels;     // 3 (RGB), 4 (RGBA), 1 (R), 2 (RG)
-  bool srgb;        // the RGB channels are sRGB-encoded (alpha never is)
-  bool eac11;       // R11/RG11: 11-bit channels (decode_eac11_image)
-  bool is_signed;   // signed R11/RG11
+  const char* gl_name;  // the GL internal format without its GL_ prefix
+  int block_bytes;      // 8 or 16
+  int channels;         // 3 (RGB), 4 (RGBA), 1 (R), 2 (RG)
+  bool srgb;            // the RGB channels are sRGB-encoded (alpha never is)
+  bool eac11;           // R11/RG11: 11-bit channels (decode_eac11_image)
+  bool is_signed;       // signed R11/RG11
 };
 inline constexpr std::array<EtcFormatInfo, 10> kEtcFormats{{
-    {EtcFormat::Rgb8, "etc2_rgb8", 8, 3, false, false, false},
-    {EtcFormat::Srgb8, "etc2_srgb8", 8, 3, true, false, false},
-    {EtcFormat::Rgb8A1, "etc2_rgb8a1", 8, 4, false, false, false},
-    {EtcFormat::Srgb8A1, "etc2_srgb8a1", 8, 4, true, false, false},
-    {EtcFormat::Rgba8, "etc2_rgba8", 16, 4, false, false, false},
-    {EtcFormat::Srgb8Alpha8, "etc2_srgb8_alpha8", 16, 4, true, false, false},
-    {EtcFormat::R11, "eac_r11", 8, 1, false, true, false},
-    {EtcFormat::R11Signed, "eac_r11_signed", 8, 1, false, true, true},
-    {EtcFormat::Rg11, "eac_rg11", 16, 2, false, true, false},
-    {EtcFormat::Rg11Signed, "eac_rg11_signed", 16, 2, false, true, true},
+    {EtcFormat::Rgb8, "etc2_rgb8", "COMPRESSED_RGB8_ETC2", 8, 3, false, false, false},
+    {EtcFormat::Srgb8, "etc2_srgb8", "COMPRESSED_SRGB8_ETC2", 8, 3, true, false, false},
+    {EtcFormat::Rgb8A1, "etc2_rgb8a1", "COMPRESSED_RGB8_PUNCHTHROUGH_ALPHA1_ETC2", 8, 4, false, false, false},
+    {EtcFormat::Srgb8A1, "etc2_srgb8a1", "COMPRESSED_SRGB8_PUNCHTHROUGH_ALPHA1_ETC2", 8, 4, true, false, false},
+    {EtcFormat::Rgba8, "etc2_rgba8", "COMPRESSED_RGBA8_ETC2_EAC", 16, 4, false, false, false},
+    {EtcFormat::Srgb8Alpha8, "etc2_srgb8_alpha8", "COMPRESSED_SRGB8_ALPHA8_ETC2_EAC", 16, 4, true, false, false},
+    {EtcFormat::R11, "eac_r11", "COMPRESSED_R11_EAC", 8, 1, false, true, false},
+    {EtcFormat::R11Signed, "eac_r11_signed", "COMPRESSED_SIGNED_R11_EAC", 8, 1, false, true, true},
+    {EtcFormat::Rg11, "eac_rg11", "COMPRESSED_RG11_EAC", 16, 2, false, true, false},
+    {EtcFormat::Rg11Signed, "eac_rg11_signed", "COMPRESSED_SIGNED_RG11_EAC", 16, 2, false, true, true},
 }};
+constexpr bool etc_formats_in_enum_order() {
+  for (size_t i = 0; i < kEtcFormats.size(); ++i)
+    if (static_cast<size_t>(kEtcFormats[i].format) != i) return false;
+  return true;
+}
+static_assert(etc_formats_in_enum_order(), "etc_format_info indexes kEtcFormats by the enum value");
 constexpr const EtcFormatInfo& etc_format_info(EtcFormat f) { return kEtcFormats[static_cast<size_t>(f)]; }
 
 // Spec tables (KDFS "Format RGB ETC2", "Format RGBA ETC2"): the one copy in the model.
@@ -177,5 +183,8 @@ std::vector<Rgba8> decode_etc_image(EtcFormat f, int width, int height, std::spa
 std::vector<int16_t> decode_eac11_image(EtcFormat f, int width, int height, std::span<const uint8_t> blocks);
 // Blocks in a width x height image of format f (the expected span size over block_bytes).
 size_t etc_block_count(int width, int height);
+
+// kEtcFormats as the Markdown table of docs/compressed-etc2.md, "Formats" (a test checks it is there).
+std::string etc_formats_markdown();
 
 }  // namespace tfu

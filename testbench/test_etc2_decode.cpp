@@ -19,6 +19,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/etc2_decode.hpp"
+#include "testbench/docs_text.hpp"
 #include "testbench/iterations.hpp"
 #include "testbench/mesa_decoder.hpp"
 
@@ -366,6 +367,11 @@ TEST(Etc2Decode, BadImagesAreInputErrors) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "etc2_rgb8 image 5x4 needs 16 bytes of blocks, got 8");
   }
+}
+
+TEST(Etc2Decode, DocsShowTheFormatTable) {
+  EXPECT_NE(docs_text("compressed-etc2.md").find(etc_formats_markdown()), std::string::npos)
+      << "docs/compressed-etc2.md is stale: paste etc_formats_markdown() under \"Formats\"";
 }
 
 // ------------------------------------------------------------------------------ against Mesa
