@@ -39,7 +39,8 @@ struct Rgb {
 };
 Rgb add_clamped(Rgb c, int d) { return {clamp255(c.r + d), clamp255(c.g + d), clamp255(c.b + d)}; }
 
-// The mode decision of the header ("mode"); d_bit is bit 33 (diff bit, or opaque bit for RGB8A1).
+// The mode decision of the header ("mode"); bit 33 is the diff bit (the opaque bit for RGB8A1, which
+// has no individual mode).
 Etc2Mode mode_of(uint64_t w, bool punchthrough) {
   if (!punchthrough && bit(w, 33) == 0) return Etc2Mode::Individual;
   const auto outside = [](int v) { return v < 0 || v > 31; };
@@ -164,8 +165,8 @@ void check_blocks(const EtcFormatInfo& info, int width, int height, std::span<co
                      " needs " + std::to_string(want) + " bytes of blocks, got " + std::to_string(blocks.size()));
 }
 
-// Calls decode(block_bytes, bx, by) per block and hands each texel inside the image to
-// put(block-local texel number, x, y).
+// Calls decode(block, x0, y0, nx, ny) for every block: its bytes, its top-left texel (x0, y0) and
+// how many of its columns and rows lie inside the image (4, or fewer at the right and bottom edges).
 template <typename DecodeBlock>
 void for_each_block(const EtcFormatInfo& info, int width, int height, std::span<const uint8_t> blocks,
                     DecodeBlock&& decode) {
