@@ -1,0 +1,46 @@
+// Mesa's texture decoders as an outside reference for the compressed-format tests: OSMesa (Debian's
+// libosmesa6, Mesa 22.3.6), a compatibility-profile software context, one per process.
+//
+// Method: the blocks go in with glCompressedTexImage2D(GL_TEXTURE_2D, 0, internal format, w, h) and
+// come back decoded with glGetTexImage(GL_TEXTURE_2D, 0, gl_format, gl_type), GL_PACK_ALIGNMENT 1.
+// No sampling, no filtering: glGetTexImage of a compressed image is a pure decode.
+//
+// Driver: GALLIUM_DRIVER is set to softpipe before the first context (always; an inherited value is
+// overwritten so that every run takes the same path), and the context is refused unless GL_RENDERER
+// names softpipe. The decoders are Mesa's, not the driver's rasterizer (read in Mesa 22.x,
+// src/mesa/state_tracker/st_cb_texture.c st_GetTexSubImage and src/mesa/main/texgetimage.c):
+//   - formats softpipe does not sample (ETC1/ETC2/EAC, ASTC): the state tracker keeps the uploaded
+//     blocks, and glGetTexImage takes the CPU path, get_tex_rgba_compressed: _mesa_decompress_image
+//     (main/texcompress.c) calls the format's fetch function (main/texcompress_etc.c,
+//     main/texcompress_astc.cpp) per texel into RGBA float, then _mesa_format_convert packs to
+//     gl_format/gl_type (float -> unorm by round-to-nearest: exact for values n/255 and n/65535);
+//   - formats softpipe samples natively (S3TC, RGTC, BPTC): st_GetTexSubImage decompresses with a
+//     NEAREST blit into an uncompressed texture, and softpipe's texel fetch for a compressed format
+//     is src/util/format's unpack (u_format_s3tc.c, u_format_rgtc.c, u_format_bptc.c), also to float.
+// sRGB formats come back undecoded (get_tex_rgba_compressed reads them as their linear twin).
+// libOSMesa carries no symbols here, so this is read from the source and checked by results (hand-
+// derived BC1 and ETC2 blocks decode as derived), not stepped in a debugger.
+//
+// Read back EAC R11/RG11 as GL_UNSIGNED_SHORT / GL_SHORT (GL_RED or GL_RG) to see all 11 bits; 8-bit
+// read-backs of those formats are rounded by Mesa's pack code.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tfu::test {
+
+// Mesa's own texture decoders, outside the project (OSMesa, Mesa 22.3.6): a compressed image uploaded with
+// glCompressedTexImage2D and read back with glGetTexImage(GL_TEXTURE_2D, 0, gl_format, gl_type).
+// True when an OSMesa context (compatibility profile, software) can be made in this process.
+bool mesa_available();
+// The decoded texels, row-major from the first block row, tightly packed (GL_PACK_ALIGNMENT 1);
+// std::nullopt when Mesa is not available or refuses the format (glGetError text in *why if given).
+std::optional<std::vector<uint8_t>> mesa_decode(uint32_t gl_internal_format, int width, int height,
+                                                std::span<const uint8_t> blocks, uint32_t gl_format,
+                                                uint32_t gl_type, std::string* why = nullptr);
+
+}  // namespace tfu::test
