@@ -598,7 +598,7 @@ TEST(Bc7Decode, BitExactWithMesa) {
   for (size_t i = 0; i < blocks.size() / 16; ++i) {
     uint8_t& b0 = blocks[16 * i];
     const int mode = static_cast<int>(i % 8);
-    b0 = i % 97 == 0 ? 0 : static_cast<uint8_t>(((b0 << (mode + 1)) | (1 << mode)) & 0xff);
+    b0 = static_cast<uint8_t>(i % 97 == 0 ? 0 : ((b0 << (mode + 1)) | (1 << mode)) & 0xff);
     ++hits[static_cast<size_t>(bc7_mode(&b0) + 1)];
   }
   for (size_t m = 0; m < hits.size(); ++m) EXPECT_GT(hits[m], 0) << "mode " << static_cast<int>(m) - 1;
