@@ -2,6 +2,7 @@
 // format and mode, the BC1/BC4 interpolation variants, the BC7 partition table against the spec's
 // anchor tables, and bit-exact comparisons with libsquish 1.15 and Mesa 22.3 (OSMesa) on random blocks
 // and images whose sizes are not multiples of 4. docs/compressed-bc.md.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdlib>
@@ -393,7 +394,10 @@ std::vector<uint8_t> random_bytes(std::mt19937_64& rng, size_t n) {
 }
 
 // Random blocks with a bias toward the interesting cases: half the BC1 colour blocks have
-// color0 <= color1 (3-colour mode), half the BC4 blocks red0 <= red1 (5-step mode).
+// color0 <= color1 (3-colour mode), half the unsigned BC4 blocks red0 <= red1 (5-step mode); every
+// 16th block has equal endpoints (3-colour / 5-step with a zero-length segment), and every 16th signed
+// block has red0 = -127, red1 = -128 (the case the spec leaves undefined; both Mesa and the truncate
+// rule compare the raw bytes).
 void shape_block(std::vector<uint8_t>& b, size_t offset, BcFormat f, size_t i) {
   const auto swap_if = [&](size_t a, size_t n, bool want_le) {
     uint32_t x = 0, y = 0;
@@ -404,15 +408,127 @@ void shape_block(std::vector<uint8_t>& b, size_t offset, BcFormat f, size_t i) {
     if ((x <= y) != want_le)
       for (size_t k = 0; k < n; ++k) std::swap(b[offset + a + k], b[offset + a + n + k]);
   };
-  const bool le = (i & 1) != 0;
+  const auto equal = [&](size_t a, size_t n) {
+    for (size_t k = 0; k < n; ++k) b[offset + a + n + k] = b[offset + a + k];
+  };
+  const auto signed_edge = [&](size_t a) {
+    b[offset + a] = 0x81;
+    b[offset + a + 1] = 0x80;
+  };
+  const bool le = (i & 1) != 0, same = i % 16 == 5;
   switch (f) {
     case BcFormat::BC1_RGB:
-    case BcFormat::BC1_RGBA: swap_if(0, 2, le); break;
-    case BcFormat::BC2: swap_if(8, 2, le); break;
-    case BcFormat::BC3: swap_if(0, 1, le), swap_if(8, 2, (i & 2) != 0); break;
-    case BcFormat::BC4_UNORM: swap_if(0, 1, le); break;
-    case BcFormat::BC5_UNORM: swap_if(0, 1, le), swap_if(8, 1, (i & 2) != 0); break;
-    default: break;  // signed: random
+    case BcFormat::BC1_RGBA: same ? equal(0, 2) : swap_if(0, 2, le); break;
+    case BcFormat::BC2: same ? equal(8, 2) : swap_if(8, 2, le); break;
+    case BcFormat::BC3:
+      same ? equal(0, 1) : swap_if(0, 1, le);
+      same ? equal(8, 2) : swap_if(8, 2, (i & 2) != 0);
+      break;
+    case BcFormat::BC4_UNORM: same ? equal(0, 1) : swap_if(0, 1, le); break;
+    case BcFormat::BC5_UNORM:
+      same ? equal(0, 1) : swap_if(0, 1, le);
+      same ? equal(8, 1) : swap_if(8, 1, (i & 2) != 0);
+      break;
+    case BcFormat::BC4_SNORM:
+      if (same) equal(0, 1);
+      if (i % 16 == 9) signed_edge(0);
+      break;
+    case BcFormat::BC5_SNORM:
+      if (same) equal(0, 1), equal(8, 1);
+      if (i % 16 == 9) signed_edge(0), signed_edge(8);
+      break;
+    default: break;
+  }
+}
+
+// Every rule and every pair of 5-bit and of 6-bit fields (exhaustive): exact is the nearest integer
+// to the spec's formula on the widened endpoints (|3 c - (2 e0 + e1)| <= 1, |2 c - (e0 + e1)| <= 1
+// with halves up), truncate its floor; nvidia and amd stay within 3 % of |e0 - e1| + 1 LSB of it (the
+// D3D tolerance R. Geldreich's rgbcx allows for BC1), and every rule gives e0 for e0 = e1.
+TEST(BcDecode, Bc1RulesOnEveryEndpointPair) {
+  for (int bits : {5, 6}) {
+    for (int v0 = 0; v0 < (1 << bits); ++v0) {
+      for (int v1 = 0; v1 < (1 << bits); ++v1) {
+        // The fields in B (5 bits) or G (6 bits); red 1 in color0 (4-colour) or in color1 (3-colour)
+        // sets the mode whatever the fields' order.
+        const int shift = bits == 5 ? 0 : 5;
+        const int e0 = bits == 5 ? bc_widen5(v0) : bc_widen6(v0), e1 = bits == 5 ? bc_widen5(v1) : bc_widen6(v1);
+        const auto colour = [&](Bc1Interpolation rule, bool four, int code) {
+          const Block8 b = bc1_block(static_cast<uint16_t>((v0 << shift) | (four ? 1 << 11 : 0)),
+                                     static_cast<uint16_t>((v1 << shift) | (four ? 0 : 1 << 11)), {code});
+          const Rgba8 t = decode_bc1_block(b.data(), true, rule)[0];
+          return bits == 5 ? t.b : t.g;
+        };
+        const int exact = colour(Bc1Interpolation::EXACT, true, 2), half = colour(Bc1Interpolation::EXACT, false, 2);
+        ASSERT_LE(std::abs(3 * exact - (2 * e0 + e1)), 1) << bits << " " << v0 << " " << v1;
+        ASSERT_EQ(half, (e0 + e1 + 1) / 2);
+        ASSERT_EQ(colour(Bc1Interpolation::TRUNCATE, true, 2), (2 * e0 + e1) / 3);
+        ASSERT_EQ(colour(Bc1Interpolation::TRUNCATE, true, 3), (e0 + 2 * e1) / 3);
+        ASSERT_EQ(colour(Bc1Interpolation::TRUNCATE, false, 2), (e0 + e1) / 2);
+        for (Bc1Interpolation rule : {Bc1Interpolation::NVIDIA, Bc1Interpolation::AMD}) {
+          const int tolerance = 3 * std::abs(e0 - e1) / 100 + 1;
+          ASSERT_LE(std::abs(colour(rule, true, 2) - exact), tolerance) << bits << " " << v0 << " " << v1;
+          ASSERT_LE(std::abs(colour(rule, false, 2) - half), tolerance) << bits << " " << v0 << " " << v1;
+        }
+        if (v0 == v1) {
+          for (Bc1Interpolation rule :
+               {Bc1Interpolation::EXACT, Bc1Interpolation::TRUNCATE, Bc1Interpolation::NVIDIA, Bc1Interpolation::AMD}) {
+            ASSERT_EQ(colour(rule, true, 3), e0);
+          }
+        }
+      }
+    }
+  }
+}
+
+// Every (red0, red1, code), unsigned and signed (exhaustive): decode_bc4_exact is 35 times the spec's
+// value in units of 1/255 (1/127), the exact 8-bit result is its nearest integer (never a tie), and
+// truncate is the C quotient on the raw bytes.
+TEST(BcDecode, Bc4RulesOnEveryEndpointPair) {
+  for (int is_signed = 0; is_signed < 2; ++is_signed) {
+    for (int r0 = 0; r0 < 256; ++r0) {
+      for (int r1 = 0; r1 < 256; ++r1) {
+        const Block8 b = bc4_block(static_cast<uint8_t>(r0), static_cast<uint8_t>(r1), {0, 1, 2, 3, 4, 5, 6, 7});
+        const int s0 = is_signed ? static_cast<int8_t>(r0) : r0, s1 = is_signed ? static_cast<int8_t>(r1) : r1;
+        const int a0 = std::max(s0, -127), a1 = std::max(s1, -127), full = is_signed ? 127 : 255;
+        const std::array<int32_t, 16> n = decode_bc4_exact(b.data(), is_signed != 0);
+        const std::array<int, 16> ex = [&] {
+          std::array<int, 16> v{};
+          if (is_signed) {
+            const auto x = decode_bc4_snorm8(b.data(), Bc4Interpolation::EXACT);
+            std::copy(x.begin(), x.end(), v.begin());
+          } else {
+            const auto x = decode_bc4_unorm8(b.data(), Bc4Interpolation::EXACT);
+            std::copy(x.begin(), x.end(), v.begin());
+          }
+          return v;
+        }();
+        for (int code = 0; code < 8; ++code) {
+          // The spec's value times 35 * full: numerator over 7 (8 values) or 5 (6 values).
+          int64_t want;
+          int truncated;
+          if (code < 2) {
+            want = 35 * (code == 0 ? a0 : a1);
+            truncated = code == 0 ? s0 : s1;
+          } else if (s0 > s1) {
+            want = 5 * ((8 - code) * a0 + (code - 1) * a1);
+            truncated = ((8 - code) * s0 + (code - 1) * s1) / 7;
+          } else if (code < 6) {
+            want = 7 * ((6 - code) * a0 + (code - 1) * a1);
+            truncated = ((6 - code) * s0 + (code - 1) * s1) / 5;
+          } else {
+            want = 35 * (code == 6 ? -full * is_signed : full);
+            truncated = code == 6 ? -full * is_signed : full;
+          }
+          ASSERT_EQ(n[code], want) << is_signed << " " << r0 << " " << r1 << " " << code;
+          ASSERT_NE(std::abs(want) % 35 * 2, 35);  // never a tie
+          ASSERT_LE(std::abs(35 * ex[code] - want), 17);
+          const int t = is_signed ? decode_bc4_snorm8(b.data(), Bc4Interpolation::TRUNCATE)[code]
+                                  : decode_bc4_unorm8(b.data(), Bc4Interpolation::TRUNCATE)[code];
+          ASSERT_EQ(t, std::max(truncated, -127));
+        }
+      }
+    }
   }
 }
 
@@ -603,6 +719,10 @@ TEST(Bc7Decode, BitExactWithMesa) {
   }
   for (size_t m = 0; m < hits.size(); ++m) EXPECT_GT(hits[m], 0) << "mode " << static_cast<int>(m) - 1;
   EXPECT_EQ(compare_with_mesa(BcFormat::BC7, 4 * blocks_x, 4 * blocks_y, blocks, kBcRulesSpec), 0);
+  // Unshaped random 128-bit blocks: the mode field as it falls (mode m with probability 2^-(m+1),
+  // the reserved byte 0 == 0 with 1/256).
+  const std::vector<uint8_t> raw = random_bytes(rng, 16 * static_cast<size_t>(blocks_x * blocks_y));
+  EXPECT_EQ(compare_with_mesa(BcFormat::BC7, 4 * blocks_x, 4 * blocks_y, raw, kBcRulesSpec), 0);
   for (const auto& [w, h] : {std::pair{13, 7}, std::pair{1, 1}, std::pair{2, 5}, std::pair{30, 17}})
     EXPECT_EQ(compare_with_mesa(BcFormat::BC7, w, h, std::span(blocks).first(bc_image_bytes(BcFormat::BC7, w, h)),
                                 kBcRulesSpec),
