@@ -145,7 +145,7 @@ BcBlockTexels decode_bc_block(BcFormat format, const uint8_t* block, BcRules rul
 size_t bc_image_bytes(BcFormat format, int width, int height);
 
 // A whole image, row-major width x height texels; edge blocks of sizes not a multiple of 4 keep
-// their top-left texels. InputError (one line) when the sizes are not positive or `blocks` holds
+// their top-left texels. InputError (one line) when a size is not in 1..65536 or `blocks` holds
 // fewer or more bytes than bc_image_bytes.
 std::vector<Rgba8> decode_bc_image(BcFormat format, int width, int height, std::span<const uint8_t> blocks,
                                    BcRules rules = kBcRulesSpec);
