@@ -49,7 +49,7 @@
 //   signed    value = n / (35 * 127) with a0, a1 the signed bytes, -128 read as -127 (the spec's
 //             RED = -1.0 for red = -128); codes 6, 7 of the 5-step mode: -35 * 127, 35 * 127.
 //             The mode compares the raw bytes, red0 > red1 (the spec leaves red0 = -127,
-//             red1 = -128 undefined; here it is the 5-step mode).
+//             red1 = -128 undefined; here -127 > -128: the 7-step mode, all -1.0).
 // Bc4Interpolation gives the 8-bit result:
 //   exact     round(n / 35) (UNORM8 / SNORM8 nearest to the spec's value; n / 35 is k/7 or k/5,
 //             never a half, so no tie rule is needed)
