@@ -68,8 +68,9 @@ uint64_t load_le64(const uint8_t* p) {
   return v;
 }
 
-// The 3-bit codes of a BC4 block (bytes 2..7 as a 48-bit little-endian integer), texel t at 3t.
-int bc4_code(const uint8_t* block, int t) { return static_cast<int>((load_le64(block) >> (16 + 3 * t)) & 7); }
+// The 3-bit codes of a BC4 block: bytes 2..7 as a 48-bit little-endian integer, texel t at bits 3t.
+uint64_t bc4_codes(const uint8_t* block) { return load_le64(block) >> 16; }
+int bc4_code(uint64_t codes, int t) { return static_cast<int>((codes >> (3 * t)) & 7); }
 
 int round_div35(int32_t n) {  // nearest integer to n / 35; n / 35 is never a half (see header)
   return n >= 0 ? (n + 17) / 35 : -((-n + 17) / 35);
@@ -133,9 +134,10 @@ std::array<int32_t, kBcBlockTexels> decode_bc4_exact(const uint8_t* block, bool 
   const int raw1 = is_signed ? static_cast<int8_t>(block[1]) : block[1];
   const int a0 = raw0 < -127 ? -127 : raw0, a1 = raw1 < -127 ? -127 : raw1;
   const int full = is_signed ? 127 : 255, low = is_signed ? -127 : 0;
+  const uint64_t codes = bc4_codes(block);
   std::array<int32_t, kBcBlockTexels> out;
   for (int t = 0; t < kBcBlockTexels; ++t) {
-    const int code = bc4_code(block, t);
+    const int code = bc4_code(codes, t);
     int32_t n;
     if (code == 0) {
       n = kBc4ExactScale * a0;
@@ -172,7 +174,8 @@ std::array<uint8_t, kBcBlockTexels> decode_bc4_unorm8(const uint8_t* block, Bc4I
     const std::array<int32_t, kBcBlockTexels> n = decode_bc4_exact(block, false);
     for (int t = 0; t < kBcBlockTexels; ++t) out[t] = u8(round_div35(n[t]));
   } else {
-    for (int t = 0; t < kBcBlockTexels; ++t) out[t] = u8(bc4_truncated(block[0], block[1], bc4_code(block, t), 0, 255));
+    const uint64_t codes = bc4_codes(block);
+    for (int t = 0; t < kBcBlockTexels; ++t) out[t] = u8(bc4_truncated(block[0], block[1], bc4_code(codes, t), 0, 255));
   }
   return out;
 }
@@ -184,8 +187,9 @@ std::array<int8_t, kBcBlockTexels> decode_bc4_snorm8(const uint8_t* block, Bc4In
     for (int t = 0; t < kBcBlockTexels; ++t) out[t] = static_cast<int8_t>(round_div35(n[t]));
   } else {
     const int raw0 = static_cast<int8_t>(block[0]), raw1 = static_cast<int8_t>(block[1]);
+    const uint64_t codes = bc4_codes(block);
     for (int t = 0; t < kBcBlockTexels; ++t) {
-      const int v = bc4_truncated(raw0, raw1, bc4_code(block, t), -127, 127);
+      const int v = bc4_truncated(raw0, raw1, bc4_code(codes, t), -127, 127);
       out[t] = static_cast<int8_t>(v < -127 ? -127 : v);  // -128 and -127 are both -1.0
     }
   }
