@@ -4,6 +4,8 @@
 #include <GL/gl.h>
 #include <GL/osmesa.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdlib>
 #include <mutex>
 
@@ -129,15 +131,30 @@ std::optional<std::vector<uint8_t>> mesa_decode(uint32_t gl_internal_format, int
   if (err != GL_NO_ERROR) {
     result = fail(std::string("glCompressedTexImage2D: ") + gl_error_name(err));
   } else {
-    std::vector<uint8_t> texels(static_cast<size_t>(width) * static_cast<size_t>(height) *
-                                static_cast<size_t>(texel_bytes));
+    // Mesa 22.3.6 decodes ETC1/ETC2/EAC and ASTC wrongly when asked for three components
+    // (GL_RGB or GL_BGR, any type): it prints "implementation error: Unexpected format in
+    // _mesa_decompress_image()", raises no GL error and returns other texels. So three components
+    // are always read as four (GL_RGBA / GL_BGRA, same type) and the fourth is dropped here.
+    const bool three = gl_format == GL_RGB || gl_format == 0x80E0 /* GL_BGR */;
+    const GLenum read_format = !three ? gl_format : gl_format == GL_RGB ? GL_RGBA : 0x80E1 /* GL_BGRA */;
+    const size_t texels = static_cast<size_t>(width) * static_cast<size_t>(height);
+    const auto out_bytes = static_cast<size_t>(texel_bytes);
+    const size_t read_bytes = three ? out_bytes / 3 * 4 : out_bytes;
+    std::vector<uint8_t> read(texels * read_bytes);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTexImage(GL_TEXTURE_2D, 0, gl_format, gl_type, texels.data());
+    glGetTexImage(GL_TEXTURE_2D, 0, read_format, gl_type, read.data());
     err = glGetError();
-    if (err != GL_NO_ERROR)
+    if (err != GL_NO_ERROR) {
       result = fail(std::string("glGetTexImage: ") + gl_error_name(err));
-    else
-      result = std::move(texels);
+    } else if (!three) {
+      result = std::move(read);
+    } else {
+      std::vector<uint8_t> out(texels * out_bytes);
+      for (size_t t = 0; t < texels; ++t)
+        std::copy_n(read.begin() + static_cast<std::ptrdiff_t>(t * read_bytes), out_bytes,
+                    out.begin() + static_cast<std::ptrdiff_t>(t * out_bytes));
+      result = std::move(out);
+    }
   }
   glDeleteTextures(1, &tex);
   OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);

@@ -25,6 +25,10 @@
 // libOSMesa carries no symbols here, so this is read from the source and checked by results (hand-
 // derived BC1 and ETC2 blocks decode as derived), not stepped in a debugger.
 //
+// Mesa 22.3.6 returns wrong texels, without a GL error, when ETC1/ETC2/EAC or ASTC images are read
+// back with three components (GL_RGB, GL_BGR; any type): mesa_decode reads those as four
+// components and drops the fourth, so every gl_format works.
+//
 // Read back EAC R11/RG11 as GL_UNSIGNED_SHORT / GL_SHORT (GL_RED or GL_RG) to see all 11 bits; 8-bit
 // read-backs of those formats give the nearest 8-bit value (float pack; test_etc2_decode checks
 // every 11-bit value).
