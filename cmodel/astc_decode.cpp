@@ -133,7 +133,7 @@ BlockMode decode_block_mode(uint32_t m) {
     return r;
   }
   r.rho = (f(3, 1) << 2) | (f(2, 1) << 1) | f(4, 1);  // rows 6-10: rho2 rho1 in bits 3, 2
-  if (f(2, 2) == 0) {                                  // bits [3:0] = 0000: reserved
+  if (f(2, 2) == 0) {                                 // bits [3:0] = 0000: reserved
     r.reserved = true;
     return r;
   }
@@ -164,7 +164,8 @@ AstcBlockConfig read_config(const Bits128& blk, int block_w, int block_h) {
   const uint32_t mode = get_bits(blk, 0, 11);
   if ((mode & 0x1FFu) == 0x1FCu) {  // "Void-Extent Blocks", 2D layout
     c.void_extent = true;
-    for (int ch = 0; ch < 4; ++ch) c.void_color[static_cast<size_t>(ch)] = static_cast<uint16_t>(get_bits(blk, 64 + 16 * ch, 16));
+    for (int ch = 0; ch < 4; ++ch)
+      c.void_color[static_cast<size_t>(ch)] = static_cast<uint16_t>(get_bits(blk, 64 + 16 * ch, 16));
     const uint32_t min_s = get_bits(blk, 12, 13), max_s = get_bits(blk, 25, 13);
     const uint32_t min_t = get_bits(blk, 38, 13), max_t = get_bits(blk, 51, 13);
     const bool all_ones = min_s == 0x1FFF && max_s == 0x1FFF && min_t == 0x1FFF && max_t == 0x1FFF;
@@ -296,7 +297,7 @@ bool decode_endpoints(int cem, const uint8_t* vals, Color& e0, Color& e1) {
       e0 = {(v[0] * v[3]) >> 8, (v[1] * v[3]) >> 8, (v[2] * v[3]) >> 8, 0xFF};
       e1 = {v[0], v[1], v[2], 0xFF};
       return true;
-    case 8:    // RGB, direct
+    case 8:     // RGB, direct
     case 12: {  // RGBA, direct
       const int a0 = cem == 12 ? v[6] : 0xFF, a1 = cem == 12 ? v[7] : 0xFF;
       if (v[1] + v[3] + v[5] >= v[0] + v[2] + v[4]) {
@@ -518,8 +519,7 @@ void decode_astc_block(const uint8_t block[kAstcBlockBytes], int block_w, int bl
   }
 }
 
-Image decode_astc_image(const uint8_t* data, size_t size, int width, int height, int block_w, int block_h,
-                        bool srgb) {
+Image decode_astc_image(const uint8_t* data, size_t size, int width, int height, int block_w, int block_h, bool srgb) {
   if (!is_astc_footprint(block_w, block_h))
     throw InputError(fmt::format("ASTC footprint {}x{} is not one of the 14 2D footprints", block_w, block_h));
   if (width < 1 || width > 65536 || height < 1 || height > 65536)
@@ -539,7 +539,8 @@ Image decode_astc_image(const uint8_t* data, size_t size, int width, int height,
       decode_astc_block(data + (j * bx + i) * kAstcBlockBytes, block_w, block_h, srgb, tile.data());
       const int x0 = static_cast<int>(i) * block_w, y0 = static_cast<int>(j) * block_h;
       for (int y = 0; y < block_h && y0 + y < height; ++y)
-        for (int x = 0; x < block_w && x0 + x < width; ++x) img.at(x0 + x, y0 + y) = tile[static_cast<size_t>(y * block_w + x)];
+        for (int x = 0; x < block_w && x0 + x < width; ++x)
+          img.at(x0 + x, y0 + y) = tile[static_cast<size_t>(y * block_w + x)];
     }
   return img;
 }

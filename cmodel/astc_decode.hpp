@@ -47,20 +47,11 @@ struct AstcFootprint {
   int w = 0, h = 0;
   friend constexpr bool operator==(const AstcFootprint&, const AstcFootprint&) = default;
 };
-inline constexpr std::array<AstcFootprint, 14> kAstcFootprints{{{4, 4},
-                                                                {5, 4},
-                                                                {5, 5},
-                                                                {6, 5},
-                                                                {6, 6},
-                                                                {8, 5},
-                                                                {8, 6},
-                                                                {8, 8},
-                                                                {10, 5},
-                                                                {10, 6},
-                                                                {10, 8},
-                                                                {10, 10},
-                                                                {12, 10},
-                                                                {12, 12}}};
+// clang-format off
+inline constexpr std::array<AstcFootprint, 14> kAstcFootprints{{
+    {4, 4}, {5, 4}, {5, 5}, {6, 5}, {6, 6}, {8, 5}, {8, 6}, {8, 8}, {10, 5}, {10, 6}, {10, 8}, {10, 10}, {12, 10},
+    {12, 12}}};
+// clang-format on
 constexpr bool is_astc_footprint(int w, int h) {
   for (const AstcFootprint& f : kAstcFootprints)
     if (f.w == w && f.h == h) return true;
@@ -94,13 +85,13 @@ struct AstcBlockConfig {
   int grid_w = 0, grid_h = 0;            // weight grid
   int weight_range = 0;                  // index into astc::kIseRanges (0..11)
   bool dual_plane = false;
-  int ccs = 0;                           // dual plane: the channel (0 R .. 3 A) on plane 1
+  int ccs = 0;  // dual plane: the channel (0 R .. 3 A) on plane 1
   int partitions = 1;
-  int partition_seed = 0;                // the 10-bit partition pattern index
-  std::array<int, 4> cem{};              // colour endpoint mode of each partition
-  int endpoint_values = 0;               // C, 2 per endpoint pair
-  int endpoint_range = 0;                // index into astc::kIseRanges (4..20)
-  int weight_bits = 0;                   // bits of the weight ISE
+  int partition_seed = 0;    // the 10-bit partition pattern index
+  std::array<int, 4> cem{};  // colour endpoint mode of each partition
+  int endpoint_values = 0;   // C, 2 per endpoint pair
+  int endpoint_range = 0;    // index into astc::kIseRanges (4..20)
+  int weight_bits = 0;       // bits of the weight ISE
 };
 
 // Reads the block's configuration for a block_w x block_h footprint (any w, h in 4..12; only the
@@ -116,7 +107,6 @@ void decode_astc_block(const uint8_t block[kAstcBlockBytes], int block_w, int bl
 // "Block Layout"); the texels of edge blocks beyond the image are dropped. Throws InputError when
 // the footprint is not one of the 14, a size is not in 1..65536, or `size` is not the block count
 // times 16.
-Image decode_astc_image(const uint8_t* data, size_t size, int width, int height, int block_w, int block_h,
-                        bool srgb);
+Image decode_astc_image(const uint8_t* data, size_t size, int width, int height, int block_w, int block_h, bool srgb);
 
 }  // namespace tfu

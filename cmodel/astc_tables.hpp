@@ -240,8 +240,8 @@ inline constexpr WeightUnquantTable kWeightUnquant = make_weight_unquant();
 // Spot checks against values printed in the spec's examples and tables.
 static_assert(kEndpointUnquant[kMinEndpointRange][0] == 0 && kEndpointUnquant[kMinEndpointRange][1] == 255);
 static_assert(kEndpointUnquant[5][1] == 36 && kEndpointUnquant[5][7] == 255);  // 0..7: 001 -> 00100100
-static_assert(kWeightUnquant[5][7] == 64 && kWeightUnquant[11][16] == 34);      // 0..7 top, 0..31: 100001 + 1
-static_assert(kWeightUnquant[1][1] == 32 && kWeightUnquant[1][2] == 64);        // 0..2 -> 0, 32, 64
+static_assert(kWeightUnquant[5][7] == 64 && kWeightUnquant[11][16] == 34);     // 0..7 top, 0..31: 100001 + 1
+static_assert(kWeightUnquant[1][1] == 32 && kWeightUnquant[1][2] == 64);       // 0..2 -> 0, 32, 64
 
 // ---- Weight infill ---------------------------------------------------------------------------------
 

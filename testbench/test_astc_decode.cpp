@@ -100,7 +100,9 @@ int compare_blocks(const std::vector<Block>& blocks, int bw, int bh, bool srgb) 
   const int n = static_cast<int>(blocks.size());
   const int rows = (n + kRow - 1) / kRow;
   std::vector<uint8_t> data(static_cast<size_t>(rows * kRow) * kAstcBlockBytes, 0);  // padding: reserved, error
-  for (int i = 0; i < n; ++i) std::memcpy(&data[static_cast<size_t>(i) * kAstcBlockBytes], blocks[static_cast<size_t>(i)].data(), kAstcBlockBytes);
+  for (int i = 0; i < n; ++i)
+    std::memcpy(&data[static_cast<size_t>(i) * kAstcBlockBytes], blocks[static_cast<size_t>(i)].data(),
+                kAstcBlockBytes);
   const int width = kRow * bw, height = rows * bh;
   const std::vector<Rgba8> ref = astcenc_decode_image(data.data(), data.size(), width, height, bw, bh, srgb);
   int bad = 0;
@@ -180,8 +182,8 @@ uint32_t pack_mode(int row, const LegalParams& q) {
   const uint32_t r0 = q.rho & 1, r1 = (q.rho >> 1) & 1, r2 = (q.rho >> 2) & 1;
   const uint32_t dp = q.dual ? 1u : 0u, p = static_cast<uint32_t>(q.p);
   const uint32_t hi = dp << 10 | p << 9, w = static_cast<uint32_t>(q.w), h = static_cast<uint32_t>(q.h);
-  const uint32_t lo12 = r0 << 4 | r2 << 1 | r1;          // rows 1-5: rho2 rho1 in bits 1, 0
-  const uint32_t lo610 = r0 << 4 | r2 << 3 | r1 << 2;    // rows 6-10: in bits 3, 2
+  const uint32_t lo12 = r0 << 4 | r2 << 1 | r1;        // rows 1-5: rho2 rho1 in bits 1, 0
+  const uint32_t lo610 = r0 << 4 | r2 << 3 | r1 << 2;  // rows 6-10: in bits 3, 2
   switch (row) {
     case 0: return hi | (w - 4) << 7 | (h - 2) << 5 | 0u << 2 | lo12;
     case 1: return hi | (w - 8) << 7 | (h - 2) << 5 | 1u << 2 | lo12;
@@ -345,9 +347,11 @@ TEST(AstcDecode, RandomLegalBlocksMatchLibastcenc) {
     mismatched += compare_blocks(a, f.w, f.h, false);
     mismatched += compare_blocks(b, f.w, f.h, true);
   }
-  std::printf("ASTC legal blocks: %d, HDR-partition texels where libastcenc gives 254,0,254,254: %d (partitions 1-4: %d %d %d %d; dual plane %d; CCS %d %d %d %d)\nCEM 0..15:", legal,
-              g_hdr_partition_differences, by_partitions[1], by_partitions[2], by_partitions[3], by_partitions[4], dual, by_ccs[0], by_ccs[1],
-              by_ccs[2], by_ccs[3]);
+  std::printf(
+      "ASTC legal blocks: %d, HDR-partition texels where libastcenc gives 254,0,254,254: %d (partitions 1-4: %d %d %d "
+      "%d; dual plane %d; CCS %d %d %d %d)\nCEM 0..15:",
+      legal, g_hdr_partition_differences, by_partitions[1], by_partitions[2], by_partitions[3], by_partitions[4], dual,
+      by_ccs[0], by_ccs[1], by_ccs[2], by_ccs[3]);
   for (int n : by_cem) std::printf(" %d", n);
   std::printf("\n");
   EXPECT_EQ(mismatched, 0);
@@ -474,8 +478,10 @@ TEST(AstcDecode, IllegalEncodingsGiveTheErrorColor) {
     Bits b{0x0123'4567'89AB'CDEFull, 0xFEDC'BA98'7654'3210ull};
     b.set(0, 11, k.mode);
     b.set(11, 2, static_cast<uint32_t>(k.partitions - 1));
-    if (k.partitions == 1) b.set(13, 4, k.cem_bits);
-    else b.set(13, 16, k.cem_bits);
+    if (k.partitions == 1)
+      b.set(13, 4, k.cem_bits);
+    else
+      b.set(13, 16, k.cem_bits);
     const Block blk = b.bytes();
     EXPECT_EQ(astc_block_config(blk.data(), k.bw, k.bh).illegal, k.why) << k.what;
     for (const bool srgb : {false, true}) {
@@ -569,9 +575,9 @@ TEST(AstcDecode, EncodedImagesMatchLibastcenc) {
     int bw, bh, w, h;
     bool srgb;
   };
-  for (const Case k : {Case{4, 4, 37, 29, false}, Case{5, 4, 41, 30, true}, Case{6, 6, 50, 43, false},
-                       Case{8, 8, 61, 35, true}, Case{10, 5, 33, 27, false}, Case{12, 12, 53, 47, false},
-                       Case{12, 10, 25, 21, true}}) {
+  for (const Case k :
+       {Case{4, 4, 37, 29, false}, Case{5, 4, 41, 30, true}, Case{6, 6, 50, 43, false}, Case{8, 8, 61, 35, true},
+        Case{10, 5, 33, 27, false}, Case{12, 12, 53, 47, false}, Case{12, 10, 25, 21, true}}) {
     std::vector<uint8_t> src = procedural_image(k.w, k.h);
     void* slice = src.data();
     astcenc_image img{static_cast<unsigned>(k.w), static_cast<unsigned>(k.h), 1, ASTCENC_TYPE_U8, &slice};
