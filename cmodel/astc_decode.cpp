@@ -396,16 +396,6 @@ class PartitionSelector {
 
 // ---- Output ("Weight Application", LDR endpoint modes) --------------------------------------------
 
-// decode_float16 of a UNORM16 C, then to UNORM8 by floor(f x 255 + 1/2).
-inline uint8_t unorm16_fp16_to_unorm8(uint32_t c) {
-  if (c == 0xFFFFu) return 255;  // exactly 1.0 (0x3C00)
-  // Round toward zero to FP16 (11 significant bits; below 2^-14, i.e. c < 4, the subnormal step
-  // 2^-24 is finer than 2^-16): clear all but the 11 leading bits of c.
-  const int msb = std::bit_width(c) - 1;
-  if (msb > 10) c &= ~((1u << (msb - 10)) - 1u);
-  return static_cast<uint8_t>((c * 255u + 0x8000u) >> 16);
-}
-
 void fill(Rgba8* out, int n, Rgba8 c) {
   for (int i = 0; i < n; ++i) out[i] = c;
 }
@@ -445,7 +435,7 @@ void decode_astc_block(const uint8_t block[kAstcBlockBytes], int block_w, int bl
   if (c.void_extent) {
     std::array<uint8_t, 4> v{};
     for (size_t ch = 0; ch < 4; ++ch)
-      v[ch] = srgb ? static_cast<uint8_t>(c.void_color[ch] >> 8) : unorm16_fp16_to_unorm8(c.void_color[ch]);
+      v[ch] = srgb ? static_cast<uint8_t>(c.void_color[ch] >> 8) : astc_unorm16_to_unorm8(c.void_color[ch]);
     return fill(out, texels, Rgba8{v[0], v[1], v[2], v[3]});
   }
 
@@ -512,7 +502,7 @@ void decode_astc_block(const uint8_t block[kAstcBlockBytes], int block_w, int bl
       for (size_t ch = 0; ch < 4; ++ch) {
         const int i = c.dual_plane && static_cast<int>(ch) == c.ccs ? wt[1] : wt[0];
         const auto cc = static_cast<uint32_t>((c0[p][ch] * (64 - i) + c1[p][ch] * i + 32) >> 6);  // UNORM16
-        r[ch] = srgb ? static_cast<uint8_t>(cc >> 8) : unorm16_fp16_to_unorm8(cc);
+        r[ch] = srgb ? static_cast<uint8_t>(cc >> 8) : astc_unorm16_to_unorm8(cc);
       }
       o = Rgba8{r[0], r[1], r[2], r[3]};
     }

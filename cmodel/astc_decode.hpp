@@ -31,6 +31,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -60,6 +61,20 @@ constexpr bool is_astc_footprint(int w, int h) {
 
 // Opaque magenta, the error colour of both LDR operation modes (KDFS "ASTC error colors").
 inline constexpr Rgba8 kAstcErrorColor{255, 0, 255, 255};
+
+// Linear LDR output of one channel: decode_float16 of the UNORM16 interpolation result c, then the
+// FP16 value f to UNORM8 by floor(f x 255 + 1/2) (KDFS "Weight Application"). c = 65535 is 1.0;
+// otherwise c / 65536 rounded toward zero to FP16 keeps the 11 leading significant bits of c (values
+// below 2^-14, c < 4, are FP16 subnormals with step 2^-24: exact), so f = c' / 65536 with the lower
+// bits of c cleared, and the result is (c' x 255 + 2^15) >> 16 (a 16 x 8-bit product).
+constexpr uint8_t astc_unorm16_to_unorm8(uint32_t c) {
+  if (c == 0xFFFFu) return 255;
+  const int msb = std::bit_width(c) - 1;
+  if (msb > 10) c &= ~((1u << (msb - 10)) - 1u);
+  return static_cast<uint8_t>((c * 255u + 0x8000u) >> 16);
+}
+static_assert(astc_unorm16_to_unorm8(0x8000) == 128 && astc_unorm16_to_unorm8(0x7FFF) == 127 &&
+              astc_unorm16_to_unorm8(129) == 1 && astc_unorm16_to_unorm8(0xFF00) == 254);
 
 // Why a block decodes to the error colour (KDFS "Illegal Encodings"), or None.
 enum class AstcIllegal : uint8_t {

@@ -413,6 +413,37 @@ TEST(AstcDecode, EveryVoidExtentValueMatchesLibastcenc) {
   EXPECT_EQ(compare_blocks(blocks, 4, 4, true), 0);
 }
 
+// The figures docs/compressed-astc.md quotes about the decode modes, from the decoder's own
+// conversion (checked against libastcenc above on every UNORM16 value).
+TEST(AstcDecode, DecodeModeFiguresOfTheDoc) {
+  // decode_unorm8 (the top 8 bits) against decode_float16 + rounding: 17,716 of 65,536 differ, by
+  // one either way.
+  int unorm8_differs = 0;
+  for (uint32_t c = 0; c < 65536; ++c) {
+    const int d = int(astc_unorm16_to_unorm8(c)) - int(c >> 8);
+    ASSERT_LE(std::abs(d), 1) << c;
+    unorm8_differs += d != 0;
+  }
+  EXPECT_EQ(unorm8_differs, 17716);
+  EXPECT_EQ(astc_unorm16_to_unorm8(129), 1);
+  // sRGB alpha, KDFS 1.3 (bit replication, decode_float16) against KDFS 1.4.0 (e << 8 | 0x80, top 8
+  // bits = 8-bit interpolation): 299,988 of 256 x 256 x 65 cases differ, by 1.
+  int alpha_differs = 0;
+  for (int e0 = 0; e0 < 256; ++e0)
+    for (int e1 = 0; e1 < 256; ++e1)
+      for (int i = 0; i <= 64; ++i) {
+        const auto c13 = static_cast<uint32_t>((e0 * 257 * (64 - i) + e1 * 257 * i + 32) >> 6);
+        const int kdfs13 = astc_unorm16_to_unorm8(c13);
+        const int kdfs14 = (((e0 << 8) | 0x80) * (64 - i) + ((e1 << 8) | 0x80) * i + 32) >> 14;
+        ASSERT_EQ(kdfs14, (e0 * (64 - i) + e1 * i + 32) >> 6);
+        ASSERT_LE(std::abs(kdfs13 - kdfs14), 1);
+        alpha_differs += kdfs13 != kdfs14;
+      }
+  EXPECT_EQ(alpha_differs, 299988);
+  EXPECT_EQ(astc_unorm16_to_unorm8((12 * 257 * 56 + 32) >> 6), 10);  // alpha endpoints 0, 12, weight 56
+  EXPECT_EQ((12 * 56 + 32) >> 6, 11);
+}
+
 // ---- (3) hand-made edge cases ----------------------------------------------------------------------
 
 std::vector<Rgba8> decode(const Block& b, int bw, int bh, bool srgb) {
