@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -328,6 +329,8 @@ TEST(AstcDecode, RandomLegalBlocksMatchLibastcenc) {
   std::array<int, 5> by_partitions{};
   std::array<int, 16> by_cem{};
   std::array<int, 4> by_ccs{};
+  std::array<int, astc::kIseRangeCount> by_weight_range{}, by_endpoint_range{};
+  std::set<std::tuple<int, int, int, int>> grids;  // footprint w, h, grid W, H
   int dual = 0, legal = 0, mismatched = 0;
   for (const AstcFootprint f : kAstcFootprints) {
     std::vector<Block> blocks;
@@ -339,6 +342,10 @@ TEST(AstcDecode, RandomLegalBlocksMatchLibastcenc) {
       ++by_partitions[static_cast<size_t>(q.partitions)];
       for (int p = 0; p < q.partitions; ++p) ++by_cem[static_cast<size_t>(q.cem[static_cast<size_t>(p)])];
       if (q.dual) ++dual, ++by_ccs[static_cast<size_t>(q.ccs)];
+      const AstcBlockConfig c = astc_block_config(blk.data(), f.w, f.h);
+      ++by_weight_range[static_cast<size_t>(c.weight_range)];
+      ++by_endpoint_range[static_cast<size_t>(c.endpoint_range)];
+      grids.insert({f.w, f.h, q.w, q.h});
       blocks.push_back(blk);
     }
     legal += static_cast<int>(blocks.size());
@@ -359,6 +366,29 @@ TEST(AstcDecode, RandomLegalBlocksMatchLibastcenc) {
   for (int p = 1; p <= 4; ++p) EXPECT_GT(by_partitions[static_cast<size_t>(p)], 0) << p;
   for (int cem = 0; cem < 16; ++cem) EXPECT_GT(by_cem[static_cast<size_t>(cem)], 0) << cem;
   for (int ccs = 0; ccs < 4; ++ccs) EXPECT_GT(by_ccs[static_cast<size_t>(ccs)], 0) << ccs;
+  for (int r = 0; r < astc::kWeightRangeCount; ++r) EXPECT_GT(by_weight_range[static_cast<size_t>(r)], 0) << r;
+  // The rarer cases below need the full count (a sanitizer build's tenth leaves some grids with an
+  // expectation of a few blocks): every endpoint range and every weight grid of every footprint that
+  // some weight range and plane count make legal.
+  if (tfu::test::kIterationDivisor != 1) return;
+  for (int r = astc::kMinEndpointRange; r < astc::kIseRangeCount; ++r)
+    EXPECT_GT(by_endpoint_range[static_cast<size_t>(r)], 0) << r;
+  int grid_count = 0;
+  for (const AstcFootprint f : kAstcFootprints)
+    for (const ModeRow& mr : kModeRows)
+      for (int w = mr.w_lo; w <= std::min(mr.w_hi, f.w); ++w)
+        for (int h = mr.h_lo; h <= std::min(mr.h_hi, f.h); ++h) {
+          bool legal_somehow = false;
+          for (int planes = 1; planes <= (mr.plain_only ? 1 : 2); ++planes)
+            for (int r = 0; r < (mr.plain_only ? 6 : astc::kWeightRangeCount); ++r) {
+              const int n = w * h * planes, bits = astc::ise_sequence_bits(n, r);
+              legal_somehow |= n <= 64 && bits >= 24 && bits <= 96;
+            }
+          if (!legal_somehow) continue;
+          ++grid_count;
+          EXPECT_TRUE(grids.count({f.w, f.h, w, h})) << f.w << "x" << f.h << " grid " << w << "x" << h;
+        }
+  std::printf("ASTC weight grids: %d (footprint, grid) pairs, all hit\n", grid_count);
 }
 
 // ---- (2) arbitrary blocks --------------------------------------------------------------------------
