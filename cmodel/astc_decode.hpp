@@ -18,15 +18,18 @@
 //   unquantization    endpoints to 0..255, weights to 0..64 (cmodel/astc_tables.hpp)
 //   weight infill     cs = Ds bs, gs = (cs (W - 1) + 32) >> 6 (Q4.4), bilinear with
 //                     w11 = (fs ft + 8) >> 4 and i = (sum p w + 8) >> 4 (4-bit fractions, 0..64 out)
-//   interpolation     C = floor((C0 (64 - i) + C1 i + 32) / 64), 16-bit, per channel; dual plane:
-//                     the CCS channel takes the plane-1 weight
+//   interpolation     C = floor((C0 (64 - i) + C1 i + 32) / 64): 16 x 7-bit products, 22-bit sum,
+//                     UNORM16 result, per channel; dual plane: the CCS channel takes the plane-1 weight
 //   output UNORM8     linear: C0 = e * 257 (bit replication); decode_float16: C = 65535 -> 1.0,
 //                     else C / 65536 to FP16 rounding toward zero, i.e. C with all but its 11
 //                     leading significant bits cleared (C < 2^11 is exact); then the FP16 value to
 //                     UNORM8 as a GPU stores a float to an 8-bit unorm: floor(f x 255 + 1/2) =
 //                     (C' x 255 + 2^15) >> 16 (a 16 x 8-bit product, 24 bits)
 //                     sRGB: C0 = (e << 8) | 0x80 for R, G, B and A; the top 8 bits C >> 8 of every
-//                     channel (R, G, B still sRGB-encoded: the sRGB EOTF is applied after the decoder)
+//                     channel (R, G, B still sRGB-encoded: the sRGB EOTF is applied after the decoder),
+//                     = (e0 (64 - i) + e1 i + 32) >> 6. KDFS 1.3 gave alpha bit replication and
+//                     decode_float16 instead (1 LSB apart in 7 % of cases); 1.4.0 and libastcenc
+//                     4.2.0 agree on the rule here
 //   error colour      opaque magenta (255, 0, 255, 255) in both modes ("ASTC error colors")
 #pragma once
 
