@@ -23,11 +23,11 @@
 #include <utility>
 #include <vector>
 
-#include <astcenc.h>
 #include <gtest/gtest.h>
 
 #include "cmodel/astc_decode.hpp"
 #include "cmodel/astc_tables.hpp"
+#include "testbench/astc_reference.hpp"
 #include "testbench/iterations.hpp"
 
 namespace tfu {
@@ -35,63 +35,19 @@ namespace {
 
 using Block = std::array<uint8_t, kAstcBlockBytes>;
 
-// ---- The outside decoder ---------------------------------------------------------------------------
+using test::astcenc_ctx;
+using test::astcenc_decode_image;
+using test::is_hdr_cem;
+constexpr astcenc_swizzle kIdentity = test::kAstcencIdentity;
 
-struct ContextDeleter {
-  void operator()(astcenc_context* c) const { astcenc_context_free(c); }
-};
-using ContextPtr = std::unique_ptr<astcenc_context, ContextDeleter>;
-
-// One libastcenc context per (footprint, profile), decompress-only or full, kept for the process.
-astcenc_context* astcenc_ctx(int bw, int bh, bool srgb, bool compress) {
-  static std::map<std::tuple<int, int, bool, bool>, ContextPtr> contexts;
-  auto& slot = contexts[{bw, bh, srgb, compress}];
-  if (!slot) {
-    astcenc_config cfg{};
-    const astcenc_profile profile = srgb ? ASTCENC_PRF_LDR_SRGB : ASTCENC_PRF_LDR;
-    EXPECT_EQ(astcenc_config_init(profile, static_cast<unsigned>(bw), static_cast<unsigned>(bh), 1, ASTCENC_PRE_FAST,
-                                  compress ? 0 : ASTCENC_FLG_DECOMPRESS_ONLY, &cfg),
-              ASTCENC_SUCCESS);
-    astcenc_context* ctx = nullptr;
-    EXPECT_EQ(astcenc_context_alloc(&cfg, 1, &ctx), ASTCENC_SUCCESS);
-    slot.reset(ctx);
-  }
-  return slot.get();
-}
-
-constexpr astcenc_swizzle kIdentity{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-
-// libastcenc's decode of a width x height image stored as `data` (raster order of blocks).
-std::vector<Rgba8> astcenc_decode_image(const uint8_t* data, size_t size, int width, int height, int bw, int bh,
-                                        bool srgb) {
-  std::vector<Rgba8> out(static_cast<size_t>(width) * static_cast<size_t>(height));
-  void* slice = out.data();
-  astcenc_image img{static_cast<unsigned>(width), static_cast<unsigned>(height), 1, ASTCENC_TYPE_U8, &slice};
-  astcenc_context* ctx = astcenc_ctx(bw, bh, srgb, false);
-  EXPECT_EQ(astcenc_decompress_image(ctx, data, size, &img, &kIdentity, 0), ASTCENC_SUCCESS);
-  astcenc_decompress_reset(ctx);
-  return out;
-}
+// Texels where libastcenc gives (254, 0, 254, 254) and the decoder the error colour
+// (test::is_known_hdr_partition_difference), counted over the whole run.
+int g_hdr_partition_differences = 0;
 
 std::string fmt_byte(uint8_t b) {
   char s[3];
   std::snprintf(s, sizeof s, "%02x", b);
   return s;
-}
-
-// The one disagreement found (docs/compressed-astc.md): texels of a partition with an HDR endpoint
-// mode decode in libastcenc 4.2.0's linear LDR profile to (254, 0, 254, 254), not to the error
-// colour (255, 0, 255, 255) the spec prescribes (KDFS "Illegal Encodings", last paragraph). It is
-// accepted only there: a legal, non-void-extent block with an HDR mode, linear, that exact pair.
-constexpr bool is_hdr_cem(int cem) { return cem == 2 || cem == 3 || cem == 7 || cem == 11 || cem == 14 || cem == 15; }
-int g_hdr_partition_differences = 0;
-bool is_known_hdr_partition_difference(const Block& blk, int bw, int bh, bool srgb, Rgba8 ref, Rgba8 mine) {
-  if (srgb || !(mine == kAstcErrorColor) || !(ref == Rgba8{254, 0, 254, 254})) return false;
-  const AstcBlockConfig c = astc_block_config(blk.data(), bw, bh);
-  if (c.illegal != AstcIllegal::None || c.void_extent) return false;
-  for (int p = 0; p < c.partitions; ++p)
-    if (is_hdr_cem(c.cem[static_cast<size_t>(p)])) return true;
-  return false;
 }
 
 // Both decoders on a list of blocks (laid out 64 blocks to a row); returns the number of blocks
@@ -115,7 +71,7 @@ int compare_blocks(const std::vector<Block>& blocks, int bw, int bh, bool srgb) 
       const Rgba8 r = ref[static_cast<size_t>((y0 + t / bw) * width + x0 + t % bw)];
       const Rgba8 m = mine[static_cast<size_t>(t)];
       if (r == m) continue;
-      if (is_known_hdr_partition_difference(blocks[static_cast<size_t>(i)], bw, bh, srgb, r, m)) {
+      if (test::is_known_hdr_partition_difference(blocks[static_cast<size_t>(i)].data(), bw, bh, srgb, r, m)) {
         ++g_hdr_partition_differences;
         continue;
       }
