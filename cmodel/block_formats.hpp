@@ -121,6 +121,19 @@ constexpr int blocks_across(BlockFormat f, int width) { return (width + block_fo
 constexpr int blocks_down(BlockFormat f, int height) { return (height + block_format_info(f).block_h - 1) / block_format_info(f).block_h; }
 size_t block_level_bytes(BlockFormat f, int width, int height);
 
+// A compressed texture as files hold it and texture memory stores it: one format, the sRGB flag,
+// and per MIP level its size in texels and its blocks, row-major, block_level_bytes(format, w, h)
+// bytes (level n + 1 is max(1, w >> 1) x max(1, h >> 1), as for every texture: cmodel/texture.hpp).
+struct BlockLevel {
+  int width = 0, height = 0;
+  std::vector<uint8_t> blocks;
+};
+struct BlockImage {
+  BlockFormat format = BlockFormat::BC1;
+  bool srgb = false;
+  std::vector<BlockLevel> levels;
+};
+
 // How a block becomes texels: the BC1-BC5 interpolation rules (a descriptor field; the spec's by
 // default) and the sRGB flag (ASTC only).
 struct BlockDecodeRules {
