@@ -27,7 +27,16 @@ size_t distinct(const std::vector<Point>& points, size_t key) {
   return v.size();
 }
 
-bool numeric_key(const Spec& s, size_t k) { return s.keys[k].field && s.keys[k].field->names.empty(); }
+// A key whose every point value is a number (a numeric config field, or a sampler key such as
+// max_aniso or lod_bias): its charts have a numeric x axis.
+bool numeric_values(const std::vector<Point>& points, size_t key) {
+  for (const Point& p : points) {
+    const std::string& v = p.values[key];
+    char* end = nullptr;
+    if (v.empty() || (std::strtod(v.c_str(), &end), end != v.c_str() + v.size())) return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -85,9 +94,13 @@ void plot(const PlotRequest& r, OutputFile& out) {
 std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& points, const std::string& dir,
                                 OutputFiles& outputs, const std::string& csv, const std::string& columns) {
   std::vector<Plot> plots;
+  // The x axis: the first grid key that varies and is numeric, else the first that varies (a
+  // categorical axis, drawn as bars): every grid key, config or sampler, gets the charts per metric.
   size_t xk = spec.keys.size();
   for (size_t k = 0; k < spec.grid_keys && xk == spec.keys.size(); ++k)
-    if (numeric_key(spec, k) && distinct(points, k) > 1) xk = k;
+    if (distinct(points, k) > 1 && numeric_values(points, k)) xk = k;
+  for (size_t k = 0; k < spec.grid_keys && xk == spec.keys.size(); ++k)
+    if (distinct(points, k) > 1) xk = k;
   std::vector<std::string> series;
   if (spec.filters.size() > 1) series.push_back("filter");
   if (spec.scenes.size() > 1) series.push_back("scene");
@@ -104,16 +117,21 @@ std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& poin
   };
   if (xk < spec.keys.size()) {
     const std::string& x = spec.keys[xk].name;
-    long long lo = 0, hi = 0;
-    for (const Point& p : points) {
-      const long long v = std::stoll(p.values[xk]);
-      lo = lo == 0 ? v : std::min(lo, v);
-      hi = std::max(hi, v);
-    }
-    const bool log_x = lo > 0 && hi >= 8 * lo;
     PlotRequest r;
     r.x = x;
-    r.log_x = log_x;
+    if (numeric_values(points, xk)) {
+      double lo = 0, hi = 0;
+      bool first = true;
+      for (const Point& p : points) {
+        const double v = std::strtod(p.values[xk].c_str(), nullptr);
+        lo = first ? v : std::min(lo, v);
+        hi = first ? v : std::max(hi, v);
+        first = false;
+      }
+      r.log_x = lo > 0 && hi >= 8 * lo;
+    } else {
+      r.kind = "bar";
+    }
     r.y = "bytes_per_pixel";
     make(r, "plot_bytes_per_pixel.png", fmt::format("Memory bytes per pixel against {}", x));
     r.y = "pixels_per_clock";
