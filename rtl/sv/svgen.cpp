@@ -16,6 +16,8 @@
 //   tfu_bc_pkg.sv     rules, rounding biases and reciprocal dividers of the BC1/BC3/BC4 decoders
 //                     (rtl/sv/bc/svgen_bc.hpp: derived, then checked against cmodel/bc_decode.cpp for
 //                     every pair of endpoint codes)
+//   tfu_bc7_unpack.sv the BC7 decoder's block unpacking, partition ROMs and weight ROM
+//                     (rtl/sv/bc/svgen_bc7.hpp, from cmodel/bc7_decode.hpp)
 // Files are rewritten only when their content changes (so dependent Verilator builds stay valid).
 #include <algorithm>
 #include <array>
@@ -39,6 +41,7 @@
 #include "cmodel/sampler.hpp"
 #include "cmodel/weight_rom.hpp"
 #include "rtl/sv/bc/svgen_bc.hpp"
+#include "rtl/sv/bc/svgen_bc7.hpp"
 #include "rtl/sv/svgen_common.hpp"
 
 namespace {
@@ -190,6 +193,7 @@ int main(int argc, char** argv) {
     write_if_changed(out / "tfu_tile_rom.sv", tile_rom_sv(rom));
     write_if_changed(out / "tfu_log2_rom.sv", log2_rom_sv());
     write_if_changed(out / "tfu_bc_pkg.sv", tfu::svgen::bc_pkg_sv(kBanner));
+    write_if_changed(out / "tfu_bc7_unpack.sv", tfu::svgen::bc7_unpack_sv(kBanner));
     CubicSizes sizes;
     write_if_changed(out / "tfu_cubic_pkg.sv", cubic_pkg_sv(rom, sizes));
     write_if_changed(out / "tfu_sv_params.hpp",

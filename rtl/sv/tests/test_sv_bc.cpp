@@ -15,9 +15,12 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "cmodel/bc7_decode.hpp"
 #include "cmodel/bc_decode.hpp"
 #include "cmodel/block_formats.hpp"
 #include "testbench/iterations.hpp"
@@ -26,6 +29,7 @@
 #include "Vtfu_bc3_decode.h"
 #include "Vtfu_bc3_decode_truncate.h"
 #include "Vtfu_bc4_decode.h"
+#include "Vtfu_bc7_decode.h"
 #include "verilated.h"
 
 namespace {
@@ -36,7 +40,8 @@ using tfu::BlockFormat;
 constexpr uint64_t kSeed = 0xbc13ULL;
 constexpr int64_t kRandomBlocks = tfu::test::iterations(1'000'000);
 constexpr int kMaxReports = 8;
-constexpr int kLatency = 2;  // clocks from the sampling edge to the result (docs/sv-bc.md)
+constexpr int kLatency = 2;     // clocks from the sampling edge to the result: BC1, BC3, BC4 (docs/sv-bc.md)
+constexpr int kLatencyBc7 = 3;  // BC7
 
 struct Mismatches {
   int count = 0;
@@ -113,20 +118,27 @@ std::array<uint32_t, 4> reference(BlockFormat f, const BlockDecodeRules& rules, 
 }
 
 // Streams n requests gen(0..n-1) through the decoder, a quarter of the clocks without a request and
-// an eighth stalled (en = 0), and checks every result against a reference pipeline of kLatency
+// an eighth stalled (en = 0), and checks every result against a reference pipeline of `latency`
 // slots. Returns the number of results checked.
 template <class Model>
 int64_t stream(Dut<Model>& dut, BlockFormat f, const BlockDecodeRules& rules, int64_t n,
-               const std::function<Request(int64_t)>& gen, std::mt19937_64& rng, Mismatches& bad) {
+               const std::function<Request(int64_t)>& gen, std::mt19937_64& rng, Mismatches& bad,
+               int latency = kLatency) {
   struct Slot {
     bool valid = false;
     Request req;
     std::array<uint32_t, 4> want{};
   };
-  std::array<Slot, kLatency> pipe{};
-  const int bytes = f == BlockFormat::BC3 ? 16 : 8;
+  std::array<Slot, kLatencyBc7> pipe{};
+  const auto last = static_cast<size_t>(latency - 1);
+  const int bytes = f == BlockFormat::BC3 || f == BlockFormat::BC7 ? 16 : 8;
+  const auto busy = [&] {
+    for (size_t i = 0; i <= last; ++i)
+      if (pipe[i].valid) return true;
+    return false;
+  };
   int64_t issued = 0, checked = 0;
-  for (int64_t cyc = 0; issued < n || pipe[0].valid || pipe[1].valid; ++cyc) {
+  for (int64_t cyc = 0; issued < n || busy(); ++cyc) {
     const bool en = (rng() % 8) != 0;
     const bool valid = issued < n && (rng() % 4) != 0;
     Slot in;
@@ -143,19 +155,20 @@ int64_t stream(Dut<Model>& dut, BlockFormat f, const BlockDecodeRules& rules, in
     dut.tick();
     if (!en) continue;
     if (valid) ++issued;
-    pipe[1] = pipe[0];
+    for (size_t i = last; i > 0; --i) pipe[i] = pipe[i - 1];
     pipe[0] = in;
-    if (dut.m.out_valid != pipe[1].valid) {
-      bad.add(fmt::format("cycle {}: out_valid {} expected {}", cyc, dut.m.out_valid, pipe[1].valid));
+    const Slot& out = pipe[last];
+    if (dut.m.out_valid != out.valid) {
+      bad.add(fmt::format("cycle {}: out_valid {} expected {}", cyc, dut.m.out_valid, out.valid));
       continue;
     }
-    if (!pipe[1].valid) continue;
+    if (!out.valid) continue;
     ++checked;
     for (int k = 0; k < 4; ++k) {
-      const uint32_t got = dut.texel(k), want = pipe[1].want[static_cast<size_t>(k)];
+      const uint32_t got = dut.texel(k), want = out.want[static_cast<size_t>(k)];
       if (got != want)
-        bad.add(fmt::format("block {}{} texel {}: sv {:08x} decode_block {:08x}", hex(pipe[1].req.block, bytes),
-                            pipe[1].req.rgba ? " (rgba)" : "", pipe[1].req.index[static_cast<size_t>(k)], got, want));
+        bad.add(fmt::format("block {}{} texel {}: sv {:08x} decode_block {:08x}", hex(out.req.block, bytes),
+                            out.req.rgba ? " (rgba)" : "", out.req.index[static_cast<size_t>(k)], got, want));
     }
   }
   return checked;
@@ -400,6 +413,105 @@ TEST(SvBc3DecodeTruncate, EveryPairAndRandomBlocksMatchLibsquishRule) {
                     [&](int64_t i) { return colour_pair_request(8, i, rng); }, rng, bad);
   checked += stream(dut, BlockFormat::BC3, rules, kRandomBlocks, [&](int64_t) { return random_request(16, rng); }, rng, bad);
   EXPECT_EQ(checked, 2 * 65536 + kColourPairs * kDrawsPerPair + kRandomBlocks);
+  EXPECT_EQ(bad.count, 0);
+}
+
+// ------------------------------------------------------------------ BC7
+// A random block of mode m (byte 0: m zeros, a one, random bits above), or the reserved byte 0 = 0
+// for m = 8; the partition (when the mode has one) set to `partition` when >= 0.
+Request bc7_request(int m, int partition, std::mt19937_64& rng) {
+  Request r = random_request(16, rng);
+  if (m == 8) {
+    r.block[0] = 0;
+    return r;
+  }
+  r.block[0] = static_cast<uint8_t>((r.block[0] << (m + 1)) | (1 << m));
+  const int pb = tfu::kBc7Modes[static_cast<size_t>(m)].partition_bits;
+  if (partition >= 0 && pb > 0) {
+    // Bits m + 1 .. m + pb of the block, LSB first.
+    for (int k = 0; k < pb; ++k) {
+      const int bit = m + 1 + k, byte = bit / 8, sh = bit % 8;
+      r.block[static_cast<size_t>(byte)] = static_cast<uint8_t>((r.block[static_cast<size_t>(byte)] & ~(1 << sh)) |
+                                                                (((partition >> k) & 1) << sh));
+    }
+  }
+  return r;
+}
+
+TEST(SvBc7Decode, LatencyAndHandDerivedMode6) {
+  Dut<Vtfu_bc7_decode> dut;
+  // Mode 6 (byte 0 = 0x40): one subset, 7-bit colour and alpha + one p-bit per endpoint, 4-bit
+  // indices. All endpoint fields and p-bits zero except R1 = 127 and p1 = 1: e0 = 0, R e1 = 255,
+  // G, B, A e1 = 1 (the p-bit alone). Index of texel 1 = 15 (weight 64): (255, 1, 1, 1). Texel 0
+  // (anchor, 3 bits) = 7, weight 30: R = (30 * 255 + 32) >> 6 = 120, G = B = A = (30 + 32) >> 6 = 0.
+  // Layout: mode 7 bits, R0 7 @7, R1 7 @14, G0 @21, G1 @28, B0 @35, B1 @42, A0 @49, A1 @56, p0 @63,
+  // p1 @64, indices from @65 (texel 0: 3 bits, then 4 bits each).
+  Request r;
+  r.block[0] = 0x40;
+  const auto set_bits = [&](int at, int width, int value) {
+    for (int k = 0; k < width; ++k) {
+      const int bit = at + k;
+      if ((value >> k) & 1) r.block[static_cast<size_t>(bit / 8)] |= static_cast<uint8_t>(1 << (bit % 8));
+    }
+  };
+  set_bits(14, 7, 127);
+  set_bits(64, 1, 1);
+  set_bits(65, 3, 7);
+  set_bits(68, 4, 15);
+  r.index = {0, 1, 2, 1};
+  dut.set(r);
+  dut.m.in_valid = 1;
+  dut.tick();
+  dut.m.in_valid = 0;
+  dut.tick();
+  EXPECT_EQ(dut.m.out_valid, 0);
+  dut.tick();
+  EXPECT_EQ(dut.m.out_valid, 1);
+  EXPECT_EQ(dut.texel(0), 0x00000078u);
+  EXPECT_EQ(dut.texel(1), 0x010101ffu);
+  EXPECT_EQ(dut.texel(2), 0x00000000u);  // index 0: e0
+  dut.tick();
+  EXPECT_EQ(dut.m.out_valid, 0);
+}
+
+TEST(SvBc7Decode, EveryModeEveryPartitionEveryTexel) {
+  Dut<Vtfu_bc7_decode> dut;
+  std::mt19937_64 rng(kSeed + 8);
+  Mismatches bad;
+  // Mode m (0..7, 8 = reserved) x partition (64, or 1 for the modes without) x 16 draws x the 16
+  // texels in 4 requests of four positions.
+  std::vector<std::pair<int, int>> cases;
+  for (int m = 0; m <= 8; ++m) {
+    const int parts = m < 8 && tfu::kBc7Modes[static_cast<size_t>(m)].partition_bits > 0 ? 64 : 1;
+    for (int p = 0; p < parts; ++p) cases.emplace_back(m, p);
+  }
+  const int64_t per_case = 16 * 4;
+  const int64_t n = static_cast<int64_t>(cases.size()) * per_case;
+  Request block;
+  const int64_t checked = stream(
+      dut, BlockFormat::BC7, {}, n,
+      [&](int64_t i) {
+        const auto [m, p] = cases[static_cast<size_t>(i / per_case)];
+        if (i % 4 == 0) block = bc7_request(m, p, rng);
+        Request r = block;
+        for (int k = 0; k < 4; ++k) r.index[static_cast<size_t>(k)] = static_cast<int>(4 * (i % 4) + k);
+        return r;
+      },
+      rng, bad, kLatencyBc7);
+  EXPECT_EQ(checked, n);
+  EXPECT_EQ(bad.count, 0);
+}
+
+TEST(SvBc7Decode, RandomBlocksOfEveryMode) {
+  Dut<Vtfu_bc7_decode> dut;
+  std::mt19937_64 rng(kSeed + 9);
+  Mismatches bad;
+  // Modes uniform over 0..7 (random bytes would be mode 0 half the time), every 64th block reserved.
+  const int64_t checked = stream(
+      dut, BlockFormat::BC7, {}, kRandomBlocks,
+      [&](int64_t i) { return bc7_request(i % 64 == 63 ? 8 : static_cast<int>(rng() % 8), -1, rng); }, rng, bad,
+      kLatencyBc7);
+  EXPECT_EQ(checked, kRandomBlocks);
   EXPECT_EQ(bad.count, 0);
 }
 
