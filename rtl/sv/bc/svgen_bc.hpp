@@ -21,10 +21,10 @@
 namespace tfu::svgen {
 
 struct BcDivider {
-  int d = 0;      // divisor
-  int x_max = 0;  // largest numerator
-  int mul = 0;    // M
-  int shift = 0;  // K
+  int d = 0;                     // divisor
+  int x_max = 0;                 // largest numerator
+  int mul = 0;                   // M
+  int shift = 0;                 // K
   int mul_bits = 0, x_bits = 0;  // widths of M and of x
 };
 
@@ -49,8 +49,12 @@ inline BcDivider bc_divider(int d, int x_max) {
 // EXACT rounds to nearest, TRUNCATE floors).
 inline int bc1_third_bias(Bc1Interpolation r) { return r == Bc1Interpolation::EXACT ? 1 : 0; }  // (2 e0 + e1 + b) / 3
 inline int bc1_half_bias(Bc1Interpolation r) { return r == Bc1Interpolation::EXACT ? 1 : 0; }   // (e0 + e1 + b) >> 1
-inline int bc4_seventh_bias(Bc4Interpolation r) { return r == Bc4Interpolation::EXACT ? 3 : 0; } // round(s / 7) = (s + 3) / 7
-inline int bc4_fifth_bias(Bc4Interpolation r) { return r == Bc4Interpolation::EXACT ? 2 : 0; }   // round(s / 5) = (s + 2) / 5
+inline int bc4_seventh_bias(Bc4Interpolation r) {
+  return r == Bc4Interpolation::EXACT ? 3 : 0;
+}  // round(s / 7) = (s + 3) / 7
+inline int bc4_fifth_bias(Bc4Interpolation r) {
+  return r == Bc4Interpolation::EXACT ? 2 : 0;
+}  // round(s / 5) = (s + 2) / 5
 
 inline int bc_div(const BcDivider& v, int x) {
   if (x < 0 || x > v.x_max) throw std::runtime_error(fmt::format("numerator {} outside 0..{}", x, v.x_max));
@@ -69,7 +73,9 @@ inline void check_bc1_channel(const BcDivider& div3, int shift, int bits, Bc1Int
         const std::array<uint8_t, 4> block{static_cast<uint8_t>(c0), static_cast<uint8_t>(c0 >> 8),
                                            static_cast<uint8_t>(c1), static_cast<uint8_t>(c1 >> 8)};
         const std::array<Rgba8, 4> p = bc1_palette(block.data(), rule, four_only, false);
-        const auto ch = [byte_of_channel](const Rgba8& c) { return byte_of_channel == 0 ? c.r : byte_of_channel == 1 ? c.g : c.b; };
+        const auto ch = [byte_of_channel](const Rgba8& c) {
+          return byte_of_channel == 0 ? c.r : byte_of_channel == 1 ? c.g : c.b;
+        };
         const int e0 = bits == 5 ? bc_widen5(v0) : bc_widen6(v0), e1 = bits == 5 ? bc_widen5(v1) : bc_widen6(v1);
         int want2, want3;
         if (four_only || c0 > c1) {
@@ -80,10 +86,11 @@ inline void check_bc1_channel(const BcDivider& div3, int shift, int bits, Bc1Int
           want3 = 0;
         }
         if (ch(p[0]) != e0 || ch(p[1]) != e1 || ch(p[2]) != want2 || ch(p[3]) != want3)
-          throw std::runtime_error(fmt::format("BC1 {} channel at bit {}: fields {}, {}: the SV formula gives {} {} {} {}, "
-                                               "bc1_palette {} {} {} {}",
-                                               kBc1InterpolationNames.name(rule), shift, v0, v1, e0, e1, want2, want3,
-                                               ch(p[0]), ch(p[1]), ch(p[2]), ch(p[3])));
+          throw std::runtime_error(
+              fmt::format("BC1 {} channel at bit {}: fields {}, {}: the SV formula gives {} {} {} {}, "
+                          "bc1_palette {} {} {} {}",
+                          kBc1InterpolationNames.name(rule), shift, v0, v1, e0, e1, want2, want3, ch(p[0]), ch(p[1]),
+                          ch(p[2]), ch(p[3])));
       }
 }
 
@@ -99,14 +106,19 @@ inline void check_bc4(const BcDivider& div7, const BcDivider& div5, Bc4Interpola
       const std::array<uint8_t, kBcBlockTexels> got = decode_bc4_unorm8(block.data(), rule);
       for (int c = 0; c < 8; ++c) {
         int want;
-        if (c < 2) want = c == 0 ? a0 : a1;
-        else if (a0 > a1) want = bc_div(div7, (8 - c) * a0 + (c - 1) * a1 + bc4_seventh_bias(rule));
-        else if (c < 6) want = bc_div(div5, (6 - c) * a0 + (c - 1) * a1 + bc4_fifth_bias(rule));
-        else want = c == 6 ? 0 : 255;
+        if (c < 2)
+          want = c == 0 ? a0 : a1;
+        else if (a0 > a1)
+          want = bc_div(div7, (8 - c) * a0 + (c - 1) * a1 + bc4_seventh_bias(rule));
+        else if (c < 6)
+          want = bc_div(div5, (6 - c) * a0 + (c - 1) * a1 + bc4_fifth_bias(rule));
+        else
+          want = c == 6 ? 0 : 255;
         if (got[static_cast<size_t>(c)] != want)
-          throw std::runtime_error(fmt::format("BC4 {}: endpoints {}, {} code {}: the SV formula gives {}, "
-                                               "decode_bc4_unorm8 {}",
-                                               kBc4InterpolationNames.name(rule), a0, a1, c, want, got[static_cast<size_t>(c)]));
+          throw std::runtime_error(
+              fmt::format("BC4 {}: endpoints {}, {} code {}: the SV formula gives {}, "
+                          "decode_bc4_unorm8 {}",
+                          kBc4InterpolationNames.name(rule), a0, a1, c, want, got[static_cast<size_t>(c)]));
       }
     }
 }

@@ -55,8 +55,10 @@ inline std::string bc7_weight_rom() {
       "// `bits` = 2, 3 or 4 bits (other widths: 0).\n"
       "module tfu_bc7_weight (\n  input  logic [2:0] bits,\n  input  logic [3:0] index,\n"
       "  output logic [6:0] weight\n);\n  always_comb begin\n    case ({bits, index})\n";
-  for (int i = 0; i < 4; ++i) s += fmt::format("      {{3'd2, 4'd{}}}: weight = 7'd{};\n", i, kBc7Weights2[static_cast<size_t>(i)]);
-  for (int i = 0; i < 8; ++i) s += fmt::format("      {{3'd3, 4'd{}}}: weight = 7'd{};\n", i, kBc7Weights3[static_cast<size_t>(i)]);
+  for (int i = 0; i < 4; ++i)
+    s += fmt::format("      {{3'd2, 4'd{}}}: weight = 7'd{};\n", i, kBc7Weights2[static_cast<size_t>(i)]);
+  for (int i = 0; i < 8; ++i)
+    s += fmt::format("      {{3'd3, 4'd{}}}: weight = 7'd{};\n", i, kBc7Weights3[static_cast<size_t>(i)]);
   for (int i = 0; i < 16; ++i)
     s += fmt::format("      {{3'd4, 4'd{}}}: weight = 7'd{};\n", i, kBc7Weights4[static_cast<size_t>(i)]);
   s += "      default: weight = '0;\n    endcase\n  end\nendmodule\n\n";
@@ -188,7 +190,8 @@ inline std::string bc7_unpack_sv(const char* banner) {
         else
           s += fmt::format("      index2[{}:{}] = 3'(b[{} +: {}]);\n", 3 * t + 2, 3 * t, at, ib2);
       }
-      if (base2 + 16 * ib2 - 1 != 128) throw std::runtime_error(fmt::format("BC7 mode {}: secondary indices do not end at bit 128", m));
+      if (base2 + 16 * ib2 - 1 != 128)
+        throw std::runtime_error(fmt::format("BC7 mode {}: secondary indices do not end at bit 128", m));
     } else if (pos + 16 * ib - md.subsets != 128) {
       throw std::runtime_error(fmt::format("BC7 mode {}: indices do not end at bit 128", m));
     }

@@ -275,8 +275,8 @@ TEST(SvBc1Decode, EveryFieldPairOfEveryChannel) {
   std::mt19937_64 rng(kSeed);
   Mismatches bad;
   const int64_t n = kColourPairs * kDrawsPerPair;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC1, {}, n, [&](int64_t i) { return colour_pair_request(0, i, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC1, {}, n, [&](int64_t i) { return colour_pair_request(0, i, rng); }, rng, bad);
   EXPECT_EQ(checked, n);
   EXPECT_EQ(bad.count, 0);
 }
@@ -285,8 +285,8 @@ TEST(SvBc1Decode, RandomBlocks) {
   Dut<Vtfu_bc1_decode> dut;
   std::mt19937_64 rng(kSeed + 1);
   Mismatches bad;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC1, {}, kRandomBlocks, [&](int64_t) { return random_request(8, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC1, {}, kRandomBlocks, [&](int64_t) { return random_request(8, rng); }, rng, bad);
   EXPECT_EQ(checked, kRandomBlocks);
   EXPECT_EQ(bad.count, 0);
 }
@@ -331,8 +331,8 @@ TEST(SvBc4Decode, EveryEndpointPairEveryCode) {
   std::mt19937_64 rng(kSeed + 2);
   Mismatches bad;
   const int64_t n = 2 * 65536;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC4, {}, n, [&](int64_t i) { return alpha_pair_request(i, 8, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC4, {}, n, [&](int64_t i) { return alpha_pair_request(i, 8, rng); }, rng, bad);
   EXPECT_EQ(checked, n);
   EXPECT_EQ(bad.count, 0);
 }
@@ -341,8 +341,8 @@ TEST(SvBc4Decode, RandomBlocks) {
   Dut<Vtfu_bc4_decode> dut;
   std::mt19937_64 rng(kSeed + 3);
   Mismatches bad;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC4, {}, kRandomBlocks, [&](int64_t) { return random_request(8, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC4, {}, kRandomBlocks, [&](int64_t) { return random_request(8, rng); }, rng, bad);
   EXPECT_EQ(checked, kRandomBlocks);
   EXPECT_EQ(bad.count, 0);
 }
@@ -373,8 +373,8 @@ TEST(SvBc3Decode, EveryAlphaEndpointPairEveryCode) {
   std::mt19937_64 rng(kSeed + 4);
   Mismatches bad;
   const int64_t n = 2 * 65536;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC3, {}, n, [&](int64_t i) { return alpha_pair_request(i, 16, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC3, {}, n, [&](int64_t i) { return alpha_pair_request(i, 16, rng); }, rng, bad);
   EXPECT_EQ(checked, n);
   EXPECT_EQ(bad.count, 0);
 }
@@ -384,8 +384,8 @@ TEST(SvBc3Decode, EveryColourFieldPairOfEveryChannel) {
   std::mt19937_64 rng(kSeed + 5);
   Mismatches bad;
   const int64_t n = kColourPairs * kDrawsPerPair;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC3, {}, n, [&](int64_t i) { return colour_pair_request(8, i, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC3, {}, n, [&](int64_t i) { return colour_pair_request(8, i, rng); }, rng, bad);
   EXPECT_EQ(checked, n);
   EXPECT_EQ(bad.count, 0);
 }
@@ -394,8 +394,8 @@ TEST(SvBc3Decode, RandomBlocks) {
   Dut<Vtfu_bc3_decode> dut;
   std::mt19937_64 rng(kSeed + 6);
   Mismatches bad;
-  const int64_t checked =
-      stream(dut, BlockFormat::BC3, {}, kRandomBlocks, [&](int64_t) { return random_request(16, rng); }, rng, bad);
+  const int64_t checked = stream(
+      dut, BlockFormat::BC3, {}, kRandomBlocks, [&](int64_t) { return random_request(16, rng); }, rng, bad);
   EXPECT_EQ(checked, kRandomBlocks);
   EXPECT_EQ(bad.count, 0);
 }
@@ -407,11 +407,13 @@ TEST(SvBc3DecodeTruncate, EveryPairAndRandomBlocksMatchLibsquishRule) {
   std::mt19937_64 rng(kSeed + 7);
   Mismatches bad;
   const BlockDecodeRules rules{tfu::kBcRulesLibsquish, false};
-  int64_t checked =
-      stream(dut, BlockFormat::BC3, rules, 2 * 65536, [&](int64_t i) { return alpha_pair_request(i, 16, rng); }, rng, bad);
-  checked += stream(dut, BlockFormat::BC3, rules, kColourPairs * kDrawsPerPair,
-                    [&](int64_t i) { return colour_pair_request(8, i, rng); }, rng, bad);
-  checked += stream(dut, BlockFormat::BC3, rules, kRandomBlocks, [&](int64_t) { return random_request(16, rng); }, rng, bad);
+  int64_t checked = stream(
+      dut, BlockFormat::BC3, rules, 2 * 65536, [&](int64_t i) { return alpha_pair_request(i, 16, rng); }, rng, bad);
+  checked += stream(
+      dut, BlockFormat::BC3, rules, kColourPairs * kDrawsPerPair,
+      [&](int64_t i) { return colour_pair_request(8, i, rng); }, rng, bad);
+  checked += stream(
+      dut, BlockFormat::BC3, rules, kRandomBlocks, [&](int64_t) { return random_request(16, rng); }, rng, bad);
   EXPECT_EQ(checked, 2 * 65536 + kColourPairs * kDrawsPerPair + kRandomBlocks);
   EXPECT_EQ(bad.count, 0);
 }
@@ -431,8 +433,8 @@ Request bc7_request(int m, int partition, std::mt19937_64& rng) {
     // Bits m + 1 .. m + pb of the block, LSB first.
     for (int k = 0; k < pb; ++k) {
       const int bit = m + 1 + k, byte = bit / 8, sh = bit % 8;
-      r.block[static_cast<size_t>(byte)] = static_cast<uint8_t>((r.block[static_cast<size_t>(byte)] & ~(1 << sh)) |
-                                                                (((partition >> k) & 1) << sh));
+      r.block[static_cast<size_t>(byte)] =
+          static_cast<uint8_t>((r.block[static_cast<size_t>(byte)] & ~(1 << sh)) | (((partition >> k) & 1) << sh));
     }
   }
   return r;
