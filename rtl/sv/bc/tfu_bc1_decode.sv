@@ -11,8 +11,9 @@
 //   block [63:0]        the 8-byte block, byte k in bits [8k+7:8k] (color0 = bytes 0-1, color1 =
 //                       bytes 2-3, little endian; the 2-bit code of texel t in bits [32+2t+1:32+2t])
 //   rgba                BC1 RGBA (code 3 of 3-colour mode is transparent black) vs BC1 RGB (opaque)
-//   texel_index [15:0]  four texel positions t = 4 y + x in the block, port k in bits [4k+3:4k]
-//   out_valid, texels [127:0]   the four texels, port k's RGBA8 word in bits [32k+31:32k], registered
+//   texel_index [4 PORTS-1:0]   PORTS texel positions t = 4 y + x in the block (4: a bilinear
+//                       footprint's texels in one block; 16: a whole block), port k in bits [4k+3:4k]
+//   out_valid, texels [32 PORTS-1:0]   the texels, port k's RGBA8 word in bits [32k+31:32k], registered
 //
 // Pipeline (latency 2 clocks: a request sampled at rising edge n, with en = 1 at n and n + 1, is on
 // out_valid / texels after edge n + 1):
@@ -20,7 +21,8 @@
 //   S2  palette (tfu_bc1_palette) beside the four 16:1 code selects, then four 4:1 palette selects
 //       -> output registers
 module tfu_bc1_decode #(
-  parameter int RULE = tfu_bc_pkg::RULE_EXACT
+  parameter int RULE = tfu_bc_pkg::RULE_EXACT,
+  parameter int PORTS = 4  // texel positions per request
 ) (
   input  logic         clk,
   input  logic         rst_n,
@@ -28,15 +30,15 @@ module tfu_bc1_decode #(
   input  logic         in_valid,
   input  logic [63:0]  block,
   input  logic         rgba,
-  input  logic [15:0]  texel_index,
+  input  logic [4*PORTS-1:0]  texel_index,
   output logic         out_valid,
-  output logic [127:0] texels
+  output logic [32*PORTS-1:0] texels
 );
   // S1
   logic        v1;
   logic [63:0] block_1;
   logic        rgba_1;
-  logic [15:0] index_1;
+  logic [4*PORTS-1:0] index_1;
   always_ff @(posedge clk) begin
     if (!rst_n) v1 <= 1'b0;
     else if (en) v1 <= in_valid;
@@ -52,8 +54,8 @@ module tfu_bc1_decode #(
   tfu_bc1_palette #(.RULE(RULE)) u_palette (
     .color0(block_1[15:0]), .color1(block_1[31:16]), .four_colour_only(1'b0), .three_colour_alpha0(rgba_1),
     .p0(p[0]), .p1(p[1]), .p2(p[2]), .p3(p[3]));
-  logic [127:0] t2;
-  for (genvar k = 0; k < 4; k++) begin : g_texel
+  logic [32*PORTS-1:0] t2;
+  for (genvar k = 0; k < PORTS; k++) begin : g_texel
     logic [1:0] code;
     assign code = block_1[32 + 2 * index_1[4*k +: 4] +: 2];
     assign t2[32*k +: 32] = p[code];

@@ -11,29 +11,31 @@
 //   block [127:0]       the 16-byte block, byte k in bits [8k+7:8k]: alpha0 = byte 0, alpha1 = byte 1,
 //                       alpha code of texel t in bits [16+3t+2:16+3t]; color0 = bytes 8-9,
 //                       color1 = bytes 10-11, colour code of texel t in bits [96+2t+1:96+2t]
-//   texel_index [15:0]  four texel positions t = 4 y + x in the block, port k in bits [4k+3:4k]
-//   out_valid, texels [127:0]   the four texels, port k's RGBA8 word in bits [32k+31:32k], registered
+//   texel_index [4 PORTS-1:0]   PORTS texel positions t = 4 y + x in the block (4: a bilinear
+//                       footprint's texels in one block; 16: a whole block), port k in bits [4k+3:4k]
+//   out_valid, texels [32 PORTS-1:0]   the texels, port k's RGBA8 word in bits [32k+31:32k], registered
 //
 // Pipeline (latency 2 clocks, as tfu_bc1_decode):
 //   S1  input registers
 //   S2  colour palette and alpha values beside the code selects, then the palette selects
 //       -> output registers
 module tfu_bc3_decode #(
-  parameter int RULE = tfu_bc_pkg::RULE_EXACT
+  parameter int RULE = tfu_bc_pkg::RULE_EXACT,
+  parameter int PORTS = 4  // texel positions per request
 ) (
   input  logic         clk,
   input  logic         rst_n,
   input  logic         en,
   input  logic         in_valid,
   input  logic [127:0] block,
-  input  logic [15:0]  texel_index,
+  input  logic [4*PORTS-1:0]  texel_index,
   output logic         out_valid,
-  output logic [127:0] texels
+  output logic [32*PORTS-1:0] texels
 );
   // S1
   logic         v1;
   logic [127:0] block_1;
-  logic [15:0]  index_1;
+  logic [4*PORTS-1:0]  index_1;
   always_ff @(posedge clk) begin
     if (!rst_n) v1 <= 1'b0;
     else if (en) v1 <= in_valid;
@@ -53,8 +55,8 @@ module tfu_bc3_decode #(
   tfu_bc1_palette #(.RULE(RULE)) u_colour (
     .color0(block_1[79:64]), .color1(block_1[95:80]), .four_colour_only(1'b1), .three_colour_alpha0(1'b0),
     .p0(p[0]), .p1(p[1]), .p2(p[2]), .p3(p[3]));
-  logic [127:0] t2;
-  for (genvar k = 0; k < 4; k++) begin : g_texel
+  logic [32*PORTS-1:0] t2;
+  for (genvar k = 0; k < PORTS; k++) begin : g_texel
     logic [2:0] acode;
     logic [1:0] ccode;
     assign acode = block_1[16 + 3 * index_1[4*k +: 4] +: 3];

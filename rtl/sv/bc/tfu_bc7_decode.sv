@@ -7,8 +7,9 @@
 // Ports:
 //   clk, rst_n, en, in_valid    as tfu_bc1_decode
 //   block [127:0]       the 16-byte block, byte k in bits [8k+7:8k]
-//   texel_index [15:0]  four texel positions t = 4 y + x in the block, port k in bits [4k+3:4k]
-//   out_valid, texels [127:0]   the four texels, port k's RGBA8 word in bits [32k+31:32k], registered
+//   texel_index [4 PORTS-1:0]   PORTS texel positions t = 4 y + x in the block (4: a bilinear
+//                       footprint's texels in one block; 16: a whole block), port k in bits [4k+3:4k]
+//   out_valid, texels [32 PORTS-1:0]   the texels, port k's RGBA8 word in bits [32k+31:32k], registered
 //
 // Pipeline (latency 3 clocks: a request sampled at rising edge n, with en = 1 at n .. n + 2, is on
 // out_valid / texels after edge n + 2):
@@ -18,20 +19,22 @@
 //   S3  per port: the texel's subset and indices, the weights (tfu_bc7_weight), four interpolations
 //       c = ((64 - w) e0 + w e1 + 32) >> 6 (8 x 7-bit products, 15-bit sum), the rotation
 //       -> output registers
-module tfu_bc7_decode (
+module tfu_bc7_decode #(
+  parameter int PORTS = 4  // texel positions per request
+) (
   input  logic         clk,
   input  logic         rst_n,
   input  logic         en,
   input  logic         in_valid,
   input  logic [127:0] block,
-  input  logic [15:0]  texel_index,
+  input  logic [4*PORTS-1:0]  texel_index,
   output logic         out_valid,
-  output logic [127:0] texels
+  output logic [32*PORTS-1:0] texels
 );
   // S1
   logic         v1;
   logic [127:0] block_1;
-  logic [15:0]  index_1;
+  logic [4*PORTS-1:0]  index_1;
   always_ff @(posedge clk) begin
     if (!rst_n) v1 <= 1'b0;
     else if (en) v1 <= in_valid;
@@ -60,7 +63,7 @@ module tfu_bc7_decode (
   logic [47:0]  index2_2;
   logic [2:0]   bits1_2, bits2_2;
   logic [1:0]   rotation_2;
-  logic [15:0]  index_2;
+  logic [4*PORTS-1:0]  index_2;
   always_ff @(posedge clk) begin
     if (!rst_n) v2 <= 1'b0;
     else if (en) v2 <= v1;
@@ -79,8 +82,8 @@ module tfu_bc7_decode (
   end
 
   // S3
-  logic [127:0] t3;
-  for (genvar k = 0; k < 4; k++) begin : g_texel
+  logic [32*PORTS-1:0] t3;
+  for (genvar k = 0; k < PORTS; k++) begin : g_texel
     logic [3:0]  t;
     logic [1:0]  s;
     logic [3:0]  i1;

@@ -27,9 +27,11 @@
 
 #include "Vtfu_bc1_decode.h"
 #include "Vtfu_bc3_decode.h"
+#include "Vtfu_bc3_decode_block.h"
 #include "Vtfu_bc3_decode_truncate.h"
 #include "Vtfu_bc4_decode.h"
 #include "Vtfu_bc7_decode.h"
+#include "Vtfu_bc7_decode_block.h"
 #include "verilated.h"
 
 namespace {
@@ -50,11 +52,12 @@ struct Mismatches {
   }
 };
 
-// One request: a block (8 or 16 bytes; the rest zero), four texel positions t = 4 y + x, and for
-// the BC1 decoder the format (BC1 RGBA or RGB).
+// One request: a block (8 or 16 bytes; the rest zero), the texel positions t = 4 y + x of the ports
+// (four; the whole-block decoders read texel k on port k), and for the BC1 decoder the format (BC1
+// RGBA or RGB).
 struct Request {
   std::array<uint8_t, 16> block{};
-  std::array<int, 4> index{};
+  std::array<int, 16> index{};
   bool rgba = false;
 };
 
@@ -69,8 +72,9 @@ std::string hex(const std::array<uint8_t, 16>& b, int bytes) {
   return s;
 }
 
-// A Verilated decoder: clock, reset, inputs from a Request, the four output words.
-template <class Model>
+// A Verilated decoder of `Ports` texels per request: clock, reset, inputs from a Request, the output
+// words.
+template <class Model, int Ports = 4>
 struct Dut {
   VerilatedContext ctx;
   Model m{&ctx};
@@ -94,9 +98,11 @@ struct Dut {
         m.block[w] = static_cast<uint32_t>(r.block[4 * w]) | static_cast<uint32_t>(r.block[4 * w + 1]) << 8 |
                      static_cast<uint32_t>(r.block[4 * w + 2]) << 16 | static_cast<uint32_t>(r.block[4 * w + 3]) << 24;
     }
-    uint32_t idx = 0;
-    for (int k = 0; k < 4; ++k) idx |= static_cast<uint32_t>(r.index[static_cast<size_t>(k)] & 15) << (4 * k);
-    m.texel_index = static_cast<uint16_t>(idx);
+    if constexpr (requires { m.texel_index; }) {
+      uint32_t idx = 0;
+      for (int k = 0; k < 4; ++k) idx |= static_cast<uint32_t>(r.index[static_cast<size_t>(k)] & 15) << (4 * k);
+      m.texel_index = static_cast<uint16_t>(idx);
+    }
     if constexpr (requires { m.rgba; }) m.rgba = r.rgba;
   }
   uint32_t texel(int k) const { return m.texels[static_cast<size_t>(k)]; }
@@ -108,26 +114,26 @@ struct Dut {
   }
 };
 
-// The four texels decode_block gives for a request.
-std::array<uint32_t, 4> reference(BlockFormat f, const BlockDecodeRules& rules, const Request& r) {
+// The texels decode_block gives for the ports of a request.
+std::array<uint32_t, 16> reference(BlockFormat f, const BlockDecodeRules& rules, const Request& r) {
   std::array<tfu::Rgba8, 16> out{};
   tfu::decode_block(r.rgba && f == BlockFormat::BC1 ? BlockFormat::BC1A : f, r.block.data(), rules, out.data());
-  std::array<uint32_t, 4> w{};
-  for (size_t k = 0; k < 4; ++k) w[k] = word(out[static_cast<size_t>(r.index[k])]);
+  std::array<uint32_t, 16> w{};
+  for (size_t k = 0; k < 16; ++k) w[k] = word(out[static_cast<size_t>(r.index[k])]);
   return w;
 }
 
 // Streams n requests gen(0..n-1) through the decoder, a quarter of the clocks without a request and
 // an eighth stalled (en = 0), and checks every result against a reference pipeline of `latency`
 // slots. Returns the number of results checked.
-template <class Model>
-int64_t stream(Dut<Model>& dut, BlockFormat f, const BlockDecodeRules& rules, int64_t n,
+template <class Model, int Ports>
+int64_t stream(Dut<Model, Ports>& dut, BlockFormat f, const BlockDecodeRules& rules, int64_t n,
                const std::function<Request(int64_t)>& gen, std::mt19937_64& rng, Mismatches& bad,
                int latency = kLatency) {
   struct Slot {
     bool valid = false;
     Request req;
-    std::array<uint32_t, 4> want{};
+    std::array<uint32_t, 16> want{};
   };
   std::array<Slot, kLatencyBc7> pipe{};
   const auto last = static_cast<size_t>(latency - 1);
@@ -164,7 +170,7 @@ int64_t stream(Dut<Model>& dut, BlockFormat f, const BlockDecodeRules& rules, in
     }
     if (!out.valid) continue;
     ++checked;
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < Ports; ++k) {
       const uint32_t got = dut.texel(k), want = out.want[static_cast<size_t>(k)];
       if (got != want)
         bad.add(fmt::format("block {}{} texel {}: sv {:08x} decode_block {:08x}", hex(out.req.block, bytes),
@@ -205,7 +211,7 @@ void set_channel_pair(Request& r, int at, int ch, int64_t p, std::mt19937_64& rn
 Request random_request(int bytes, std::mt19937_64& rng) {
   Request r;
   randomize(r, 0, bytes, rng);
-  for (int& i : r.index) i = static_cast<int>(rng() % 16);
+  for (size_t k = 0; k < 4; ++k) r.index[k] = static_cast<int>(rng() % 16);
   r.rgba = (rng() & 1) != 0;
   return r;
 }
@@ -514,6 +520,53 @@ TEST(SvBc7Decode, RandomBlocksOfEveryMode) {
       [&](int64_t i) { return bc7_request(i % 64 == 63 ? 8 : static_cast<int>(rng() % 8), -1, rng); }, rng, bad,
       kLatencyBc7);
   EXPECT_EQ(checked, kRandomBlocks);
+  EXPECT_EQ(bad.count, 0);
+}
+
+// ------------------------------------------------------------------ whole-block decoders (16 ports)
+constexpr int64_t kWholeBlocks = tfu::test::iterations(100'000);
+
+Request whole_block(Request r) {
+  for (size_t k = 0; k < 16; ++k) r.index[k] = static_cast<int>(k);
+  return r;
+}
+
+TEST(SvBc3DecodeBlock, EveryAlphaPairAndRandomBlocksEveryTexel) {
+  Dut<Vtfu_bc3_decode_block, 16> dut;
+  std::mt19937_64 rng(kSeed + 10);
+  Mismatches bad;
+  int64_t checked = stream(
+      dut, BlockFormat::BC3, {}, 65536, [&](int64_t i) { return whole_block(alpha_pair_request(2 * i, 16, rng)); }, rng,
+      bad);
+  checked += stream(
+      dut, BlockFormat::BC3, {}, kWholeBlocks, [&](int64_t) { return whole_block(random_request(16, rng)); }, rng, bad);
+  EXPECT_EQ(checked, 65536 + kWholeBlocks);
+  EXPECT_EQ(bad.count, 0);
+}
+
+TEST(SvBc7DecodeBlock, EveryModePartitionAndRandomBlocksEveryTexel) {
+  Dut<Vtfu_bc7_decode_block, 16> dut;
+  std::mt19937_64 rng(kSeed + 11);
+  Mismatches bad;
+  std::vector<std::pair<int, int>> cases;
+  for (int m = 0; m <= 8; ++m) {
+    const int parts = m < 8 && tfu::kBc7Modes[static_cast<size_t>(m)].partition_bits > 0 ? 64 : 1;
+    for (int p = 0; p < parts; ++p) cases.emplace_back(m, p);
+  }
+  const int64_t per_case = 16;
+  const int64_t n = static_cast<int64_t>(cases.size()) * per_case;
+  int64_t checked = stream(
+      dut, BlockFormat::BC7, {}, n,
+      [&](int64_t i) {
+        const auto [m, p] = cases[static_cast<size_t>(i / per_case)];
+        return whole_block(bc7_request(m, p, rng));
+      },
+      rng, bad, kLatencyBc7);
+  checked += stream(
+      dut, BlockFormat::BC7, {}, kWholeBlocks,
+      [&](int64_t i) { return whole_block(bc7_request(i % 64 == 63 ? 8 : static_cast<int>(rng() % 8), -1, rng)); }, rng,
+      bad, kLatencyBc7);
+  EXPECT_EQ(checked, n + kWholeBlocks);
   EXPECT_EQ(bad.count, 0);
 }
 
