@@ -1,8 +1,9 @@
-// BC1 decoder for a bilinear footprint (BC1 RGB and BC1 RGBA; Khronos Data Format Specification 1.3,
-// "S3TC Compressed Texture Image Formats"; tfu::decode_block with BlockFormat::BC1 / BC1A,
+// BC1 decoder for a bilinear footprint (BC1 RGB and BC1 RGBA; Khronos Data Format Specification
+// 1.3, "S3TC Compressed Texture Image Formats"; tfu::decode_block with BlockFormat::BC1 / BC1A,
 // cmodel/block_formats.hpp): one block and PORTS (default 4) texel positions in it per clock, as
-// many RGBA8 texels out. Bit-exact with the C++ decoder for the rule RULE (tfu_bc_pkg::RULE_EXACT, the golden rule, or
-// RULE_TRUNCATE, libsquish's and Mesa's). Why four positions of one block: docs/sv-bc.md.
+// many RGBA8 texels out. Bit-exact with the C++ decoder for the rule RULE (tfu_bc_pkg::RULE_EXACT,
+// the golden rule, or RULE_TRUNCATE, libsquish's and Mesa's). Why four positions of one block:
+// docs/sv-bc.md.
 //
 // Ports:
 //   clk, rst_n          rising-edge clock, synchronous active-low reset (clears the valid bits only)

@@ -2,9 +2,9 @@
 // Texture Image Formats"; tfu::decode_block with BlockFormat::BC3, cmodel/block_formats.hpp): a
 // BC4-style alpha block (bytes 0-7, tfu_bc4_palette) and a BC1 colour block always decoded in
 // 4-colour mode (bytes 8-15, tfu_bc1_palette), one block and PORTS (default 4) texel positions in
-// it per clock, as many RGBA8 texels out. Bit-exact with the C++ decoder for the rule RULE (tfu_bc_pkg::RULE_EXACT,
-// the golden rule, for colour and alpha, or RULE_TRUNCATE for both). Why four positions of one
-// block: docs/sv-bc.md.
+// it per clock, as many RGBA8 texels out. Bit-exact with the C++ decoder for the rule RULE
+// (tfu_bc_pkg::RULE_EXACT, the golden rule, for colour and alpha, or RULE_TRUNCATE for both). Why
+// four positions of one block: docs/sv-bc.md.
 //
 // Ports:
 //   clk, rst_n, en, in_valid    as tfu_bc1_decode

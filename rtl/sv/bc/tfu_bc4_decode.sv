@@ -1,9 +1,9 @@
 // BC4 UNORM decoder for a bilinear footprint (Khronos Data Format Specification 1.3, "RGTC
 // Compressed Texture Image Formats"; tfu::decode_block with BlockFormat::BC4,
 // cmodel/block_formats.hpp): one block and PORTS (default 4) texel positions in it per clock, as
-// many texels out as the unit sees a RED texture, (r, 0, 0, 255). Bit-exact with the C++ decoder for the rule RULE
-// (tfu_bc_pkg::RULE_EXACT, the golden rule, or RULE_TRUNCATE). Why four positions of one block:
-// docs/sv-bc.md.
+// many texels out as the unit sees a RED texture, (r, 0, 0, 255). Bit-exact with the C++ decoder
+// for the rule RULE (tfu_bc_pkg::RULE_EXACT, the golden rule, or RULE_TRUNCATE). Why four positions
+// of one block: docs/sv-bc.md.
 //
 // Ports:
 //   clk, rst_n, en, in_valid    as tfu_bc1_decode

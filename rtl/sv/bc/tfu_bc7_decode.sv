@@ -1,8 +1,8 @@
 // BC7 decoder for a bilinear footprint (BPTC RGBA UNORM, all eight modes; Khronos Data Format
 // Specification 1.3, "BPTC Compressed Texture Image Formats"; tfu::decode_block with
 // BlockFormat::BC7, cmodel/bc7_decode.hpp): one block and PORTS (default 4) texel positions in it
-// per clock, as many RGBA8 texels out, bit-exact (BC7 leaves no rounding to the implementation). Same interface as
-// tfu_bc3_decode (docs/sv-bc.md).
+// per clock, as many RGBA8 texels out, bit-exact (BC7 leaves no rounding to the implementation).
+// Same interface as tfu_bc3_decode (docs/sv-bc.md).
 //
 // Ports:
 //   clk, rst_n, en, in_valid    as tfu_bc1_decode
