@@ -13,6 +13,11 @@
 //                     accumulator widths, checked over every address pair)
 //   tfu_sv_params.hpp the same sizes for the C++ equivalence tests
 //   tfu_tile_rom.hex, tfu_log2_rom.hex   the same contents as rom_dump.hpp hex dumps ($readmemh)
+//   tfu_bc_pkg.sv     rules, rounding biases and reciprocal dividers of the BC1/BC3/BC4 decoders
+//                     (rtl/sv/bc/svgen_bc.hpp: derived, then checked against cmodel/bc_decode.cpp for
+//                     every pair of endpoint codes)
+//   tfu_bc7_unpack.sv the BC7 decoder's block unpacking, partition ROMs and weight ROM
+//                     (rtl/sv/bc/svgen_bc7.hpp, from cmodel/bc7_decode.hpp)
 // Files are rewritten only when their content changes (so dependent Verilator builds stay valid).
 #include <algorithm>
 #include <array>
@@ -35,6 +40,8 @@
 #include "cmodel/rom_dump.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/weight_rom.hpp"
+#include "rtl/sv/bc/svgen_bc.hpp"
+#include "rtl/sv/bc/svgen_bc7.hpp"
 #include "rtl/sv/svgen_common.hpp"
 
 namespace {
@@ -185,6 +192,8 @@ int main(int argc, char** argv) {
     if (rom.taps() != 4) throw std::runtime_error("the SV cubic datapath expects 4 taps per axis");
     write_if_changed(out / "tfu_tile_rom.sv", tile_rom_sv(rom));
     write_if_changed(out / "tfu_log2_rom.sv", log2_rom_sv());
+    write_if_changed(out / "tfu_bc_pkg.sv", tfu::svgen::bc_pkg_sv(kBanner));
+    write_if_changed(out / "tfu_bc7_unpack.sv", tfu::svgen::bc7_unpack_sv(kBanner));
     CubicSizes sizes;
     write_if_changed(out / "tfu_cubic_pkg.sv", cubic_pkg_sv(rom, sizes));
     write_if_changed(out / "tfu_sv_params.hpp",
