@@ -9,12 +9,20 @@
 //   c00, c10, c01, c11 [31:0], fu, fv [7:0]   as tfu_bilinear_lerp
 //   out_valid, c [31:0]                       result, registered
 //
-// Pipeline (latency 3 clocks: a request sampled at rising edge n, with en = 1 at n, n+1, n+2, is on
-// out_valid / c after edge n + 2):
+// Parameter:
+//   CUT_V  1: a register inside the vertical lerp, between d = h1 - h0 (tfu_lerp_v_diff) and the
+//          product and rounding sum (tfu_lerp_v_sum): latency 4, the depth that meets 101.2 MHz in
+//          OSU 0.35 um (docs/silicon.md; wrapper tfu_bilinear_top_l4). 0 (default): latency 3.
+//
+// Pipeline (latency LATENCY = 3 + CUT_V clocks: a request sampled at rising edge n, with en = 1 on
+// LATENCY consecutive edges, is on out_valid / c after edge n + LATENCY - 1):
 //   S1  input registers (texels, fractions)
 //   S2  horizontal lerps h0, h1 per channel (tfu_lerp_h, exact 16 bits) and fv
-//   S3  vertical lerp with rounding (tfu_lerp_v_round) -> output register
-module tfu_bilinear_top (
+//   S3  vertical lerp with rounding (tfu_lerp_v_round) -> output register; with CUT_V: S3 d = h1 - h0
+//       -> register (h0, d, fv), S4 product and rounding sum -> output register
+module tfu_bilinear_top #(
+  parameter bit CUT_V = 1'b0
+) (
   input  logic        clk,
   input  logic        rst_n,
   input  logic        en,
@@ -68,14 +76,39 @@ module tfu_bilinear_top (
     end
   end
 
-  // S3
+  // S3 (and S4 with CUT_V)
   logic [31:0] cv;
+  logic        v3;
   for (genvar ch = 0; ch < 4; ch++) begin : g_v
-    tfu_lerp_v_round u_v (.a(h0_2[ch]), .b(h1_2[ch]), .f(fv_2), .c(cv[8*ch +: 8]));
+    logic [16:0] d;
+    tfu_lerp_v_diff u_d (.a(h0_2[ch]), .b(h1_2[ch]), .d(d));
+    if (CUT_V) begin : g_cut
+      logic [15:0] a_3;
+      logic [16:0] d_3;
+      logic [7:0]  f_3;
+      always_ff @(posedge clk) begin
+        if (en) begin
+          a_3 <= h0_2[ch];
+          d_3 <= d;
+          f_3 <= fv_2;
+        end
+      end
+      tfu_lerp_v_sum u_v (.a(a_3), .d(d_3), .f(f_3), .c(cv[8*ch +: 8]));
+    end else begin : g_comb
+      tfu_lerp_v_sum u_v (.a(h0_2[ch]), .d(d), .f(fv_2), .c(cv[8*ch +: 8]));
+    end
+  end
+  if (CUT_V) begin : g_v3
+    always_ff @(posedge clk) begin
+      if (!rst_n) v3 <= 1'b0;
+      else if (en) v3 <= v2;
+    end
+  end else begin : g_v3_wire
+    assign v3 = v2;
   end
   always_ff @(posedge clk) begin
     if (!rst_n) out_valid <= 1'b0;
-    else if (en) out_valid <= v2;
+    else if (en) out_valid <= v3;
     if (en) c <= cv;
   end
 endmodule

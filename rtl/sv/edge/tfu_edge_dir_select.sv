@@ -16,10 +16,11 @@
 //   dir    [4:0]    chosen direction index, 0..21
 //   cost   [17:0]   its cost w * dP
 //
-// Structure: 22 x (three 8-bit |a - b|, a 10-bit sum, a weight ROM, an 8 x 10 multiplier), then a
-// five-level binary min tree over 32 leaves (leaves 22..31 unusable); at each node the lower-index
-// side wins unless the other side is usable and strictly cheaper, which gives "ties -> lowest
-// index" for the whole tree. Combinational.
+// Structure: 22 x (three 8-bit |a - b| and a 10-bit sum: tfu_edge_dir_dp; a weight ROM; an 8 x 10
+// multiplier: tfu_edge_dir_leaves), then a five-level binary min tree over 32 leaves (leaves 22..31
+// unusable; tfu_edge_min_level); at each node the lower-index side wins unless the other side is
+// usable and strictly cheaper, which gives "ties -> lowest index" for the whole tree. The pipelined
+// top (tfu_edge_interp_top) uses the same parts with registers between them. Combinational.
 module tfu_edge_dir_select (
   input  logic [287:0] lowrgb,
   input  logic [11:0]  shape,
@@ -29,38 +30,13 @@ module tfu_edge_dir_select (
   output logic [17:0]  cost
 );
   localparam int NDIR = tfu_edge_pkg::NDIR;
-  localparam logic [4*NDIR-1:0] DIR_P = tfu_edge_pkg::DIR_P;
-  localparam logic [4*NDIR-1:0] DIR_Q = tfu_edge_pkg::DIR_Q;
-  logic [8*NDIR-1:0] w;
+  localparam int E = 24;  // node of the min tree: {usable, cost[17:0], index[4:0]}
+  logic [8*NDIR-1:0]  w;
+  logic [10*NDIR-1:0] dp;
+  logic [32*E-1:0]    leaf;
   tfu_edge_dir_roms u_roms (.fu(fu4), .fv(fv4), .w(w));
-
-  function automatic logic [9:0] absdiff(input logic [7:0] a, input logic [7:0] b);
-    absdiff = a > b ? {2'b00, a - b} : {2'b00, b - a};
-  endfunction
-
-  // Leaf / node of the min tree: {usable, cost[17:0], index[4:0]}.
-  localparam int E = 24;
-  function automatic logic [E-1:0] pick(input logic [E-1:0] lo_side, input logic [E-1:0] hi_side);
-    pick = (hi_side[E-1] && (!lo_side[E-1] || hi_side[E-2:5] < lo_side[E-2:5])) ? hi_side : lo_side;
-  endfunction
-
-  logic [32*E-1:0] leaf;
-  for (genvar i = 0; i < 32; i++) begin : g_dir
-    if (i < NDIR) begin : g_used
-      localparam int P = 32'(DIR_P[4*i +: 4]) - 1;  // bit index of Cp in shape
-      localparam int Q = 32'(DIR_Q[4*i +: 4]) - 1;
-      logic [9:0]  dp;
-      logic [17:0] c;
-      logic [7:0]  wi;
-      assign wi = w[8*i +: 8];
-      assign dp = absdiff(lowrgb[24*P +: 8], lowrgb[24*Q +: 8]) + absdiff(lowrgb[24*P + 8 +: 8], lowrgb[24*Q + 8 +: 8]) +
-                  absdiff(lowrgb[24*P + 16 +: 8], lowrgb[24*Q + 16 +: 8]);
-      assign c = {10'b0, wi} * {8'b0, dp};
-      assign leaf[E*i +: E] = {shape[P] & shape[Q] & (wi != 8'hFF), c, 5'(i)};
-    end else begin : g_pad
-      assign leaf[E*i +: E] = '0;
-    end
-  end
+  tfu_edge_dir_dp u_dp (.lowrgb(lowrgb), .dp(dp));
+  tfu_edge_dir_leaves u_leaves (.dp(dp), .w(w), .shape(shape), .leaf(leaf));
 
   // Min tree: 32 -> 16 -> 8 -> 4 -> 2 -> 1.
   logic [16*E-1:0] l1;
@@ -68,19 +44,11 @@ module tfu_edge_dir_select (
   logic [4*E-1:0]  l3;
   logic [2*E-1:0]  l4;
   logic [E-1:0]    root;
-  for (genvar k = 0; k < 16; k++) begin : g_l1
-    assign l1[E*k +: E] = pick(leaf[E*(2*k) +: E], leaf[E*(2*k+1) +: E]);
-  end
-  for (genvar k = 0; k < 8; k++) begin : g_l2
-    assign l2[E*k +: E] = pick(l1[E*(2*k) +: E], l1[E*(2*k+1) +: E]);
-  end
-  for (genvar k = 0; k < 4; k++) begin : g_l3
-    assign l3[E*k +: E] = pick(l2[E*(2*k) +: E], l2[E*(2*k+1) +: E]);
-  end
-  for (genvar k = 0; k < 2; k++) begin : g_l4
-    assign l4[E*k +: E] = pick(l3[E*(2*k) +: E], l3[E*(2*k+1) +: E]);
-  end
-  assign root = pick(l4[0 +: E], l4[E +: E]);
+  tfu_edge_min_level #(.N(32)) u_l1 (.in(leaf), .out(l1));
+  tfu_edge_min_level #(.N(16)) u_l2 (.in(l1), .out(l2));
+  tfu_edge_min_level #(.N(8)) u_l3 (.in(l2), .out(l3));
+  tfu_edge_min_level #(.N(4)) u_l4 (.in(l3), .out(l4));
+  tfu_edge_min_level #(.N(2)) u_l5 (.in(l4), .out(root));
 
   assign dir  = root[E-1] ? root[4:0] : 5'd0;
   assign cost = root[E-1] ? root[E-2:5] : 18'd0;

@@ -15,7 +15,9 @@
 //   dir    [4:0]    chosen direction, 0..21 (tfu_edge_dir_select)
 //   fu, fv [7:0]    fractions of the sample point in the centre square, Q.8
 //   c      [31:0]   interpolated texel
-// Combinational.
+// Structure: tfu_edge_endpoints and tfu_edge_low_lerp (Eq. 3); tfu_edge_high_diff, tfu_edge_high_x,
+// tfu_edge_high_dy and tfu_edge_high_y (Eq. 5); tfu_edge_sum_clamp (Eq. 6). The pipelined top
+// (tfu_edge_interp_top) uses the same parts with registers between them. Combinational.
 module tfu_edge_merge (
   input  logic [383:0] lowtex,
   input  logic [127:0] centre,
@@ -24,57 +26,18 @@ module tfu_edge_merge (
   input  logic [7:0]   fv,
   output logic [31:0]  c
 );
-  localparam int NDIR = tfu_edge_pkg::NDIR;
-  localparam logic [4*NDIR-1:0] DIR_P = tfu_edge_pkg::DIR_P;
-  localparam logic [4*NDIR-1:0] DIR_Q = tfu_edge_pkg::DIR_Q;
-  localparam logic [NDIR-1:0] DIR_AXIS_Y = tfu_edge_pkg::DIR_AXIS_Y;
-  // Endpoints of the chosen direction (22:1 AND-OR muxes) and its blend parameter t.
-  logic [31:0] cp, cq;
-  logic [7:0]  t;
-  always_comb begin
-    cp = '0;
-    cq = '0;
-    t = fu;
-    for (int i = 0; i < NDIR; i++) begin
-      if (dir == 5'(i)) begin
-        cp = lowtex[32*(32'(DIR_P[4*i +: 4]) - 1) +: 32];
-        cq = lowtex[32*(32'(DIR_Q[4*i +: 4]) - 1) +: 32];
-        t = DIR_AXIS_Y[i] ? fv : fu;
-      end
-    end
-  end
-
-  for (genvar ch = 0; ch < 4; ch++) begin : g_ch
-    // Eq. 3
-    logic signed [8:0]  dq;     // Cq - Cp, -255..255
-    logic signed [17:0] lw;     // 256 Cp + t (Cq - Cp) + 128, 128..65408
-    logic [7:0]         clow;
-    assign dq = $signed({1'b0, cq[8*ch +: 8]}) - $signed({1'b0, cp[8*ch +: 8]});
-    assign lw = $signed({2'b00, cp[8*ch +: 8], 8'd128}) + 18'(dq * $signed({1'b0, t}));
-    assign clow = 8'(lw >>> 8);
-
-    // Eq. 5: H_n and the exact bilinear sum.
-    logic signed [8:0]  h4, h5, h8, h9;     // -255..255
-    logic signed [9:0]  dx0, dx1;           // H5 - H4, H9 - H8
-    logic signed [18:0] hx0, hx1;           // 256 H4 + fu (H5 - H4), |.| <= 255 * 256
-    logic signed [19:0] dy;                 // hx1 - hx0
-    logic signed [27:0] hs;                 // 256 hx0 + fv (hx1 - hx0) + 2^15, |.| <= 255 * 2^16 + 2^15
-    logic signed [9:0]  chigh;              // -255..255
-    assign h4 = $signed({1'b0, centre[8*ch +: 8]}) - $signed({1'b0, lowtex[32*3 + 8*ch +: 8]});
-    assign h5 = $signed({1'b0, centre[32 + 8*ch +: 8]}) - $signed({1'b0, lowtex[32*4 + 8*ch +: 8]});
-    assign h8 = $signed({1'b0, centre[64 + 8*ch +: 8]}) - $signed({1'b0, lowtex[32*7 + 8*ch +: 8]});
-    assign h9 = $signed({1'b0, centre[96 + 8*ch +: 8]}) - $signed({1'b0, lowtex[32*8 + 8*ch +: 8]});
-    assign dx0 = 10'(h5) - 10'(h4);
-    assign dx1 = 10'(h9) - 10'(h8);
-    assign hx0 = 19'($signed({h4, 8'd0})) + 19'(dx0 * $signed({1'b0, fu}));
-    assign hx1 = 19'($signed({h8, 8'd0})) + 19'(dx1 * $signed({1'b0, fu}));
-    assign dy = 20'(hx1) - 20'(hx0);
-    assign hs = 28'($signed({hx0, 8'd0})) + 28'(dy * $signed({1'b0, fv})) + 28'sd32768;
-    assign chigh = 10'(hs >>> 16);
-
-    // Eq. 6
-    logic signed [10:0] sum;  // -255..510
-    assign sum = $signed({3'b000, clow}) + 11'(chigh);
-    assign c[8*ch +: 8] = sum < 0 ? 8'd0 : (sum > 11'sd255 ? 8'd255 : 8'(sum));
-  end
+  logic [31:0]  cp, cq, clow;
+  logic [7:0]   t;
+  logic [143:0] h;
+  logic [75:0]  hx0, hx1;
+  logic [79:0]  dy;
+  logic [39:0]  chigh;
+  tfu_edge_endpoints u_ends (.lowtex(lowtex), .dir(dir), .fu(fu), .fv(fv), .cp(cp), .cq(cq), .t(t));
+  tfu_edge_low_lerp u_low (.cp(cp), .cq(cq), .t(t), .clow(clow));
+  tfu_edge_high_diff u_hdiff (.centre(centre), .lowc({lowtex[32*8 +: 32], lowtex[32*7 +: 32], lowtex[32*4 +: 32], lowtex[32*3 +: 32]}),
+                              .h(h));
+  tfu_edge_high_x u_hx (.h(h), .fu(fu), .hx0(hx0), .hx1(hx1));
+  tfu_edge_high_dy u_hdy (.hx0(hx0), .hx1(hx1), .dy(dy));
+  tfu_edge_high_y u_hy (.hx0(hx0), .dy(dy), .fv(fv), .chigh(chigh));
+  tfu_edge_sum_clamp u_sum (.clow(clow), .chigh(chigh), .c(c));
 endmodule

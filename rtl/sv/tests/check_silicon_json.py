@@ -9,9 +9,11 @@ blocks at a looser and a tighter clock target (the gate_count_osu035_smoke test)
   register-to-register, so fmax = 1 / (period - worst slack), and the worst slack is negative
   exactly when fmax is below the clock target;
 - the clock target does not change what the block is: the area at the tighter target is not smaller
-  than at the looser one (a tighter target makes ABC map for delay and upsize the critical paths).
+  than at the looser one (a tighter target makes ABC map for delay and upsize the critical paths);
+- with --faster PIPELINED:UNPIPELINED (both among the blocks): the pipelined variant of a top reaches
+  a higher register-to-register clock than the unpipelined one at the tighter target.
 
-usage: check_silicon_json.py LOOSE.json TIGHT.json BLOCK...
+usage: check_silicon_json.py LOOSE.json TIGHT.json [--faster PIPELINED:UNPIPELINED]... BLOCK...
 """
 import json
 import sys
@@ -49,15 +51,25 @@ def check_row(r, errors):
 
 
 def main():
-    if len(sys.argv) < 4:
-        print("usage: check_silicon_json.py LOOSE.json TIGHT.json BLOCK...", file=sys.stderr)
+    args = sys.argv[3:]
+    faster = []
+    while len(args) >= 2 and args[0] == "--faster":
+        pair = args[1].split(":")
+        if len(pair) != 2 or not all(pair):
+            print(f"check_silicon_json: --faster {args[1]}: expected PIPELINED:UNPIPELINED", file=sys.stderr)
+            return 2
+        faster.append(pair)
+        args = args[2:]
+    if len(sys.argv) < 4 or not args:
+        print("usage: check_silicon_json.py LOOSE.json TIGHT.json [--faster PIPELINED:UNPIPELINED]... BLOCK...",
+              file=sys.stderr)
         return 2
     runs = []
     for path in sys.argv[1:3]:
         with open(path, encoding="utf-8") as f:
             runs.append({r.get("block"): r for r in json.load(f) if isinstance(r, dict)})
     errors = []
-    for block in sys.argv[3:]:
+    for block in args:
         rows = [run.get(block) for run in runs]
         if None in rows:
             errors.append(f"block {block} missing")
@@ -77,6 +89,17 @@ def main():
             continue
         print(f"check_silicon_json: {block}: {loose['area_um2']:.0f} um^2 at {loose['clock_mhz']:g} MHz, "
               f"{tight['area_um2']:.0f} um^2 at {tight['clock_mhz']:g} MHz, fmax {tight['fmax_reg2reg_mhz']} MHz")
+    for piped, unpiped in faster:
+        fast, slow = runs[1].get(piped), runs[1].get(unpiped)
+        if fast is None or slow is None:
+            errors.append(f"--faster {piped}:{unpiped}: a block is missing")
+        elif not num(fast.get("fmax_reg2reg_mhz")) or not num(slow.get("fmax_reg2reg_mhz")):
+            errors.append(f"--faster {piped}:{unpiped}: fmax missing")
+        elif not fast["fmax_reg2reg_mhz"] > slow["fmax_reg2reg_mhz"]:
+            errors.append(f"{piped} reaches {fast['fmax_reg2reg_mhz']} MHz, not more than {unpiped} "
+                          f"({slow['fmax_reg2reg_mhz']} MHz)")
+        else:
+            print(f"check_silicon_json: {piped} {fast['fmax_reg2reg_mhz']} MHz > {unpiped} {slow['fmax_reg2reg_mhz']} MHz")
     for e in errors:
         print(f"check_silicon_json: {e}", file=sys.stderr)
     return 1 if errors else 0

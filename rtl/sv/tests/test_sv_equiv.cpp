@@ -26,6 +26,7 @@
 
 #include "Vtfu_bilinear_lerp.h"
 #include "Vtfu_bilinear_top.h"
+#include "Vtfu_bilinear_top_l4.h"
 #include "Vtfu_cubic_filter.h"
 #include "Vtfu_cubic_norm.h"
 #include "Vtfu_cubic_weights.h"
@@ -419,9 +420,12 @@ TEST(SvLevelBlend, ExhaustiveOverC0C1F) {
 }
 
 // ------------------------------------------------------------------ pipelined bilinear top
+// The top at each offered depth (parameter CUT_V of tfu_bilinear_top): latency 3 and 4 clocks.
+template <class Model, int Latency>
 struct TopDut {
+  static constexpr int kLatency = Latency;
   VerilatedContext ctx;
-  Vtfu_bilinear_top m{&ctx};
+  Model m{&ctx};
   TopDut() {
     m.clk = 0;
     m.rst_n = 0;
@@ -448,8 +452,9 @@ struct TopDut {
   }
 };
 
-TEST(SvBilinearTop, LatencyIsThreeClocks) {
-  TopDut dut;
+template <class Dut>
+void latency_is_exact() {
+  Dut dut;
   const std::array<Texel4, 4> c{Texel4{10, 20, 30, 40}, Texel4{200, 100, 0, 255}, Texel4{1, 2, 3, 4}, Texel4{9, 9, 9, 9}};
   dut.set(c, 77, 200);
   dut.m.in_valid = 1;
@@ -457,23 +462,27 @@ TEST(SvBilinearTop, LatencyIsThreeClocks) {
   dut.m.in_valid = 0;
   dut.set({}, 0, 0);
   EXPECT_EQ(dut.m.out_valid, 0);
-  dut.tick();  // n + 1
-  EXPECT_EQ(dut.m.out_valid, 0);
-  dut.tick();  // n + 2: result on the outputs
+  for (int k = 1; k < Dut::kLatency - 1; ++k) {
+    dut.tick();  // n + k
+    EXPECT_EQ(dut.m.out_valid, 0);
+  }
+  dut.tick();  // n + kLatency - 1: result on the outputs
   EXPECT_EQ(dut.m.out_valid, 1);
   EXPECT_EQ(unpack(dut.m.c), tfu::dp::bilinear_lerp(c, 77, 200, tfu::TexelFormat::RGBA8));
   dut.tick();
   EXPECT_EQ(dut.m.out_valid, 0);
 }
 
-TEST(SvBilinearTop, RandomStreamWithStallsMatchesDatapath) {
-  TopDut dut;
+template <class Dut>
+void random_stream_with_stalls_matches_datapath() {
+  Dut dut;
   std::mt19937_64 rng(kSeed + 5);
   struct Slot {
     bool valid = false;
     Texel4 c{};
   };
-  std::array<Slot, 3> pipe{};  // reference pipeline: S1, S2, S3
+  std::array<Slot, Dut::kLatency> pipe{};  // reference pipeline: S1, S2, ...
+  constexpr size_t kLast = Dut::kLatency - 1;
   Mismatches bad;
   int results = 0;
   for (int cyc = 0; cyc < kRandomVectors; ++cyc) {
@@ -486,20 +495,27 @@ TEST(SvBilinearTop, RandomStreamWithStallsMatchesDatapath) {
     dut.m.en = en;
     dut.tick();
     if (en) {
-      pipe[2] = pipe[1];
-      pipe[1] = pipe[0];
+      for (size_t k = kLast; k > 0; --k) pipe[k] = pipe[k - 1];
       pipe[0] = {valid, tfu::dp::bilinear_lerp(c, fu, fv, tfu::TexelFormat::RGBA8)};
     }
-    if (dut.m.out_valid != pipe[2].valid) {
-      bad.add(fmt::format("cycle {}: out_valid {} expected {}", cyc, dut.m.out_valid, pipe[2].valid));
-    } else if (pipe[2].valid) {
+    if (dut.m.out_valid != pipe[kLast].valid) {
+      bad.add(fmt::format("cycle {}: out_valid {} expected {}", cyc, dut.m.out_valid, pipe[kLast].valid));
+    } else if (pipe[kLast].valid) {
       ++results;
-      if (unpack(dut.m.c) != pipe[2].c)
-        bad.add(fmt::format("cycle {}: sv {} c++ {}", cyc, str(unpack(dut.m.c)), str(pipe[2].c)));
+      if (unpack(dut.m.c) != pipe[kLast].c)
+        bad.add(fmt::format("cycle {}: sv {} c++ {}", cyc, str(unpack(dut.m.c)), str(pipe[kLast].c)));
     }
   }
   EXPECT_GT(results, kRandomVectors / 2);
   EXPECT_EQ(bad.count, 0);
 }
+
+using Top3 = TopDut<Vtfu_bilinear_top, 3>;
+using Top4 = TopDut<Vtfu_bilinear_top_l4, 4>;
+
+TEST(SvBilinearTop, LatencyIsThreeClocks) { latency_is_exact<Top3>(); }
+TEST(SvBilinearTop, RandomStreamWithStallsMatchesDatapath) { random_stream_with_stalls_matches_datapath<Top3>(); }
+TEST(SvBilinearTopL4, LatencyIsFourClocks) { latency_is_exact<Top4>(); }
+TEST(SvBilinearTopL4, RandomStreamWithStallsMatchesDatapath) { random_stream_with_stalls_matches_datapath<Top4>(); }
 
 }  // namespace

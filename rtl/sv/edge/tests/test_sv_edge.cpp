@@ -34,6 +34,7 @@
 #include "Vtfu_edge_dir_roms.h"
 #include "Vtfu_edge_dir_select.h"
 #include "Vtfu_edge_interp_top.h"
+#include "Vtfu_edge_interp_top_l8.h"
 #include "Vtfu_edge_lowpass_select.h"
 #include "Vtfu_edge_merge.h"
 #include "Vtfu_edge_rgb_to_y.h"
@@ -409,7 +410,8 @@ TEST(SvEdgeMerge, CornersEveryDirectionExtremeHighFrequency) {
 }
 
 // ------------------------------------------------------------------ pipelined top
-constexpr int kLatency = 3;  // clocks from a request at the inputs to its result (docs/sv-edge.md)
+// The top at each offered pipeline depth (parameter CUTS of tfu_edge_interp_top; docs/sv-edge.md):
+// latency = clocks from a request at the inputs to its result.
 
 struct Request {
   Texels texels{};  // the model's view: zeros where the shape has no texel
@@ -419,8 +421,10 @@ struct Request {
 
 // Drives the top one request (or bubble) per clock and checks each result against the model's
 // value at the expected clock: out_valid must follow in_valid exactly kLatency clocks later.
+template <class Model, int Latency>
 class TopBench {
  public:
+  static constexpr int kLatency = Latency;
   TopBench() : m_(&ctx_) {
     m_.clk = 0;
     m_.rst_n = 0;
@@ -444,7 +448,7 @@ class TopBench {
     inflight_.push_back({r != nullptr, want, r ? *r : Request{}});
     clock();
     // After this edge the result of the request pushed kLatency - 1 edges earlier is on the outputs.
-    if (inflight_.size() == kLatency) {
+    if (inflight_.size() == static_cast<size_t>(kLatency)) {
       const Expect e = inflight_.front();
       inflight_.pop_front();
       if (static_cast<bool>(m_.out_valid) != e.valid) {
@@ -486,7 +490,7 @@ class TopBench {
     ++clocks_;
   }
   VerilatedContext ctx_;
-  Vtfu_edge_interp_top m_;
+  Model m_;
   std::deque<Expect> inflight_;
   uint64_t clocks_ = 0;
 };
@@ -498,13 +502,14 @@ Request make_request(const Texels& c, lj::TexelMask mask, uint32_t fu, uint32_t 
   return r;
 }
 
-TEST(SvEdgeTop, LatencyIsThreeClocksAndOneResultPerClock) {
-  TopBench tb;
+template <class Bench>
+void latency_and_one_result_per_clock() {
+  Bench tb;
   std::mt19937_64 rng(kSeed + 5);
-  // One isolated request: its result appears exactly kLatency clocks later (checked by the bench:
+  // One isolated request: its result appears exactly Latency clocks later (checked by the bench:
   // out_valid is compared with in_valid of kLatency clocks before on every clock).
   tb.push(make_request(random_texels(rng), lj::kAllTexels, 77, 200));
-  for (int i = 0; i < 5; ++i) tb.bubble();
+  for (int i = 0; i < Bench::kLatency + 2; ++i) tb.bubble();
   EXPECT_EQ(tb.results, 1u);
   // Back-to-back: N requests on N consecutive clocks give N results on N consecutive clocks.
   const uint64_t before = tb.clocks();
@@ -512,12 +517,13 @@ TEST(SvEdgeTop, LatencyIsThreeClocksAndOneResultPerClock) {
   for (int i = 0; i < kN; ++i) tb.push(make_request(random_texels(rng), random_shape(rng).mask, random_fraction(rng), random_fraction(rng)));
   tb.drain();
   EXPECT_EQ(tb.results, 1u + kN);
-  EXPECT_EQ(tb.clocks() - before, static_cast<uint64_t>(kN + kLatency));
+  EXPECT_EQ(tb.clocks() - before, static_cast<uint64_t>(kN + Bench::kLatency));
   EXPECT_EQ(tb.bad.count, 0);
 }
 
-TEST(SvEdgeTop, RandomVectorsWithBubbles) {
-  TopBench tb;
+template <class Bench>
+void random_vectors_with_bubbles() {
+  Bench tb;
   std::mt19937_64 rng(kSeed + 6);
   int pushed = 0;
   while (pushed < kRandomVectors) {
@@ -534,8 +540,9 @@ TEST(SvEdgeTop, RandomVectorsWithBubbles) {
   EXPECT_EQ(tb.bad.count, 0);
 }
 
-TEST(SvEdgeTop, CornersEveryShape) {
-  TopBench tb;
+template <class Bench>
+void corners_every_shape() {
+  Bench tb;
   std::mt19937_64 rng(kSeed + 7);
   const Texel4 black{0, 0, 0, 0}, white{255, 255, 255, 255};
   static constexpr std::array<uint32_t, 6> kF{0, 1, 127, 128, 254, 255};
@@ -571,6 +578,16 @@ TEST(SvEdgeTop, CornersEveryShape) {
   EXPECT_EQ(tb.bad.count, 0);
 }
 
+using Top3 = TopBench<Vtfu_edge_interp_top, 3>;     // default CUTS: Lee & Jen's three stages
+using Top8 = TopBench<Vtfu_edge_interp_top_l8, 8>;  // CUTS 8'b1101_1111: 101.2 MHz in OSU 0.35 um
+
+TEST(SvEdgeTop, LatencyIsThreeClocksAndOneResultPerClock) { latency_and_one_result_per_clock<Top3>(); }
+TEST(SvEdgeTop, RandomVectorsWithBubbles) { random_vectors_with_bubbles<Top3>(); }
+TEST(SvEdgeTop, CornersEveryShape) { corners_every_shape<Top3>(); }
+TEST(SvEdgeTopL8, LatencyIsEightClocksAndOneResultPerClock) { latency_and_one_result_per_clock<Top8>(); }
+TEST(SvEdgeTopL8, RandomVectorsWithBubbles) { random_vectors_with_bubbles<Top8>(); }
+TEST(SvEdgeTopL8, CornersEveryShape) { corners_every_shape<Top8>(); }
+
 // ------------------------------------------------------------------ co-simulation of a scene trace
 // The EDGE_PRESERVING (no MIP: level 0) request trace of the scene "text_quad" through the
 // pipelined top gives the golden sampler's pixels, for the cross kernel and for the T/L kernels of
@@ -595,16 +612,20 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
     auto tex = std::make_shared<tfu::Texture>(*mesh.stages[0].texture);
     tex->tile_bytes = block ? block * block * 4 : 64;  // static shapes follow the texture's tiles
     const tfu::Sampler smp(*tex, cfg);
-    TopBench tb;
+    Top3 tb;
+    Top8 tb8;  // the same trace through the latency-8 top
     std::set<lj::TexelMask> shapes;
     for (size_t i = 0; i < trace.requests.size(); ++i) {
       const tfu::TraceRequest& q = trace.requests[i];
       const tfu::EdgeFootprint fp = smp.edge_footprint(0, q.s, q.t);
       shapes.insert(fp.mask);
       const Request r{fp.texels, fp.mask, fp.fu, fp.fv};
-      tb.push(&r, 0xA5A5A5A5u, smp.sample(q.s, q.t, lambdas[i]));
+      const tfu::Rgba8 want = smp.sample(q.s, q.t, lambdas[i]);
+      tb.push(&r, 0xA5A5A5A5u, want);
+      tb8.push(&r, 0xA5A5A5A5u, want);
     }
     tb.drain();
+    tb8.drain();
     // The C++ cycle model on the same trace and kernel-shape policy: its pixels equal the golden
     // sampler's, which the Verilated top's equal, so the three models agree request by request.
     tfu::rtl::UnitConfig ucfg;
@@ -625,6 +646,8 @@ TEST(SvEdgeCosim, TextQuadSceneTraceMatchesTheGoldenSamplerAndTheCycleModel) {
                trace.requests.size(), shapes.size());
     EXPECT_EQ(tb.results, trace.requests.size()) << "block " << block;
     EXPECT_EQ(tb.bad.count, 0) << "block " << block;
+    EXPECT_EQ(tb8.results, trace.requests.size()) << "latency 8, block " << block;
+    EXPECT_EQ(tb8.bad.count, 0) << "latency 8, block " << block;
     if (block) {
       EXPECT_GE(shapes.size(), 5u) << "B = " << block << ": the trace should reach T and L kernels";
     } else {
