@@ -2,7 +2,7 @@
 //
 //   TrafficGenerator --(bus)--> TfuTlm.target          programs the descriptors, streams the
 //                                                      requests, starts the batch, reads the results
-//   TfuTlm.texel_port --(bus)--> Memory                 the texel image at kTexelWindow
+//   TfuTlm.texel_port --(bus)--> MemoryTarget               the texel image at kTexelWindow
 //
 // The frame and requests are those `tfu sim --requests TRACE` builds from a trace file (or from a
 // built-in scene's trace, as `tfu render --trace-out` writes it). --check compares the platform's
@@ -28,35 +28,13 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
+#include "sim/systemc/memory_target.hpp"
 #include "sim/systemc/tfu_tlm.hpp"
 
 namespace tfu::sc {
 namespace {
 
 constexpr uint64_t kTexelWindow = 0x8000'0000;  // where the unit sees texel memory address 0
-
-// A memory target: bytes [base, base + size) with a fixed access latency.
-struct Memory : sc_core::sc_module {
-  tlm_utils::simple_target_socket<Memory> socket;
-  uint64_t base;
-  std::vector<unsigned char> bytes;
-  sc_core::sc_time latency;
-  Memory(const sc_core::sc_module_name& n, uint64_t base_address, std::vector<unsigned char> contents, sc_core::sc_time access)
-      : sc_core::sc_module(n), socket("socket"), base(base_address), bytes(std::move(contents)), latency(access) {
-    socket.register_b_transport(this, &Memory::b_transport);
-  }
-  void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) {
-    const uint64_t a = tx.get_address();
-    const unsigned n = tx.get_data_length();
-    if (a < base || a - base > bytes.size() || n > bytes.size() - (a - base) || tx.get_byte_enable_ptr())
-      return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
-    unsigned char* p = bytes.data() + (a - base);
-    if (tx.is_read()) std::memcpy(tx.get_data_ptr(), p, n);
-    if (tx.is_write()) std::memcpy(p, tx.get_data_ptr(), n);
-    delay += latency;
-    tx.set_response_status(tlm::TLM_OK_RESPONSE);
-  }
-};
 
 // The driver and the request source. Its socket is bound to the unit's target directly (a
 // platform's router would subtract the unit's window base): addresses are the unit's offsets.
@@ -234,7 +212,7 @@ int run(int argc, char** argv) {
   if (frame.memory.bytes_used() > 0)
     std::memcpy(image.data() + TextureMemory::kFirstAddress, frame.memory.bytes_at(TextureMemory::kFirstAddress), frame.memory.bytes_used());
   const sc_core::sc_time period(static_cast<double>(o.clock_ps), sc_core::SC_PS);
-  Memory memory("memory", kTexelWindow, std::move(image), sc_core::sc_time(10, sc_core::SC_NS));
+  MemoryTarget memory("memory", kTexelWindow, std::move(image), sc_core::sc_time(10, sc_core::SC_NS));
   TfuTlm tfu("tfu", unit, period, engine);
   TrafficGenerator gen("generator", frame, trace);
   gen.socket.bind(tfu.target);
