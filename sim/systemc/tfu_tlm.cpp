@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cstring>
 #include <iterator>
 
@@ -91,11 +92,20 @@ struct Decoded {
   const BusRegister* reg = nullptr;
   uint32_t index = 0, word = 0;
 };
+// The regions are in address order without overlap: the only candidate is the last one that starts
+// at or below the address.
+static_assert([] {
+  for (size_t i = 0; i + 1 < std::size(kBusRegisters); ++i)
+    if (kBusRegisters[i].offset + uint64_t{kBusRegisters[i].count} * kBusRegisters[i].stride > kBusRegisters[i + 1].offset) return false;
+  return true;
+}());
 Decoded decode_address(uint64_t address) {
-  for (const BusRegister& r : kBusRegisters) {
+  for (size_t i = std::size(kBusRegisters); i-- > 0;) {
+    const BusRegister& r = kBusRegisters[i];
     if (address < r.offset) continue;
     const uint64_t d = address - r.offset, k = d / r.stride, w = d % r.stride / 4;
     if (k < r.count && w < static_cast<uint64_t>(r.words)) return {&r, static_cast<uint32_t>(k), static_cast<uint32_t>(w)};
+    return {};
   }
   return {};
 }
@@ -164,6 +174,19 @@ void TfuTlm::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) 
   tx.set_response_status(tlm::TLM_OK_RESPONSE);
   if (tx.is_read() || tx.is_write()) {
     unsigned char* data = tx.get_data_ptr();
+    // A burst inside the request FIFO's window (the bulk of the traffic): records without a decode per word.
+    const BusRegister& fifo = reg(BR::RequestFifo);
+    if (tx.is_write() && tx.get_address() >= fifo.offset && tx.get_address() + len <= fifo.offset + 4u * static_cast<uint64_t>(fifo.words)) {
+      for (unsigned k = 0; k < len; k += 4) {
+        if (partial_words_ == 0 && requests_.size() >= kMaxBatchRequests) return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+        std::memcpy(&partial_[static_cast<size_t>(partial_words_++)], data + k, 4);
+        if (partial_words_ == kRequestRecordWords) {
+          requests_.push_back(decode_request(partial_));
+          partial_words_ = 0;
+        }
+      }
+      return;
+    }
     for (unsigned k = 0; k < len; k += 4) {
       uint32_t v = 0;
       bool ok;
@@ -207,7 +230,7 @@ bool TfuTlm::write_word(uint64_t address, uint32_t v, sc_core::sc_time& delay) {
     case BR::TextureDescriptors: texture_words_[size_t{d.index} * kTextureDescriptorWords + d.word] = v; return true;
     case BR::SamplerDescriptors: sampler_words_[size_t{d.index} * kSamplerDescriptorWords + d.word] = v; return true;
     case BR::RequestFifo:
-      if (requests_.size() >= kMaxBatchRequests) return false;  // full: the write is refused
+      if (partial_words_ == 0 && requests_.size() >= kMaxBatchRequests) return false;  // full: the write is refused
       partial_[static_cast<size_t>(partial_words_++)] = v;
       if (partial_words_ == kRequestRecordWords) {
         requests_.push_back(decode_request(partial_));
@@ -328,7 +351,9 @@ void TfuTlm::start(sc_core::sc_time& delay) {
     trace.requests = std::move(requests_);
     requests_.clear();
     const Frame frame = fetch_frame();
+    const auto t0 = std::chrono::steady_clock::now();
     out_ = rtl::run_unit(frame, trace, unit_, engine_, rtl::VcdOptions{});
+    model_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The batch's time at the unit's clock, exactly: cycles x period in the kernel's resolution.
     delay += sc_core::sc_time::from_value(period_.value() * out_.cycles);
     status_ = kStatusDone;

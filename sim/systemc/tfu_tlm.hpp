@@ -94,6 +94,9 @@ class TfuTlm : public sc_core::sc_module {
   const std::string& error() const { return error_; }
   sc_core::sc_time texel_read_delay() const { return texel_read_delay_; }
   uint64_t texel_read_transactions() const { return texel_reads_; }
+  // Host time (seconds, wall clock) of the last batch's cycle model run alone: for the overhead
+  // figures of docs/systemc.md, not a simulated quantity.
+  double model_seconds() const { return model_seconds_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay);
@@ -118,6 +121,7 @@ class TfuTlm : public sc_core::sc_module {
   std::string error_;
   sc_core::sc_time texel_read_delay_ = sc_core::SC_ZERO_TIME;
   uint64_t texel_reads_ = 0;
+  double model_seconds_ = 0;
 };
 
 }  // namespace tfu::sc
