@@ -66,9 +66,12 @@ struct TrafficGenerator : sc_core::sc_module {
     tx.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
     socket->b_transport(tx, delay);
     if (tx.is_response_error())
-      SC_REPORT_FATAL("tfu_systemc_example", fmt::format("bus access at 0x{:x}: {}", offset, tx.get_response_string()).c_str());
+      SC_REPORT_FATAL("tfu_systemc_example",
+                      fmt::format("bus access at 0x{:x}: {}", offset, tx.get_response_string()).c_str());
   }
-  void write(BusRegion r, uint32_t value, sc_core::sc_time& delay) { access(tlm::TLM_WRITE_COMMAND, bus_registers()[static_cast<size_t>(r)].offset, &value, 1, delay); }
+  void write(BusRegion r, uint32_t value, sc_core::sc_time& delay) {
+    access(tlm::TLM_WRITE_COMMAND, bus_registers()[static_cast<size_t>(r)].offset, &value, 1, delay);
+  }
   uint32_t read(BusRegion r, sc_core::sc_time& delay) {
     uint32_t v = 0;
     access(tlm::TLM_READ_COMMAND, bus_registers()[static_cast<size_t>(r)].offset, &v, 1, delay);
@@ -83,11 +86,15 @@ struct TrafficGenerator : sc_core::sc_module {
     write(BusRegion::Control, kControlClear, delay);
     for (size_t k = 0; k < frame.regs.textures.size(); ++k) {
       auto w = encode(frame.regs.textures[k]);
-      access(tlm::TLM_WRITE_COMMAND, at(BusRegion::TextureDescriptors).offset + k * at(BusRegion::TextureDescriptors).stride, w.data(), w.size(), delay);
+      access(tlm::TLM_WRITE_COMMAND,
+             at(BusRegion::TextureDescriptors).offset + k * at(BusRegion::TextureDescriptors).stride, w.data(),
+             w.size(), delay);
     }
     for (size_t k = 0; k < frame.regs.samplers.size(); ++k) {
       auto w = encode(frame.regs.samplers[k]);
-      access(tlm::TLM_WRITE_COMMAND, at(BusRegion::SamplerDescriptors).offset + k * at(BusRegion::SamplerDescriptors).stride, w.data(), w.size(), delay);
+      access(tlm::TLM_WRITE_COMMAND,
+             at(BusRegion::SamplerDescriptors).offset + k * at(BusRegion::SamplerDescriptors).stride, w.data(),
+             w.size(), delay);
     }
     write(BusRegion::TextureCount, static_cast<uint32_t>(frame.regs.textures.size()), delay);
     write(BusRegion::SamplerCount, static_cast<uint32_t>(frame.regs.samplers.size()), delay);
@@ -119,7 +126,8 @@ struct TrafficGenerator : sc_core::sc_module {
     std::vector<uint32_t> words(2 * kBurst);
     for (uint32_t i = 0; i < n; i += kBurst) {
       const uint32_t m = std::min<uint32_t>(kBurst, n - i);
-      access(tlm::TLM_READ_COMMAND, at(BusRegion::Results).offset + uint64_t{i} * at(BusRegion::Results).stride, words.data(), 2 * m, delay);
+      access(tlm::TLM_READ_COMMAND, at(BusRegion::Results).offset + uint64_t{i} * at(BusRegion::Results).stride,
+             words.data(), 2 * m, delay);
       for (uint32_t j = 0; j < m; ++j) {
         pixels.push_back(std::bit_cast<Rgba8>(words[2 * j]));
         response_cycle_lo.push_back(words[2 * j + 1]);
@@ -160,20 +168,32 @@ Options parse(int argc, char** argv, bool& register_map) {
       } catch (const std::exception&) {
         used = 0;
       }
-      if (used != v.size() || v.empty() || x < lo || x > hi) throw InputError(fmt::format("{} {:.40}: expected an integer in {}..{}", a, v, lo, hi));
+      if (used != v.size() || v.empty() || x < lo || x > hi)
+        throw InputError(fmt::format("{} {:.40}: expected an integer in {}..{}", a, v, lo, hi));
       return x;
     };
-    if (a == "--requests") o.requests = value();
-    else if (a == "--scene") o.scene = value();
-    else if (a == "--config") o.config = value();
-    else if (a == "--width") o.width = static_cast<int>(number(2, kMaxRenderSize));
-    else if (a == "--height") o.height = static_cast<int>(number(2, kMaxRenderSize));
-    else if (a == "--clock-ps") o.clock_ps = static_cast<uint64_t>(number(1, 1'000'000'000));
-    else if (a == "--engine") o.engine = value();
-    else if (a == "--check") o.check = true;
-    else if (a == "--bench") o.bench = true;
-    else if (a == "--register-map") register_map = true;
-    else usage();
+    if (a == "--requests")
+      o.requests = value();
+    else if (a == "--scene")
+      o.scene = value();
+    else if (a == "--config")
+      o.config = value();
+    else if (a == "--width")
+      o.width = static_cast<int>(number(2, kMaxRenderSize));
+    else if (a == "--height")
+      o.height = static_cast<int>(number(2, kMaxRenderSize));
+    else if (a == "--clock-ps")
+      o.clock_ps = static_cast<uint64_t>(number(1, 1'000'000'000));
+    else if (a == "--engine")
+      o.engine = value();
+    else if (a == "--check")
+      o.check = true;
+    else if (a == "--bench")
+      o.bench = true;
+    else if (a == "--register-map")
+      register_map = true;
+    else
+      usage();
   }
   if (!register_map && o.requests.empty() == o.scene.empty()) usage();
   return o;
@@ -212,7 +232,8 @@ int run(int argc, char** argv) {
   // The platform: texel image in the memory target at kTexelWindow (texel addresses 0 .. end).
   std::vector<unsigned char> image(frame.memory.end(), 0);
   if (frame.memory.bytes_used() > 0)
-    std::memcpy(image.data() + TextureMemory::kFirstAddress, frame.memory.bytes_at(TextureMemory::kFirstAddress), frame.memory.bytes_used());
+    std::memcpy(image.data() + TextureMemory::kFirstAddress, frame.memory.bytes_at(TextureMemory::kFirstAddress),
+                frame.memory.bytes_used());
   const sc_core::sc_time period(static_cast<double>(o.clock_ps), sc_core::SC_PS);
   MemoryTarget memory("memory", kTexelWindow, std::move(image), sc_core::sc_time(10, sc_core::SC_NS));
   TfuTlm tfu("tfu", unit, period, engine);
@@ -227,15 +248,18 @@ int run(int argc, char** argv) {
   const double platform_s = seconds_since(t0);
 
   if (gen.status & kStatusError) throw InputError(fmt::format("{}: the unit refused the batch: {}", what, tfu.error()));
-  if (!(gen.status & kStatusDone)) throw CheckFailed(fmt::format("{}: the batch did not finish (STATUS 0x{:x})", what, gen.status));
+  if (!(gen.status & kStatusDone))
+    throw CheckFailed(fmt::format("{}: the batch did not finish (STATUS 0x{:x})", what, gen.status));
   const size_t n = trace.requests.size();
-  std::cout << fmt::format("tfu_systemc_example: {} requests ({}) through TfuTlm at {} ps per cycle\n", n, what, o.clock_ps);
+  std::cout << fmt::format("tfu_systemc_example: {} requests ({}) through TfuTlm at {} ps per cycle\n", n, what,
+                           o.clock_ps);
   std::cout << fmt::format("  cycles {}  batch time {}  simulated time {}  texel reads {} ({} bytes)\n", gen.cycles,
-                           gen.batch_time.to_string(), sc_core::sc_time_stamp().to_string(), tfu.texel_read_transactions(),
-                           frame.memory.bytes_used());
+                           gen.batch_time.to_string(), sc_core::sc_time_stamp().to_string(),
+                           tfu.texel_read_transactions(), frame.memory.bytes_used());
   if (gen.batch_time != sc_core::sc_time::from_value(period.value() * gen.cycles))
     throw CheckFailed(fmt::format("the START write's delay {} is not cycles x period", gen.batch_time.to_string()));
-  if (gen.pixels.size() != n) throw CheckFailed(fmt::format("{} results read back for {} requests", gen.pixels.size(), n));
+  if (gen.pixels.size() != n)
+    throw CheckFailed(fmt::format("{} results read back for {} requests", gen.pixels.size(), n));
 
   if (o.check || o.bench) {
     // The cycle model as `tfu sim --requests` runs it, in-process, on the same frame and trace.
@@ -247,23 +271,29 @@ int run(int argc, char** argv) {
       ref_s = std::min(ref_s, seconds_since(t1));
     }
     if (o.check) {
-      if (gen.cycles != ref.cycles) throw CheckFailed(fmt::format("cycles: platform {}, tfu sim {}", gen.cycles, ref.cycles));
+      if (gen.cycles != ref.cycles)
+        throw CheckFailed(fmt::format("cycles: platform {}, tfu sim {}", gen.cycles, ref.cycles));
       for (size_t i = 0; i < n; ++i) {
         if (gen.pixels[i] != ref.pixels[i] || gen.response_cycle_lo[i] != static_cast<uint32_t>(ref.response_cycle[i]))
-          throw CheckFailed(fmt::format("request {}: platform ({},{},{},{}) at cycle {}, tfu sim ({},{},{},{}) at cycle {}", i,
-                                        gen.pixels[i].r, gen.pixels[i].g, gen.pixels[i].b, gen.pixels[i].a, gen.response_cycle_lo[i],
-                                        ref.pixels[i].r, ref.pixels[i].g, ref.pixels[i].b, ref.pixels[i].a, ref.response_cycle[i]));
+          throw CheckFailed(
+              fmt::format("request {}: platform ({},{},{},{}) at cycle {}, tfu sim ({},{},{},{}) at cycle {}", i,
+                          gen.pixels[i].r, gen.pixels[i].g, gen.pixels[i].b, gen.pixels[i].a, gen.response_cycle_lo[i],
+                          ref.pixels[i].r, ref.pixels[i].g, ref.pixels[i].b, ref.pixels[i].a, ref.response_cycle[i]));
       }
       const GoldenUnit golden(frame);
-      const std::string mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, tfu.output()), tfu.output());
+      const std::string mismatch =
+          rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, tfu.output()), tfu.output());
       if (!mismatch.empty()) throw CheckFailed(mismatch);
-      std::cout << fmt::format("  check: cycles and all {} pixels and response cycles equal to tfu sim's; golden compare: all {} equal\n", n, n);
+      std::cout << fmt::format(
+          "  check: cycles and all {} pixels and response cycles equal to tfu sim's; golden compare: all {} equal\n", n,
+          n);
     }
     if (o.bench)
-      std::cout << fmt::format("  bench: tfu sim's unit run {:.2f} ms, SystemC platform {:.2f} ms (x{:.2f}; {:.0f} ns per request more; "
-                               "the unit's run inside it {:.2f} ms)\n",
-                               ref_s * 1e3, platform_s * 1e3, platform_s / ref_s, n ? (platform_s - ref_s) * 1e9 / static_cast<double>(n) : 0.0,
-                               tfu.model_seconds() * 1e3);
+      std::cout << fmt::format(
+          "  bench: tfu sim's unit run {:.2f} ms, SystemC platform {:.2f} ms (x{:.2f}; {:.0f} ns per request more; "
+          "the unit's run inside it {:.2f} ms)\n",
+          ref_s * 1e3, platform_s * 1e3, platform_s / ref_s,
+          n ? (platform_s - ref_s) * 1e9 / static_cast<double>(n) : 0.0, tfu.model_seconds() * 1e3);
   }
   return 0;
 }

@@ -7,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
+#include <tlm_utils/simple_target_socket.h>
 #include <systemc>
 #include <tlm>
-#include <tlm_utils/simple_target_socket.h>
 
 namespace tfu::sc {
 
@@ -19,7 +19,8 @@ struct MemoryTarget : sc_core::sc_module {
   std::vector<unsigned char> bytes;
   sc_core::sc_time latency;
 
-  MemoryTarget(const sc_core::sc_module_name& n, uint64_t base_address, std::vector<unsigned char> contents, sc_core::sc_time access)
+  MemoryTarget(const sc_core::sc_module_name& n, uint64_t base_address, std::vector<unsigned char> contents,
+               sc_core::sc_time access)
       : sc_core::sc_module(n), socket("socket"), base(base_address), bytes(std::move(contents)), latency(access) {
     socket.register_b_transport(this, &MemoryTarget::b_transport);
   }

@@ -24,16 +24,22 @@ using BR = BusRegion;
 constexpr BusRegister kBusRegisters[] = {
     {BR::Id, "ID", 0x000, 1, 1, 4, BA::ReadOnly, "0x54465531 (\"TFU1\")"},
     {BR::Control, "CONTROL", 0x004, 1, 1, 4, BA::WriteOnly,
-     "bit 0 start: run the FIFO's requests as one batch (the FIFO is then empty); bit 1 clear: empty the FIFO and the results"},
-    {BR::Status, "STATUS", 0x008, 1, 1, 4, BA::ReadOnly, "bit 0 done: the last batch finished; bit 1 error: it was refused (the unit's one-line message: TfuTlm::error())"},
-    {BR::TraceMode, "TRACE_MODE", 0x00c, 1, 1, 4, BA::ReadWrite, "how requests give their LOD: 0 lod, 1 grad, 2 quad (4 records a 2x2 quad; reset 2)"},
-    {BR::TextureCount, "TEXTURE_COUNT", 0x010, 1, 1, 4, BA::ReadWrite, "texture descriptors bound: 0..4096 (descriptors 0..n-1)"},
+     "bit 0 start: run the FIFO's requests as one batch (the FIFO is then empty); bit 1 clear: empty the FIFO and the "
+     "results"},
+    {BR::Status, "STATUS", 0x008, 1, 1, 4, BA::ReadOnly,
+     "bit 0 done: the last batch finished; bit 1 error: it was refused (the unit's one-line message: TfuTlm::error())"},
+    {BR::TraceMode, "TRACE_MODE", 0x00c, 1, 1, 4, BA::ReadWrite,
+     "how requests give their LOD: 0 lod, 1 grad, 2 quad (4 records a 2x2 quad; reset 2)"},
+    {BR::TextureCount, "TEXTURE_COUNT", 0x010, 1, 1, 4, BA::ReadWrite,
+     "texture descriptors bound: 0..4096 (descriptors 0..n-1)"},
     {BR::SamplerCount, "SAMPLER_COUNT", 0x014, 1, 1, 4, BA::ReadWrite, "sampler descriptors bound: 0..256"},
-    {BR::TexelBaseLo, "TEXEL_BASE_LO", 0x018, 1, 1, 4, BA::ReadWrite, "bus address of texel memory address 0, bits [31:0]"},
+    {BR::TexelBaseLo, "TEXEL_BASE_LO", 0x018, 1, 1, 4, BA::ReadWrite,
+     "bus address of texel memory address 0, bits [31:0]"},
     {BR::TexelBaseHi, "TEXEL_BASE_HI", 0x01c, 1, 1, 4, BA::ReadWrite, "bits [63:32] of the same"},
     {BR::RequestCount, "REQUEST_COUNT", 0x020, 1, 1, 4, BA::ReadOnly, "whole request records in the FIFO"},
     {BR::ResultCount, "RESULT_COUNT", 0x024, 1, 1, 4, BA::ReadOnly, "results of the last batch (one per request)"},
-    {BR::CyclesLo, "CYCLES_LO", 0x028, 1, 1, 4, BA::ReadOnly, "cycles of the last batch (the cycle model's count), bits [31:0]"},
+    {BR::CyclesLo, "CYCLES_LO", 0x028, 1, 1, 4, BA::ReadOnly,
+     "cycles of the last batch (the cycle model's count), bits [31:0]"},
     {BR::CyclesHi, "CYCLES_HI", 0x02c, 1, 1, 4, BA::ReadOnly, "bits [63:32] of the same"},
     {BR::TextureDescriptors, "TEXTURE_DESCRIPTOR[k]", 0x10'0000, kTextureDescriptorWords, 4096, 0x100, BA::ReadWrite,
      "texture descriptor k: its 34 words (docs/descriptors.md), word w at + 4 w"},
@@ -42,7 +48,8 @@ constexpr BusRegister kBusRegisters[] = {
     {BR::RequestFifo, "REQUEST_FIFO", 0x30'0000, 0x400, 1, 0x1000, BA::WriteOnly,
      "request records of 8 words (below) in order, any address of the window; a burst carries several"},
     {BR::Results, "RESULT[i]", 0x100'0000, kResultWords, kMaxBatchRequests, 8, BA::ReadOnly,
-     "result of request i of the last batch: word 0 the texel word (R [7:0] .. A [31:24]), word 1 its response cycle [31:0]"},
+     "result of request i of the last batch: word 0 the texel word (R [7:0] .. A [31:24]), word 1 its response cycle "
+     "[31:0]"},
 };
 
 // The table is indexed by BusRegion.
@@ -58,10 +65,10 @@ struct RequestCodec {
   uint32_t (*get)(const TraceRequest&);
   void (*set)(TraceRequest&, uint32_t bits);
 };
-#define TFU_FLOAT_FIELD(member, word, meaning)                                        \
-  RequestCodec {                                                                      \
+#define TFU_FLOAT_FIELD(member, word, meaning)                                                                      \
+  RequestCodec {                                                                                                    \
     {#member, word, 0, 32, 1, 0, meaning}, [](const TraceRequest& r) { return std::bit_cast<uint32_t>(r.member); }, \
-        [](TraceRequest& r, uint32_t b) { r.member = std::bit_cast<float>(b); }                                       \
+        [](TraceRequest& r, uint32_t b) { r.member = std::bit_cast<float>(b); }                                     \
   }
 const RequestCodec kRequestCodecs[] = {
     {{"texture", 0, 0, 12, 1, 0, "texture descriptor index"},
@@ -96,7 +103,9 @@ struct Decoded {
 // at or below the address.
 static_assert([] {
   for (size_t i = 0; i + 1 < std::size(kBusRegisters); ++i)
-    if (kBusRegisters[i].offset + uint64_t{kBusRegisters[i].count} * kBusRegisters[i].stride > kBusRegisters[i + 1].offset) return false;
+    if (kBusRegisters[i].offset + uint64_t{kBusRegisters[i].count} * kBusRegisters[i].stride >
+        kBusRegisters[i + 1].offset)
+      return false;
   return true;
 }());
 Decoded decode_address(uint64_t address) {
@@ -104,7 +113,8 @@ Decoded decode_address(uint64_t address) {
     const BusRegister& r = kBusRegisters[i];
     if (address < r.offset) continue;
     const uint64_t d = address - r.offset, k = d / r.stride, w = d % r.stride / 4;
-    if (k < r.count && w < static_cast<uint64_t>(r.words)) return {&r, static_cast<uint32_t>(k), static_cast<uint32_t>(w)};
+    if (k < r.count && w < static_cast<uint64_t>(r.words))
+      return {&r, static_cast<uint32_t>(k), static_cast<uint32_t>(w)};
     return {};
   }
   return {};
@@ -132,7 +142,8 @@ std::array<uint32_t, kRequestRecordWords> encode_request(const TraceRequest& r) 
 
 TraceRequest decode_request(std::span<const uint32_t, kRequestRecordWords> w) {
   TraceRequest r;
-  for (const RequestCodec& c : kRequestCodecs) c.set(r, (w[static_cast<size_t>(c.field.word)] >> c.field.lsb) & field_mask(c.field.width));
+  for (const RequestCodec& c : kRequestCodecs)
+    c.set(r, (w[static_cast<size_t>(c.field.word)] >> c.field.lsb) & field_mask(c.field.width));
   return r;
 }
 
@@ -141,7 +152,8 @@ std::string bus_register_markdown() {
   for (const BusRegister& r : kBusRegisters) {
     const char* access = r.access == BA::ReadOnly ? "RO" : r.access == BA::WriteOnly ? "WO" : "RW";
     const std::string elements = r.count == 1 ? std::string("1") : fmt::format("{} (0x{:x})", r.count, r.stride);
-    md += fmt::format("| `{}` | 0x{:07x} | {} | {} | {} | {} |\n", r.name, r.offset, r.words, elements, access, r.meaning);
+    md += fmt::format("| `{}` | 0x{:07x} | {} | {} | {} | {} |\n", r.name, r.offset, r.words, elements, access,
+                      r.meaning);
   }
   md += "\nRequest record (8 words):\n\n| field | word | bits | meaning |\n|---|---:|---|---|\n";
   for (const RegisterField& f : request_record_fields())
@@ -170,15 +182,18 @@ void TfuTlm::b_transport(tlm::tlm_generic_payload& tx, sc_core::sc_time& delay) 
   const unsigned len = tx.get_data_length();
   if (tx.get_byte_enable_ptr() != nullptr) return tx.set_response_status(tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
   if (tx.get_streaming_width() < len) return tx.set_response_status(tlm::TLM_BURST_ERROR_RESPONSE);
-  if (tx.get_address() % 4 != 0 || len % 4 != 0 || len == 0) return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+  if (tx.get_address() % 4 != 0 || len % 4 != 0 || len == 0)
+    return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
   tx.set_response_status(tlm::TLM_OK_RESPONSE);
   if (tx.is_read() || tx.is_write()) {
     unsigned char* data = tx.get_data_ptr();
     // A burst inside the request FIFO's window (the bulk of the traffic): records without a decode per word.
     const BusRegister& fifo = reg(BR::RequestFifo);
-    if (tx.is_write() && tx.get_address() >= fifo.offset && tx.get_address() + len <= fifo.offset + 4u * static_cast<uint64_t>(fifo.words)) {
+    if (tx.is_write() && tx.get_address() >= fifo.offset &&
+        tx.get_address() + len <= fifo.offset + 4u * static_cast<uint64_t>(fifo.words)) {
       for (unsigned k = 0; k < len; k += 4) {
-        if (partial_words_ == 0 && requests_.size() >= kMaxBatchRequests) return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
+        if (partial_words_ == 0 && requests_.size() >= kMaxBatchRequests)
+          return tx.set_response_status(tlm::TLM_ADDRESS_ERROR_RESPONSE);
         std::memcpy(&partial_[static_cast<size_t>(partial_words_++)], data + k, 4);
         if (partial_words_ == kRequestRecordWords) {
           requests_.push_back(decode_request(partial_));
@@ -260,7 +275,8 @@ bool TfuTlm::read_word(uint64_t address, uint32_t& v) const {
     case BR::SamplerDescriptors: v = sampler_words_[size_t{d.index} * kSamplerDescriptorWords + d.word]; return true;
     case BR::Results:
       if (d.index >= out_.pixels.size()) return false;  // beyond the last batch's results
-      v = d.word == 0 ? std::bit_cast<uint32_t>(out_.pixels[d.index]) : static_cast<uint32_t>(out_.response_cycle[d.index]);
+      v = d.word == 0 ? std::bit_cast<uint32_t>(out_.pixels[d.index])
+                      : static_cast<uint32_t>(out_.response_cycle[d.index]);
       return true;
     default: return false;
   }
@@ -279,18 +295,18 @@ void TfuTlm::clear() {
 // TEXEL_BASE + address, one cache line per transaction (the last one shorter).
 Frame TfuTlm::fetch_frame() {
   if (texture_count_ > reg(BR::TextureDescriptors).count || sampler_count_ > reg(BR::SamplerDescriptors).count)
-    throw InputError(fmt::format("TEXTURE_COUNT {} / SAMPLER_COUNT {} exceed the tables' 4096 / 256 descriptors", texture_count_,
-                                 sampler_count_));
+    throw InputError(fmt::format("TEXTURE_COUNT {} / SAMPLER_COUNT {} exceed the tables' 4096 / 256 descriptors",
+                                 texture_count_, sampler_count_));
   Frame f;
   f.line_bytes = unit_.cache.line_bytes;
   for (uint32_t k = 0; k < texture_count_; ++k) {
-    f.regs.textures.push_back(decode_texture_descriptor(
-        std::span<const uint32_t, kTextureDescriptorWords>(texture_words_.data() + size_t{k} * kTextureDescriptorWords, kTextureDescriptorWords)));
+    f.regs.textures.push_back(decode_texture_descriptor(std::span<const uint32_t, kTextureDescriptorWords>(
+        texture_words_.data() + size_t{k} * kTextureDescriptorWords, kTextureDescriptorWords)));
     f.textures.push_back(FrameTexture{fmt::format("descriptor {}", k), {}, nullptr, -1});
   }
   for (uint32_t k = 0; k < sampler_count_; ++k)
-    f.regs.samplers.push_back(decode_sampler_descriptor(
-        std::span<const uint32_t, kSamplerDescriptorWords>(sampler_words_.data() + size_t{k} * kSamplerDescriptorWords, kSamplerDescriptorWords)));
+    f.regs.samplers.push_back(decode_sampler_descriptor(std::span<const uint32_t, kSamplerDescriptorWords>(
+        sampler_words_.data() + size_t{k} * kSamplerDescriptorWords, kSamplerDescriptorWords)));
   f.regs.validate();
   uint64_t lo = UINT64_MAX, hi = 0;
   for (size_t k = 0; k < f.regs.textures.size(); ++k) {
@@ -298,15 +314,17 @@ Frame TfuTlm::fetch_frame() {
     for (int l = 0; l < t.levels; ++l) {
       const uint64_t a = t.level[static_cast<size_t>(l)].address;
       if (a < TextureMemory::kFirstAddress)
-        throw InputError(fmt::format("texture descriptor {} level {}: address 0x{:x} is below the texel memory's first address 0x{:x}", k, l, a,
-                                     TextureMemory::kFirstAddress));
+        throw InputError(fmt::format(
+            "texture descriptor {} level {}: address 0x{:x} is below the texel memory's first address 0x{:x}", k, l, a,
+            TextureMemory::kFirstAddress));
       lo = std::min(lo, a);
       hi = std::max(hi, a + t.level_bytes(l));
     }
   }
   if (hi == 0) return f;  // no texture bound: the unit refuses the requests (they name unbound descriptors)
   if (hi - TextureMemory::kFirstAddress > TextureMemory::kMaxBytes)
-    throw InputError(fmt::format("texture descriptors reach 0x{:x}, beyond the texel memory's {} bytes", hi, TextureMemory::kMaxBytes));
+    throw InputError(fmt::format("texture descriptors reach 0x{:x}, beyond the texel memory's {} bytes", hi,
+                                 TextureMemory::kMaxBytes));
   if (f.memory.allocate(hi - TextureMemory::kFirstAddress) != TextureMemory::kFirstAddress)
     throw CheckFailed("texel memory: the first allocation is not at its first address");
   std::vector<unsigned char> line(static_cast<size_t>(unit_.cache.line_bytes));
@@ -326,11 +344,12 @@ Frame TfuTlm::fetch_frame() {
     ++texel_reads_;
     texel_read_delay_ += d;
     if (tx.is_response_error())
-      throw InputError(fmt::format("texel memory read of {} bytes at bus address 0x{:x} (texel address 0x{:x}): {}", n, texel_base_ + a, a,
-                                   tx.get_response_string()));
+      throw InputError(fmt::format("texel memory read of {} bytes at bus address 0x{:x} (texel address 0x{:x}): {}", n,
+                                   texel_base_ + a, a, tx.get_response_string()));
     // Whole texel words through the memory's word writer (RGBA8: 4 bytes), the tail byte by byte.
     unsigned i = 0;
-    for (; i + 4 <= n; i += 4) f.memory.write_word(a + i, TexelFormat::RGBA8, Rgba8{line[i], line[i + 1], line[i + 2], line[i + 3]});
+    for (; i + 4 <= n; i += 4)
+      f.memory.write_word(a + i, TexelFormat::RGBA8, Rgba8{line[i], line[i + 1], line[i + 2], line[i + 3]});
     for (; i < n; ++i) f.memory.write_word(a + i, TexelFormat::L8, Rgba8{line[i], 0, 0, 0});
   }
   return f;
@@ -342,8 +361,8 @@ void TfuTlm::start(sc_core::sc_time& delay) {
   status_ = 0;
   try {
     if (partial_words_ != 0)
-      throw InputError(fmt::format("the request FIFO holds {} words of an unfinished record (a record is {} words)", partial_words_,
-                                   kRequestRecordWords));
+      throw InputError(fmt::format("the request FIFO holds {} words of an unfinished record (a record is {} words)",
+                                   partial_words_, kRequestRecordWords));
     if (trace_mode_ > static_cast<uint32_t>(TraceMode::Quad))
       throw InputError(fmt::format("TRACE_MODE {} is not 0 lod, 1 grad or 2 quad", trace_mode_));
     Trace trace;

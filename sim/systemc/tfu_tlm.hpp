@@ -25,10 +25,10 @@
 #include <string>
 #include <vector>
 
-#include <systemc>
-#include <tlm>
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
+#include <systemc>
+#include <tlm>
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/trace.hpp"
@@ -40,8 +40,22 @@ namespace tfu::sc {
 // ---- The register map as the bus sees it (byte offsets from the unit's base address) ----
 enum class BusAccess { ReadOnly, WriteOnly, ReadWrite };
 enum class BusRegion {
-  Id, Control, Status, TraceMode, TextureCount, SamplerCount, TexelBaseLo, TexelBaseHi, RequestCount, ResultCount,
-  CyclesLo, CyclesHi, TextureDescriptors, SamplerDescriptors, RequestFifo, Results
+  Id,
+  Control,
+  Status,
+  TraceMode,
+  TextureCount,
+  SamplerCount,
+  TexelBaseLo,
+  TexelBaseHi,
+  RequestCount,
+  ResultCount,
+  CyclesLo,
+  CyclesHi,
+  TextureDescriptors,
+  SamplerDescriptors,
+  RequestFifo,
+  Results
 };
 // One region: `count` elements of `words` 32-bit words, element k at offset + k * stride.
 struct BusRegister {
@@ -79,7 +93,7 @@ std::string bus_register_markdown();
 // ---- The module ----
 class TfuTlm : public sc_core::sc_module {
  public:
-  tlm_utils::simple_target_socket<TfuTlm> target;        // registers
+  tlm_utils::simple_target_socket<TfuTlm> target;         // registers
   tlm_utils::simple_initiator_socket<TfuTlm> texel_port;  // texel memory reads
 
   // `unit`: the hardware configuration (rtl/unit_config.hpp; cache line, memory latency and

@@ -31,7 +31,10 @@ struct Platform : sc_core::sc_module {
   sc::TfuTlm unit;
   sc::MemoryTarget memory;
   explicit Platform(const sc_core::sc_module_name& n)
-      : sc_core::sc_module(n), bus("bus"), unit("unit", rtl::UnitConfig{}, kPeriod), memory("memory", kTexelWindow, {}, sc_core::sc_time(7, sc_core::SC_NS)) {
+      : sc_core::sc_module(n),
+        bus("bus"),
+        unit("unit", rtl::UnitConfig{}, kPeriod),
+        memory("memory", kTexelWindow, {}, sc_core::sc_time(7, sc_core::SC_NS)) {
     bus.bind(unit.target);
     unit.texel_port.bind(memory.socket);
   }
@@ -44,8 +47,9 @@ uint64_t offset(BusRegion r, uint32_t k = 0) {
 }
 
 // One bus access; returns the response status and adds the annotated delay to `delay`.
-tlm::tlm_response_status access(tlm::tlm_command cmd, uint64_t address, uint32_t* words, size_t n, sc_core::sc_time& delay,
-                                unsigned char* byte_enables = nullptr, unsigned length_bytes = 0) {
+tlm::tlm_response_status access(tlm::tlm_command cmd, uint64_t address, uint32_t* words, size_t n,
+                                sc_core::sc_time& delay, unsigned char* byte_enables = nullptr,
+                                unsigned length_bytes = 0) {
   tlm::tlm_generic_payload tx;
   tx.set_command(cmd);
   tx.set_address(address);
@@ -89,16 +93,18 @@ constexpr const char* kTrace =
 void program(const Frame& frame, const Trace& trace, uint64_t texel_base = kTexelWindow) {
   sc_core::sc_time d = sc_core::SC_ZERO_TIME;
   platform->memory.bytes.assign(frame.memory.end(), 0);
-  std::memcpy(platform->memory.bytes.data() + TextureMemory::kFirstAddress, frame.memory.bytes_at(TextureMemory::kFirstAddress),
-              frame.memory.bytes_used());
+  std::memcpy(platform->memory.bytes.data() + TextureMemory::kFirstAddress,
+              frame.memory.bytes_at(TextureMemory::kFirstAddress), frame.memory.bytes_used());
   write(offset(BusRegion::Control), sc::kControlClear, d);
   for (uint32_t k = 0; k < frame.regs.textures.size(); ++k) {
     auto w = encode(frame.regs.textures[k]);
-    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::TextureDescriptors, k), w.data(), w.size(), d), tlm::TLM_OK_RESPONSE);
+    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::TextureDescriptors, k), w.data(), w.size(), d),
+              tlm::TLM_OK_RESPONSE);
   }
   for (uint32_t k = 0; k < frame.regs.samplers.size(); ++k) {
     auto w = encode(frame.regs.samplers[k]);
-    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::SamplerDescriptors, k), w.data(), w.size(), d), tlm::TLM_OK_RESPONSE);
+    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::SamplerDescriptors, k), w.data(), w.size(), d),
+              tlm::TLM_OK_RESPONSE);
   }
   write(offset(BusRegion::TextureCount), static_cast<uint32_t>(frame.regs.textures.size()), d);
   write(offset(BusRegion::SamplerCount), static_cast<uint32_t>(frame.regs.samplers.size()), d);
@@ -111,7 +117,8 @@ void program(const Frame& frame, const Trace& trace, uint64_t texel_base = kTexe
     words.insert(words.end(), rec.begin(), rec.end());
   }
   if (!words.empty()) {
-    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::RequestFifo), words.data(), words.size(), d), tlm::TLM_OK_RESPONSE);
+    ASSERT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::RequestFifo), words.data(), words.size(), d),
+              tlm::TLM_OK_RESPONSE);
   }
   EXPECT_EQ(d, sc_core::SC_ZERO_TIME);  // register accesses take no time of their own
 }
@@ -128,13 +135,19 @@ TEST(TfuTlm, RequestRecordRoundTripsEveryFieldBitForBit) {
     r.texture = static_cast<uint16_t>(rng() & 0xfff);
     r.sampler = static_cast<uint8_t>(rng() & 0xff);
     r.stage = static_cast<uint8_t>(rng() & 3);
-    for (float* f : {&r.s, &r.t, &r.lod, &r.dsdx, &r.dtdx, &r.dsdy, &r.dtdy}) *f = std::bit_cast<float>(static_cast<uint32_t>(rng()));
+    for (float* f : {&r.s, &r.t, &r.lod, &r.dsdx, &r.dtdx, &r.dsdy, &r.dtdy})
+      *f = std::bit_cast<float>(static_cast<uint32_t>(rng()));
     const TraceRequest back = sc::decode_request(sc::encode_request(r));
     ASSERT_EQ(back.texture, r.texture);
     ASSERT_EQ(back.sampler, r.sampler);
     ASSERT_EQ(back.stage, r.stage);
-    for (auto [a, b] : {std::pair{back.s, r.s}, {back.t, r.t}, {back.lod, r.lod}, {back.dsdx, r.dsdx}, {back.dtdx, r.dtdx},
-                        {back.dsdy, r.dsdy}, {back.dtdy, r.dtdy}})
+    for (auto [a, b] : {std::pair{back.s, r.s},
+                        {back.t, r.t},
+                        {back.lod, r.lod},
+                        {back.dsdx, r.dsdx},
+                        {back.dtdx, r.dtdx},
+                        {back.dsdy, r.dsdy},
+                        {back.dtdy, r.dtdy}})
       ASSERT_EQ(std::bit_cast<uint32_t>(a), std::bit_cast<uint32_t>(b));  // NaN payloads included
   }
   // Hand-derived: texture 0xabc, sampler 0x5d, stage 2 -> word 0 = 0x2 << 20 | 0x5d << 12 | 0xabc.
@@ -167,13 +180,17 @@ TEST(TfuTlm, BusErrorsAndRegisterReadBack) {
   EXPECT_EQ(read(offset(BusRegion::Id)), sc::kUnitId);
   sc_core::sc_time d = sc_core::SC_ZERO_TIME;
   uint32_t v = 1;
-  EXPECT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::Id), &v, 1, d), tlm::TLM_ADDRESS_ERROR_RESPONSE);         // read-only
-  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Control), &v, 1, d), tlm::TLM_ADDRESS_ERROR_RESPONSE);     // write-only
-  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, 0x30, &v, 1, d), tlm::TLM_ADDRESS_ERROR_RESPONSE);                           // no register
+  EXPECT_EQ(access(tlm::TLM_WRITE_COMMAND, offset(BusRegion::Id), &v, 1, d),
+            tlm::TLM_ADDRESS_ERROR_RESPONSE);  // read-only
+  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Control), &v, 1, d),
+            tlm::TLM_ADDRESS_ERROR_RESPONSE);                                                 // write-only
+  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, 0x30, &v, 1, d), tlm::TLM_ADDRESS_ERROR_RESPONSE);  // no register
   EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::TextureDescriptors) + 4 * 34, &v, 1, d),
             tlm::TLM_ADDRESS_ERROR_RESPONSE);  // past descriptor 0's 34 words
-  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Id) + 2, &v, 1, d), tlm::TLM_ADDRESS_ERROR_RESPONSE);      // unaligned
-  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Id), &v, 1, d, nullptr, 2), tlm::TLM_ADDRESS_ERROR_RESPONSE);  // 2 bytes
+  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Id) + 2, &v, 1, d),
+            tlm::TLM_ADDRESS_ERROR_RESPONSE);  // unaligned
+  EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Id), &v, 1, d, nullptr, 2),
+            tlm::TLM_ADDRESS_ERROR_RESPONSE);  // 2 bytes
   unsigned char be[4] = {0xff, 0xff, 0xff, 0xff};
   EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Id), &v, 1, d, be), tlm::TLM_BYTE_ENABLE_ERROR_RESPONSE);
   // Descriptor words read back as written; a burst spans the registers it covers.
@@ -205,7 +222,8 @@ TEST(TfuTlm, BatchEqualsTheCycleModelAndTakesCyclesTimesPeriod) {
   }
   // The texels came over the texel port: one 64-byte line per read, the memory's delay not added.
   EXPECT_EQ(platform->unit.texel_read_transactions() * 64, (frame.memory.bytes_used() + 63) / 64 * 64);
-  EXPECT_EQ(platform->unit.texel_read_delay(), sc_core::sc_time(7, sc_core::SC_NS) * static_cast<double>(platform->unit.texel_read_transactions()));
+  EXPECT_EQ(platform->unit.texel_read_delay(),
+            sc_core::sc_time(7, sc_core::SC_NS) * static_cast<double>(platform->unit.texel_read_transactions()));
   uint32_t v = 0;
   sc_core::sc_time dd = sc_core::SC_ZERO_TIME;
   EXPECT_EQ(access(tlm::TLM_READ_COMMAND, offset(BusRegion::Results, 12), &v, 1, dd), tlm::TLM_ADDRESS_ERROR_RESPONSE);
