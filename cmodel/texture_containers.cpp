@@ -322,6 +322,15 @@ std::vector<uint8_t> write_astc(const BlockImage& img) {
 
 const char* block_container_name(BlockContainer c) { return kBlockContainerNames.name(c); }
 
+const char* container_file_text(BlockContainer c) {
+  switch (c) {
+    case BlockContainer::DDS: return "a DDS file";
+    case BlockContainer::KTX: return "a KTX file";
+    case BlockContainer::ASTC: return "an .astc file";
+  }
+  return "a file";
+}
+
 bool container_holds(BlockContainer c, BlockFormat f) {
   switch (c) {
     case BlockContainer::DDS: return block_format_info(f).family == BlockFamily::BC;
@@ -391,7 +400,7 @@ BlockImage read_block_image(const std::string& path, const std::string& label_in
 std::vector<uint8_t> serialize_block_image(const BlockImage& image, BlockContainer c, const std::string& label) {
   validate_block_image(image, label);
   if (!container_holds(c, image.format))
-    throw InputError(fmt::format("{}: a {} file cannot hold {} ({})", label, block_container_name(c), block_format_name(image.format),
+    throw InputError(fmt::format("{}: {} cannot hold {} ({})", label, container_file_text(c), block_format_name(image.format),
                                  c == BlockContainer::DDS ? "DDS holds the BC formats" : ".astc holds the ASTC formats"));
   switch (c) {
     case BlockContainer::DDS: return write_dds(image);

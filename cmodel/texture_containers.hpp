@@ -36,6 +36,8 @@ enum class BlockContainer : uint8_t { DDS, KTX, ASTC };
 inline constexpr EnumNames<BlockContainer, 3> kBlockContainerNames{
     "container", {{{BlockContainer::DDS, "dds"}, {BlockContainer::KTX, "ktx"}, {BlockContainer::ASTC, "astc"}}}};
 const char* block_container_name(BlockContainer c);
+// "a DDS file", "a KTX file", "an .astc file": for messages.
+const char* container_file_text(BlockContainer c);
 
 // Whether the container can hold the format: DDS the BC family, KTX all, .astc the ASTC family.
 bool container_holds(BlockContainer c, BlockFormat f);

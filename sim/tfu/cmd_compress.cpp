@@ -52,8 +52,8 @@ void run_compress(const CompressOptions& o) {
   const BlockContainer container = container_for(o.out, format);
   const std::string out_label = fmt::format("--out {}", quoted_path(o.out));
   if (!container_holds(container, format))
-    throw InputError(fmt::format("{}: a {} file cannot hold {} ({} holds the {} formats)", out_label, block_container_name(container),
-                                 info.name, container == BlockContainer::DDS ? "DDS" : ".astc", container == BlockContainer::DDS ? "BC" : "ASTC"));
+    throw InputError(fmt::format("{}: {} cannot hold {} ({} holds the {} formats)", out_label, container_file_text(container), info.name,
+                                 container == BlockContainer::DDS ? "DDS" : ".astc", container == BlockContainer::DDS ? "BC" : "ASTC"));
   std::string mipmaps = o.mipmaps.empty() ? (container == BlockContainer::ASTC ? "none" : "auto") : o.mipmaps;
   if (container == BlockContainer::ASTC && mipmaps != "none")
     throw InputError(fmt::format("--mipmaps {}: an .astc file holds one level (use --mipmaps none, or a .ktx file for MIP levels)", quote_input(mipmaps)));
