@@ -56,7 +56,7 @@ void run_compress(const CompressOptions& o) {
                                  container == BlockContainer::DDS ? "DDS" : ".astc", container == BlockContainer::DDS ? "BC" : "ASTC"));
   std::string mipmaps = o.mipmaps.empty() ? (container == BlockContainer::ASTC ? "none" : "auto") : o.mipmaps;
   if (container == BlockContainer::ASTC && mipmaps != "none")
-    throw InputError(fmt::format("--mipmaps {}: an .astc file holds one level (use --mipmaps none, or a .ktx file for MIP levels)", quote_input(mipmaps)));
+    throw InputError(fmt::format("--mipmaps '{}': an .astc file holds one level (use --mipmaps none, or a .ktx file for MIP levels)", quote_input(mipmaps)));
   if (container == BlockContainer::ASTC && o.srgb) throw InputError("--srgb: an .astc file has no sRGB flag (use a .ktx file)");
   OutputFiles outputs(o.force);
   OutputFile& file = outputs.add("--out", o.out);
