@@ -25,7 +25,8 @@ std::array<Rgba8, 16> gather_block(const Image& img, int bx, int by) {
   std::array<Rgba8, 16> t{};
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x)
-      t[static_cast<size_t>(4 * y + x)] = img.at(std::min(4 * bx + x, img.width - 1), std::min(4 * by + y, img.height - 1));
+      t[static_cast<size_t>(4 * y + x)] =
+          img.at(std::min(4 * bx + x, img.width - 1), std::min(4 * by + y, img.height - 1));
   return t;
 }
 
@@ -40,7 +41,9 @@ int squish_flags(BlockFormat f, int quality) {
     case BlockFormat::BC4: flags = squish::kBc4; break;
     default: flags = squish::kBc5; break;
   }
-  return flags | (quality < 34 ? squish::kColourRangeFit : quality < 67 ? squish::kColourClusterFit : squish::kColourIterativeClusterFit);
+  return flags | (quality < 34   ? squish::kColourRangeFit
+                  : quality < 67 ? squish::kColourClusterFit
+                                 : squish::kColourIterativeClusterFit);
 }
 
 void encode_squish(const Image& img, BlockFormat f, int quality, std::vector<uint8_t>& out) {
@@ -53,7 +56,8 @@ void encode_squish(const Image& img, BlockFormat f, int quality, std::vector<uin
 
 // ---- libastcenc: ASTC ----
 void check_astc(astcenc_error e, const char* what) {
-  if (e != ASTCENC_SUCCESS) throw std::runtime_error(fmt::format("libastcenc {}: {}", what, astcenc_get_error_string(e)));
+  if (e != ASTCENC_SUCCESS)
+    throw std::runtime_error(fmt::format("libastcenc {}: {}", what, astcenc_get_error_string(e)));
 }
 
 struct AstcContextFree {
@@ -121,7 +125,8 @@ EtcSubblockFit fit_etc_subblock(const Rgba8 t[16], int flip, int sub, const std:
         const Rgba8& v = t[4 * y + x];
         int best_e = INT_MAX, best_i = 0;
         for (int i = 0; i < 4; ++i) {
-          const int e = sq(std::clamp(base[0] + mods[i], 0, 255) - v.r) + sq(std::clamp(base[1] + mods[i], 0, 255) - v.g) +
+          const int e = sq(std::clamp(base[0] + mods[i], 0, 255) - v.r) +
+                        sq(std::clamp(base[1] + mods[i], 0, 255) - v.g) +
                         sq(std::clamp(base[2] + mods[i], 0, 255) - v.b);
           if (e < best_e) best_e = e, best_i = i;
         }
@@ -188,7 +193,8 @@ const char* block_encoder_name(BlockFormat f) {
   switch (block_format_info(f).family) {
     case BlockFamily::ASTC: return "libastcenc 4.2";
     case BlockFamily::BC: return f == BlockFormat::BC7 ? "tfu BC7 mode 6" : "libsquish 1.15";
-    case BlockFamily::ETC: return f == BlockFormat::ETC2 ? "tfu ETC1 modes" : f == BlockFormat::ETC2A ? "tfu ETC1 modes + EAC" : "tfu EAC";
+    case BlockFamily::ETC:
+      return f == BlockFormat::ETC2 ? "tfu ETC1 modes" : f == BlockFormat::ETC2A ? "tfu ETC1 modes + EAC" : "tfu EAC";
   }
   return "none";
 }
@@ -210,7 +216,8 @@ void encode_bc7_mode6_block(const Rgba8 texels[16], uint8_t out[16]) {
     std::array<std::array<int, 4>, 16> palette{};
     for (size_t w = 0; w < 16; ++w)
       for (int c = 0; c < 4; ++c)  // ((64 - w) e0 + w e1 + 32) >> 6 (KDFS "BC7", interpolation)
-        palette[w][static_cast<size_t>(c)] = ((64 - kBc7Weights4[w]) * e0.value(c) + kBc7Weights4[w] * e1.value(c) + 32) >> 6;
+        palette[w][static_cast<size_t>(c)] =
+            ((64 - kBc7Weights4[w]) * e0.value(c) + kBc7Weights4[w] * e1.value(c) + 32) >> 6;
     int err = 0;
     std::array<int, 16> idx{};
     for (int i = 0; i < 16; ++i) {
@@ -268,12 +275,14 @@ void encode_etc1_block(const Rgba8 texels[16], uint8_t out[8]) {
       if (!ok) continue;
       for (size_t s = 0; s < 2; ++s)
         for (size_t c = 0; c < 3; ++c) base[s][c] = differential ? (q[s][c] << 3) | (q[s][c] >> 2) : q[s][c] * 17;
-      const EtcSubblockFit f0 = fit_etc_subblock(texels, flip, 0, base[0]), f1 = fit_etc_subblock(texels, flip, 1, base[1]);
+      const EtcSubblockFit f0 = fit_etc_subblock(texels, flip, 0, base[0]),
+                           f1 = fit_etc_subblock(texels, flip, 1, base[1]);
       if (f0.error + f1.error >= best_err) continue;
       best_err = f0.error + f1.error;
       uint64_t w = 0;
       for (size_t c = 0; c < 3; ++c) {
-        const int shift = 59 - 8 * static_cast<int>(c);  // R at 63, G at 55, B at 47 (the field's low bit at shift - 1 / shift)
+        const int shift =
+            59 - 8 * static_cast<int>(c);  // R at 63, G at 55, B at 47 (the field's low bit at shift - 1 / shift)
         if (differential) {
           w |= uint64_t(q[0][c]) << shift;
           w |= uint64_t((q[1][c] - q[0][c]) & 7) << (shift - 3);
@@ -330,23 +339,27 @@ void encode_eac_block(const int values[16], bool r11, uint8_t out[8]) {
   put_be64(best_word, out);
 }
 
-BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb, const BlockEncodeOptions& options) {
+BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb,
+                              const BlockEncodeOptions& options) {
   const BlockFormatInfo& info = block_format_info(f);
   if (!has_block_encoder(f))
     throw InputError(fmt::format("no encoder for {} ({})", info.name,
-                                 info.is_signed ? "a signed format: an RGBA8 image has no signed source" : "punch-through alpha is not encoded"));
+                                 info.is_signed ? "a signed format: an RGBA8 image has no signed source"
+                                                : "punch-through alpha is not encoded"));
   if (srgb && info.gl_srgb_internal_format == 0) throw InputError(fmt::format("{} has no sRGB variant", info.name));
   if (levels.empty()) throw InputError(fmt::format("{}: no levels to encode", info.name));
-  if (options.quality < 0 || options.quality > 100) throw InputError(fmt::format("encoder quality {} outside 0..100", options.quality));
+  if (options.quality < 0 || options.quality > 100)
+    throw InputError(fmt::format("encoder quality {} outside 0..100", options.quality));
   BlockImage out;
   out.format = f;
   out.srgb = srgb;
   std::unique_ptr<astcenc_context, AstcContextFree> astc;
   if (info.family == BlockFamily::ASTC) {
     astcenc_config config{};
-    check_astc(astcenc_config_init(srgb ? ASTCENC_PRF_LDR_SRGB : ASTCENC_PRF_LDR, static_cast<unsigned>(info.block_w),
-                                   static_cast<unsigned>(info.block_h), 1, static_cast<float>(options.quality), 0, &config),
-               "config");
+    check_astc(
+        astcenc_config_init(srgb ? ASTCENC_PRF_LDR_SRGB : ASTCENC_PRF_LDR, static_cast<unsigned>(info.block_w),
+                            static_cast<unsigned>(info.block_h), 1, static_cast<float>(options.quality), 0, &config),
+        "config");
     astcenc_context* ctx = nullptr;
     check_astc(astcenc_context_alloc(&config, 1, &ctx), "context");
     astc.reset(ctx);
@@ -361,9 +374,11 @@ BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool
     level.blocks.assign(block_level_bytes(f, img.width, img.height), 0);
     if (info.family == BlockFamily::ASTC) {
       void* data = const_cast<Rgba8*>(img.texels.data());  // astcenc_image is not const; it only reads
-      astcenc_image image{static_cast<unsigned>(img.width), static_cast<unsigned>(img.height), 1, ASTCENC_TYPE_U8, &data};
+      astcenc_image image{static_cast<unsigned>(img.width), static_cast<unsigned>(img.height), 1, ASTCENC_TYPE_U8,
+                          &data};
       const astcenc_swizzle swizzle{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
-      check_astc(astcenc_compress_image(astc.get(), &image, &swizzle, level.blocks.data(), level.blocks.size(), 0), "compress");
+      check_astc(astcenc_compress_image(astc.get(), &image, &swizzle, level.blocks.data(), level.blocks.size(), 0),
+                 "compress");
       check_astc(astcenc_compress_reset(astc.get()), "reset");
     } else if (f == BlockFormat::BC7 || info.family == BlockFamily::ETC) {
       encode_own(img, f, level.blocks);

@@ -47,7 +47,8 @@ const char* block_encoder_name(BlockFormat f);
 // Encodes each level (any sizes; normally a MIP chain as cmodel/mipmap.hpp makes it). InputError
 // when the format has no encoder, `srgb` is set for a format without an sRGB variant, or there are
 // no levels.
-BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb, const BlockEncodeOptions& options = {});
+BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb,
+                              const BlockEncodeOptions& options = {});
 
 // The own encoders, one block each (16 RGBA8 texels row-major, texel (x, y) at [4 y + x]); exposed
 // for the tests.

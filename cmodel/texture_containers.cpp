@@ -79,7 +79,8 @@ std::string fourcc_text(uint32_t v) {
 // 4-byte size in KTX (`ktx_sizes`, byte order `swap`). Every size is checked before a byte is copied.
 class LevelReader {
  public:
-  LevelReader(std::span<const uint8_t> bytes, size_t at, std::string where) : bytes_(bytes), at_(at), where_(std::move(where)) {}
+  LevelReader(std::span<const uint8_t> bytes, size_t at, std::string where)
+      : bytes_(bytes), at_(at), where_(std::move(where)) {}
   [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", where_, what)); }
 
   void read_levels(BlockImage& img, int w, int h, int count, bool ktx_sizes, bool swap) {
@@ -89,23 +90,27 @@ class LevelReader {
       need += block_level_bytes(img.format, lw, lh) + (ktx_sizes ? 4 : 0);
     const size_t have = bytes_.size() - at_;
     if (have < need)
-      fail(fmt::format("truncated: {} {}x{} with {} MIP levels needs {} bytes of levels, the file has {}", block_format_name(img.format), w,
-                       h, count, need, have));
-    if (have > need) fail(fmt::format("{} bytes after the last MIP level (a {}x{} {} with {} levels holds {})", have - need, w, h,
-                                      block_format_name(img.format), count, need));
+      fail(fmt::format("truncated: {} {}x{} with {} MIP levels needs {} bytes of levels, the file has {}",
+                       block_format_name(img.format), w, h, count, need, have));
+    if (have > need)
+      fail(fmt::format("{} bytes after the last MIP level (a {}x{} {} with {} levels holds {})", have - need, w, h,
+                       block_format_name(img.format), count, need));
     img.levels.resize(static_cast<size_t>(count));
     for (int l = 0, lw = w, lh = h; l < count; ++l, lw = std::max(1, lw >> 1), lh = std::max(1, lh >> 1)) {
       const size_t n = block_level_bytes(img.format, lw, lh);
       if (ktx_sizes) {
         uint32_t size = le32(bytes_, at_);
         if (swap) size = byteswap32(size);
-        if (size != n) fail(fmt::format("level {} imageSize {} where a {}x{} {} level holds {} bytes", l, size, lw, lh, block_format_name(img.format), n));
+        if (size != n)
+          fail(fmt::format("level {} imageSize {} where a {}x{} {} level holds {} bytes", l, size, lw, lh,
+                           block_format_name(img.format), n));
         at_ += 4;
       }
       BlockLevel& level = img.levels[static_cast<size_t>(l)];
       level.width = lw;
       level.height = lh;
-      level.blocks.assign(bytes_.begin() + static_cast<ptrdiff_t>(at_), bytes_.begin() + static_cast<ptrdiff_t>(at_ + n));
+      level.blocks.assign(bytes_.begin() + static_cast<ptrdiff_t>(at_),
+                          bytes_.begin() + static_cast<ptrdiff_t>(at_ + n));
       at_ += n;
     }
   }
@@ -131,12 +136,14 @@ int check_mip_count(const LevelReader& r, uint32_t count, int w, int h) {
 // ---- DDS ----
 BlockImage parse_dds(std::span<const uint8_t> b, const std::string& label) {
   LevelReader r(b, 0, label + ": DDS");
-  if (b.size() < 4 + kDdsHeaderBytes) r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), 4 + kDdsHeaderBytes));
+  if (b.size() < 4 + kDdsHeaderBytes)
+    r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), 4 + kDdsHeaderBytes));
   const size_t h0 = 4;  // DDS_HEADER
   if (le32(b, h0) != kDdsHeaderBytes) r.fail(fmt::format("header size {} (must be {})", le32(b, h0), kDdsHeaderBytes));
   const uint32_t height = le32(b, h0 + 8), width = le32(b, h0 + 12), depth = le32(b, h0 + 20), mips = le32(b, h0 + 24);
   const size_t pf = h0 + 72;  // DDS_PIXELFORMAT
-  if (le32(b, pf) != kDdsPixelFormatBytes) r.fail(fmt::format("pixel format size {} (must be {})", le32(b, pf), kDdsPixelFormatBytes));
+  if (le32(b, pf) != kDdsPixelFormatBytes)
+    r.fail(fmt::format("pixel format size {} (must be {})", le32(b, pf), kDdsPixelFormatBytes));
   const uint32_t pf_flags = le32(b, pf + 4), code = le32(b, pf + 8), caps2 = le32(b, h0 + 108);
   if (caps2 & kDdsCaps2CubeMap) r.fail("a cube map, not a 2D texture");
   if (caps2 & kDdsCaps2Volume || depth > 1) r.fail("a volume texture, not a 2D texture");
@@ -145,7 +152,9 @@ BlockImage parse_dds(std::span<const uint8_t> b, const std::string& label) {
   BlockImage img;
   size_t at = 4 + kDdsHeaderBytes;
   switch (code) {
-    case fourcc('D', 'X', 'T', '1'): img.format = pf_flags & kDdpfAlphaPixels ? BlockFormat::BC1A : BlockFormat::BC1; break;
+    case fourcc('D', 'X', 'T', '1'):
+      img.format = pf_flags & kDdpfAlphaPixels ? BlockFormat::BC1A : BlockFormat::BC1;
+      break;
     case fourcc('D', 'X', 'T', '3'): img.format = BlockFormat::BC2; break;
     case fourcc('D', 'X', 'T', '5'): img.format = BlockFormat::BC3; break;
     case fourcc('A', 'T', 'I', '1'):
@@ -155,12 +164,15 @@ BlockImage parse_dds(std::span<const uint8_t> b, const std::string& label) {
     case fourcc('B', 'C', '5', 'U'): img.format = BlockFormat::BC5; break;
     case fourcc('B', 'C', '5', 'S'): img.format = BlockFormat::BC5S; break;
     case fourcc('D', 'X', 'T', '2'):
-    case fourcc('D', 'X', 'T', '4'): r.fail(fmt::format("FourCC {} (premultiplied alpha) is not supported", fourcc_text(code)));
+    case fourcc('D', 'X', 'T', '4'):
+      r.fail(fmt::format("FourCC {} (premultiplied alpha) is not supported", fourcc_text(code)));
     case fourcc('D', 'X', '1', '0'): {
-      if (b.size() < at + kDdsDx10Bytes) r.fail(fmt::format("truncated: {} bytes, the DX10 header needs {}", b.size(), at + kDdsDx10Bytes));
-      const uint32_t dxgi = le32(b, at), dimension = le32(b, at + 4), misc = le32(b, at + 8), array_size = le32(b, at + 12),
-                     misc2 = le32(b, at + 16);
-      if (dimension != kD3d10ResourceDimensionTexture2D) r.fail(fmt::format("resource dimension {} (a 2D texture is {})", dimension, kD3d10ResourceDimensionTexture2D));
+      if (b.size() < at + kDdsDx10Bytes)
+        r.fail(fmt::format("truncated: {} bytes, the DX10 header needs {}", b.size(), at + kDdsDx10Bytes));
+      const uint32_t dxgi = le32(b, at), dimension = le32(b, at + 4), misc = le32(b, at + 8),
+                     array_size = le32(b, at + 12), misc2 = le32(b, at + 16);
+      if (dimension != kD3d10ResourceDimensionTexture2D)
+        r.fail(fmt::format("resource dimension {} (a 2D texture is {})", dimension, kD3d10ResourceDimensionTexture2D));
       if (misc & kDdsResourceMiscTextureCube) r.fail("a cube map, not a 2D texture");
       if (array_size != 1) r.fail(fmt::format("array size {} (one 2D texture is 1)", array_size));
       const BlockFormatInfo* found = nullptr;
@@ -206,7 +218,7 @@ std::vector<uint8_t> write_dds(const BlockImage& img) {
   put32(out, static_cast<uint32_t>(l0.height));
   put32(out, static_cast<uint32_t>(l0.width));
   put32(out, static_cast<uint32_t>(l0.blocks.size()));  // dwPitchOrLinearSize: level 0's bytes
-  put32(out, 0);                                         // dwDepth
+  put32(out, 0);                                        // dwDepth
   put32(out, static_cast<uint32_t>(img.levels.size()));
   for (int i = 0; i < 11; ++i) put32(out, 0);  // dwReserved1
   put32(out, kDdsPixelFormatBytes);
@@ -229,19 +241,27 @@ std::vector<uint8_t> write_dds(const BlockImage& img) {
 // ---- KTX 1.1 ----
 BlockImage parse_ktx(std::span<const uint8_t> b, const std::string& label) {
   LevelReader r(b, 0, label + ": KTX");
-  if (b.size() < kKtxHeaderBytes) r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), kKtxHeaderBytes));
+  if (b.size() < kKtxHeaderBytes)
+    r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), kKtxHeaderBytes));
   const uint32_t endianness = le32(b, 12);
-  if (endianness != kKtxEndianness && endianness != byteswap32(kKtxEndianness)) r.fail(fmt::format("endianness field 0x{:08x}", endianness));
+  if (endianness != kKtxEndianness && endianness != byteswap32(kKtxEndianness))
+    r.fail(fmt::format("endianness field 0x{:08x}", endianness));
   const bool swap = endianness != kKtxEndianness;
-  auto field = [&](int i) { return swap ? byteswap32(le32(b, 12 + 4 * static_cast<size_t>(i))) : le32(b, 12 + 4 * static_cast<size_t>(i)); };
+  auto field = [&](int i) {
+    return swap ? byteswap32(le32(b, 12 + 4 * static_cast<size_t>(i))) : le32(b, 12 + 4 * static_cast<size_t>(i));
+  };
   const uint32_t gl_type = field(1), gl_type_size = field(2), gl_format = field(3), internal = field(4);
-  const uint32_t width = field(6), height = field(7), depth = field(8), array_elements = field(9), faces = field(10), mips = field(11),
-                 kv_bytes = field(12);
+  const uint32_t width = field(6), height = field(7), depth = field(8), array_elements = field(9), faces = field(10),
+                 mips = field(11), kv_bytes = field(12);
   if (gl_type != 0 || gl_format != 0 || gl_type_size > 1)
-    r.fail(fmt::format("glType {} glTypeSize {} glFormat {}: not a compressed texture (0, 1, 0)", gl_type, gl_type_size, gl_format));
+    r.fail(fmt::format("glType {} glTypeSize {} glFormat {}: not a compressed texture (0, 1, 0)", gl_type, gl_type_size,
+                       gl_format));
   const BlockFormatInfo* found = nullptr;
   for (const BlockFormatInfo& i : kBlockFormats)
-    if ((internal == i.gl_internal_format || (i.gl_srgb_internal_format != 0 && internal == i.gl_srgb_internal_format)) && !found) found = &i;
+    if ((internal == i.gl_internal_format ||
+         (i.gl_srgb_internal_format != 0 && internal == i.gl_srgb_internal_format)) &&
+        !found)
+      found = &i;
   if (!found) r.fail(fmt::format("glInternalFormat 0x{:04x} is not a supported block-compressed format", internal));
   if (height == 0) r.fail("pixelHeight 0: a 1D texture, not a 2D texture");
   if (depth > 1) r.fail(fmt::format("pixelDepth {}: a volume texture, not a 2D texture", depth));
@@ -250,7 +270,8 @@ BlockImage parse_ktx(std::span<const uint8_t> b, const std::string& label) {
   check_size(r, width, height);
   const int count = check_mip_count(r, mips, static_cast<int>(width), static_cast<int>(height));
   if (kv_bytes > b.size() - kKtxHeaderBytes)
-    r.fail(fmt::format("truncated: {} bytes of key/value data, {} left in the file", kv_bytes, b.size() - kKtxHeaderBytes));
+    r.fail(fmt::format("truncated: {} bytes of key/value data, {} left in the file", kv_bytes,
+                       b.size() - kKtxHeaderBytes));
   if (kv_bytes % 4 != 0) r.fail(fmt::format("{} bytes of key/value data (must be a multiple of 4)", kv_bytes));
   BlockImage img;
   img.format = found->format;
@@ -286,14 +307,18 @@ std::vector<uint8_t> write_ktx(const BlockImage& img) {
 }
 
 // ---- ARM .astc ----
-uint32_t le24(std::span<const uint8_t> b, size_t at) { return uint32_t{b[at]} | uint32_t{b[at + 1]} << 8 | uint32_t{b[at + 2]} << 16; }
+uint32_t le24(std::span<const uint8_t> b, size_t at) {
+  return uint32_t{b[at]} | uint32_t{b[at + 1]} << 8 | uint32_t{b[at + 2]} << 16;
+}
 
 BlockImage parse_astc(std::span<const uint8_t> b, const std::string& label) {
   LevelReader r(b, 0, label + ": .astc");
-  if (b.size() < kAstcHeaderBytes) r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), kAstcHeaderBytes));
+  if (b.size() < kAstcHeaderBytes)
+    r.fail(fmt::format("truncated: {} bytes, the header needs {}", b.size(), kAstcHeaderBytes));
   const int bx = b[4], by = b[5], bz = b[6];
   const uint32_t width = le24(b, 7), height = le24(b, 10), depth = le24(b, 13);
-  if (bz != 1 || depth != 1) r.fail(fmt::format("block depth {}, texel depth {}: a 3D texture, not a 2D texture", bz, depth));
+  if (bz != 1 || depth != 1)
+    r.fail(fmt::format("block depth {}, texel depth {}: a 3D texture, not a 2D texture", bz, depth));
   const BlockFormatInfo* found = nullptr;
   for (const BlockFormatInfo& i : kBlockFormats)
     if (i.family == BlockFamily::ASTC && i.block_w == bx && i.block_h == by) found = &i;
@@ -312,7 +337,8 @@ std::vector<uint8_t> write_astc(const BlockImage& img) {
   out.push_back(static_cast<uint8_t>(info.block_w));
   out.push_back(static_cast<uint8_t>(info.block_h));
   out.push_back(1);
-  for (const uint32_t v : {static_cast<uint32_t>(img.levels.front().width), static_cast<uint32_t>(img.levels.front().height), 1u})
+  for (const uint32_t v :
+       {static_cast<uint32_t>(img.levels.front().width), static_cast<uint32_t>(img.levels.front().height), 1u})
     for (int i = 0; i < 3; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
   out.insert(out.end(), img.levels.front().blocks.begin(), img.levels.front().blocks.end());
   return out;
@@ -354,20 +380,24 @@ std::optional<BlockContainer> container_by_magic(std::span<const uint8_t> bytes)
 void validate_block_image(const BlockImage& image, const std::string& label) {
   const BlockFormatInfo& info = block_format_info(image.format);
   if (image.levels.empty()) throw InputError(fmt::format("{}: no MIP levels", label));
-  if (image.srgb && info.gl_srgb_internal_format == 0) throw InputError(fmt::format("{}: {} has no sRGB variant", label, info.name));
+  if (image.srgb && info.gl_srgb_internal_format == 0)
+    throw InputError(fmt::format("{}: {} has no sRGB variant", label, info.name));
   const int w = image.levels.front().width, h = image.levels.front().height;
   if (w < 1 || h < 1 || w > kMaxTextureSize || h > kMaxTextureSize)
     throw InputError(fmt::format("{}: size {}x{} outside 1..{} per side", label, w, h, kMaxTextureSize));
   if (image.levels.size() > static_cast<size_t>(full_chain_levels(w, h)))
-    throw InputError(fmt::format("{}: {} MIP levels where a {}x{} texture has at most {}", label, image.levels.size(), w, h, full_chain_levels(w, h)));
+    throw InputError(fmt::format("{}: {} MIP levels where a {}x{} texture has at most {}", label, image.levels.size(),
+                                 w, h, full_chain_levels(w, h)));
   for (size_t l = 0, lw = static_cast<size_t>(w), lh = static_cast<size_t>(h); l < image.levels.size();
        ++l, lw = std::max<size_t>(1, lw >> 1), lh = std::max<size_t>(1, lh >> 1)) {
     const BlockLevel& level = image.levels[l];
     if (static_cast<size_t>(level.width) != lw || static_cast<size_t>(level.height) != lh)
-      throw InputError(fmt::format("{}: level {} is {}x{}, the MIP rule gives {}x{}", label, l, level.width, level.height, lw, lh));
+      throw InputError(
+          fmt::format("{}: level {} is {}x{}, the MIP rule gives {}x{}", label, l, level.width, level.height, lw, lh));
     const size_t want = block_level_bytes(image.format, level.width, level.height);
     if (level.blocks.size() != want)
-      throw InputError(fmt::format("{}: level {} holds {} bytes, a {}x{} {} level {}", label, l, level.blocks.size(), level.width, level.height, info.name, want));
+      throw InputError(fmt::format("{}: level {} holds {} bytes, a {}x{} {} level {}", label, l, level.blocks.size(),
+                                   level.width, level.height, info.name, want));
   }
 }
 
@@ -400,14 +430,16 @@ BlockImage read_block_image(const std::string& path, const std::string& label_in
 std::vector<uint8_t> serialize_block_image(const BlockImage& image, BlockContainer c, const std::string& label) {
   validate_block_image(image, label);
   if (!container_holds(c, image.format))
-    throw InputError(fmt::format("{}: {} cannot hold {} ({})", label, container_file_text(c), block_format_name(image.format),
-                                 c == BlockContainer::DDS ? "DDS holds the BC formats" : ".astc holds the ASTC formats"));
+    throw InputError(
+        fmt::format("{}: {} cannot hold {} ({})", label, container_file_text(c), block_format_name(image.format),
+                    c == BlockContainer::DDS ? "DDS holds the BC formats" : ".astc holds the ASTC formats"));
   switch (c) {
     case BlockContainer::DDS: return write_dds(image);
     case BlockContainer::KTX: return write_ktx(image);
     case BlockContainer::ASTC:
       if (image.levels.size() != 1)
-        throw InputError(fmt::format("{}: an .astc file holds one level, the image has {} (use KTX for MIP levels)", label, image.levels.size()));
+        throw InputError(fmt::format("{}: an .astc file holds one level, the image has {} (use KTX for MIP levels)",
+                                     label, image.levels.size()));
       if (image.srgb) throw InputError(fmt::format("{}: an .astc file has no sRGB flag (use KTX for sRGB)", label));
       return write_astc(image);
   }

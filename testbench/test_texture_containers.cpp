@@ -91,7 +91,8 @@ TEST(TextureContainers, RoundTripEveryFormatThroughEveryContainerThatHoldsIt) {
         img.srgb = srgb;
         const Bytes bytes = serialize_block_image(img, c, "test");
         EXPECT_EQ(container_by_magic(bytes), c);
-        expect_same(parse_block_image(bytes, "test"), img, fmt::format("{} in {} srgb {}", info.name, block_container_name(c), srgb));
+        expect_same(parse_block_image(bytes, "test"), img,
+                    fmt::format("{} in {} srgb {}", info.name, block_container_name(c), srgb));
         ++trips;
       }
     }
@@ -105,7 +106,8 @@ TEST(TextureContainers, FileDetectedByMagicNotByExtension) {
   const BlockImage img = random_image(BlockFormat::BC3, 8, 8, 0, rng);
   const Bytes bytes = serialize_block_image(img, BlockContainer::DDS, "test");
   const fs::path p = dir.path() / "looks_like.ktx";
-  std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(p, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   expect_same(read_block_image(p.string()), img, "DDS named .ktx");
 }
 
@@ -125,8 +127,10 @@ TEST(TextureContainers, MapsEveryFormatToItsDefaultContainer) {
 Bytes hand_dds(uint32_t width, uint32_t height, uint32_t mips, const char fourcc[4], uint32_t pf_flags) {
   Bytes b(128, 0);
   b[0] = 'D', b[1] = 'D', b[2] = 'S', b[3] = ' ';
-  put32(b, 4, 124);                         // dwSize
-  put32(b, 8, 0x1 | 0x2 | 0x4 | 0x1000 | 0x80000 | (mips > 1 ? 0x20000 : 0));  // CAPS HEIGHT WIDTH PIXELFORMAT LINEARSIZE [MIPMAPCOUNT]
+  put32(b, 4, 124);  // dwSize
+  put32(b, 8,
+        0x1 | 0x2 | 0x4 | 0x1000 | 0x80000 |
+            (mips > 1 ? 0x20000 : 0));  // CAPS HEIGHT WIDTH PIXELFORMAT LINEARSIZE [MIPMAPCOUNT]
   put32(b, 12, height);
   put32(b, 16, width);
   put32(b, 28, mips);
@@ -163,8 +167,8 @@ TEST(TextureContainers, DdsDx10HeaderCarriesTheDxgiCodes) {
   // DXGI_FORMAT values from Microsoft's dxgiformat.h: BC1_UNORM 71, _SRGB 72, BC2 74/75, BC3 77/78,
   // BC4_UNORM 80, BC4_SNORM 81, BC5_UNORM 83, BC5_SNORM 84, BC7_UNORM 98, _SRGB 99.
   const std::vector<std::tuple<BlockFormat, bool, uint32_t>> want{
-      {BlockFormat::BC1, true, 72}, {BlockFormat::BC1A, true, 72}, {BlockFormat::BC2, true, 75}, {BlockFormat::BC3, true, 78},
-      {BlockFormat::BC7, false, 98}, {BlockFormat::BC7, true, 99}};
+      {BlockFormat::BC1, true, 72}, {BlockFormat::BC1A, true, 72}, {BlockFormat::BC2, true, 75},
+      {BlockFormat::BC3, true, 78}, {BlockFormat::BC7, false, 98}, {BlockFormat::BC7, true, 99}};
   std::mt19937 rng(5);
   for (const auto& [f, srgb, dxgi] : want) {
     BlockImage img = random_image(f, 4, 4, 1, rng);
@@ -173,9 +177,9 @@ TEST(TextureContainers, DdsDx10HeaderCarriesTheDxgiCodes) {
     ASSERT_EQ(b.size(), 4 + 124 + 20 + img.levels[0].blocks.size());
     EXPECT_EQ(std::string(b.begin() + 84, b.begin() + 88), "DX10");
     EXPECT_EQ(b[128], dxgi) << block_format_name(f);
-    EXPECT_EQ(b[132], 3u);                                     // D3D10_RESOURCE_DIMENSION_TEXTURE2D
-    EXPECT_EQ(b[140], 1u);                                     // arraySize
-    EXPECT_EQ(b[144], f == BlockFormat::BC1 ? 3u : 0u);        // DDS_ALPHA_MODE_OPAQUE for bc1
+    EXPECT_EQ(b[132], 3u);                               // D3D10_RESOURCE_DIMENSION_TEXTURE2D
+    EXPECT_EQ(b[140], 1u);                               // arraySize
+    EXPECT_EQ(b[144], f == BlockFormat::BC1 ? 3u : 0u);  // DDS_ALPHA_MODE_OPAQUE for bc1
   }
   EXPECT_EQ(block_format_info(BlockFormat::BC4).dxgi_format, 80u);
   EXPECT_EQ(block_format_info(BlockFormat::BC4S).dxgi_format, 81u);
@@ -222,7 +226,8 @@ TEST(TextureContainers, OpenImageIoReadsOurDdsFiles) {
     const BlockImage img = encode_block_image(std::span(&src, 1), f, false);
     const Bytes b = serialize_block_image(img, BlockContainer::DDS, "t");
     const fs::path p = dir.path() / fmt::format("{}.dds", block_format_name(f));
-    std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+    std::ofstream(p, std::ios::binary)
+        .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
     auto in = OIIO::ImageInput::open(p.string());
     ASSERT_TRUE(in) << OIIO::geterror();
     const OIIO::ImageSpec spec = in->spec();
@@ -257,7 +262,8 @@ TEST(TextureContainers, RefusesEveryKindOfBadHeaderWithOneLine) {
   bc7.srgb = true;
   const Bytes dx10 = serialize_block_image(bc7, BlockContainer::DDS, "t");
   const Bytes ktx = serialize_block_image(random_image(BlockFormat::ETC2, 16, 8, 0, rng), BlockContainer::KTX, "t");
-  const Bytes astc = serialize_block_image(random_image(BlockFormat::ASTC_5x4, 11, 9, 1, rng), BlockContainer::ASTC, "t");
+  const Bytes astc =
+      serialize_block_image(random_image(BlockFormat::ASTC_5x4, 11, 9, 1, rng), BlockContainer::ASTC, "t");
   const std::vector<std::pair<const Bytes*, BadCase>> cases{
       {&dds, {"dds header size", [](Bytes& b) { put32(b, 4, 100); }, "header size 100"}},
       {&dds, {"dds pixel format size", [](Bytes& b) { put32(b, 76, 0); }, "pixel format size 0"}},
@@ -267,7 +273,8 @@ TEST(TextureContainers, RefusesEveryKindOfBadHeaderWithOneLine) {
       {&dds, {"dds zero width", [](Bytes& b) { put32(b, 16, 0); }, "size 0x16"}},
       {&dds, {"dds huge height", [](Bytes& b) { put32(b, 12, 1u << 30); }, "outside 1..16384"}},
       {&dds, {"dds absurd mips", [](Bytes& b) { put32(b, 28, 1000); }, "1000 MIP levels"}},
-      {&dds, {"dds one mip too many", [](Bytes& b) { put32(b, 28, 6); }, "6 MIP levels where a 16x16 texture has at most 5"}},
+      {&dds,
+       {"dds one mip too many", [](Bytes& b) { put32(b, 28, 6); }, "6 MIP levels where a 16x16 texture has at most 5"}},
       {&dds, {"dds fewer mips than data", [](Bytes& b) { put32(b, 28, 2); }, "bytes after the last MIP level"}},
       {&dds, {"dds width larger than data", [](Bytes& b) { put32(b, 16, 20); }, "truncated"}},
       {&dds, {"dds cube map", [](Bytes& b) { put32(b, 112, 0x200); }, "cube map"}},
@@ -299,14 +306,18 @@ TEST(TextureContainers, RefusesEveryKindOfBadHeaderWithOneLine) {
     expect_one_line_naming(input_error([&] { parse_block_image(b, "'bad.file'"); }), "'bad.file': ", c.reason);
   }
   // No magic at all.
-  expect_one_line_naming(input_error([&] { parse_block_image(Bytes{'P', 'N', 'G', 0}, "'x'"); }), "'x': ", "not a DDS, KTX or .astc file");
+  expect_one_line_naming(input_error([&] {
+                           parse_block_image(Bytes{'P', 'N', 'G', 0}, "'x'");
+                         }),
+                         "'x': ", "not a DDS, KTX or .astc file");
 }
 
 TEST(TextureContainers, BigEndianKtxReadsAlike) {
   std::mt19937 rng(13);
   const BlockImage img = random_image(BlockFormat::EAC_RG11, 9, 7, 0, rng);
   Bytes b = serialize_block_image(img, BlockContainer::KTX, "t");
-  for (size_t at = 12; at < 64; at += 4) std::reverse(b.begin() + static_cast<ptrdiff_t>(at), b.begin() + static_cast<ptrdiff_t>(at + 4));
+  for (size_t at = 12; at < 64; at += 4)
+    std::reverse(b.begin() + static_cast<ptrdiff_t>(at), b.begin() + static_cast<ptrdiff_t>(at + 4));
   for (size_t at = 64, l = 0; l < img.levels.size(); at += 4 + img.levels[l].blocks.size(), ++l)
     std::reverse(b.begin() + static_cast<ptrdiff_t>(at), b.begin() + static_cast<ptrdiff_t>(at + 4));
   expect_same(parse_block_image(b, "t"), img, "big-endian KTX");
@@ -315,8 +326,10 @@ TEST(TextureContainers, BigEndianKtxReadsAlike) {
 // Every proper prefix of a valid file is refused (truncation anywhere), and one byte more too.
 TEST(TextureContainers, EveryTruncationAndEveryExtraByteIsRefused) {
   std::mt19937 rng(17);
-  for (const auto& [f, c] : {std::pair{BlockFormat::BC5, BlockContainer::DDS}, {BlockFormat::BC7, BlockContainer::DDS},
-                             {BlockFormat::ETC2A, BlockContainer::KTX}, {BlockFormat::ASTC_12x10, BlockContainer::ASTC}}) {
+  for (const auto& [f, c] : {std::pair{BlockFormat::BC5, BlockContainer::DDS},
+                             {BlockFormat::BC7, BlockContainer::DDS},
+                             {BlockFormat::ETC2A, BlockContainer::KTX},
+                             {BlockFormat::ASTC_12x10, BlockContainer::ASTC}}) {
     BlockImage img = random_image(f, 13, 11, c == BlockContainer::ASTC ? 1 : 0, rng);
     img.srgb = f == BlockFormat::BC7;
     const Bytes b = serialize_block_image(img, c, "t");
@@ -327,14 +340,16 @@ TEST(TextureContainers, EveryTruncationAndEveryExtraByteIsRefused) {
     }
     Bytes more = b;
     more.push_back(0);
-    expect_one_line_naming(input_error([&] { parse_block_image(more, "'more'"); }), "'more': ", "1 bytes after the last MIP level");
+    expect_one_line_naming(input_error([&] { parse_block_image(more, "'more'"); }),
+                           "'more': ", "1 bytes after the last MIP level");
   }
 }
 
 TEST(TextureContainers, FileChecksAndMemoryBudget) {
   const TempDir dir("tfu-containers");
   EXPECT_NE(input_error([&] { read_block_image(dir.path().string()); }).find("is a directory"), std::string::npos);
-  EXPECT_NE(input_error([&] { read_block_image((dir.path() / "none.dds").string()); }).find("no such file"), std::string::npos);
+  EXPECT_NE(input_error([&] { read_block_image((dir.path() / "none.dds").string()); }).find("no such file"),
+            std::string::npos);
   const uint64_t budget = memory_budget();
   set_memory_budget(100);
   const std::string m = input_error([&] { read_block_image((kData / "bc3.dds").string()); });
@@ -346,29 +361,36 @@ TEST(TextureContainers, FileChecksAndMemoryBudget) {
 TEST(TextureContainers, WriterRefusesWhatTheContainerCannotHold) {
   std::mt19937 rng(19);
   const BlockImage etc = random_image(BlockFormat::ETC2, 8, 8, 1, rng);
-  EXPECT_NE(input_error([&] { serialize_block_image(etc, BlockContainer::DDS, "'o.dds'"); }).find("DDS holds the BC formats"), std::string::npos);
+  EXPECT_NE(
+      input_error([&] { serialize_block_image(etc, BlockContainer::DDS, "'o.dds'"); }).find("DDS holds the BC formats"),
+      std::string::npos);
   const BlockImage astc = random_image(BlockFormat::ASTC_4x4, 8, 8, 0, rng);
-  EXPECT_NE(input_error([&] { serialize_block_image(astc, BlockContainer::ASTC, "'o'"); }).find("holds one level"), std::string::npos);
+  EXPECT_NE(input_error([&] { serialize_block_image(astc, BlockContainer::ASTC, "'o'"); }).find("holds one level"),
+            std::string::npos);
   BlockImage bad = random_image(BlockFormat::BC1, 8, 8, 2, rng);
   bad.levels[1].width = 3;
-  EXPECT_NE(input_error([&] { serialize_block_image(bad, BlockContainer::KTX, "'o'"); }).find("level 1 is 3x4"), std::string::npos);
+  EXPECT_NE(input_error([&] { serialize_block_image(bad, BlockContainer::KTX, "'o'"); }).find("level 1 is 3x4"),
+            std::string::npos);
   BlockImage srgb4 = random_image(BlockFormat::BC4, 8, 8, 1, rng);
   srgb4.srgb = true;
-  EXPECT_NE(input_error([&] { serialize_block_image(srgb4, BlockContainer::DDS, "'o'"); }).find("no sRGB variant"), std::string::npos);
+  EXPECT_NE(input_error([&] { serialize_block_image(srgb4, BlockContainer::DDS, "'o'"); }).find("no sRGB variant"),
+            std::string::npos);
 }
 
 // Random bytes after a valid magic: never anything but a valid image or one InputError line.
 TEST(TextureContainers, RandomHeadersNeverCrash) {
   std::mt19937 rng(23);
   std::mt19937 blocks(29);
-  const std::vector<Bytes> bases{serialize_block_image(random_image(BlockFormat::BC2, 8, 4, 0, blocks), BlockContainer::DDS, "t"),
-                                 serialize_block_image(random_image(BlockFormat::EAC_R11, 8, 4, 0, blocks), BlockContainer::KTX, "t"),
-                                 serialize_block_image(random_image(BlockFormat::ASTC_8x5, 8, 4, 1, blocks), BlockContainer::ASTC, "t")};
+  const std::vector<Bytes> bases{
+      serialize_block_image(random_image(BlockFormat::BC2, 8, 4, 0, blocks), BlockContainer::DDS, "t"),
+      serialize_block_image(random_image(BlockFormat::EAC_R11, 8, 4, 0, blocks), BlockContainer::KTX, "t"),
+      serialize_block_image(random_image(BlockFormat::ASTC_8x5, 8, 4, 1, blocks), BlockContainer::ASTC, "t")};
   int refused = 0, read = 0;
   for (int i = 0; i < iterations(3000); ++i) {
     Bytes b = bases[static_cast<size_t>(i) % bases.size()];
     const int flips = 1 + static_cast<int>(rng() % 3);
-    for (int k = 0; k < flips; ++k) b[4 + rng() % std::min<size_t>(b.size() - 4, 150)] ^= static_cast<uint8_t>(1u << (rng() % 8));
+    for (int k = 0; k < flips; ++k)
+      b[4 + rng() % std::min<size_t>(b.size() - 4, 150)] ^= static_cast<uint8_t>(1u << (rng() % 8));
     try {
       const BlockImage img = parse_block_image(b, "'r'");
       validate_block_image(img, "r");
@@ -439,12 +461,16 @@ TEST(BlockEncode, AlphaErrorBounded) {
   // BC2 stores 4-bit alpha (error <= 8.5 -> 9 with rounding); BC3 and ETC2 RGBA (EAC) have an alpha
   // block of their own: within 8 on this ramp of 4.25 per texel. BC7 mode 6 and ASTC share the
   // indices of colour and alpha (mode 6) or trade them in the encoder's search: measured 13 and 10.
-  for (const auto& [f, bound] : {std::pair{BlockFormat::BC2, 9}, {BlockFormat::BC3, 8}, {BlockFormat::ETC2A, 8},
-                                 {BlockFormat::BC7, 13}, {BlockFormat::ASTC_4x4, 10}}) {
+  for (const auto& [f, bound] : {std::pair{BlockFormat::BC2, 9},
+                                 {BlockFormat::BC3, 8},
+                                 {BlockFormat::ETC2A, 8},
+                                 {BlockFormat::BC7, 13},
+                                 {BlockFormat::ASTC_4x4, 10}}) {
     const BlockImage img = encode_block_image(std::span(&src, 1), f, false);
     const Image back = decode_block_level(f, src.width, src.height, img.levels[0].blocks, {});
     int worst = 0;
-    for (size_t i = 0; i < src.texels.size(); ++i) worst = std::max(worst, std::abs(back.texels[i].a - src.texels[i].a));
+    for (size_t i = 0; i < src.texels.size(); ++i)
+      worst = std::max(worst, std::abs(back.texels[i].a - src.texels[i].a));
     EXPECT_LE(worst, bound) << block_format_name(f);
   }
 }
@@ -455,7 +481,8 @@ TEST(BlockEncode, AlphaErrorBounded) {
 TEST(BlockEncode, ConstantBlocks) {
   std::mt19937 rng(31);
   for (int n = 0; n < iterations(2000); ++n) {
-    const Rgba8 c{static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+    const Rgba8 c{static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()),
+                  static_cast<uint8_t>(rng())};
     Rgba8 t[16];
     std::fill(std::begin(t), std::end(t), c);
     Rgba8 out[16];
@@ -463,7 +490,8 @@ TEST(BlockEncode, ConstantBlocks) {
     encode_bc7_mode6_block(t, block);
     decode_block(BlockFormat::BC7, block, {}, out);
     for (const Rgba8& o : out)
-      ASSERT_TRUE(std::abs(o.r - c.r) <= 1 && std::abs(o.g - c.g) <= 1 && std::abs(o.b - c.b) <= 1 && std::abs(o.a - c.a) <= 1);
+      ASSERT_TRUE(std::abs(o.r - c.r) <= 1 && std::abs(o.g - c.g) <= 1 && std::abs(o.b - c.b) <= 1 &&
+                  std::abs(o.a - c.a) <= 1);
     int alpha[16];
     std::fill(std::begin(alpha), std::end(alpha), c.a);
     encode_eac_block(alpha, false, block);
@@ -478,14 +506,16 @@ TEST(BlockEncode, ConstantBlocks) {
     for (const uint16_t v : v11) ASSERT_LE(std::abs(eac11_to_unorm8(v) - c.r), 1);
     encode_etc1_block(t, block);
     decode_block(BlockFormat::ETC2, block, {}, out);
-    for (const Rgba8& o : out) ASSERT_TRUE(std::abs(o.r - c.r) <= 6 && std::abs(o.g - c.g) <= 6 && std::abs(o.b - c.b) <= 6) << n;
+    for (const Rgba8& o : out)
+      ASSERT_TRUE(std::abs(o.r - c.r) <= 6 && std::abs(o.g - c.g) <= 6 && std::abs(o.b - c.b) <= 6) << n;
   }
 }
 
 TEST(BlockEncode, DeterministicWithMipLevelsAndPartialBlocks) {
   Texture tex = make_procedural("checkerboard", 40).texture;
   generate_mipmaps(tex, MipMethod::Box);
-  for (const BlockFormat f : {BlockFormat::BC3, BlockFormat::BC7, BlockFormat::ETC2A, BlockFormat::EAC_RG11, BlockFormat::ASTC_5x4}) {
+  for (const BlockFormat f :
+       {BlockFormat::BC3, BlockFormat::BC7, BlockFormat::ETC2A, BlockFormat::EAC_RG11, BlockFormat::ASTC_5x4}) {
     const BlockImage a = encode_block_image(tex.levels, f, false), b = encode_block_image(tex.levels, f, false);
     expect_same(a, b, block_format_name(f));
     validate_block_image(a, "encoded");  // 40x40 .. 1x1: every level's size and bytes
@@ -495,12 +525,18 @@ TEST(BlockEncode, DeterministicWithMipLevelsAndPartialBlocks) {
 
 TEST(BlockEncode, RefusesWhatItCannotEncode) {
   const Image src(8, 8);
-  for (const BlockFormat f : {BlockFormat::BC4S, BlockFormat::BC5S, BlockFormat::EAC_R11S, BlockFormat::EAC_RG11S, BlockFormat::ETC2A1}) {
+  for (const BlockFormat f :
+       {BlockFormat::BC4S, BlockFormat::BC5S, BlockFormat::EAC_R11S, BlockFormat::EAC_RG11S, BlockFormat::ETC2A1}) {
     EXPECT_FALSE(has_block_encoder(f));
-    EXPECT_NE(input_error([&] { encode_block_image(std::span(&src, 1), f, false); }).find("no encoder for"), std::string::npos);
+    EXPECT_NE(input_error([&] { encode_block_image(std::span(&src, 1), f, false); }).find("no encoder for"),
+              std::string::npos);
   }
-  EXPECT_NE(input_error([&] { encode_block_image(std::span(&src, 1), BlockFormat::BC5, true); }).find("no sRGB variant"), std::string::npos);
-  EXPECT_NE(input_error([&] { encode_block_image(std::span(&src, 1), BlockFormat::BC1, false, {101}); }).find("outside 0..100"),
+  EXPECT_NE(
+      input_error([&] { encode_block_image(std::span(&src, 1), BlockFormat::BC5, true); }).find("no sRGB variant"),
+      std::string::npos);
+  EXPECT_NE(input_error([&] {
+              encode_block_image(std::span(&src, 1), BlockFormat::BC1, false, {101});
+            }).find("outside 0..100"),
             std::string::npos);
   // sRGB ASTC: libastcenc's sRGB profile, decoded with the sRGB rule.
   const Image z = crop_61x45("zoneplate");

@@ -4,8 +4,8 @@
 // magic; parse_block_image then reads the bytes as `tfu decompress` and every texture input do.
 // A file that reads must be well formed (validate_block_image), and written back to the same
 // container (serialize_block_image) read again to the same image (format, sRGB flag, every level's
-// size and blocks); its smallest level is decoded (decode_block_level, any format). A refused file must end in an InputError whose
-// message is one line naming the input, at most kMaxMessageChars.
+// size and blocks); its smallest level is decoded (decode_block_level, any format). A refused file must end in an
+// InputError whose message is one line naming the input, at most kMaxMessageChars.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -48,7 +48,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       (void)tfu::decode_block_level(img.format, last.width, last.height, last.blocks, {.srgb = img.srgb}, "fuzz");
   } catch (const tfu::InputError& e) {
     const std::string message = e.what();
-    if (message.size() > tfu::kMaxMessageChars || tfu::has_control_characters(message) || message.rfind(label + ": ", 0) != 0)
+    if (message.size() > tfu::kMaxMessageChars || tfu::has_control_characters(message) ||
+        message.rfind(label + ": ", 0) != 0)
       fail("the error line is not one short line naming the input", message);
   }
   return 0;
