@@ -21,3 +21,11 @@ target_link_libraries(tfu_oiio INTERFACE PkgConfig::OIIO)
 # libzip (Debian libzip-dev): reads the .pk3 (zip) archives of Quake III / OpenArena game data
 # (cmodel/pk3.cpp). Through pkg-config (libzip.pc), like OpenImageIO.
 pkg_check_modules(LIBZIP REQUIRED IMPORTED_TARGET libzip)
+
+# Block-compressed texture encoders (cmodel/block_encode.cpp), also the outside references of the
+# decoder tests: ARM's libastcenc 4.2 (Debian libastcenc-dev, a CMake package that accepts 4.2.x
+# only; its imported target brings ASTCENC_DYNAMIC_LIBRARY) and libsquish 1.15 (libsquish-dev,
+# whose libsquish.pc has an empty prefix, so header and library are found directly).
+find_package(astcenc 4.2 CONFIG REQUIRED)
+find_path(SQUISH_INCLUDE_DIR squish.h REQUIRED)
+find_library(SQUISH_LIBRARY squish REQUIRED)

@@ -53,45 +53,47 @@ struct BlockFormatInfo {
   bool is_signed;        // SNORM: decoded, not filtered by the unit
   uint32_t gl_internal_format;       // the GL enum of the linear variant (KTX files, Mesa)
   uint32_t gl_srgb_internal_format;  // the sRGB variant's, 0 when the format has none
+  uint32_t dxgi_format;       // DXGI_FORMAT of the linear variant (DDS files' DX10 header), 0: none
+  uint32_t dxgi_srgb_format;  // DXGI_FORMAT of the sRGB variant, 0: none
 };
 
 // clang-format off
 inline constexpr std::array<BlockFormatInfo, 30> kBlockFormats{{
-    // GL_EXT_texture_compression_s3tc, GL_EXT_texture_sRGB
-    {BlockFormat::BC1,   "bc1",  BlockFamily::BC, 4, 4,  8, 3, false, 0x83F0, 0x8C4C},
-    {BlockFormat::BC1A,  "bc1a", BlockFamily::BC, 4, 4,  8, 4, false, 0x83F1, 0x8C4D},
-    {BlockFormat::BC2,   "bc2",  BlockFamily::BC, 4, 4, 16, 4, false, 0x83F2, 0x8C4E},
-    {BlockFormat::BC3,   "bc3",  BlockFamily::BC, 4, 4, 16, 4, false, 0x83F3, 0x8C4F},
+    // GL_EXT_texture_compression_s3tc, GL_EXT_texture_sRGB; DXGI_FORMAT_BC1..BC5_*, BC7_* (dxgiformat.h)
+    {BlockFormat::BC1,   "bc1",  BlockFamily::BC, 4, 4,  8, 3, false, 0x83F0, 0x8C4C, 71, 72},
+    {BlockFormat::BC1A,  "bc1a", BlockFamily::BC, 4, 4,  8, 4, false, 0x83F1, 0x8C4D, 71, 72},
+    {BlockFormat::BC2,   "bc2",  BlockFamily::BC, 4, 4, 16, 4, false, 0x83F2, 0x8C4E, 74, 75},
+    {BlockFormat::BC3,   "bc3",  BlockFamily::BC, 4, 4, 16, 4, false, 0x83F3, 0x8C4F, 77, 78},
     // GL_ARB_texture_compression_rgtc
-    {BlockFormat::BC4,   "bc4",  BlockFamily::BC, 4, 4,  8, 1, false, 0x8DBB, 0},
-    {BlockFormat::BC4S,  "bc4s", BlockFamily::BC, 4, 4,  8, 1, true,  0x8DBC, 0},
-    {BlockFormat::BC5,   "bc5",  BlockFamily::BC, 4, 4, 16, 2, false, 0x8DBD, 0},
-    {BlockFormat::BC5S,  "bc5s", BlockFamily::BC, 4, 4, 16, 2, true,  0x8DBE, 0},
+    {BlockFormat::BC4,   "bc4",  BlockFamily::BC, 4, 4,  8, 1, false, 0x8DBB, 0, 80,  0},
+    {BlockFormat::BC4S,  "bc4s", BlockFamily::BC, 4, 4,  8, 1, true,  0x8DBC, 0, 81,  0},
+    {BlockFormat::BC5,   "bc5",  BlockFamily::BC, 4, 4, 16, 2, false, 0x8DBD, 0, 83,  0},
+    {BlockFormat::BC5S,  "bc5s", BlockFamily::BC, 4, 4, 16, 2, true,  0x8DBE, 0, 84,  0},
     // GL_ARB_texture_compression_bptc
-    {BlockFormat::BC7,   "bc7",  BlockFamily::BC, 4, 4, 16, 4, false, 0x8E8C, 0x8E8D},
+    {BlockFormat::BC7,   "bc7",  BlockFamily::BC, 4, 4, 16, 4, false, 0x8E8C, 0x8E8D, 98, 99},
     // GL_ARB_ES3_compatibility (ETC2 / EAC)
-    {BlockFormat::ETC2,      "etc2",      BlockFamily::ETC, 4, 4,  8, 3, false, 0x9274, 0x9275},
-    {BlockFormat::ETC2A1,    "etc2a1",    BlockFamily::ETC, 4, 4,  8, 4, false, 0x9276, 0x9277},
-    {BlockFormat::ETC2A,     "etc2a",     BlockFamily::ETC, 4, 4, 16, 4, false, 0x9278, 0x9279},
-    {BlockFormat::EAC_R11,   "eac_r11",   BlockFamily::ETC, 4, 4,  8, 1, false, 0x9270, 0},
-    {BlockFormat::EAC_R11S,  "eac_r11s",  BlockFamily::ETC, 4, 4,  8, 1, true,  0x9271, 0},
-    {BlockFormat::EAC_RG11,  "eac_rg11",  BlockFamily::ETC, 4, 4, 16, 2, false, 0x9272, 0},
-    {BlockFormat::EAC_RG11S, "eac_rg11s", BlockFamily::ETC, 4, 4, 16, 2, true,  0x9273, 0},
+    {BlockFormat::ETC2,      "etc2",      BlockFamily::ETC, 4, 4,  8, 3, false, 0x9274, 0x9275,  0,  0},
+    {BlockFormat::ETC2A1,    "etc2a1",    BlockFamily::ETC, 4, 4,  8, 4, false, 0x9276, 0x9277,  0,  0},
+    {BlockFormat::ETC2A,     "etc2a",     BlockFamily::ETC, 4, 4, 16, 4, false, 0x9278, 0x9279,  0,  0},
+    {BlockFormat::EAC_R11,   "eac_r11",   BlockFamily::ETC, 4, 4,  8, 1, false, 0x9270, 0,  0,  0},
+    {BlockFormat::EAC_R11S,  "eac_r11s",  BlockFamily::ETC, 4, 4,  8, 1, true,  0x9271, 0,  0,  0},
+    {BlockFormat::EAC_RG11,  "eac_rg11",  BlockFamily::ETC, 4, 4, 16, 2, false, 0x9272, 0,  0,  0},
+    {BlockFormat::EAC_RG11S, "eac_rg11s", BlockFamily::ETC, 4, 4, 16, 2, true,  0x9273, 0,  0,  0},
     // GL_KHR_texture_compression_astc_ldr: RGBA 0x93B0 + i, SRGB8_ALPHA8 0x93D0 + i
-    {BlockFormat::ASTC_4x4,   "astc4x4",   BlockFamily::ASTC,  4,  4, 16, 4, false, 0x93B0, 0x93D0},
-    {BlockFormat::ASTC_5x4,   "astc5x4",   BlockFamily::ASTC,  5,  4, 16, 4, false, 0x93B1, 0x93D1},
-    {BlockFormat::ASTC_5x5,   "astc5x5",   BlockFamily::ASTC,  5,  5, 16, 4, false, 0x93B2, 0x93D2},
-    {BlockFormat::ASTC_6x5,   "astc6x5",   BlockFamily::ASTC,  6,  5, 16, 4, false, 0x93B3, 0x93D3},
-    {BlockFormat::ASTC_6x6,   "astc6x6",   BlockFamily::ASTC,  6,  6, 16, 4, false, 0x93B4, 0x93D4},
-    {BlockFormat::ASTC_8x5,   "astc8x5",   BlockFamily::ASTC,  8,  5, 16, 4, false, 0x93B5, 0x93D5},
-    {BlockFormat::ASTC_8x6,   "astc8x6",   BlockFamily::ASTC,  8,  6, 16, 4, false, 0x93B6, 0x93D6},
-    {BlockFormat::ASTC_8x8,   "astc8x8",   BlockFamily::ASTC,  8,  8, 16, 4, false, 0x93B7, 0x93D7},
-    {BlockFormat::ASTC_10x5,  "astc10x5",  BlockFamily::ASTC, 10,  5, 16, 4, false, 0x93B8, 0x93D8},
-    {BlockFormat::ASTC_10x6,  "astc10x6",  BlockFamily::ASTC, 10,  6, 16, 4, false, 0x93B9, 0x93D9},
-    {BlockFormat::ASTC_10x8,  "astc10x8",  BlockFamily::ASTC, 10,  8, 16, 4, false, 0x93BA, 0x93DA},
-    {BlockFormat::ASTC_10x10, "astc10x10", BlockFamily::ASTC, 10, 10, 16, 4, false, 0x93BB, 0x93DB},
-    {BlockFormat::ASTC_12x10, "astc12x10", BlockFamily::ASTC, 12, 10, 16, 4, false, 0x93BC, 0x93DC},
-    {BlockFormat::ASTC_12x12, "astc12x12", BlockFamily::ASTC, 12, 12, 16, 4, false, 0x93BD, 0x93DD},
+    {BlockFormat::ASTC_4x4,   "astc4x4",   BlockFamily::ASTC,  4,  4, 16, 4, false, 0x93B0, 0x93D0,  0,  0},
+    {BlockFormat::ASTC_5x4,   "astc5x4",   BlockFamily::ASTC,  5,  4, 16, 4, false, 0x93B1, 0x93D1,  0,  0},
+    {BlockFormat::ASTC_5x5,   "astc5x5",   BlockFamily::ASTC,  5,  5, 16, 4, false, 0x93B2, 0x93D2,  0,  0},
+    {BlockFormat::ASTC_6x5,   "astc6x5",   BlockFamily::ASTC,  6,  5, 16, 4, false, 0x93B3, 0x93D3,  0,  0},
+    {BlockFormat::ASTC_6x6,   "astc6x6",   BlockFamily::ASTC,  6,  6, 16, 4, false, 0x93B4, 0x93D4,  0,  0},
+    {BlockFormat::ASTC_8x5,   "astc8x5",   BlockFamily::ASTC,  8,  5, 16, 4, false, 0x93B5, 0x93D5,  0,  0},
+    {BlockFormat::ASTC_8x6,   "astc8x6",   BlockFamily::ASTC,  8,  6, 16, 4, false, 0x93B6, 0x93D6,  0,  0},
+    {BlockFormat::ASTC_8x8,   "astc8x8",   BlockFamily::ASTC,  8,  8, 16, 4, false, 0x93B7, 0x93D7,  0,  0},
+    {BlockFormat::ASTC_10x5,  "astc10x5",  BlockFamily::ASTC, 10,  5, 16, 4, false, 0x93B8, 0x93D8,  0,  0},
+    {BlockFormat::ASTC_10x6,  "astc10x6",  BlockFamily::ASTC, 10,  6, 16, 4, false, 0x93B9, 0x93D9,  0,  0},
+    {BlockFormat::ASTC_10x8,  "astc10x8",  BlockFamily::ASTC, 10,  8, 16, 4, false, 0x93BA, 0x93DA,  0,  0},
+    {BlockFormat::ASTC_10x10, "astc10x10", BlockFamily::ASTC, 10, 10, 16, 4, false, 0x93BB, 0x93DB,  0,  0},
+    {BlockFormat::ASTC_12x10, "astc12x10", BlockFamily::ASTC, 12, 10, 16, 4, false, 0x93BC, 0x93DC,  0,  0},
+    {BlockFormat::ASTC_12x12, "astc12x12", BlockFamily::ASTC, 12, 12, 16, 4, false, 0x93BD, 0x93DD,  0,  0},
 }};
 // clang-format on
 

@@ -20,6 +20,7 @@ void register_render(CLI::App& app);        // cmd_render.cpp: scene renderer (i
 void register_descriptors(CLI::App& app);   // cmd_descriptors.cpp: descriptor register layouts
 void register_aniso_compare(CLI::App& app); // cmd_aniso_compare.cpp: anisotropic filtering vs OpenImageIO
 void register_sweep(CLI::App& app);         // cmd_sweep.cpp: `sweep` (design-space sweeps, Slurm) and `plot`
+void register_compress(CLI::App& app);       // cmd_compress.cpp: `compress` and `decompress` (DDS, KTX, .astc files)
 
 // A command's closing summary on stderr ("tfu render: 1024 triangles ..."), after its outputs: stdout
 // is flushed and checked first, so that when it fails (a full disk, a closed pipe) the error is the

@@ -178,6 +178,7 @@ int main(int argc, char** argv) {
   tfu::cli::register_formats(app);
   tfu::cli::register_sample(app);
   tfu::cli::register_mipmap(app);
+  tfu::cli::register_compress(app);
   tfu::cli::register_report(app);
   tfu::cli::register_compare(app);
   tfu::cli::register_render(app);
