@@ -212,7 +212,6 @@ void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const
 
 void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(cur.tag.req.texture)];
-  const LevelDescriptor& ld = d.level[static_cast<size_t>(cur.level)];
   const BlockFormatInfo& b = d.block();
   const TapGrid& g = cur.grid;
   struct Decoded {
@@ -223,8 +222,7 @@ void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 ou
   size_t n = 0;
   const auto texel = [&](size_t cell) {
     const int x = g.x[cell & 3u], y = g.y[cell >> 2];
-    const uint64_t address = ld.address + static_cast<uint64_t>(y / b.block_h) * ld.row_pitch +
-                             static_cast<uint64_t>(x / b.block_w) * static_cast<uint64_t>(b.block_bytes);
+    const uint64_t address = d.texel_address(cur.level, x, y);  // its block's
     size_t k = 0;
     while (k < n && blocks[k].address != address) ++k;
     if (k == n) {

@@ -6,6 +6,8 @@
 // the decoder statistics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <random>
 
 #include <astcenc.h>
@@ -17,6 +19,7 @@
 #include "cmodel/mipmap.hpp"
 #include "rtl/engine_compare.hpp"
 #include "rtl/golden_compare.hpp"
+#include "rtl/texel_cache.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "testbench/astc_reference.hpp"
 #include "testbench/iterations.hpp"
@@ -141,6 +144,43 @@ TEST(CompressedTexture, DescriptorFieldsRoundTrip) {
   s.block_format = BlockFormat::BC4S;
   s.level[0] = {0x1000, 256};
   EXPECT_THROW(s.validate("signed"), InputError);
+}
+
+// A compressed level's lines (cache.holds compressed) are its block bytes over the line size, for
+// every texel, format and line size; decoded lines tile the level in squares of line_bytes / 4
+// texels, above every memory line, and a fill's blocks are those covering the tile.
+TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
+  std::mt19937 rng(9);
+  for (const BlockFormat f : {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::ETC2, BlockFormat::ASTC_5x5, BlockFormat::ASTC_12x10})
+    for (const int line : {64, 256, 1024}) {
+      TextureMemory mem;
+      const Texture t = texture_from_block_image(random_block_image(f, 70, 45, 3, rng), {});
+      const std::vector<TextureDescriptor> d{place_texture(mem, t, static_cast<uint64_t>(line))};
+      TexelCacheConfig c;
+      c.line_bytes = line;
+      c.capacity_bytes = 4 * line;
+      c.ways = 4;
+      const TexelCache blocks(c, d);
+      c.holds = CacheHolds::Decoded;
+      const TexelCache decoded(c, d);
+      const BlockFormatInfo& info = block_format_info(f);
+      const int side = line == 64 ? 4 : line == 256 ? 8 : 16;
+      for (int l = 0; l < 3; ++l)
+        for (int y = 0; y < d[0].level_height(l); ++y)
+          for (int x = 0; x < d[0].level_width(l); ++x) {
+            ASSERT_EQ(blocks.line_of(0, l, x, y), d[0].texel_address(l, x, y) / static_cast<uint64_t>(line))
+                << block_format_name(f) << " line " << line << " level " << l << " " << x << "," << y;
+            const uint64_t v = decoded.line_of(0, l, x, y);
+            ASSERT_GE(v, (uint64_t{1} << 41) / static_cast<uint64_t>(line));
+            ASSERT_EQ(decoded.line_of(0, l, x / side * side, y / side * side), v);
+            int texels = 0;
+            const int n = decoded.fill_blocks(0, l, v, texels);
+            const int x0 = x / side * side, y0 = y / side * side;
+            const int x1 = std::min(x0 + side, d[0].level_width(l)) - 1, y1 = std::min(y0 + side, d[0].level_height(l)) - 1;
+            ASSERT_EQ(texels, (x1 - x0 + 1) * (y1 - y0 + 1));
+            ASSERT_EQ(n, (x1 / info.block_w - x0 / info.block_w + 1) * (y1 / info.block_h - y0 / info.block_h + 1));
+          }
+    }
 }
 
 // Random gradient requests over two textures (a compressed one and an uncompressed one,
