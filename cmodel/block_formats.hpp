@@ -167,7 +167,8 @@ Image decode_block_level(BlockFormat f, int width, int height, std::span<const u
 // as given (texture memory stores blocks row-major whatever the layout: cmodel/texture_memory.hpp).
 // InputError (naming `what`) for a signed format (the unit filters no SNORM texels), no levels,
 // or levels whose sizes or bytes break the floor rule.
-Texture texture_from_block_image(const BlockImage& image, const BlockDecodeRules& rules, const std::string& what = "compressed texture",
+Texture texture_from_block_image(const BlockImage& image, const BlockDecodeRules& rules,
+                                 const std::string& what = "compressed texture",
                                  MemoryLayout layout = MemoryLayout::Tiled, int tile_bytes = 64);
 
 }  // namespace tfu

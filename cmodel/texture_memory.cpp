@@ -57,8 +57,8 @@ TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t
       ld.row_pitch = static_cast<uint32_t>((row_bytes + align - 1) / align * align);
       ld.address = mem.allocate(d.level_bytes(l), align);
       for (int by = 0; by < down; ++by)
-        mem.write_bytes(ld.address + static_cast<uint64_t>(by) * ld.row_pitch, bl.blocks.data() + static_cast<size_t>(by) * row_bytes,
-                        static_cast<size_t>(row_bytes));
+        mem.write_bytes(ld.address + static_cast<uint64_t>(by) * ld.row_pitch,
+                        bl.blocks.data() + static_cast<size_t>(by) * row_bytes, static_cast<size_t>(row_bytes));
     }
     d.validate("placed texture");
     return d;
@@ -97,7 +97,8 @@ Texture read_texture(const TextureMemory& mem, const TextureDescriptor& d) {
       bl.height = d.level_height(l);
       const auto across = static_cast<size_t>(blocks_across(d.block_format, bl.width));
       for (int by = 0; by < blocks_down(d.block_format, bl.height); ++by) {
-        const uint8_t* row = mem.bytes_at(d.level[static_cast<size_t>(l)].address + static_cast<uint64_t>(by) * d.level[static_cast<size_t>(l)].row_pitch);
+        const uint8_t* row = mem.bytes_at(d.level[static_cast<size_t>(l)].address +
+                                          static_cast<uint64_t>(by) * d.level[static_cast<size_t>(l)].row_pitch);
         bl.blocks.insert(bl.blocks.end(), row, row + across * bb);
       }
       image.levels.push_back(std::move(bl));

@@ -47,8 +47,8 @@ uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, int texture) {
   return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
 }
 
-uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now, int& bank_cycles,
-                                  FootprintResult& r) {
+uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
+                                  int& bank_cycles, FootprintResult& r) {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
   const BlockFormatInfo& b = d.block();
   if (cache_.config().holds == CacheHolds::Compressed) {
@@ -58,7 +58,8 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
     int blocks = 0, taps = 0;
     for (uint32_t cells = lookup.used; cells != 0; cells &= cells - 1, ++taps) {
       const auto c = static_cast<size_t>(std::countr_zero(cells));
-      const uint32_t key = static_cast<uint32_t>(lookup.x[c & 3u] / b.block_w) << 16 | static_cast<uint32_t>(lookup.y[c >> 2] / b.block_h);
+      const uint32_t key = static_cast<uint32_t>(lookup.x[c & 3u] / b.block_w) << 16 |
+                           static_cast<uint32_t>(lookup.y[c >> 2] / b.block_h);
       int k = 0;
       while (k < blocks && seen[static_cast<size_t>(k)] != key) ++k;
       if (k == blocks) seen[static_cast<size_t>(blocks++)] = key;

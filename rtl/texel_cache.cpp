@@ -99,7 +99,8 @@ int TexelCache::fill_blocks(int texture, int level, uint64_t line, int& texels) 
   const uint64_t offset = line - ll.first;
   const int ty = static_cast<int>(offset / ll.stride), tx = static_cast<int>(offset % ll.stride);
   const int side = 1 << f.tile_log2;
-  const int x0 = tx * side, x1 = std::min(x0 + side, f.width) - 1, y0 = ty * side, y1 = std::min(y0 + side, f.height) - 1;
+  const int x0 = tx * side, x1 = std::min(x0 + side, f.width) - 1, y0 = ty * side,
+            y1 = std::min(y0 + side, f.height) - 1;
   texels = (x1 - x0 + 1) * (y1 - y0 + 1);
   return (x1 / f.block_w - x0 / f.block_w + 1) * (y1 / f.block_h - y0 / f.block_h + 1);
 }

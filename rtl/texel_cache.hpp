@@ -53,7 +53,6 @@ enum class BankMapping { TexelParity, BlockParity };
 // Uncompressed textures are cached as before under either.
 enum class CacheHolds { Compressed, Decoded };
 
-
 struct TexelCacheConfig {
   int line_bytes = 64;         // 64, 256 or 1024
   int capacity_bytes = 16384;  // total data capacity

@@ -77,9 +77,10 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
     for (size_t t = 0; t < frame.textures.size(); ++t) {
       const int ti = static_cast<int>(t);
       if (!frame.regs.textures[t].compressed || tex_requests[t] == 0) continue;
-      decoders.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
-                                 std::vector<uint64_t>{t, u.cache_stage.decoded_blocks(ti), u.cache_stage.decoder_busy(ti),
-                                                       u.cache_stage.decoder_stall(ti)});
+      decoders.rows.emplace_back(
+          fmt::format("{} {}", t, frame.textures[t].name),
+          std::vector<uint64_t>{t, u.cache_stage.decoded_blocks(ti), u.cache_stage.decoder_busy(ti),
+                                u.cache_stage.decoder_stall(ti)});
     }
     st.set_table(stat_key(UnitStat::Decoders), std::move(decoders));
   }

@@ -114,7 +114,8 @@ inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
     {UnitStat::Stages, "stages", StatKind::Table,
      "per material stage: stage, requests, line_hits, line_misses, memory_bytes"},
     {UnitStat::DecodedBlocks, "decoded_blocks", StatKind::Counter,
-     "compressed blocks decoded: each footprint's distinct blocks (cache.holds compressed) or each fill's (decoded; compressed textures only)"},
+     "compressed blocks decoded: each footprint's distinct blocks (cache.holds compressed) or each fill's (decoded; "
+     "compressed textures only)"},
     {UnitStat::DecoderBusyCycles, "decoder_busy_cycles", StatKind::Counter,
      "clocks the block decoders decode (compressed textures only)"},
     {UnitStat::DecoderStallCycles, "decoder_stall_cycles", StatKind::Counter,

@@ -35,7 +35,8 @@ std::vector<uint8_t> astc_encode(const Image& img, const BlockFormatInfo& info) 
   void* planes[1] = {texels.data()};
   astcenc_image image{static_cast<unsigned>(img.width), static_cast<unsigned>(img.height), 1, ASTCENC_TYPE_U8, planes};
   std::vector<uint8_t> out(block_level_bytes(info.format, img.width, img.height));
-  test::astcenc_check(astcenc_compress_image(ctx, &image, &test::kAstcencIdentity, out.data(), out.size(), 0), "compress");
+  test::astcenc_check(astcenc_compress_image(ctx, &image, &test::kAstcencIdentity, out.data(), out.size(), 0),
+                      "compress");
   test::astcenc_check(astcenc_compress_reset(ctx), "reset");
   return out;
 }
@@ -55,7 +56,8 @@ BlockImage random_block_image(BlockFormat f, int w, int h, int levels, std::mt19
       int v = static_cast<int>(rng() % 256);
       for (Rgba8& t : img.texels) {
         v = (v + static_cast<int>(rng() % 61) - 30) & 255;
-        t = {static_cast<uint8_t>(v), static_cast<uint8_t>(rng()), static_cast<uint8_t>(255 - v), static_cast<uint8_t>(rng() | 128)};
+        t = {static_cast<uint8_t>(v), static_cast<uint8_t>(rng()), static_cast<uint8_t>(255 - v),
+             static_cast<uint8_t>(rng() | 128)};
       }
       bl.blocks = astc_encode(img, info);
     } else {
@@ -84,7 +86,8 @@ TEST(CompressedTexture, LevelsAreTheDecodedBlocksAndSignedFormatsAreRefused) {
     ASSERT_NE(t.compressed, nullptr);
     EXPECT_EQ(t.format, TexelFormat::RGBA8);
     for (size_t l = 0; l < 3; ++l) {
-      const Image want = decode_block_level(f, image.levels[l].width, image.levels[l].height, image.levels[l].blocks, rules);
+      const Image want =
+          decode_block_level(f, image.levels[l].width, image.levels[l].height, image.levels[l].blocks, rules);
       EXPECT_EQ(t.levels[l].texels, want.texels) << block_format_name(f) << " level " << l;
     }
     // Texture memory stores the blocks: read back, the same blocks and texels; a texel's address
@@ -105,8 +108,8 @@ TEST(CompressedTexture, LevelsAreTheDecodedBlocksAndSignedFormatsAreRefused) {
     EXPECT_GE(d.level[0].row_pitch, static_cast<uint32_t>(blocks_across(f, 21) * info.block_bytes));
     EXPECT_EQ(d.texel_address(0, 2 * info.block_w + 1, info.block_h + 2),
               d.level[0].address + d.level[0].row_pitch + 2u * static_cast<uint64_t>(info.block_bytes));
-    EXPECT_EQ(std::memcmp(mem.bytes_at(d.texel_address(1, info.block_w, 0)), image.levels[1].blocks.data() + info.block_bytes,
-                          static_cast<size_t>(info.block_bytes)),
+    EXPECT_EQ(std::memcmp(mem.bytes_at(d.texel_address(1, info.block_w, 0)),
+                          image.levels[1].blocks.data() + info.block_bytes, static_cast<size_t>(info.block_bytes)),
               0);
   }
   BlockImage signed_image = random_block_image(BlockFormat::BC5S, 8, 8, 1, rng);
@@ -151,7 +154,8 @@ TEST(CompressedTexture, DescriptorFieldsRoundTrip) {
 // texels, above every memory line, and a fill's blocks are those covering the tile.
 TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
   std::mt19937 rng(9);
-  for (const BlockFormat f : {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::ETC2, BlockFormat::ASTC_5x5, BlockFormat::ASTC_12x10})
+  for (const BlockFormat f :
+       {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::ETC2, BlockFormat::ASTC_5x5, BlockFormat::ASTC_12x10})
     for (const int line : {64, 256, 1024}) {
       TextureMemory mem;
       const Texture t = texture_from_block_image(random_block_image(f, 70, 45, 3, rng), {});
@@ -176,7 +180,8 @@ TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
             int texels = 0;
             const int n = decoded.fill_blocks(0, l, v, texels);
             const int x0 = x / side * side, y0 = y / side * side;
-            const int x1 = std::min(x0 + side, d[0].level_width(l)) - 1, y1 = std::min(y0 + side, d[0].level_height(l)) - 1;
+            const int x1 = std::min(x0 + side, d[0].level_width(l)) - 1,
+                      y1 = std::min(y0 + side, d[0].level_height(l)) - 1;
             ASSERT_EQ(texels, (x1 - x0 + 1) * (y1 - y0 + 1));
             ASSERT_EQ(n, (x1 / info.block_w - x0 / info.block_w + 1) * (y1 / info.block_h - y0 / info.block_h + 1));
           }
@@ -193,11 +198,13 @@ CompressedRun compressed_run(BlockFormat f, int line_bytes, std::mt19937& rng, i
   FrameBuilder b(line_bytes);
   BlockImage image = random_block_image(f, 36, 28, mip_level_count(36, 28), rng);
   image.srgb = (rng() & 1) != 0;
-  const BlockDecodeRules rules{{static_cast<Bc1Interpolation>(rng() % 4), static_cast<Bc4Interpolation>(rng() % 2)}, image.srgb};
+  const BlockDecodeRules rules{{static_cast<Bc1Interpolation>(rng() % 4), static_cast<Bc4Interpolation>(rng() % 2)},
+                               image.srgb};
   b.add_texture(std::make_shared<const Texture>(texture_from_block_image(image, rules)), {block_format_name(f), {}});
   Texture plain;  // RGBA8, tiled
   plain.levels.emplace_back(32, 32);
-  for (Rgba8& t : plain.levels[0].texels) t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), 255};
+  for (Rgba8& t : plain.levels[0].texels)
+    t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), 255};
   generate_mipmaps(plain, MipMethod::Box);
   b.add_texture(std::make_shared<const Texture>(std::move(plain)), {"plain", {}});
   int samplers = 0;
@@ -250,8 +257,9 @@ TEST(CompressedUnit, GoldenEqualsBothEnginesOnEveryFormatModeAndCacheOrganizatio
       u.decoder.units = 1 + static_cast<int>(rng() % 2);
       u.decoder.latency = static_cast<int>(rng() % 4);
       const CompressedRun run = compressed_run(f, u.cache.line_bytes, rng, requests);
-      const std::string what = fmt::format("{} holds {} line {}", block_format_name(f), holds == CacheHolds::Compressed ? "compressed" : "decoded",
-                                           u.cache.line_bytes);
+      const std::string what =
+          fmt::format("{} holds {} line {}", block_format_name(f),
+                      holds == CacheHolds::Compressed ? "compressed" : "decoded", u.cache.line_bytes);
       const UnitOutput clocked = run_unit(run.frame, run.trace, u, UnitEngine::Clocked, {});
       ASSERT_EQ(clocked.pixels.size(), run.trace.requests.size()) << what;
       const GoldenUnit golden(run.frame);

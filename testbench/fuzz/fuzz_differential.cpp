@@ -75,8 +75,9 @@ std::shared_ptr<tfu::Texture> make_compressed_texture(ByteReader& in) {
     image.levels.push_back(std::move(bl));
   }
   const uint8_t rules = in.byte();
-  const tfu::BlockDecodeRules r{{static_cast<tfu::Bc1Interpolation>(rules % 4), static_cast<tfu::Bc4Interpolation>((rules >> 2) & 1)},
-                                image.srgb};
+  const tfu::BlockDecodeRules r{
+      {static_cast<tfu::Bc1Interpolation>(rules % 4), static_cast<tfu::Bc4Interpolation>((rules >> 2) & 1)},
+      image.srgb};
   return std::make_shared<tfu::Texture>(tfu::texture_from_block_image(image, r, "fuzz"));
 }
 
