@@ -1,5 +1,7 @@
 #include "cmodel/block_formats.hpp"
 
+#include <memory>
+
 #include <fmt/format.h>
 
 #include "cmodel/astc_decode.hpp"
@@ -93,6 +95,30 @@ Image decode_block_level(BlockFormat f, int width, int height, std::span<const u
           img.at(bx * info.block_w + x, by * info.block_h + y) = texels[static_cast<size_t>(y * info.block_w + x)];
     }
   return img;
+}
+
+Texture texture_from_block_image(const BlockImage& image, const BlockDecodeRules& rules, const std::string& what,
+                                 MemoryLayout layout, int tile_bytes) {
+  if (!unit_filterable(image.format))
+    throw InputError(fmt::format("{}: {} is a signed format; the unit filters unsigned texels only", what,
+                                 block_format_name(image.format)));
+  if (image.levels.empty()) throw InputError(fmt::format("{}: no levels", what));
+  auto c = std::make_shared<CompressedLevels>();
+  c->image = image;
+  c->rules = rules;
+  c->rules.srgb = image.srgb;
+  Texture tex;
+  tex.format = TexelFormat::RGBA8;
+  tex.layout = layout;
+  tex.tile_bytes = tile_bytes;
+  for (size_t l = 0; l < image.levels.size(); ++l) {
+    const BlockLevel& bl = image.levels[l];
+    tex.levels.push_back(decode_block_level(image.format, bl.width, bl.height, bl.blocks, c->rules,
+                                            fmt::format("{} level {}", what, l)));
+  }
+  tex.validate(what);
+  tex.compressed = std::move(c);
+  return tex;
 }
 
 }  // namespace tfu

@@ -144,6 +144,13 @@ struct BlockDecodeRules {
   friend constexpr bool operator==(const BlockDecodeRules&, const BlockDecodeRules&) = default;
 };
 
+// A compressed texture's blocks as texture memory stores them, with the rules the unit decodes
+// them by (Texture::compressed).
+struct CompressedLevels {
+  BlockImage image;
+  BlockDecodeRules rules;
+};
+
 // Decodes one block (block_format_info(f).block_bytes bytes) to block_w x block_h RGBA8 words,
 // row-major (texel (x, y) at out[y * block_w + x]), as the unit sees them (the header's rules).
 // Signed formats: the SNORM8 bytes as two's complement in the same channels.
@@ -153,5 +160,17 @@ void decode_block(BlockFormat f, const uint8_t* block, const BlockDecodeRules& r
 // InputError (naming `what`) when the bytes do not match the size.
 Image decode_block_level(BlockFormat f, int width, int height, std::span<const uint8_t> blocks, const BlockDecodeRules& rules,
                          const std::string& what = "compressed level");
+
+// The texture the models sample from a compressed image: its levels (the BlockImage's, as many as
+// it stores: no MIP generation on compressed data; a shorter chain behaves as any texture with
+// stored levels, its last level the last one LOD selects) decoded by decode_block_level, the same
+// decoder the cycle model applies to the blocks it fetches; the blocks kept in `compressed` for
+// texture memory. The sRGB flag of the rules is the image's. RGBA8 texels, layout and tile size
+// as given (texture memory stores blocks row-major whatever the layout: cmodel/texture_memory.hpp).
+// InputError (naming `what`) for a signed format (the unit filters no SNORM texels), no levels,
+// or levels whose sizes or bytes break the floor rule.
+Texture texture_from_block_image(const BlockImage& image, const BlockDecodeRules& rules,
+                                 const std::string& what = "compressed texture",
+                                 MemoryLayout layout = MemoryLayout::Tiled, int tile_bytes = 64);
 
 }  // namespace tfu

@@ -98,6 +98,7 @@ void SamplerDescriptor::validate() const {
 
 uint64_t TextureDescriptor::level_bytes(int l) const {
   const int h = level_height(l);
+  if (compressed) return static_cast<uint64_t>(blocks_down(block_format, h)) * level[static_cast<size_t>(l)].row_pitch;
   const uint64_t rows = layout == MemoryLayout::Tiled ? static_cast<uint64_t>((h + tile_side() - 1) >> tile_log2)
                                                       : static_cast<uint64_t>(h);
   return rows * level[static_cast<size_t>(l)].row_pitch;
@@ -106,6 +107,9 @@ uint64_t TextureDescriptor::level_bytes(int l) const {
 uint64_t TextureDescriptor::texel_address(int l, int x, int y) const {
   const LevelDescriptor& d = level[static_cast<size_t>(l)];
   const auto bpt = static_cast<uint64_t>(bytes_per_texel(format));
+  if (compressed)
+    return d.address + static_cast<uint64_t>(y / block().block_h) * d.row_pitch +
+           static_cast<uint64_t>(x / block().block_w) * static_cast<uint64_t>(block().block_bytes);
   if (layout == MemoryLayout::Linear)
     return d.address + static_cast<uint64_t>(y) * d.row_pitch + static_cast<uint64_t>(x) * bpt;
   const int k = tile_log2, m = (1 << k) - 1;
@@ -125,11 +129,17 @@ void TextureDescriptor::validate(const std::string& what) const {
                      tile_bytes()));
   if (content == TextureContent::BsplineCoefficients && (format != TexelFormat::RGBA8 || coeff_scale_q <= 0))
     fail("B-spline coefficients need rgba8 codes and a positive scale");
+  if (compressed &&
+      (format != TexelFormat::RGBA8 || content != TextureContent::Texels || !unit_filterable(block_format)))
+    fail(fmt::format("compressed {} needs rgba8 texels of an unsigned format", block_format_name(block_format)));
   for (int l = 0; l < levels; ++l) {
     const LevelDescriptor& d = level[static_cast<size_t>(l)];
     const uint64_t min_pitch =
-        layout == MemoryLayout::Tiled
-            ? static_cast<uint64_t>((level_width(l) + tile_side() - 1) >> tile_log2) * static_cast<uint64_t>(tile_bytes())
+        compressed ? static_cast<uint64_t>(blocks_across(block_format, level_width(l))) *
+                         static_cast<uint64_t>(block().block_bytes)
+        : layout == MemoryLayout::Tiled
+            ? static_cast<uint64_t>((level_width(l) + tile_side() - 1) >> tile_log2) *
+                  static_cast<uint64_t>(tile_bytes())
             : static_cast<uint64_t>(level_width(l)) * static_cast<uint64_t>(bytes_per_texel(format));
     if (d.address % kLevelAlign != 0 || d.row_pitch % kLevelAlign != 0 || d.row_pitch < min_pitch ||
         d.address >= (uint64_t{1} << kAddressBits))
@@ -191,12 +201,35 @@ template <class E>
 constexpr uint32_t u(E e) { return static_cast<uint32_t>(e); }
 
 using TD = TextureDescriptor;
+// The block_format codes, from the one table (cmodel/block_formats.hpp): 0 none, 1 + table index.
+const char* block_format_meaning() {
+  static const std::string m = [] {
+    std::string s = "compressed levels: 0 none (the format's texels), else the block format";
+    for (size_t i = 0; i < kBlockFormats.size(); ++i)
+      if (unit_filterable(kBlockFormats[i].format))
+        s += fmt::format("{} {} {}", i == 0 ? ":" : ",", i + 1, kBlockFormats[i].name);
+    return s + " (signed formats are not filtered)";
+  }();
+  return m.c_str();
+}
+template <class E, size_t N>
+const char* bc_rule_meaning(const EnumNames<E, N>& names, const char* what) {
+  static const std::string m = [&] {
+    std::string s = fmt::format("{}:", what);
+    for (size_t i = 0; i < N; ++i)
+      s += fmt::format("{} {} {}", i == 0 ? "" : ",", static_cast<int>(names.entries[i].value), names.entries[i].name);
+    return s;
+  }();
+  return m.c_str();
+}
 const std::vector<Codec<TD>>& texture_codecs() {
   static const std::vector<Codec<TD>> c = {
       {{"format", 0, 0, 2, 1, 0, "texel format: 0 rgba8, 1 l8, 2 vs16x2"},
-       [](const TD& d, int) { return u(d.format); }, [](TD& d, int, uint32_t b) { d.format = static_cast<TexelFormat>(b); }},
+       [](const TD& d, int) { return u(d.format); },
+       [](TD& d, int, uint32_t b) { d.format = static_cast<TexelFormat>(b); }},
       {{"layout", 0, 2, 1, 1, 0, "memory layout: 0 linear rows, 1 tiled (one tile = one cache line)"},
-       [](const TD& d, int) { return u(d.layout); }, [](TD& d, int, uint32_t b) { d.layout = static_cast<MemoryLayout>(b); }},
+       [](const TD& d, int) { return u(d.layout); },
+       [](TD& d, int, uint32_t b) { d.layout = static_cast<MemoryLayout>(b); }},
       {{"tile_log2", 0, 3, 4, 1, 0, "tiled: log2 of the tile side in texels"},
        [](const TD& d, int) { return static_cast<uint32_t>(d.tile_log2); },
        [](TD& d, int, uint32_t b) { d.tile_log2 = static_cast<int>(b); }},
@@ -204,7 +237,8 @@ const std::vector<Codec<TD>>& texture_codecs() {
        [](const TD& d, int) { return static_cast<uint32_t>(d.levels - 1); },
        [](TD& d, int, uint32_t b) { d.levels = static_cast<int>(b) + 1; }},
       {{"content", 0, 11, 1, 1, 0, "0 texels, 1 B-spline coefficient codes (bspline-interp)"},
-       [](const TD& d, int) { return u(d.content); }, [](TD& d, int, uint32_t b) { d.content = static_cast<TextureContent>(b); }},
+       [](const TD& d, int) { return u(d.content); },
+       [](TD& d, int, uint32_t b) { d.content = static_cast<TextureContent>(b); }},
       {{"width_m1", 1, 0, 14, 1, 0, "level-0 width minus 1"},
        [](const TD& d, int) { return static_cast<uint32_t>(d.width - 1); },
        [](TD& d, int, uint32_t b) { d.width = static_cast<int>(b) + 1; }},
@@ -214,9 +248,28 @@ const std::vector<Codec<TD>>& texture_codecs() {
       {{"level_address", 2, 0, 32, kMaxLevels, 2, "level L: byte address / 256 (level 0: the base address)"},
        [](const TD& d, int i) { return static_cast<uint32_t>(d.level[static_cast<size_t>(i)].address >> 8); },
        [](TD& d, int i, uint32_t b) { d.level[static_cast<size_t>(i)].address = uint64_t{b} << 8; }},
-      {{"level_row_pitch", 3, 0, 24, kMaxLevels, 2, "level L: bytes from one texel row (linear) or tile row (tiled) to the next"},
+      {{"level_row_pitch", 3, 0, 24, kMaxLevels, 2,
+        "level L: bytes from one texel row (linear) or tile row (tiled) to the next"},
        [](const TD& d, int i) { return d.level[static_cast<size_t>(i)].row_pitch; },
        [](TD& d, int i, uint32_t b) { d.level[static_cast<size_t>(i)].row_pitch = b; }},
+      {{"block_format", 0, 12, 5, 1, 0, block_format_meaning()},
+       [](const TD& d, int) { return d.compressed ? 1u + u(d.block_format) : 0u; },
+       [](TD& d, int, uint32_t b) {
+         if (b > kBlockFormats.size()) throw InputError(fmt::format("block_format {} is not a block-format code", b));
+         d.compressed = b != 0;
+         d.block_format = b != 0 ? static_cast<BlockFormat>(b - 1) : BlockFormat::BC1;
+       }},
+      {{"srgb", 0, 17, 1, 1, 0,
+        "compressed: sRGB-encoded texels (ASTC decodes them by the sRGB rule; the filter sees the stored bytes)"},
+       [](const TD& d, int) { return uint32_t{d.decode.srgb}; },
+       [](TD& d, int, uint32_t b) { d.decode.srgb = b != 0; }},
+      {{"bc_colour_rule", 0, 18, 2, 1, 0, bc_rule_meaning(kBc1InterpolationNames, "BC1-BC3 colour interpolation")},
+       [](const TD& d, int) { return u(d.decode.bc.colour); },
+       [](TD& d, int, uint32_t b) { d.decode.bc.colour = static_cast<Bc1Interpolation>(b); }},
+      {{"bc_alpha_rule", 0, 20, 1, 1, 0,
+        bc_rule_meaning(kBc4InterpolationNames, "BC3-BC5 alpha / red / green interpolation")},
+       [](const TD& d, int) { return u(d.decode.bc.alpha); },
+       [](TD& d, int, uint32_t b) { d.decode.bc.alpha = static_cast<Bc4Interpolation>(b); }},
       {{"coeff_scale", 32, 0, 32, 1, 0, "B-spline coefficients: scale S (Q.12, two's complement)"},
        [](const TD& d, int) { return sext_mask(static_cast<int32_t>(d.coeff_scale_q), 32); },
        [](TD& d, int, uint32_t b) { d.coeff_scale_q = sext(b, 32); }},

@@ -24,6 +24,7 @@
 #include <memory>
 
 #include "cmodel/aniso.hpp"
+#include "cmodel/block_formats.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/texture.hpp"
@@ -109,7 +110,7 @@ inline constexpr int kAddressBits = 40;        // texel memory byte addresses ar
 
 struct LevelDescriptor {
   uint64_t address = 0;    // byte address of texel (0, 0), a multiple of kLevelAlign
-  uint32_t row_pitch = 0;  // bytes from one texel row (linear) or tile row (tiled) to the next
+  uint32_t row_pitch = 0;  // bytes from one texel row (linear), tile row (tiled) or block row (compressed) to the next
   friend constexpr bool operator==(const LevelDescriptor&, const LevelDescriptor&) = default;
 };
 
@@ -122,15 +123,23 @@ struct TextureDescriptor {
   std::array<LevelDescriptor, kMaxLevels> level{};
   TextureContent content = TextureContent::Texels;
   int64_t coeff_scale_q = 0, coeff_bias_q = 0;  // S, B of bspline coefficients (Q.12), else 0
+  // Block-compressed (cmodel/block_formats.hpp): the level holds blocks of `block_format`, row-major,
+  // each block row starting row_pitch bytes after the previous (whatever `layout` says); the unit
+  // decodes them with `decode` (BC1-BC5 interpolation rules, sRGB for ASTC) to RGBA8 words, so
+  // `format` is RGBA8. Only unsigned formats (unit_filterable).
+  bool compressed = false;
+  BlockFormat block_format = BlockFormat::BC1;
+  BlockDecodeRules decode{};
 
   uint64_t base() const { return level[0].address; }  // the base address: level 0
   int level_width(int l) const { return mip_extent(width, l); }
   int level_height(int l) const { return mip_extent(height, l); }
   int tile_side() const { return 1 << tile_log2; }
   int tile_bytes() const { return bytes_per_texel(format) << (2 * tile_log2); }
+  const BlockFormatInfo& block() const { return block_format_info(block_format); }
   // Bytes a level occupies (rows or tile rows times the pitch).
   uint64_t level_bytes(int l) const;
-  // Byte address of texel (x, y) of level l (inside the level).
+  // Byte address of texel (x, y) of level l (inside the level); of its block when compressed.
   uint64_t texel_address(int l, int x, int y) const;
   void validate(const std::string& what) const;  // throws InputError naming `what` and the field
   friend bool operator==(const TextureDescriptor&, const TextureDescriptor&) = default;

@@ -109,6 +109,8 @@ constexpr int tile_side_log2(int tile_bytes, TexelFormat f) {
 constexpr int mip_extent(int size0, int level) { return (size0 >> level) > 1 ? size0 >> level : 1; }
 int mip_level_count(int width, int height);
 
+struct CompressedLevels;  // cmodel/block_formats.hpp
+
 struct Texture {
   TexelFormat format = TexelFormat::RGBA8;
   std::vector<Image> levels;  // levels[0] is the base; complete chains end at 1 x 1
@@ -119,6 +121,10 @@ struct Texture {
   // The memory budget's charge for the decoded chain (cmodel/memory_budget.hpp), shared by copies;
   // null for textures no input decoded (light maps, built in code).
   std::shared_ptr<MemoryCharge> memory;
+  // A block-compressed texture (texture_from_block_image, cmodel/block_formats.hpp): its blocks
+  // and decode rules, which texture memory stores; `levels` then hold the decoded texels (RGBA8,
+  // decode_block_level of each level) that the golden model samples. Null for every other texture.
+  std::shared_ptr<const CompressedLevels> compressed;
   int tile_side() const { return 1 << tile_side_log2(tile_bytes, format); }
 
   int width() const { return levels.front().width; }

@@ -29,6 +29,10 @@ void TextureMemory::write_word(uint64_t address, TexelFormat f, Rgba8 w) {
   p[3] = w.a;
 }
 
+void TextureMemory::write_bytes(uint64_t address, const uint8_t* bytes, size_t n) {
+  std::memcpy(bytes_.data() + (address - kFirstAddress), bytes, n);
+}
+
 TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t align) {
   tex.validate("texture");
   align = std::max(align, kLevelAlign);
@@ -39,6 +43,26 @@ TextureDescriptor place_texture(TextureMemory& mem, const Texture& tex, uint64_t
   d.levels = static_cast<int>(tex.levels.size());
   d.layout = tex.layout;
   d.tile_log2 = tile_side_log2(tex.tile_bytes, tex.format);
+  if (tex.compressed) {  // block rows, each starting on `align` (lines never straddle two block rows)
+    const BlockImage& image = tex.compressed->image;
+    d.compressed = true;
+    d.block_format = image.format;
+    d.decode = tex.compressed->rules;
+    const auto bb = static_cast<uint64_t>(d.block().block_bytes);
+    for (int l = 0; l < d.levels; ++l) {
+      const BlockLevel& bl = image.levels[static_cast<size_t>(l)];
+      LevelDescriptor& ld = d.level[static_cast<size_t>(l)];
+      const int across = blocks_across(image.format, bl.width), down = blocks_down(image.format, bl.height);
+      const uint64_t row_bytes = static_cast<uint64_t>(across) * bb;
+      ld.row_pitch = static_cast<uint32_t>((row_bytes + align - 1) / align * align);
+      ld.address = mem.allocate(d.level_bytes(l), align);
+      for (int by = 0; by < down; ++by)
+        mem.write_bytes(ld.address + static_cast<uint64_t>(by) * ld.row_pitch,
+                        bl.blocks.data() + static_cast<size_t>(by) * row_bytes, static_cast<size_t>(row_bytes));
+    }
+    d.validate("placed texture");
+    return d;
+  }
   const auto bpt = static_cast<uint64_t>(bytes_per_texel(tex.format));
   for (int l = 0; l < d.levels; ++l) {
     const Image& img = tex.levels[static_cast<size_t>(l)];
@@ -62,6 +86,26 @@ Texture read_texture(const TextureMemory& mem, const TextureDescriptor& d) {
   tex.format = d.format;
   tex.layout = d.layout;
   tex.tile_bytes = d.layout == MemoryLayout::Tiled ? d.tile_bytes() : 64;
+  if (d.compressed) {  // the blocks back, decoded as the unit decodes them
+    BlockImage image;
+    image.format = d.block_format;
+    image.srgb = d.decode.srgb;
+    const auto bb = static_cast<size_t>(d.block().block_bytes);
+    for (int l = 0; l < d.levels; ++l) {
+      BlockLevel bl;
+      bl.width = d.level_width(l);
+      bl.height = d.level_height(l);
+      const auto across = static_cast<size_t>(blocks_across(d.block_format, bl.width));
+      for (int by = 0; by < blocks_down(d.block_format, bl.height); ++by) {
+        const uint8_t* row = mem.bytes_at(d.level[static_cast<size_t>(l)].address +
+                                          static_cast<uint64_t>(by) * d.level[static_cast<size_t>(l)].row_pitch);
+        bl.blocks.insert(bl.blocks.end(), row, row + across * bb);
+      }
+      image.levels.push_back(std::move(bl));
+    }
+    Texture t = texture_from_block_image(image, d.decode, "texture read back", d.layout, tex.tile_bytes);
+    return t;
+  }
   for (int l = 0; l < d.levels; ++l) {
     Image img(d.level_width(l), d.level_height(l));
     for (int y = 0; y < img.height; ++y)

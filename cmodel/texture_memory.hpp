@@ -8,6 +8,17 @@
 //   read_texel   the texel word at (level, x, y) through the descriptor: RGBA8 / VS16X2 4 bytes
 //                (R, G, B, A in address order), L8 1 byte fetched as (L, L, L, 255) as GL_LUMINANCE
 //   read_texture the texture back from memory (decode; equals what was placed, tested)
+//
+// Compressed textures (Texture::compressed) are stored as their blocks, whatever the layout field:
+// a level is its block rows, blocks row-major within a row (the order every container and
+// decoder uses), each block row starting on `align` bytes (the cache line or 256), so that a
+// cache line holds line_bytes / block_bytes horizontally adjacent blocks of one block row (4 or 8
+// blocks at 64 bytes: 16 x 4 or 32 x 4 texels of a 4x4 format). Why not tiled into squares like
+// the texel layout: a block already is a 2D tile (4x4 to 12x12 texels, most of a bilinear
+// footprint), ASTC block sides of 5, 6, 10 and 12 texels do not tile a power-of-two line into a
+// square, and a row of blocks is what the driver uploads unchanged (no swizzle at load).
+// LevelReadout reads uncompressed levels only; the cycle model decodes compressed levels' blocks
+// (rtl/cache_stage.hpp).
 #pragma once
 
 #include <cstdint>
@@ -37,6 +48,7 @@ class TextureMemory {
     return {p[0], p[1], p[2], p[3]};
   }
   void write_word(uint64_t address, TexelFormat f, Rgba8 w);
+  void write_bytes(uint64_t address, const uint8_t* bytes, size_t n);
   // The bytes [address, address + n) (a cache line fill).
   const uint8_t* bytes_at(uint64_t address) const { return bytes_.data() + (address - kFirstAddress); }
 

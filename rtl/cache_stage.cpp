@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <bit>
 
+#include "cmodel/block_formats.hpp"
 #include "rtl/unit_stats.hpp"
 
 namespace tfu::rtl {
 
 CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
                        sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
-                       MemoryModel& m, int miss_fifo_depth)
+                       MemoryModel& m, int miss_fifo_depth, const DecoderConfig& decoder)
     : Module(s, "texel_cache"),
       in_(i),
       filter_out_(filter),
@@ -18,15 +19,65 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       memory_(memory),
       cache_(c),
       mem_(m),
-      fifo_(static_cast<size_t>(miss_fifo_depth)) {
+      fifo_(static_cast<size_t>(miss_fifo_depth)),
+      decoder_(decoder) {
   for (const SamplerDescriptor& d : regs.samplers) {
     any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
     record_shapes_ = record_shapes_ || (d.mode.base == BaseFilter::EdgePreserving && d.edge_shape == EdgeShape::CacheAware);
   }
   for (const TextureDescriptor& d : regs.textures) {
+    compressed_.push_back(d.compressed ? 1 : 0);
+    any_compressed_ = any_compressed_ || d.compressed;
     first_readout_.push_back(readout_.size());
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
   }
+  decoded_blocks_.assign(regs.textures.size(), 0);
+  decoder_busy_.assign(regs.textures.size(), 0);
+  decoder_stall_.assign(regs.textures.size(), 0);
+}
+
+uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, int texture) {
+  const uint64_t start = std::max(in, decoder_free_);
+  const auto busy = static_cast<uint64_t>((texels + decoder_.texels_per_cycle() - 1) / decoder_.texels_per_cycle());
+  decoder_free_ = start + busy;
+  const auto t = static_cast<size_t>(texture);
+  decoded_blocks_[t] += static_cast<uint64_t>(blocks);
+  decoder_busy_[t] += busy;
+  decoder_stall_[t] += start - in;
+  return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
+}
+
+uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
+                                  int& bank_cycles, FootprintResult& r) {
+  const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
+  const BlockFormatInfo& b = d.block();
+  if (cache_.config().holds == CacheHolds::Compressed) {
+    const uint64_t in = admit_lines(texture, stage, level, lookup, now, bank_cycles, r);
+    // The footprint's distinct blocks (for the statistics) and its taps (the decoders' texels).
+    std::array<uint32_t, 16> seen;
+    int blocks = 0, taps = 0;
+    for (uint32_t cells = lookup.used; cells != 0; cells &= cells - 1, ++taps) {
+      const auto c = static_cast<size_t>(std::countr_zero(cells));
+      const uint32_t key = static_cast<uint32_t>(lookup.x[c & 3u] / b.block_w) << 16 |
+                           static_cast<uint32_t>(lookup.y[c >> 2] / b.block_h);
+      int k = 0;
+      while (k < blocks && seen[static_cast<size_t>(k)] != key) ++k;
+      if (k == blocks) seen[static_cast<size_t>(blocks++)] = key;
+    }
+    return taps == 0 ? in : decode(in, taps, blocks, texture);
+  }
+  r = cache_.access(texture, level, lookup);
+  stage_hits[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.hits);
+  stage_misses[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.misses);
+  bank_cycles = r.cycles > 1 ? r.cycles : 1;
+  uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
+  for (int m = 0; m < r.misses; ++m) {
+    int texels = 0;
+    const int blocks = cache_.fill_blocks(texture, level, r.missed_lines[static_cast<size_t>(m)], texels);
+    const uint64_t in = mem_.read(now, blocks * b.block_bytes, texture);
+    ready = std::max(ready, decode(in, texels, blocks, texture));
+  }
+  return ready;
 }
 
 [[gnu::always_inline]] inline void CacheStage::accept(uint64_t now) {
@@ -59,7 +110,9 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   TapGrid lookup = g;
   if (edge) lookup.used = static_cast<uint16_t>(lookup.used & cross_cells(cur.tag.shape));
   FootprintResult r;
-  const uint64_t ready = admit_lines(texture, cur.tag.req.stage, cur.level, lookup, now, bank_cycles, r);
+  const uint64_t ready = compressed_[static_cast<size_t>(texture)]
+                             ? admit_blocks(texture, cur.tag.req.stage, cur.level, lookup, now, bank_cycles, r)
+                             : admit_lines(texture, cur.tag.req.stage, cur.level, lookup, now, bank_cycles, r);
   if (probes_) {  // the waveform probes (accepted_id() ...)
     accepted_id_ = cur.tag.id;
     if (g.used != 0) {
@@ -117,6 +170,10 @@ void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const
     return regs_.textures[cur.tag.req.texture].content == TextureContent::BsplineCoefficients ? Rgba8{0, 0, 0, 0}
                                                                                              : regs_.samplers[cur.tag.req.sampler].border;
   };
+  if (compressed_[static_cast<size_t>(cur.tag.req.texture)]) [[unlikely]] {
+    read_out_blocks(cur, f, border());
+    return;
+  }
   if (!cur.cross && g.cols == g.rows && g.used == square_cells(g.cols, g.rows)) {
     switch (g.cols) {
       case 1: read_square_taps<1>(g, level, f.texels.data()); break;
@@ -152,6 +209,44 @@ void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const
         for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) f.texels[k++] = word(4 * j + i);
     }
   }
+}
+
+void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const {
+  const TextureDescriptor& d = regs_.textures[static_cast<size_t>(cur.tag.req.texture)];
+  const BlockFormatInfo& b = d.block();
+  const TapGrid& g = cur.grid;
+  struct Decoded {
+    uint64_t address;
+    std::array<Rgba8, 144> texels;  // up to 12 x 12
+  };
+  std::array<Decoded, 16> blocks;  // the footprint's distinct blocks, each decoded once
+  size_t n = 0;
+  const auto texel = [&](size_t cell) {
+    const int x = g.x[cell & 3u], y = g.y[cell >> 2];
+    const uint64_t address = d.texel_address(cur.level, x, y);  // its block's
+    size_t k = 0;
+    while (k < n && blocks[k].address != address) ++k;
+    if (k == n) {
+      blocks[n].address = address;
+      decode_block(d.block_format, memory_.bytes_at(address), d.decode, blocks[n].texels.data());
+      ++n;
+    }
+    return blocks[k].texels[static_cast<size_t>((y % b.block_h) * b.block_w + x % b.block_w)];
+  };
+  if (cur.cross) {  // the cross in C order: the texel, the border word, or zero outside the shape
+    for (size_t k = 0; k < lee_jen::kTexels; ++k) {
+      const size_t cell = kCrossCell[k];
+      const bool in_shape = ((cur.tag.shape >> k) & 1u) != 0;
+      f.texels[k] = !in_shape ? Rgba8{0, 0, 0, 0} : ((g.used >> cell) & 1u) ? texel(cell) : outside;
+    }
+    return;
+  }
+  size_t k = 0;
+  for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j)
+    for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) {
+      const size_t cell = 4 * j + i;
+      f.texels[k++] = ((g.used >> cell) & 1u) ? texel(cell) : outside;
+    }
 }
 
 void CacheStage::evaluate() {
@@ -215,6 +310,17 @@ void CacheStage::publish(sim::Stats& st) const {
   add(st, UnitStat::StallCacheMiss, stall_miss_);
   add(st, UnitStat::StallBankConflict, stall_bank_);
   add(st, UnitStat::StallBackpressure, stall_back_);
+  if (any_compressed_) {
+    uint64_t blocks = 0, busy = 0, stall = 0;
+    for (size_t t = 0; t < compressed_.size(); ++t) {
+      blocks += decoded_blocks_[t];
+      busy += decoder_busy_[t];
+      stall += decoder_stall_[t];
+    }
+    add(st, UnitStat::DecodedBlocks, blocks);
+    add(st, UnitStat::DecoderBusyCycles, busy);
+    add(st, UnitStat::DecoderStallCycles, stall);
+  }
   if (any_edge_) {
     add(st, UnitStat::ShapeCross, shape_count_[0]);
     add(st, UnitStat::ShapeT, shape_count_[1]);

@@ -16,6 +16,25 @@
 //   in  registers  texture descriptors (addresses, layout), sampler descriptors (border word)
 // Border taps (clamp-to-border outside the texture) take the border word (zero for B-spline
 // coefficients) and no cache access.
+//
+// Block-compressed textures (TextureDescriptor::compressed): the texel words are the decoder's,
+// decode_block (cmodel/block_formats.hpp) of the blocks read from the texel memory at the
+// descriptor's block addresses (each distinct block of a footprint decoded once), never the golden
+// model's decoded levels, so that the golden compare checks addressing and decoding. The decoders
+// (DecoderConfig: `units` decoders of `texels_per_clock` texels per clock, `latency` clocks) sit
+// where TexelCacheConfig::holds puts them:
+//   compressed  after the cache: a footprint's texels (its used taps) are decoded once its lines
+//               are in, ceil(taps / (texels_per_clock units)) busy clocks;
+//   decoded     on fill: each missed line's tile of decoded texels (line_bytes / 4, clipped to the
+//               level) is decoded once the blocks that cover it (fetched from memory, their bytes
+//               exactly) are in, ceil(texels / (texels_per_clock units)) busy clocks; hits decode
+//               nothing.
+// The decoders serve one job at a time in acceptance order: a job whose input is in at `in` starts
+// at max(in, the decoders' previous job's end), is busy `busy` clocks, and its texels are ready
+// busy - 1 + latency clocks after it starts (latency 0: out in the last busy clock). The
+// footprint's `ready` cycle (its lines in, as for every texture) is the latest of its jobs'.
+// Statistics per texture: blocks decoded (a footprint's distinct blocks; a fill's covering
+// blocks), decoder busy clocks, and decoder stall clocks (a job waiting for busy decoders).
 #pragma once
 
 #include <algorithm>
@@ -47,7 +66,7 @@ class CacheStage : public sim::Module {
  public:
   CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
              sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
-             MemoryModel& m, int miss_fifo_depth);
+             MemoryModel& m, int miss_fifo_depth, const DecoderConfig& decoder = {});
   void evaluate() override;
   std::string state() const override;
   void publish(sim::Stats& st) const;
@@ -102,6 +121,11 @@ class CacheStage : public sim::Module {
     }
     return ready;
   }
+  // The decoders' counters per texture descriptor (compressed textures; zero elsewhere).
+  bool any_compressed() const { return any_compressed_; }
+  uint64_t decoded_blocks(int texture) const { return decoded_blocks_[static_cast<size_t>(texture)]; }
+  uint64_t decoder_busy(int texture) const { return decoder_busy_[static_cast<size_t>(texture)]; }
+  uint64_t decoder_stall(int texture) const { return decoder_stall_[static_cast<size_t>(texture)]; }
   // The read-out registers of a texture's level (its address, pitch, layout and format).
   const LevelReadout& level_readout(int texture, int level) const {
     return readout_[first_readout_[static_cast<size_t>(texture)] + static_cast<size_t>(level)];
@@ -119,7 +143,9 @@ class CacheStage : public sim::Module {
   //   output side  the miss-FIFO head leaves, pushing its texel words, in the first cycle after its
   //                accept and the previous head's exit in which its lines are in (`ready`) and its
   //                output channel has room; it counts its cycles waiting for the lines as
-  //                stall_cache_miss, then those waiting for room as stall_backpressure.
+  //                stall_cache_miss (for a compressed texture, `ready` includes its decoding:
+  //                the decoder timing above, computed by admit_footprint for both engines), then
+  //                those waiting for room as stall_backpressure.
   // Both count into the block's own stall counters (published by publish()).
   class Timing {
    public:
@@ -172,6 +198,20 @@ class CacheStage : public sim::Module {
   std::vector<LevelReadout> readout_;
   std::vector<size_t> first_readout_;
   uint64_t port_free_ = 0;  // tag/bank port busy until this cycle (bank conflicts)
+  // The decoders (compressed textures): configuration, free from this cycle on, counters per texture.
+  DecoderConfig decoder_;
+  uint64_t decoder_free_ = 0;
+  bool any_compressed_ = false;
+  std::vector<uint8_t> compressed_;  // per texture descriptor
+  std::vector<uint64_t> decoded_blocks_, decoder_busy_, decoder_stall_;
+  // One decoder job (the header's rule): input in at `in`, `texels` to decode; returns the cycle
+  // its texels are ready.
+  uint64_t decode(uint64_t in, int texels, int blocks, int texture);
+  // admit_lines for a compressed texture: the tags, memory reads and the decoder jobs.
+  uint64_t admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now, int& bank_cycles,
+                        FootprintResult& r);
+  // read_out for a compressed texture: the taps' texels decoded from the blocks in memory.
+  void read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const;
   // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
   uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
   std::array<uint64_t, 3> shape_count_{};  // cross, T, L

@@ -33,6 +33,13 @@ LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, co
   LevelLines ll;
   ll.first = ld.address / lb;
   ll.stride = ld.row_pitch / lb;
+  if (d.compressed) {  // block rows (cmodel/texture_memory.hpp): line_bytes / block_bytes blocks per line
+    ll.shift_x = std::countr_zero(static_cast<unsigned>(line_bytes / d.block().block_bytes));
+    ll.shift_y = 0;
+    ll.block_w = d.block().block_w;
+    ll.block_h = d.block().block_h;
+    return ll;
+  }
   if (d.layout == MemoryLayout::Tiled) {
     if (d.tile_bytes() != line_bytes)
       throw InputError(fmt::format("{}: its {}-byte tiles are not one {}-byte cache line each", what, d.tile_bytes(), line_bytes));
@@ -50,9 +57,30 @@ TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor
   const auto sets = static_cast<uint64_t>(cfg_.sets());
   set_mask_ = (sets & (sets - 1)) == 0 ? sets - 1 : 0;  // power of two: a mask instead of a division
   if (sets == 1) set_mask_ = 0;
+  // Decoded lines of compressed levels: tiles of line_bytes / 4 texels, tagged from 2^41 / line_bytes
+  // up (above every memory line: addresses are below 2^40), level after level.
+  const int tile_log2 = std::countr_zero(static_cast<unsigned>(cfg_.line_bytes / 4)) / 2;
+  uint64_t decoded_next = (uint64_t{1} << 41) / static_cast<uint64_t>(cfg_.line_bytes);
   for (size_t t = 0; t < textures.size(); ++t) {
     first_level_.push_back(lines_.size());
     for (int l = 0; l < textures[t].levels; ++l) {
+      const TextureDescriptor& d = textures[t];
+      FillTile fill;
+      if (d.compressed && cfg_.holds == CacheHolds::Decoded) {
+        LevelLines ll;
+        const int w = d.level_width(l), h = d.level_height(l);
+        ll.first = decoded_next;
+        ll.stride = static_cast<uint64_t>((w + (1 << tile_log2) - 1) >> tile_log2);
+        ll.shift_x = ll.shift_y = tile_log2;
+        decoded_next += ll.stride * static_cast<uint64_t>((h + (1 << tile_log2) - 1) >> tile_log2);
+        fill = {tile_log2, w, h, d.block().block_w, d.block().block_h};
+        lines_.push_back(ll);
+        fill_.push_back(fill);
+        level_of_.push_back(l);
+        texture_of_.push_back(static_cast<int>(t));
+        continue;
+      }
+      fill_.push_back(fill);
       lines_.push_back(level_lines(textures[t], l, cfg_.line_bytes, fmt::format("texture {}", t)));
       level_of_.push_back(l);
       texture_of_.push_back(static_cast<int>(t));
@@ -64,8 +92,37 @@ TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor
   misses_.assign(lines_.size(), 0);
 }
 
+int TexelCache::fill_blocks(int texture, int level, uint64_t line, int& texels) const {
+  const size_t l = level_index(texture, level);
+  const LevelLines& ll = lines_[l];
+  const FillTile& f = fill_[l];
+  const uint64_t offset = line - ll.first;
+  const int ty = static_cast<int>(offset / ll.stride), tx = static_cast<int>(offset % ll.stride);
+  const int side = 1 << f.tile_log2;
+  const int x0 = tx * side, x1 = std::min(x0 + side, f.width) - 1, y0 = ty * side,
+            y1 = std::min(y0 + side, f.height) - 1;
+  texels = (x1 - x0 + 1) * (y1 - y0 + 1);
+  return (x1 / f.block_w - x0 / f.block_w + 1) * (y1 / f.block_h - y0 / f.block_h + 1);
+}
+
+FootprintResult TexelCache::access_blocks(size_t l, const TapGrid& g) {
+  const LevelLines& ll = lines_[l];
+  TapGrid b = g;  // the block of each column and row (an unused border column, -1, is never read)
+  for (size_t i = 0; i < 4; ++i) {
+    b.x[i] = static_cast<int16_t>(g.x[i] / ll.block_w);
+    b.y[i] = static_cast<int16_t>(g.y[i] / ll.block_h);
+  }
+  if (cfg_.bank_mapping == BankMapping::BlockParity && b.cols == 2 && b.rows == 2 && b.used == square_cells(2, 2))
+    return access_quad(l, b);
+  return access_grid(l, b);
+}
+
 uint64_t TexelCache::line_of(int texture, int level, int x, int y) const {
   const LevelLines& ll = lines_[level_index(texture, level)];
+  if (ll.block_w != 0) {
+    x /= ll.block_w;
+    y /= ll.block_h;
+  }
   return ll.first + static_cast<uint64_t>(y >> ll.shift_y) * ll.stride + static_cast<uint64_t>(x >> ll.shift_x);
 }
 

@@ -44,7 +44,14 @@
 namespace tfu::rtl {
 
 enum class BankMapping { TexelParity, BlockParity };
-
+// What the lines of a block-compressed texture hold (docs/texel-cache.md, "Compressed textures"):
+//   Compressed  the blocks as memory stores them (a line = line_bytes / block_bytes blocks of one
+//               block row); the decoders sit after the cache and decode each footprint's texels
+//   Decoded     decoded RGBA8 texels, a line = a square tile of line_bytes / 4 texels (4x4 at 64
+//               bytes) in a tag space of its own; a miss fetches the blocks that cover the tile
+//               and the decoders decode the tile on fill
+// Uncompressed textures are cached as before under either.
+enum class CacheHolds { Compressed, Decoded };
 
 struct TexelCacheConfig {
   int line_bytes = 64;         // 64, 256 or 1024
@@ -52,6 +59,7 @@ struct TexelCacheConfig {
   int ways = 4;                // associativity
   int banks = 4;               // 1 or 4
   BankMapping bank_mapping = BankMapping::BlockParity;
+  CacheHolds holds = CacheHolds::Compressed;
   int lines() const { return capacity_bytes / line_bytes; }
   int sets() const { return lines() / ways; }
   // Throws InputError with one line naming the bad field (capacity below one set or not a whole
@@ -60,11 +68,27 @@ struct TexelCacheConfig {
   friend bool operator==(const TexelCacheConfig&, const TexelCacheConfig&) = default;
 };
 
-// Where the lines of one level lie: line(x, y) = first + (y >> shift_y) * stride + (x >> shift_x).
+// The block decoders of the unit (cmodel/block_formats.hpp decode_block): `units` decoders, each
+// producing `texels_per_clock` texels per clock, pipelined with `latency` clocks from the first
+// texel in to the last texel out. Where they sit is TexelCacheConfig::holds; rtl/cache_stage.hpp
+// states their timing.
+struct DecoderConfig {
+  int texels_per_clock = 4;  // a bilinear footprint per clock per decoder
+  int units = 1;
+  int latency = 2;
+  int texels_per_cycle() const { return texels_per_clock * units; }
+  friend bool operator==(const DecoderConfig&, const DecoderConfig&) = default;
+};
+
+// Where the lines of one level lie: line(x, y) = first + (y >> shift_y) * stride + (x >> shift_x),
+// where for a level of compressed lines (block_w > 0) x and y are the block column x / block_w and
+// block row y / block_h (the address generator's block coordinates: a line holds 2^shift_x blocks
+// of one block row, shift_y = 0).
 struct LevelLines {
   uint64_t first = 0;
   uint64_t stride = 0;
   int shift_x = 0, shift_y = 0;
+  int block_w = 0, block_h = 0;  // compressed lines: the block's texels; 0 otherwise
 };
 // The line grid of level `level` of a texture for lines of `line_bytes`; InputError (naming the
 // texture) when its tiles are not one line each or a linear row pitch is not whole lines.
@@ -86,11 +110,17 @@ class TexelCache {
   // Taps that share a line count one access to that line.
   FootprintResult access(int texture, int level, const TapGrid& grid) {
     const size_t l = level_index(texture, level);
+    if (lines_[l].block_w != 0) [[unlikely]]
+      return access_blocks(l, grid);
     if (cfg_.bank_mapping == BankMapping::BlockParity && grid.cols == 2 && grid.rows == 2 &&
         grid.used == square_cells(2, 2))
       return access_quad(l, grid);  // every LINEAR footprint
     return access_grid(l, grid);
   }
+  // Decoded lines of a compressed level (CacheHolds::Decoded): how many blocks a fill of `line`
+  // fetches (those covering the line's tile, clipped to the level), and in `texels` the tile's
+  // texels inside the level (what the decoders produce).
+  int fill_blocks(int texture, int level, uint64_t line, int& texels) const;
   // Memory line address of texel (x, y) of `level` of `texture`.
   uint64_t line_of(int texture, int level, int x, int y) const;
   // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
@@ -129,7 +159,11 @@ class TexelCache {
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   FootprintResult access_quad(size_t l, const TapGrid& g);
   FootprintResult access_grid(size_t l, const TapGrid& g);
-  // The lookup tail both share: one line into r's hits or misses; the level's counters.
+  FootprintResult access_blocks(size_t l, const TapGrid& g);  // compressed lines: the grid in block coordinates
+  struct FillTile {  // CacheHolds::Decoded, per lines_ entry of a compressed level: fill_blocks()
+    int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;
+  };
+  std::vector<FillTile> fill_;  // The lookup tail both share: one line into r's hits or misses; the level's counters.
   void probe(uint64_t line, FootprintResult& r);
   void tally(size_t l, const FootprintResult& r);
   // The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU

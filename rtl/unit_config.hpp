@@ -20,6 +20,7 @@ struct UnitConfig {
   int channel_depth = 2;      // skid buffers between blocks
   int miss_fifo_depth = 128;  // footprints queued in the texel cache behind outstanding misses
   int filter_lanes = 1;       // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)
+  DecoderConfig decoder{};    // block decoders of compressed textures (rtl/texel_cache.hpp)
   // (Simulation options such as idle-cycle skipping are not architecture: ClockedOptions, tfu_unit.hpp.)
   void validate() const;  // every field's range, then the relations between fields; InputError naming the field
   friend bool operator==(const UnitConfig&, const UnitConfig&) = default;

@@ -14,7 +14,8 @@ LinearQuadPath::LinearQuadPath(const Registers& regs, Unit& u, bool enabled)
   }
   for (size_t k = 0; k < regs.textures.size(); ++k) {
     const TextureDescriptor& t = regs.textures[k];
-    texture_ok_[k] = (t.format == TexelFormat::RGBA8 || t.format == TexelFormat::L8) && t.content == TextureContent::Texels;
+    texture_ok_[k] = (t.format == TexelFormat::RGBA8 || t.format == TexelFormat::L8) &&
+                     t.content == TextureContent::Texels && !t.compressed;
   }
 }
 

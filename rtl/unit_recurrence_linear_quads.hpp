@@ -37,7 +37,7 @@ class LinearQuadPath {
   // `enabled` false: takes() refuses every quad (the plain path alone, for the tests).
   LinearQuadPath(const Registers& regs, Unit& u, bool enabled);
   // The quad goes this way: four pixels, an isotropic LINEAR-family sampler whose wrap modes do
-  // not clamp to the border, a texture of 8-bit texels (RGBA8, L8).
+  // not clamp to the border, a texture of 8-bit texels (RGBA8, L8) not block-compressed.
   bool takes(const QuadReq& q) const { return q.npix == 4 && sampler_ok_[q.req.sampler] && texture_ok_[q.req.texture]; }
   // address_gen: the levels of the quad's lambda (`lod`, from the LOD unit) and the four pixels'
   // grids and fractions on each; returns the level footprints per pixel (1, or 2 when blending).

@@ -72,6 +72,18 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
                                                      u.cache.texture_misses(ti), u.mem.texture_bytes(ti)});
   }
   st.set_table(stat_key(UnitStat::Textures), std::move(textures));
+  if (u.cache_stage.any_compressed()) {
+    sim::Stats::Table decoders{{"index", "decoded_blocks", "decoder_busy_cycles", "decoder_stall_cycles"}, {}};
+    for (size_t t = 0; t < frame.textures.size(); ++t) {
+      const int ti = static_cast<int>(t);
+      if (!frame.regs.textures[t].compressed || tex_requests[t] == 0) continue;
+      decoders.rows.emplace_back(
+          fmt::format("{} {}", t, frame.textures[t].name),
+          std::vector<uint64_t>{t, u.cache_stage.decoded_blocks(ti), u.cache_stage.decoder_busy(ti),
+                                u.cache_stage.decoder_stall(ti)});
+    }
+    st.set_table(stat_key(UnitStat::Decoders), std::move(decoders));
+  }
   sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
   for (size_t k = 0; k < 4; ++k)
     if (stage_requests[k] > 0)

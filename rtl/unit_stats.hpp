@@ -49,6 +49,10 @@ enum class UnitStat {
   AnisoProbes,
   Textures,
   Stages,
+  DecodedBlocks,
+  DecoderBusyCycles,
+  DecoderStallCycles,
+  Decoders,
 };
 
 inline constexpr EnumNames<StatKind, 4> kStatKindNames{"statistic kind",
@@ -68,7 +72,7 @@ struct UnitStatField {
 };
 
 // Row i is UnitStat i (checked below), so a key is one array read.
-inline constexpr std::array<UnitStatField, 29> kUnitStatFields{{
+inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
     {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)"},
     {UnitStat::Pixels, "pixels", StatKind::Counter,
      "requests: every pixel of every shaded 2x2 quad, helper pixels included, once per material stage"},
@@ -109,6 +113,15 @@ inline constexpr std::array<UnitStatField, 29> kUnitStatFields{{
      "per texture descriptor: index, requests, line_hits, line_misses, memory_bytes"},
     {UnitStat::Stages, "stages", StatKind::Table,
      "per material stage: stage, requests, line_hits, line_misses, memory_bytes"},
+    {UnitStat::DecodedBlocks, "decoded_blocks", StatKind::Counter,
+     "compressed blocks decoded: each footprint's distinct blocks (cache.holds compressed) or each fill's (decoded; "
+     "compressed textures only)"},
+    {UnitStat::DecoderBusyCycles, "decoder_busy_cycles", StatKind::Counter,
+     "clocks the block decoders decode (compressed textures only)"},
+    {UnitStat::DecoderStallCycles, "decoder_stall_cycles", StatKind::Counter,
+     "clocks decode jobs wait for busy decoders (compressed textures only)"},
+    {UnitStat::Decoders, "decoders", StatKind::Table,
+     "per compressed texture descriptor: index, decoded_blocks, decoder_busy_cycles, decoder_stall_cycles"},
 }};
 
 constexpr bool unit_stat_rows_in_order() {

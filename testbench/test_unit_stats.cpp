@@ -1,7 +1,8 @@
 // The statistics field table (rtl/unit_stats.hpp) against what runs publish: every key a run of the
 // unit writes (one unit and a scene's several, both engines, every datapath) is a row of the
 // table with the same kind, and every row is published by one of these runs; and the docs show the
-// table (docs/cycle-model.md "Statistics", `tfu sim --stats-fields`).
+// table (docs/cycle-model.md "Statistics", `tfu sim --stats-fields`). A unit run of a compressed
+// texture publishes the decoder rows.
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -14,9 +15,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cmodel/block_formats.hpp"
+#include "cmodel/frame.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
+#include "rtl/tfu_unit.hpp"
 #include "rtl/unit_stats.hpp"
 #include "testbench/docs_text.hpp"
 
@@ -97,6 +101,29 @@ TEST(UnitStats, EveryPublishedKeyIsInTheTable) {
     EXPECT_EQ(counter(r.stats, UnitStat::Pixels), r.requests) << what;
     EXPECT_EQ(counter(r.stats, UnitStat::Cycles), r.cycles) << what;
     EXPECT_EQ(counter(r.stats, UnitStat::Units), static_cast<uint64_t>(c.units)) << what;
+  }
+  // A block-compressed texture beside an uncompressed one (the decoder statistics), both engines.
+  {
+    FrameBuilder b(64);
+    BlockImage image;
+    image.format = BlockFormat::BC3;
+    image.levels.push_back({16, 16, std::vector<uint8_t>(block_level_bytes(BlockFormat::BC3, 16, 16))});
+    for (size_t i = 0; i < image.levels[0].blocks.size(); ++i) image.levels[0].blocks[i] = static_cast<uint8_t>(i * 37);
+    b.add_texture(std::make_shared<const Texture>(texture_from_block_image(image, {})), {"bc3", {}});
+    b.add_sampler(SamplerDescriptor{});
+    Trace tr;
+    for (int k = 0; k < 16; ++k) {
+      TraceRequest r;
+      r.s = static_cast<float>(k) / 16.0f;
+      r.t = 0.3f;
+      tr.requests.push_back(r);
+    }
+    bind_requests(b, tr);
+    const Frame frame = b.finish();
+    for (const UnitEngine e : {UnitEngine::Clocked, UnitEngine::Recurrence}) {
+      const std::set<UnitStat> seen = check_published(run_unit(frame, tr, UnitConfig{}, e, {}).stats, "bc3");
+      all.insert(seen.begin(), seen.end());
+    }
   }
   for (const UnitStatField& f : kUnitStatFields)
     EXPECT_TRUE(all.contains(f.id)) << "kUnitStatFields row '" << f.key << "' is published by none of the runs";

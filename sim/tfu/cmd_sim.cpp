@@ -99,6 +99,15 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
   if (rtl::counter(st, rtl::UnitStat::ShapeCross) + rtl::counter(st, rtl::UnitStat::ShapeT) + rtl::counter(st, rtl::UnitStat::ShapeL) > 0)
     std::cout << fmt::format("  kernel shapes: cross {}  T {}  L {}\n", rtl::counter(st, rtl::UnitStat::ShapeCross), rtl::counter(st, rtl::UnitStat::ShapeT),
                              rtl::counter(st, rtl::UnitStat::ShapeL));
+  if (const sim::Stats::Table* t = st.table(rtl::stat_key(rtl::UnitStat::Decoders)); t && !t->rows.empty()) {
+    std::cout << fmt::format(
+        "  block decoders: {} blocks decoded, {} busy and {} stall cycles; per compressed texture:\n",
+        rtl::counter(st, rtl::UnitStat::DecodedBlocks), rtl::counter(st, rtl::UnitStat::DecoderBusyCycles),
+        rtl::counter(st, rtl::UnitStat::DecoderStallCycles));
+    for (const auto& [label, v] : t->rows)
+      std::cout << fmt::format("    {:<40} {:>10} {:>10} {:>10}\n",
+                               label.size() > 40 ? label.substr(0, 37) + "..." : label, v[1], v[2], v[3]);
+  }
   for (const char* name : {rtl::stat_key(rtl::UnitStat::Textures), rtl::stat_key(rtl::UnitStat::Stages)}) {
     const sim::Stats::Table* t = st.table(name);
     if (!t || t->rows.empty()) continue;

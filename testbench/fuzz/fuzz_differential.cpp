@@ -4,7 +4,10 @@
 // recurrences (rtl::run_unit_recurrence), which must give the clocked run's pixels, cycles and
 // statistics. The input chooses everything:
 //   textures   1 or 2, each 1..24 texels per side, RGBA8 / L8 / VS16X2 texels, tiled or linear rows,
-//              no MIP chain, a box or an edge-preserving chain
+//              no MIP chain, a box or an edge-preserving chain; or block-compressed (a format byte of
+//              240 and up: corpus inputs below keep their meaning): every unsigned block format
+//              (cmodel/block_formats.hpp), the input's bytes as its blocks (illegal ASTC encodings
+//              included), one level or the whole chain, sRGB and the BC interpolation rules
 //   samplers   1..3 descriptors: every filter mode, wrap mode per axis, border word, LOD bias and
 //              min / max clamps (each within +-16 levels or unbounded), cubic kernel (bspline-interp
 //              included: the driver's coefficient texture), ROM samples and bits, reconstruction,
@@ -12,7 +15,9 @@
 //              1..16 and its rounding
 //   unit       cache line 64 / 256 / 1024 bytes, 1..16 sets of 1..8 ways, 1 or 4 banks, both bank
 //              mappings, memory latency 0..10^6 and bandwidth 1..65536 bytes per cycle, channel
-//              depth 1..4, miss FIFO 1..16, 1 / 2 / 4 filter lanes, idle skipping on or off
+//              depth 1..4, miss FIFO 1..16, 1 / 2 / 4 filter lanes (the same byte's high bits: what
+//              the cache holds of compressed textures, 1..4 decoders of 1..8 texels per clock,
+//              latency 0 or 3), idle skipping on or off
 //   requests   lod, grad or quad mode; each request (each quad) names a texture and a sampler;
 //              coordinates mostly in [-2, 2], sometimes any 32-bit pattern (NaN, infinities,
 //              denormals, huge values)
@@ -37,6 +42,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cmodel/block_formats.hpp"
 #include "cmodel/descriptors.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/fast_paths.hpp"
@@ -53,9 +59,34 @@ namespace {
 
 using tfu::fuzz::ByteReader;
 
+std::shared_ptr<tfu::Texture> make_compressed_texture(ByteReader& in) {
+  std::vector<tfu::BlockFormat> formats;
+  for (const tfu::BlockFormatInfo& i : tfu::kBlockFormats)
+    if (tfu::unit_filterable(i.format)) formats.push_back(i.format);
+  tfu::BlockImage image;
+  image.format = formats[in.byte() % formats.size()];
+  image.srgb = in.flag();
+  const int w = static_cast<int>(in.in_range(1, 24)), h = static_cast<int>(in.in_range(1, 24));
+  const int levels = in.flag() ? tfu::mip_level_count(w, h) : 1;
+  for (int l = 0; l < levels; ++l) {
+    tfu::BlockLevel bl{tfu::mip_extent(w, l), tfu::mip_extent(h, l), {}};
+    bl.blocks.resize(tfu::block_level_bytes(image.format, bl.width, bl.height));
+    for (uint8_t& b : bl.blocks) b = in.byte();
+    image.levels.push_back(std::move(bl));
+  }
+  const uint8_t rules = in.byte();
+  const tfu::BlockDecodeRules r{
+      {static_cast<tfu::Bc1Interpolation>(rules % 4), static_cast<tfu::Bc4Interpolation>((rules >> 2) & 1)},
+      image.srgb};
+  return std::make_shared<tfu::Texture>(tfu::texture_from_block_image(image, r, "fuzz"));
+}
+
 std::shared_ptr<tfu::Texture> make_texture(ByteReader& in) {
   auto tex = std::make_shared<tfu::Texture>();
-  tex->format = in.pick({tfu::TexelFormat::RGBA8, tfu::TexelFormat::L8, tfu::TexelFormat::VS16X2});
+  const uint8_t format = in.byte();
+  if (format >= 240) return make_compressed_texture(in);
+  constexpr tfu::TexelFormat kFormats[] = {tfu::TexelFormat::RGBA8, tfu::TexelFormat::L8, tfu::TexelFormat::VS16X2};
+  tex->format = kFormats[format % 3];
   tex->layout = in.flag() ? tfu::MemoryLayout::Linear : tfu::MemoryLayout::Tiled;
   const int w = static_cast<int>(in.in_range(1, 24)), h = static_cast<int>(in.in_range(1, 24));
   tfu::Image img(w, h);
@@ -110,7 +141,13 @@ tfu::rtl::UnitConfig make_unit(ByteReader& in, tfu::rtl::ClockedOptions& clocked
   u.memory.bytes_per_cycle = in.pick({1, 3, 16, 64, 65536});
   u.channel_depth = static_cast<int>(in.in_range(1, 4));
   u.miss_fifo_depth = static_cast<int>(in.in_range(1, 16));
-  u.filter_lanes = in.pick({1, 2, 4});
+  const uint8_t lanes = in.byte();
+  constexpr int kLanes[] = {1, 2, 4};
+  u.filter_lanes = kLanes[lanes % 3];
+  u.cache.holds = (lanes >> 2) & 1 ? tfu::rtl::CacheHolds::Decoded : tfu::rtl::CacheHolds::Compressed;
+  u.decoder.units = 1 + ((lanes >> 3) & 3);
+  u.decoder.texels_per_clock = 1 << ((lanes >> 5) & 3);
+  u.decoder.latency = 3 * (lanes >> 7);
   clocked.idle_skip = u.memory.latency > 1000 || !in.flag();  // without skipping, a 10^6-cycle miss is slow
   return u;
 }

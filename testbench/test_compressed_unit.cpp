@@ -1,0 +1,313 @@
+// Block-compressed textures through both models: texture_from_block_image (levels decoded by the
+// one decoder; signed formats refused), the descriptor fields and texture memory (blocks stored
+// and read back, block addresses), and the cycle model against the golden model bit for bit on
+// every request: every unsigned block format, all 12 filter modes and anisotropic probes, both
+// cache organizations (cache.holds), interleaved with an uncompressed texture, in both engines;
+// the decoder statistics.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+
+#include <astcenc.h>
+
+#include "cmodel/block_formats.hpp"
+#include "cmodel/error.hpp"
+#include "cmodel/frame.hpp"
+#include "cmodel/golden_unit.hpp"
+#include "cmodel/mipmap.hpp"
+#include "rtl/engine_compare.hpp"
+#include "rtl/golden_compare.hpp"
+#include "rtl/texel_cache.hpp"
+#include "rtl/tfu_unit.hpp"
+#include "testbench/astc_reference.hpp"
+#include "testbench/iterations.hpp"
+
+namespace tfu::rtl {
+namespace {
+
+// ASTC blocks of a w x h RGBA8 image by libastcenc's encoder (random ASTC bits are mostly illegal
+// encodings, which decode to the error colour: a uniform texture).
+std::vector<uint8_t> astc_encode(const Image& img, const BlockFormatInfo& info) {
+  astcenc_context* ctx = test::astcenc_ctx(info.block_w, info.block_h, false, true);
+  std::vector<Rgba8> texels = img.texels;
+  void* planes[1] = {texels.data()};
+  astcenc_image image{static_cast<unsigned>(img.width), static_cast<unsigned>(img.height), 1, ASTCENC_TYPE_U8, planes};
+  std::vector<uint8_t> out(block_level_bytes(info.format, img.width, img.height));
+  test::astcenc_check(astcenc_compress_image(ctx, &image, &test::kAstcencIdentity, out.data(), out.size(), 0),
+                      "compress");
+  test::astcenc_check(astcenc_compress_reset(ctx), "reset");
+  return out;
+}
+
+// A compressed image of `levels` levels of a w x h texture: random blocks for BC and ETC (every bit
+// pattern is a valid block), libastcenc-encoded random-walk texels for ASTC.
+BlockImage random_block_image(BlockFormat f, int w, int h, int levels, std::mt19937& rng) {
+  const BlockFormatInfo& info = block_format_info(f);
+  BlockImage image;
+  image.format = f;
+  for (int l = 0; l < levels; ++l) {
+    BlockLevel bl;
+    bl.width = mip_extent(w, l);
+    bl.height = mip_extent(h, l);
+    if (info.family == BlockFamily::ASTC) {
+      Image img(bl.width, bl.height);
+      int v = static_cast<int>(rng() % 256);
+      for (Rgba8& t : img.texels) {
+        v = (v + static_cast<int>(rng() % 61) - 30) & 255;
+        t = {static_cast<uint8_t>(v), static_cast<uint8_t>(rng()), static_cast<uint8_t>(255 - v),
+             static_cast<uint8_t>(rng() | 128)};
+      }
+      bl.blocks = astc_encode(img, info);
+    } else {
+      bl.blocks.resize(block_level_bytes(f, bl.width, bl.height));
+      for (uint8_t& b : bl.blocks) b = static_cast<uint8_t>(rng());
+    }
+    image.levels.push_back(std::move(bl));
+  }
+  return image;
+}
+
+std::vector<BlockFormat> unsigned_formats() {
+  std::vector<BlockFormat> v;
+  for (const BlockFormatInfo& i : kBlockFormats)
+    if (unit_filterable(i.format)) v.push_back(i.format);
+  return v;
+}
+
+TEST(CompressedTexture, LevelsAreTheDecodedBlocksAndSignedFormatsAreRefused) {
+  std::mt19937 rng(3);
+  for (const BlockFormat f : {BlockFormat::BC1, BlockFormat::BC7, BlockFormat::ETC2A, BlockFormat::ASTC_6x5}) {
+    const BlockImage image = random_block_image(f, 21, 13, 3, rng);  // partial edge blocks, a short chain
+    const BlockDecodeRules rules{kBcRulesMesa, false};
+    const Texture t = texture_from_block_image(image, rules);
+    ASSERT_EQ(t.levels.size(), 3u);
+    ASSERT_NE(t.compressed, nullptr);
+    EXPECT_EQ(t.format, TexelFormat::RGBA8);
+    for (size_t l = 0; l < 3; ++l) {
+      const Image want =
+          decode_block_level(f, image.levels[l].width, image.levels[l].height, image.levels[l].blocks, rules);
+      EXPECT_EQ(t.levels[l].texels, want.texels) << block_format_name(f) << " level " << l;
+    }
+    // Texture memory stores the blocks: read back, the same blocks and texels; a texel's address
+    // is its block's, block rows row_pitch apart.
+    TextureMemory mem;
+    const TextureDescriptor d = place_texture(mem, t, 64);
+    EXPECT_TRUE(d.compressed);
+    EXPECT_EQ(d.block_format, f);
+    EXPECT_EQ(d.decode, rules);
+    const Texture back = read_texture(mem, d);
+    ASSERT_NE(back.compressed, nullptr);
+    for (size_t l = 0; l < 3; ++l) {
+      EXPECT_EQ(back.compressed->image.levels[l].blocks, image.levels[l].blocks) << l;
+      EXPECT_EQ(back.levels[l].texels, t.levels[l].texels) << l;
+    }
+    const BlockFormatInfo& info = block_format_info(f);
+    EXPECT_EQ(d.level[1].row_pitch % 64, 0u);
+    EXPECT_GE(d.level[0].row_pitch, static_cast<uint32_t>(blocks_across(f, 21) * info.block_bytes));
+    EXPECT_EQ(d.texel_address(0, 2 * info.block_w + 1, info.block_h + 2),
+              d.level[0].address + d.level[0].row_pitch + 2u * static_cast<uint64_t>(info.block_bytes));
+    EXPECT_EQ(std::memcmp(mem.bytes_at(d.texel_address(1, info.block_w, 0)),
+                          image.levels[1].blocks.data() + info.block_bytes, static_cast<size_t>(info.block_bytes)),
+              0);
+  }
+  BlockImage signed_image = random_block_image(BlockFormat::BC5S, 8, 8, 1, rng);
+  EXPECT_THROW(texture_from_block_image(signed_image, {}), InputError);
+  signed_image.format = BlockFormat::EAC_R11S;
+  EXPECT_THROW(texture_from_block_image(signed_image, {}), InputError);
+  BlockImage wrong = random_block_image(BlockFormat::BC3, 8, 8, 2, rng);
+  wrong.levels[1].blocks.pop_back();
+  EXPECT_THROW(texture_from_block_image(wrong, {}), InputError);
+}
+
+TEST(CompressedTexture, DescriptorFieldsRoundTrip) {
+  for (const BlockFormat f : unsigned_formats())
+    for (const bool srgb : {false, true}) {
+      TextureDescriptor d;
+      d.width = 40;
+      d.height = 24;
+      d.compressed = true;
+      d.block_format = f;
+      d.decode = {{Bc1Interpolation::AMD, Bc4Interpolation::TRUNCATE}, srgb};
+      d.level[0] = {0x1000, 256};
+      const auto w = encode(d);
+      EXPECT_EQ((w[0] >> 12) & 31u, 1u + static_cast<uint32_t>(f));  // 1 + its row of kBlockFormats
+      const TextureDescriptor back = decode_texture_descriptor(w);
+      EXPECT_EQ(back, d) << block_format_name(f);
+      d.validate("compressed");
+    }
+  TextureDescriptor plain;  // an uncompressed descriptor's words are what they were: the new fields 0
+  EXPECT_EQ(encode(plain)[0] >> 12, 0u);
+  std::array<uint32_t, kTextureDescriptorWords> w{};
+  w[0] = 31u << 12;  // past the table
+  EXPECT_THROW(decode_texture_descriptor(w), InputError);
+  TextureDescriptor s;
+  s.compressed = true;
+  s.block_format = BlockFormat::BC4S;
+  s.level[0] = {0x1000, 256};
+  EXPECT_THROW(s.validate("signed"), InputError);
+}
+
+// A compressed level's lines (cache.holds compressed) are its block bytes over the line size, for
+// every texel, format and line size; decoded lines tile the level in squares of line_bytes / 4
+// texels, above every memory line, and a fill's blocks are those covering the tile.
+TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
+  std::mt19937 rng(9);
+  for (const BlockFormat f :
+       {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::ETC2, BlockFormat::ASTC_5x5, BlockFormat::ASTC_12x10})
+    for (const int line : {64, 256, 1024}) {
+      TextureMemory mem;
+      const Texture t = texture_from_block_image(random_block_image(f, 70, 45, 3, rng), {});
+      const std::vector<TextureDescriptor> d{place_texture(mem, t, static_cast<uint64_t>(line))};
+      TexelCacheConfig c;
+      c.line_bytes = line;
+      c.capacity_bytes = 4 * line;
+      c.ways = 4;
+      const TexelCache blocks(c, d);
+      c.holds = CacheHolds::Decoded;
+      const TexelCache decoded(c, d);
+      const BlockFormatInfo& info = block_format_info(f);
+      const int side = line == 64 ? 4 : line == 256 ? 8 : 16;
+      for (int l = 0; l < 3; ++l)
+        for (int y = 0; y < d[0].level_height(l); ++y)
+          for (int x = 0; x < d[0].level_width(l); ++x) {
+            ASSERT_EQ(blocks.line_of(0, l, x, y), d[0].texel_address(l, x, y) / static_cast<uint64_t>(line))
+                << block_format_name(f) << " line " << line << " level " << l << " " << x << "," << y;
+            const uint64_t v = decoded.line_of(0, l, x, y);
+            ASSERT_GE(v, (uint64_t{1} << 41) / static_cast<uint64_t>(line));
+            ASSERT_EQ(decoded.line_of(0, l, x / side * side, y / side * side), v);
+            int texels = 0;
+            const int n = decoded.fill_blocks(0, l, v, texels);
+            const int x0 = x / side * side, y0 = y / side * side;
+            const int x1 = std::min(x0 + side, d[0].level_width(l)) - 1,
+                      y1 = std::min(y0 + side, d[0].level_height(l)) - 1;
+            ASSERT_EQ(texels, (x1 - x0 + 1) * (y1 - y0 + 1));
+            ASSERT_EQ(n, (x1 / info.block_w - x0 / info.block_w + 1) * (y1 / info.block_h - y0 / info.block_h + 1));
+          }
+    }
+}
+
+// Random gradient requests over two textures (a compressed one and an uncompressed one,
+// interleaved) and every sampler: the 12 filter modes with random wraps, and anisotropic samplers.
+struct CompressedRun {
+  Frame frame;
+  Trace trace;
+};
+CompressedRun compressed_run(BlockFormat f, int line_bytes, std::mt19937& rng, int requests) {
+  FrameBuilder b(line_bytes);
+  BlockImage image = random_block_image(f, 36, 28, mip_level_count(36, 28), rng);
+  image.srgb = (rng() & 1) != 0;
+  const BlockDecodeRules rules{{static_cast<Bc1Interpolation>(rng() % 4), static_cast<Bc4Interpolation>(rng() % 2)},
+                               image.srgb};
+  b.add_texture(std::make_shared<const Texture>(texture_from_block_image(image, rules)), {block_format_name(f), {}});
+  Texture plain;  // RGBA8, tiled
+  plain.levels.emplace_back(32, 32);
+  for (Rgba8& t : plain.levels[0].texels)
+    t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), 255};
+  generate_mipmaps(plain, MipMethod::Box);
+  b.add_texture(std::make_shared<const Texture>(std::move(plain)), {"plain", {}});
+  int samplers = 0;
+  for (const FilterMode& m : all_filter_modes())
+    for (const int aniso : {1, 8}) {
+      if (aniso > 1 && m.mip == MipMode::None) continue;
+      SamplerDescriptor s;
+      s.mode = m;
+      s.wrap_s = static_cast<WrapMode>(rng() % 4);
+      s.wrap_t = static_cast<WrapMode>(rng() % 4);
+      s.border = {static_cast<uint8_t>(rng()), 7, 200, 255};
+      s.edge_shape = static_cast<EdgeShape>(rng() % 3);
+      s.max_aniso = aniso;
+      b.add_sampler(s, false);
+      ++samplers;
+    }
+  Trace tr;
+  tr.mode = TraceMode::Grad;
+  std::uniform_real_distribution<float> pos(-0.2f, 1.2f), d(-0.12f, 0.12f);
+  for (int n = 0; n < requests; ++n) {
+    TraceRequest r;
+    r.texture = static_cast<uint16_t>(rng() % 3 == 0 ? 1 : 0);
+    r.sampler = static_cast<uint8_t>(rng() % static_cast<unsigned>(samplers));
+    r.s = pos(rng);
+    r.t = pos(rng);
+    r.dsdx = d(rng);
+    r.dtdx = d(rng) / 4;
+    r.dsdy = d(rng) / 4;
+    r.dtdy = d(rng);
+    tr.requests.push_back(r);
+  }
+  bind_requests(b, tr);
+  return {b.finish(), std::move(tr)};
+}
+
+// Golden and cycle model on every request, both engines equal (pixels, cycles, statistics, every
+// event), for every unsigned block format under both cache organizations and line sizes 64 and 256.
+TEST(CompressedUnit, GoldenEqualsBothEnginesOnEveryFormatModeAndCacheOrganization) {
+  std::mt19937 rng(11);
+  const int requests = test::iterations(120);
+  for (const BlockFormat f : unsigned_formats())
+    for (const CacheHolds holds : {CacheHolds::Compressed, CacheHolds::Decoded}) {
+      UnitConfig u;
+      u.cache.line_bytes = rng() % 2 ? 64 : 256;
+      u.cache.capacity_bytes = 4096;
+      u.cache.ways = 2;
+      u.cache.holds = holds;
+      u.cache.bank_mapping = static_cast<BankMapping>(rng() % 2);
+      u.memory.latency = 30;
+      u.decoder.units = 1 + static_cast<int>(rng() % 2);
+      u.decoder.latency = static_cast<int>(rng() % 4);
+      const CompressedRun run = compressed_run(f, u.cache.line_bytes, rng, requests);
+      const std::string what =
+          fmt::format("{} holds {} line {}", block_format_name(f),
+                      holds == CacheHolds::Compressed ? "compressed" : "decoded", u.cache.line_bytes);
+      const UnitOutput clocked = run_unit(run.frame, run.trace, u, UnitEngine::Clocked, {});
+      ASSERT_EQ(clocked.pixels.size(), run.trace.requests.size()) << what;
+      const GoldenUnit golden(run.frame);
+      EXPECT_EQ(first_mismatch(run.trace, golden_outputs(golden, run.trace, clocked), clocked), "") << what;
+      const UnitOutput rec = run_unit(run.frame, run.trace, u, UnitEngine::Recurrence, {});
+      EXPECT_EQ(rec.pixels, clocked.pixels) << what;
+      EXPECT_EQ(rec.cycles, clocked.cycles) << what;
+      EXPECT_EQ(rec.stats.json_text(), clocked.stats.json_text()) << what;
+      EXPECT_EQ(compare_engines(run.frame, run.trace, u), "") << what;
+      // The decoders worked, and the per-texture table holds the compressed texture alone.
+      EXPECT_GT(clocked.stats.counter("decoded_blocks"), 0u) << what;
+      EXPECT_GT(clocked.stats.counter("decoder_busy_cycles"), 0u) << what;
+      const sim::Stats::Table* t = clocked.stats.table("decoders");
+      ASSERT_NE(t, nullptr) << what;
+      ASSERT_EQ(t->rows.size(), 1u) << what;
+      EXPECT_EQ(t->rows[0].second[1], clocked.stats.counter("decoded_blocks")) << what;
+      EXPECT_EQ(t->rows[0].second[2], clocked.stats.counter("decoder_busy_cycles")) << what;
+      EXPECT_EQ(t->rows[0].second[3], clocked.stats.counter("decoder_stall_cycles")) << what;
+    }
+}
+
+// The decoder's timing: one decoder of 1 texel per clock is slower than 4 decoders of 4, the same
+// pixels; with the decoders on fill, hits decode nothing (a second pass over a resident texture
+// adds no decoded blocks).
+TEST(CompressedUnit, DecoderThroughputAndOrganizationChangeTimingNotPixels) {
+  std::mt19937 rng(5);
+  const CompressedRun run = compressed_run(BlockFormat::BC1, 64, rng, 200);
+  UnitConfig fast, slow;
+  fast.decoder = {4, 4, 1};
+  slow.decoder = {1, 1, 8};
+  const UnitOutput a = run_unit(run.frame, run.trace, fast, UnitEngine::Recurrence, {});
+  const UnitOutput b = run_unit(run.frame, run.trace, slow, UnitEngine::Recurrence, {});
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_LT(a.cycles, b.cycles);
+  EXPECT_LT(a.stats.counter("decoder_busy_cycles"), b.stats.counter("decoder_busy_cycles"));
+  // Decoded on fill with a cache holding the whole texture: a trace run twice decodes once.
+  UnitConfig big;
+  big.cache.holds = CacheHolds::Decoded;
+  big.cache.capacity_bytes = 1 << 20;
+  big.cache.ways = 16;
+  Trace twice = run.trace;
+  twice.requests.insert(twice.requests.end(), run.trace.requests.begin(), run.trace.requests.end());
+  const UnitOutput once = run_unit(run.frame, run.trace, big, UnitEngine::Recurrence, {});
+  const UnitOutput again = run_unit(run.frame, twice, big, UnitEngine::Recurrence, {});
+  EXPECT_EQ(once.stats.counter("decoded_blocks"), again.stats.counter("decoded_blocks"));
+  // A BC1 fill of a 4x4 tile is one 8-byte block; memory bytes are the blocks'.
+  EXPECT_EQ(once.stats.table("decoders")->rows[0].second[1] * 8, once.stats.table("textures")->rows[0].second[4]);
+}
+
+}  // namespace
+}  // namespace tfu::rtl
