@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/block_encode.hpp"
+#include "cmodel/block_formats.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/nearest_name.hpp"
 #include "cmodel/fixed_coord.hpp"
@@ -128,7 +130,7 @@ const SamplerParam kSamplerParams[] = {
      [](const SD& s) { return name_of(s.aniso_rounding, kAnisoRounding); }},
 };
 
-constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes"};
+constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress"};
 
 }  // namespace
 
@@ -219,6 +221,11 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       throw InputError(fmt::format("{}: {}", where, e.what()));
     }
   }
+  if (tex.compressed) {  // a DDS, KTX or .astc file: its format and levels are the file's
+    for (const char* key : {"format", "mipmaps", "alpha"})
+      if (spec.params.contains(key) && !(std::string(key) == "mipmaps" && (param(key, "") == "auto" || param(key, "") == "stored")))
+        throw fail(key, "a compressed file's texels and MIP levels are its own (the key applies to uncompressed images)");
+  }
   const std::string format = param("format", "auto");
   if (format != "auto") {
     TexelFormat f{};
@@ -252,7 +259,9 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   }
   const std::string m = param("mipmaps", "auto");
   try {
-    if (m == "auto") {
+    if (tex.compressed) {
+      // the file's levels, as stored
+    } else if (m == "auto") {
       if (tex.levels.size() == 1) generate_mipmaps(tex, MipMethod::Box);
     } else if (m == "stored") {
       // keep what the file holds
@@ -263,6 +272,28 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
     }
   } catch (const InputError& e) {
     throw fail("mipmaps", e.what());
+  }
+  // compress=FORMAT: the levels encoded as a driver would at upload (cmodel/block_encode.hpp) and the
+  // texture then held as blocks: texture memory stores them, the unit decodes them (docs/compressed.md).
+  const std::string compress = param("compress", "none");
+  if (compress != "none") {
+    if (tex.compressed) throw fail("compress", "the file is compressed already");
+    BlockFormat f{};
+    try {
+      f = block_format_from_name(compress);
+    } catch (const InputError& e) {
+      throw fail("compress", e.what());
+    }
+    try {
+      const BlockImage blocks = encode_block_image(tex.levels, f, /*srgb=*/false);
+      const MemoryLayout layout = tex.layout;
+      const int tile_bytes = tex.tile_bytes;
+      auto memory = tex.memory;  // the budget's charge for the decoded chain stays with the texture
+      tex = texture_from_block_image(blocks, BlockDecodeRules{}, where, layout, tile_bytes);
+      tex.memory = std::move(memory);
+    } catch (const InputError& e) {
+      throw fail("compress", e.what());
+    }
   }
   out.texture = std::make_shared<const Texture>(std::move(tex));
   return out;

@@ -7,9 +7,11 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include "cmodel/block_formats.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/stderr_capture.hpp"
+#include "cmodel/texture_containers.hpp"
 
 namespace tfu {
 
@@ -166,6 +168,10 @@ Texture load_level_directory(const std::string& dir) {
 Texture load_texture(const std::string& path) {
   std::error_code ec;  // an unusable name is the file reader's error (one line naming it)
   if (std::filesystem::is_directory(path, ec)) return with_stderr_captured([&] { return load_level_directory(path); });
+  if (is_block_container_file(path)) {  // DDS, KTX or .astc: blocks, decoded as the unit decodes them
+    const BlockImage image = read_block_image(path, quote_path(path));
+    return texture_from_block_image(image, BlockDecodeRules{{}, image.srgb}, quote_path(path));
+  }
   return with_stderr_captured([&] { return load_texture_file(path); });
 }
 

@@ -1,5 +1,7 @@
 #include "cmodel/texture_containers.hpp"
 
+#include <filesystem>
+#include <fstream>
 #include <algorithm>
 #include <array>
 #include <cstring>
@@ -444,6 +446,15 @@ std::vector<uint8_t> serialize_block_image(const BlockImage& image, BlockContain
       return write_astc(image);
   }
   return {};
+}
+
+bool is_block_container_file(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  uint8_t head[16] = {};
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  return container_by_magic(std::span<const uint8_t>(head, static_cast<size_t>(in.gcount()))).has_value();
 }
 
 }  // namespace tfu

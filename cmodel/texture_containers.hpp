@@ -45,6 +45,10 @@ bool container_holds(BlockContainer c, BlockFormat f);
 BlockContainer default_container(BlockFormat f);
 // The container whose magic the bytes start with, if any.
 std::optional<BlockContainer> container_by_magic(std::span<const uint8_t> bytes);
+// True when `path` is a regular file that starts with a container's magic (its first 16 bytes are
+// read; anything else, a FIFO or a device included, is false without reading: the image reader's
+// input checks then refuse it). What load_texture asks before choosing the image reader.
+bool is_block_container_file(const std::string& path);
 
 // Throws InputError (naming `label`) unless the image is well formed: every level's size follows
 // the MIP rule from level 0 (1..kMaxTextureSize), at most the full chain, and holds
