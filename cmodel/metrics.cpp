@@ -44,15 +44,26 @@ RgbPlane to_plane(const FloatImage& im) {
   return p;
 }
 
-double mse(const RgbPlane& a, const RgbPlane& b) {
+void check_mask(const RgbPlane& a, const PixelMask* mask) {
+  if (mask && mask->size() != a.px.size())
+    throw InputError(fmt::format("a pixel mask of {} entries for a {}x{} image", mask->size(), a.width, a.height));
+}
+
+// Over every pixel, or the pixels `mask` selects (0 when it selects none).
+double mse(const RgbPlane& a, const RgbPlane& b, const PixelMask* mask = nullptr) {
   check_same_size(a.width, a.height, b.width, b.height);
+  check_mask(a, mask);
   double sum = 0;
-  for (size_t i = 0; i < a.px.size(); ++i)
+  size_t n = 0;
+  for (size_t i = 0; i < a.px.size(); ++i) {
+    if (mask && !(*mask)[i]) continue;
+    ++n;
     for (size_t c = 0; c < 3; ++c) {
       const double d = a.px[i][c] - b.px[i][c];
       sum += d * d;
     }
-  return sum / (3.0 * static_cast<double>(a.px.size()));
+  }
+  return n ? sum / (3.0 * static_cast<double>(n)) : 0.0;
 }
 
 // ---- SSIM ----
@@ -108,8 +119,11 @@ std::pair<int, int> centre_range(int n) {
   return n >= kSsimWindow ? std::pair{r, n - 1 - r} : std::pair{0, n - 1};
 }
 
-double ssim(const RgbPlane& a, const RgbPlane& b) {
+// The mean of the SSIM map over the valid window centres, or over those `mask` selects (1 when it
+// selects none).
+double ssim(const RgbPlane& a, const RgbPlane& b, const PixelMask* mask = nullptr) {
   check_same_size(a.width, a.height, b.width, b.height);
+  check_mask(a, mask);
   const int w = a.width, h = a.height;
   const std::vector<double> y1 = luma(a), y2 = luma(b);
   const std::vector<double> mu1 = blur(y1, w, h), mu2 = blur(y2, w, h);
@@ -119,14 +133,17 @@ double ssim(const RgbPlane& a, const RgbPlane& b) {
   const auto [x0, x1] = centre_range(w);
   const auto [yb, ye] = centre_range(h);
   double sum = 0;
+  size_t n = 0;
   for (int y = yb; y <= ye; ++y)
     for (int x = x0; x <= x1; ++x) {
       const size_t i = static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x);
+      if (mask && !(*mask)[i]) continue;
+      ++n;
       const double m1 = mu1[i], m2 = mu2[i];
       const double s11 = e11[i] - m1 * m1, s22 = e22[i] - m2 * m2, s12 = e12[i] - m1 * m2;
       sum += ((2 * m1 * m2 + c1) * (2 * s12 + c2)) / ((m1 * m1 + m2 * m2 + c1) * (s11 + s22 + c2));
     }
-  return sum / (static_cast<double>(x1 - x0 + 1) * static_cast<double>(ye - yb + 1));
+  return n ? sum / static_cast<double>(n) : 1.0;
 }
 
 // ---- heat map ----
@@ -148,6 +165,9 @@ std::string format_metric(double v, int decimals) {
 }
 
 double mse_rgb(const Image& a, const Image& b) { return mse(to_plane(a), to_plane(b)); }
+double mse_rgb(const Image& a, const Image& b, const PixelMask& mask) { return mse(to_plane(a), to_plane(b), &mask); }
+double psnr_db(const Image& a, const Image& b, const PixelMask& mask) { return psnr_from_mse(mse_rgb(a, b, mask)); }
+double ssim_luma(const Image& a, const Image& b, const PixelMask& mask) { return ssim(to_plane(a), to_plane(b), &mask); }
 double psnr_db(const Image& a, const Image& b) { return psnr_from_mse(mse_rgb(a, b)); }
 double ssim_luma(const Image& a, const Image& b) { return ssim(to_plane(a), to_plane(b)); }
 

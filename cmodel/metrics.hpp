@@ -14,12 +14,16 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "cmodel/texture.hpp"
 
 namespace tfu {
+
+// One byte per pixel, row-major: nonzero selects the pixel (RenderResult::interior).
+using PixelMask = std::vector<uint8_t>;
 
 // Double-precision RGBA image, values in [0, 1], row-major, row 0 on top.
 struct FloatImage {
@@ -51,6 +55,13 @@ double mse_rgb(const Image& a, const Image& b);
 double psnr_db(const Image& a, const Image& b);
 double ssim_luma(const Image& a, const Image& b);
 DiffStats diff_stats(const Image& a, const Image& b);
+// Over the pixels a mask selects: their MSE (0 when none is selected), PSNR from it (+inf when they are equal or none is
+// selected); SSIM as the mean of the SSIM map over the valid window centres the mask selects (the
+// windows still read their unselected neighbours; 1 when none is selected). The mask must hold one
+// entry per pixel (InputError otherwise).
+double mse_rgb(const Image& a, const Image& b, const PixelMask& mask);
+double psnr_db(const Image& a, const Image& b, const PixelMask& mask);
+double ssim_luma(const Image& a, const Image& b, const PixelMask& mask);
 ImageMetrics compare_images(const Image& a, const Image& b);
 
 // Against an ideal image (values in [0, 1], compared as 255 * value).

@@ -83,6 +83,7 @@ struct Context {
   std::vector<std::vector<uint32_t>> band_triangles;  // per band: triangle indices in scene order
   RenderResult* result = nullptr;
   std::vector<float> depth;
+  std::vector<int32_t> winner;  // per pixel: the triangle the render drew last there (-1: none), for the surface truth
 };
 
 struct BandOutput {
@@ -222,6 +223,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
         res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(ideal[uk]) : colour[uk];
         ctx.depth[idx] = static_cast<float>(z[uk]);
+        if (!ctx.winner.empty()) ctx.winner[idx] = static_cast<int32_t>(&tri - ctx.triangles.data());
         if (ctx.opts->keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
         ++out.pixels;
       }
@@ -355,6 +357,47 @@ void truth_band(const Context& ctx, int band, int y0, int y1) {
     }
 }
 
+// The surface truth of rows [y0, y1): each pixel keeps the render's coverage (the triangle the
+// render drew at its centre, after the depth test), and that triangle's material is integrated over
+// the whole pixel: the same 8 x 8 sample points, with barycentrics extrapolated beyond the
+// triangle's edges as helper pixels are (perspective-correct, every stage combined in real
+// arithmetic). A pixel the render left empty is the background. So the truth has the render's
+// silhouettes, and what remains between them is the filter's error. Also the interior mask: a
+// pixel whose 2x2 quad has all four centres drawn by triangles of one mesh.
+void surface_truth_band(const Context& ctx, int y0, int y1) {
+  const int W = ctx.width, H = ctx.height;
+  const Scene& scene = *ctx.scene;
+  constexpr int64_t step = kOne / kTruthSamplesPerAxis;
+  const auto at = [W](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(W) + static_cast<size_t>(x); };
+  const auto mesh_at = [&](int x, int y) {
+    if (x >= W || y >= H) return -1;
+    const int32_t t = ctx.winner[at(x, y)];
+    return t < 0 ? -1 : ctx.triangles[static_cast<size_t>(t)].mesh;
+  };
+  for (int py = y0; py < y1; ++py)
+    for (int px = 0; px < W; ++px) {
+      const int32_t ti = ctx.winner[at(px, py)];
+      if (ti < 0) {
+        ctx.result->surface_truth.at(px, py) = to_rgba8(scene.background);
+        continue;
+      }
+      const RasterTriangle& tri = ctx.triangles[static_cast<size_t>(ti)];
+      const Mesh& mesh = scene.meshes[static_cast<size_t>(tri.mesh)];
+      std::array<double, 4> sum{};
+      for (int k = 0; k < kTruthSamples; ++k) {
+        const int64_t sx = int64_t{px} * kOne + (k % kTruthSamplesPerAxis) * step + step / 2;
+        const int64_t sy = int64_t{py} * kOne + (k / kTruthSamplesPerAxis) * step + step / 2;
+        const auto c = truth_material(mesh, tri, tri.barycentric(sx, sy));
+        for (size_t i = 0; i < 4; ++i) sum[i] += static_cast<double>(static_cast<float>(c[i]));
+      }
+      for (double& v : sum) v /= kTruthSamples;
+      ctx.result->surface_truth.at(px, py) = to_rgba8(sum);
+      const int qx = px & ~1, qy = py & ~1, m = tri.mesh;
+      ctx.result->interior[at(px, py)] =
+          mesh_at(qx, qy) == m && mesh_at(qx + 1, qy) == m && mesh_at(qx, qy + 1) == m && mesh_at(qx + 1, qy + 1) == m;
+    }
+}
+
 // ---- Setup: transform, clip, project, snap, bin into bands ----
 void setup_scene(Context& ctx) {
   const Scene& scene = *ctx.scene;
@@ -430,7 +473,10 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
         const int y0 = band * kBandRows, y1 = std::min(ctx.height, y0 + kBandRows);
         for (uint32_t ti : ctx.band_triangles[static_cast<size_t>(band)])
           shade_triangle(ctx, ctx.triangles[ti], y0, y1, outputs[static_cast<size_t>(band)]);
-        if (ctx.opts->ground_truth) truth_band(ctx, band, y0, y1);
+        if (ctx.opts->ground_truth) {
+          truth_band(ctx, band, y0, y1);
+          surface_truth_band(ctx, y0, y1);
+        }
       } catch (...) {
         const std::lock_guard lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -534,7 +580,12 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
   result.image = Image(scene.width, scene.height, to_rgba8(scene.background));
-  if (opts.ground_truth) result.truth = Image(scene.width, scene.height);
+  if (opts.ground_truth) {
+    result.truth = Image(scene.width, scene.height);
+    result.surface_truth = Image(scene.width, scene.height);
+    result.interior.assign(static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height), 0);
+    ctx.winner.assign(static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height), -1);
+  }
   if (opts.keep_coords) result.coords.assign(n, {std::nanf(""), std::nanf("")});
   ctx.depth.assign(n, std::numeric_limits<float>::infinity());
 

@@ -23,6 +23,11 @@
 //   ground truth  8 x 8 stratified sample points per pixel at ((i + 1/2) / 8, (j + 1/2) / 8), each with
 //                 its own coverage, depth test and perspective-correct (s, t), colour from the texture's
 //                 analytic function (procedural.hpp; file textures: bilinear on level 0), averaged
+//                 (`truth`, antialiased: its polygon edges are smooth where the render's are not)
+//   surface truth the render's own coverage: at each pixel the triangle the render drew at the centre,
+//                 its material integrated over the same 8 x 8 points with barycentrics extrapolated
+//                 beyond its edges (`surface_truth`; the background where the render drew nothing);
+//                 `interior` marks the pixels whose 2x2 quad is drawn by one mesh (docs/metrics.md)
 #pragma once
 
 #include <array>
@@ -84,7 +89,7 @@ struct RenderOptions {
   Params sampler_overrides;          // further sampler keys of every base stage (bindings.hpp)
   int line_bytes = 64;               // the unit's cache line: textures are tiled in tiles of it
   bool trace = false;                // record the quad request trace
-  bool ground_truth = false;         // also render the supersampled analytic reference
+  bool ground_truth = false;         // also render the supersampled analytic references (both truths)
   bool ideal = false;                // Sampler::sample_ideal (double path) instead of sample
   bool keep_coords = false;          // keep each visible pixel's (s, t) (NaN where nothing is drawn)
   int threads = 0;                   // 0: std::thread::hardware_concurrency()
@@ -112,7 +117,9 @@ struct QuadTarget {
 
 struct RenderResult {
   Image image;
-  Image truth;  // empty unless RenderOptions::ground_truth
+  Image truth;          // antialiased truth; empty unless RenderOptions::ground_truth
+  Image surface_truth;  // the truth with the render's coverage (isolates the filter); likewise
+  std::vector<uint8_t> interior;  // per pixel, 1: its quad lies inside one mesh; likewise
   Trace trace;  // empty unless RenderOptions::trace
   std::vector<QuadTarget> quad_targets;  // one per traced quad
   std::shared_ptr<const SceneFrame> frame;  // the descriptors and texel memory the render used

@@ -97,6 +97,34 @@ TEST(Metrics, SsimDecreasesWithNoiseAndIsSymmetric) {
   }
 }
 
+TEST(Metrics, OverAMask) {
+  // One pixel's red off by 30 in a 10 x 10 image; a mask of 20 pixels that holds it: MSE over the
+  // mask = 900 / (3 x 20) = 15; a mask without it: identical, +inf; a full mask: the whole-image figures.
+  const Image a(10, 10, {100, 100, 100, 255});
+  Image b = a;
+  b.at(3, 7).r = 130;
+  PixelMask with(100, 0), without(100, 0), all(100, 1);
+  for (int i = 0; i < 20; ++i) with[static_cast<size_t>(70 + i)] = 1;  // rows 7 and 8
+  for (int i = 0; i < 20; ++i) without[static_cast<size_t>(i)] = 1;    // rows 0 and 1
+  EXPECT_DOUBLE_EQ(mse_rgb(a, b, with), 15.0);
+  EXPECT_DOUBLE_EQ(psnr_db(a, b, with), 10.0 * std::log10(255.0 * 255.0 / 15.0));
+  EXPECT_TRUE(std::isinf(psnr_db(a, b, without)));
+  EXPECT_DOUBLE_EQ(psnr_db(a, b, all), psnr_db(a, b));
+  const Image p = pattern(40, 32), q = noisy(p, 20, 3u);
+  EXPECT_DOUBLE_EQ(ssim_luma(p, q, PixelMask(p.texels.size(), 1)), ssim_luma(p, q));
+  // Only the noisy half is selected: SSIM lower than over the whole image, where the other half is clean.
+  Image half = p;
+  PixelMask left(p.texels.size(), 0);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 20; ++x) {
+      half.at(x, y) = q.at(x, y);
+      left[static_cast<size_t>(y * 40 + x)] = 1;
+    }
+  EXPECT_LT(ssim_luma(p, half, left), ssim_luma(p, half));
+  EXPECT_DOUBLE_EQ(ssim_luma(p, half, PixelMask(p.texels.size(), 0)), 1.0);
+  EXPECT_THROW(psnr_db(a, b, PixelMask(99, 1)), InputError);
+}
+
 TEST(Metrics, SsimSmallImagesAndUniformOffset) {
   // Smaller than the 11x11 window: every pixel is a centre, window cut at the edges.
   const Image a = pattern(5, 3);

@@ -303,5 +303,95 @@ TEST(Raster, TruthOfARepeatingUvFarOutsideAWideTexture) {
   EXPECT_LE(worst, 2) << "truth at uv 1e6 differs from the truth at uv 0";
 }
 
+// A constant texture has no filtering error: the surface truth (the render's coverage, the material
+// integrated over each pixel) must equal the render pixel for pixel, while the antialiased truth
+// blends the silhouette with the background. The interior mask is the pixels whose whole quad the
+// render drew (one mesh here).
+TEST(SurfaceTruth, ConstantTextureEqualsTheRenderWhileTheAntialiasedTruthBlendsItsEdges) {
+  auto tex = std::make_shared<Texture>();
+  tex->levels.push_back(Image(4, 4, Rgba8{200, 120, 40, 255}));
+  generate_mipmaps(*tex, MipMethod::Box);
+  Scene s;
+  s.width = 48;
+  s.height = 40;
+  s.background = {0, 0, 0, 1};
+  s.camera.position = {0, 0, 3};
+  // A tilted quad: slanted edges cross pixels at every fraction.
+  Mesh m = make_quad_mesh({glm::dvec3{-1, -0.8, 0}, {0.9, -1, -0.5}, {1, 0.7, 0}, {-0.8, 1, 0.4}},
+                          {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  TextureStage st;
+  st.spec.source = "constant.png";
+  st.texture = tex;
+  m.stages.push_back(st);
+  s.meshes.push_back(m);
+  RenderOptions o;
+  o.ground_truth = true;
+  o.filter = FilterMode{BaseFilter::Linear, MipMode::Linear};
+  const RenderResult r = render_scene(s, o);
+  ASSERT_EQ(r.surface_truth.texels.size(), r.image.texels.size());
+  ASSERT_EQ(r.interior.size(), r.image.texels.size());
+  const Rgba8 bg{0, 0, 0, 255};
+  int drawn = 0, blended = 0, interior = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      EXPECT_EQ(r.surface_truth.at(x, y), r.image.at(x, y)) << x << "," << y;
+      const Rgba8 t = r.truth.at(x, y);
+      if (t != bg && t != Rgba8{200, 120, 40, 255}) ++blended;
+      if (r.image.at(x, y) != bg) ++drawn;
+      const int qx = x & ~1, qy = y & ~1;
+      bool whole = true;
+      for (int k = 0; k < 4; ++k) {
+        const int px = qx + (k & 1), py = qy + (k >> 1);
+        whole = whole && px < s.width && py < s.height && r.image.at(px, py) != bg;
+      }
+      EXPECT_EQ(r.interior[static_cast<size_t>(y * s.width + x)], whole ? 1 : 0) << x << "," << y;
+      interior += whole;
+    }
+  EXPECT_GT(drawn, 500);
+  EXPECT_GT(blended, 40) << "the antialiased truth blends the slanted edges";
+  EXPECT_GT(interior, 400);
+  EXPECT_LT(interior, drawn);
+}
+
+// Beyond its edges the surface truth extends the drawn triangle's texture (helper-pixel style)
+// instead of taking the neighbour's: two meshes side by side with different constant colours meet on
+// a slanted line, and every pixel of the surface truth is exactly the colour the render drew there.
+TEST(SurfaceTruth, PixelsOnASeamTakeTheirOwnSurfaceOnly) {
+  auto solid = [](Rgba8 c) {
+    auto t = std::make_shared<Texture>();
+    t->levels.push_back(Image(2, 2, c));
+    generate_mipmaps(*t, MipMethod::Box);
+    return t;
+  };
+  Scene s;
+  s.width = 40;
+  s.height = 32;
+  s.camera.position = {0, 0, 2.5};
+  const Rgba8 red{250, 10, 10, 255}, blue{10, 10, 250, 255};
+  Mesh left = make_quad_mesh({glm::dvec3{-2, -2, 0}, {0.3, -2, 0}, {-0.3, 2, 0}, {-2, 2, 0}},
+                             {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  Mesh right = make_quad_mesh({glm::dvec3{0.3, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-0.3, 2, 0}},
+                              {glm::dvec2{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  for (auto [mesh, c] : {std::pair{&left, red}, std::pair{&right, blue}}) {
+    TextureStage st;
+    st.spec.source = "solid.png";
+    st.texture = solid(c);
+    mesh->stages.push_back(st);
+    s.meshes.push_back(*mesh);
+  }
+  RenderOptions o;
+  o.ground_truth = true;
+  const RenderResult r = render_scene(s, o);
+  int mixed = 0, seam_quads = 0;
+  for (size_t i = 0; i < r.image.texels.size(); ++i) {
+    EXPECT_EQ(r.surface_truth.texels[i], r.image.texels[i]) << i;
+    const Rgba8 t = r.truth.texels[i];
+    if (t != red && t != blue) ++mixed;
+    if (!r.interior[i]) ++seam_quads;
+  }
+  EXPECT_GT(mixed, 20) << "the antialiased truth mixes the two colours along the seam";
+  EXPECT_GT(seam_quads, 20);
+}
+
 }  // namespace
 }  // namespace tfu

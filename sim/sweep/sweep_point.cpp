@@ -104,7 +104,7 @@ RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
 }
 
 // The point's figures beside its statistics (what results.csv shows).
-nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Image& truth, const Frame& frame) {
+nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
   const sim::Stats& st = res.stats;
   nlohmann::json r;
   r["cycles"] = res.cycles;
@@ -116,12 +116,16 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   for (const rtl::UnitStat c : {rtl::UnitStat::StallCacheMiss, rtl::UnitStat::StallBankConflict, rtl::UnitStat::StallBackpressure})
     r[rtl::stat_key(c)] = rtl::counter(st, c);
   r["latency_mean"] = rtl::value(st, rtl::UnitStat::LatencyMean);
-  const double psnr = psnr_db(res.image, truth);
-  if (std::isinf(psnr)) {
-    r["psnr"] = "inf";
-  } else {
-    r["psnr"] = psnr;
-  }
+  const auto put = [&r](const char* key, double db) {
+    if (std::isinf(db)) {
+      r[key] = "inf";
+    } else {
+      r[key] = db;
+    }
+  };
+  put("psnr", psnr_db(res.image, truth.antialiased));
+  put("psnr_surface", psnr_db(res.image, truth.surface));
+  put("psnr_interior", psnr_db(res.image, truth.surface, truth.interior));
   r["golden_equal"] = res.mismatch.empty();
   r["mismatch"] = res.mismatch;
   const rtl::CacheSramBits bits = rtl::texel_cache_sram_bits(p.config.cache);
@@ -147,10 +151,12 @@ std::shared_ptr<const Scene> SceneCache::scene(const Spec& s, const Point& p) {
   });
 }
 
-std::shared_ptr<const Image> SceneCache::truth(const Spec& s, const Point& p) {
+std::shared_ptr<const Truths> SceneCache::truth(const Spec& s, const Point& p) {
   const std::shared_ptr<const Scene> sc = scene(s, p);
-  return once<Image>(mutex_, truths_, truth_key(s, p),
-                     [&] { return std::make_shared<const Image>(render_scene(*sc, render_options(p, true)).truth); });
+  return once<Truths>(mutex_, truths_, truth_key(s, p), [&] {
+    RenderResult r = render_scene(*sc, render_options(p, true));
+    return std::make_shared<const Truths>(Truths{std::move(r.truth), std::move(r.surface_truth), std::move(r.interior)});
+  });
 }
 
 void SceneCache::plan(const Spec& s, const std::vector<const Point*>& points) {
@@ -181,7 +187,7 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
   double sim_seconds = 0;
   try {
     const std::shared_ptr<const Scene> scene = cache.scene(s, p);
-    const std::shared_ptr<const Image> truth = cache.truth(s, p);
+    const std::shared_ptr<const Truths> truth = cache.truth(s, p);
     const auto t1 = std::chrono::steady_clock::now();
     const std::shared_ptr<const RenderResult> shared = cache.render(s, p);
     const RenderResult& render = *shared;

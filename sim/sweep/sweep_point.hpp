@@ -6,7 +6,8 @@
 //   {"complete": true, "point": {"id", "index", "scene", "filter", "keys": {KEY: value}},
 //    "result": {"cycles", "pixels", "pixels_per_clock", "hit_rate", "bytes_per_pixel", "memory_bytes",
 //               "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "latency_mean",
-//               "psnr" (dB, or "inf"), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",
+//               "psnr", "psnr_surface", "psnr_interior" (dB, or "inf"; against the antialiased truth, the
+//               surface truth, the surface truth over the interior), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",
 //               "sram_bits_tag", "sram_bits_valid", "sram_bits_lru", "filter_gates", "filter_blocks"},
 //    "provenance", "definitions", "counters", "values", "histograms", "tables"}
 // or, when the point cannot run (an input the point's configuration refuses, a deadlock):
@@ -29,6 +30,13 @@
 
 namespace tfu::sweep {
 
+// The two ground truths of a scene (cmodel/raster.hpp): the antialiased one, and the surface truth
+// with the render's coverage and its interior mask.
+struct Truths {
+  Image antialiased, surface;
+  std::vector<uint8_t> interior;
+};
+
 // Scenes, ground truths and golden renders shared by the points of one process, each made once
 // (thread-safe; a second thread asking for one being made waits for it).
 class SceneCache {
@@ -36,7 +44,7 @@ class SceneCache {
   std::shared_ptr<const Scene> scene(const Spec& s, const Point& p);
   // The ground truth depends on the scene, its size and the base-stage sampler keys (wrap modes,
   // border), not on the filter or the unit.
-  std::shared_ptr<const Image> truth(const Spec& s, const Point& p);
+  std::shared_ptr<const Truths> truth(const Spec& s, const Point& p);
   // The golden render with its request trace depends on those, the filter and the cache line (the
   // textures are tiled for it), not on the rest of the unit: the points of a cache or memory grid
   // share it. plan() counts the points that will ask for each render; a render is dropped when the
@@ -48,7 +56,7 @@ class SceneCache {
  private:
   std::mutex mutex_;
   std::map<std::string, std::shared_future<std::shared_ptr<const Scene>>> scenes_;
-  std::map<std::string, std::shared_future<std::shared_ptr<const Image>>> truths_;
+  std::map<std::string, std::shared_future<std::shared_ptr<const Truths>>> truths_;
   std::map<std::string, std::shared_future<std::shared_ptr<const RenderResult>>> renders_;
   std::map<std::string, size_t> render_uses_;  // points still to use each render (plan())
 };

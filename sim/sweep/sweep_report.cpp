@@ -45,7 +45,7 @@ std::string number_text(const nlohmann::json& v, int decimals) {
 }
 
 int decimals_of(const std::string& column) {
-  if (column == "psnr" || column == "latency_mean") return 4;
+  if (column == "psnr" || column == "psnr_surface" || column == "psnr_interior" || column == "latency_mean") return 4;
   if (column == "filter_gates") return 1;
   return 6;
 }
@@ -83,7 +83,13 @@ const std::vector<Column>& result_columns() {
        ResultType::Number},
       {"stall_backpressure", "cycles", "cycles the cache stage's output was full", ResultType::Number},
       {"latency_mean", "cycles", "mean request latency, accept to response", ResultType::Number},
-      {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth", ResultType::NumberOrInf},
+      {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth (antialiased edges)",
+       ResultType::NumberOrInf},
+      {"psnr_surface", "dB",
+       "PSNR against the surface truth: the render's own coverage, each surface integrated over its pixels (the filter's error alone)",
+       ResultType::NumberOrInf},
+      {"psnr_interior", "dB", "PSNR against the surface truth over the pixels whose quad lies inside one surface",
+       ResultType::NumberOrInf},
       {"golden_equal", "", "every output of the cycle model equals the golden model's", ResultType::Bool},
       {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)", ResultType::Number},
       {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)",

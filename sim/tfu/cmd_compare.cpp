@@ -29,6 +29,7 @@ struct CompareOptions {
   std::string diff;
   int scale = 16;
   std::string json;
+  std::string mask;  // an image: the metrics over its non-black pixels
   bool force = false;
   std::optional<double> fail_below_psnr;  // exit 1 when PSNR (dB) is below it
 };
@@ -80,7 +81,24 @@ void run_compare(const CompareOptions& o) {
   if (a.width != b.width || a.height != b.height)
     throw InputError(fmt::format("image sizes differ: {} is {}x{}, {} is {}x{}", o.a, a.width, a.height, o.b, b.width,
                                  b.height));
-  const ImageMetrics m = compare_images(a, b);
+  ImageMetrics m = compare_images(a, b);
+  if (!o.mask.empty()) {  // MSE, PSNR and SSIM over the mask's pixels (docs/metrics.md); the differences stay whole-image
+    const Image mi = load_image(o.mask);
+    if (mi.width != a.width || mi.height != a.height)
+      throw InputError(fmt::format("--mask '{}' is {}x{}, the images {}x{}", quote_path(o.mask), mi.width, mi.height,
+                                   a.width, a.height));
+    PixelMask mask(mi.texels.size());
+    size_t selected = 0;
+    for (size_t i = 0; i < mask.size(); ++i) {
+      const Rgba8 t = mi.texels[i];
+      mask[i] = (t.r | t.g | t.b) != 0;
+      selected += mask[i];
+    }
+    if (selected == 0) throw InputError(fmt::format("--mask '{}' selects no pixel (it is black)", quote_path(o.mask)));
+    m.mse = mse_rgb(a, b, mask);
+    m.psnr_db = psnr_from_mse(m.mse);
+    m.ssim = ssim_luma(a, b, mask);
+  }
   if (diff_file) diff_file->write_image(diff_heatmap(a, b, o.scale));
   if (json_file) write_json(o, a, m, json_file->stream());
   outputs.commit();
@@ -146,6 +164,8 @@ void register_compare(CLI::App& app) {
   cmd->add_option("--diff", o->diff, "Write a heat map of |A - B| (max over RGB) to this image");
   cmd->add_option("--scale", o->scale, "Heat map: difference in levels that saturates to white")->capture_default_str();
   cmd->add_option("--json", o->json, "Also write the metrics as JSON");
+  cmd->add_option("--mask", o->mask,
+                  "PSNR, SSIM and MSE over the non-black pixels of this image only (e.g. tfu render --interior-out)");
   cmd->add_option("--fail-below-psnr", o->fail_below_psnr, "Exit with status 1 when the PSNR (dB) is below this (as idiff's thresholds)");
   cmd->add_flag("--force", o->force, "Overwrite --diff / --json if they exist");
   cmd->callback([o] { run_compare(*o); });

@@ -30,7 +30,7 @@ struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
   std::string max_aniso, aniso_rounding;  // empty: each mesh keeps its own
-  std::string out, trace_out, truth_out;
+  std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   bool ideal = false, force = false, list = false;
   int threads = 0;
@@ -91,23 +91,37 @@ void run(const RenderCliOptions& o) {
   ro.ideal = o.ideal;
   ro.threads = o.threads;
   ro.trace = !o.trace_out.empty();
-  ro.ground_truth = !o.truth_out.empty();
+  ro.ground_truth = !o.truth_out.empty() || !o.surface_truth_out.empty() || !o.interior_out.empty();
 
   const std::string out = o.out.empty() ? fmt::format("out/render/{}.png", scene.name) : o.out;
   // Every output reserved (distinct files, none overwritten without --force) before the render.
   OutputFiles outputs(o.force);
   OutputFile& image_file = outputs.add_image("--out", out);
   OutputFile* trace_file = ro.trace ? &outputs.add("--trace-out", o.trace_out) : nullptr;
-  OutputFile* truth_file = ro.ground_truth ? &outputs.add_image("--truth-out", o.truth_out) : nullptr;
+  OutputFile* truth_file = o.truth_out.empty() ? nullptr : &outputs.add_image("--truth-out", o.truth_out);
+  OutputFile* surface_file =
+      o.surface_truth_out.empty() ? nullptr : &outputs.add_image("--surface-truth-out", o.surface_truth_out);
+  OutputFile* interior_file = o.interior_out.empty() ? nullptr : &outputs.add_image("--interior-out", o.interior_out);
 
   const RenderResult r = render_scene(scene, ro);
   image_file.write_image(r.image);
   if (trace_file) write_trace(trace_file->stream(), loadable_trace(r.frame->frame, r.trace));
   if (truth_file) truth_file->write_image(r.truth);
+  if (surface_file) surface_file->write_image(r.surface_truth);
+  if (interior_file) {
+    Image mask(scene.width, scene.height);
+    for (size_t i = 0; i < mask.texels.size(); ++i) {
+      const uint8_t v = r.interior[i] ? 255 : 0;
+      mask.texels[i] = {v, v, v, 255};
+    }
+    interior_file->write_image(mask);
+  }
   outputs.commit();
   std::cout << out << '\n';
   if (trace_file) std::cout << o.trace_out << '\n';
   if (truth_file) std::cout << o.truth_out << '\n';
+  if (surface_file) std::cout << o.surface_truth_out << '\n';
+  if (interior_file) std::cout << o.interior_out << '\n';
   print_summary_line(fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels",
                                  scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
                                  r.stats.clipped_away, r.stats.quads, r.stats.pixels));
@@ -132,7 +146,12 @@ void register_render(CLI::App& app) {
   cmd->add_option("--aniso-rounding", o->aniso_rounding, "Override the probe-count rounding of every base stage: integer or pow2");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
-  cmd->add_option("--truth-out", o->truth_out, "Also write the 8x8-supersampled analytic ground truth image");
+  cmd->add_option("--truth-out", o->truth_out,
+                  "Also write the 8x8-supersampled analytic ground truth image (antialiased polygon edges)");
+  cmd->add_option("--surface-truth-out", o->surface_truth_out,
+                  "Also write the surface truth: the render's coverage, each surface integrated over its pixels (docs/metrics.md)");
+  cmd->add_option("--interior-out", o->interior_out,
+                  "Also write the interior mask: white where the pixel's 2x2 quad lies inside one mesh (tfu compare --mask)");
   add_plain_option(*cmd);
   cmd->add_flag("--ideal", o->ideal, "Use the double-precision ideal sampler instead of the fixed-point datapath");
   cmd->add_option("--threads", o->threads, "Worker threads (0: all hardware threads)")->capture_default_str();
