@@ -84,6 +84,7 @@ const std::vector<Column>& result_columns() {
       {"stall_backpressure", "cycles", "cycles the cache stage's output was full", ResultType::Number},
       {"latency_mean", "cycles", "mean request latency, accept to response", ResultType::Number},
       {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth", ResultType::NumberOrInf},
+      {"ssim", "", "SSIM (luma, docs/metrics.md) of the cycle model's image against the same ground truth", ResultType::Number},
       {"golden_equal", "", "every output of the cycle model equals the golden model's", ResultType::Bool},
       {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)", ResultType::Number},
       {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)",
