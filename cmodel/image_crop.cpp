@@ -45,8 +45,8 @@ CropRect parse_crop(std::string_view text, std::string_view option) {
 
 void check_crop(const CropRect& r, int width, int height, std::string_view option, std::string_view image) {
   if (r.x < 0 || r.y < 0 || r.w < 1 || r.h < 1 || r.x + r.w > width || r.y + r.h > height)
-    throw InputError(fmt::format("{} {}: the rectangle (x {}..{}, y {}..{}) is not inside {} ({}x{})", option, text_of(r),
-                                 r.x, r.x + r.w - 1, r.y, r.y + r.h - 1, quote_path(image), width, height));
+    throw InputError(fmt::format("{} {}: the rectangle (x {}..{}, y {}..{}) is not inside '{}' ({}x{})", option,
+                                 text_of(r), r.x, r.x + r.w - 1, r.y, r.y + r.h - 1, quote_path(image), width, height));
 }
 
 Image crop_image(const Image& img, const CropRect& r) {
@@ -59,7 +59,8 @@ Image crop_image(const Image& img, const CropRect& r) {
 }
 
 Image zoom_image(const Image& img, int n) {
-  if (n < 1 || n > kMaxZoom) throw std::invalid_argument(fmt::format("zoom_image: factor {} outside 1..{}", n, kMaxZoom));
+  if (n < 1 || n > kMaxZoom)
+    throw std::invalid_argument(fmt::format("zoom_image: factor {} outside 1..{}", n, kMaxZoom));
   Image out(img.width * n, img.height * n);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) out.at(x, y) = img.at(x / n, y / n);

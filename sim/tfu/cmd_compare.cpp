@@ -133,7 +133,8 @@ std::pair<std::string, std::string> split_input(const std::string& arg) {
 
 void run_montage(const MontageOptions& o) {
   if (o.columns < 1) throw InputError(fmt::format("--columns must be >= 1, got {}", o.columns));
-  if (o.zoom < 1 || o.zoom > kMaxZoom) throw InputError(fmt::format("--zoom must be in 1..{}, got {}", kMaxZoom, o.zoom));
+  if (o.zoom < 1 || o.zoom > kMaxZoom)
+    throw InputError(fmt::format("--zoom must be in 1..{}, got {}", kMaxZoom, o.zoom));
   const std::optional<CropRect> crop = crop_of(o.crop);
   OutputFiles outputs(o.force);
   OutputFile& out = outputs.add_image("--out", o.out);
@@ -144,7 +145,7 @@ void run_montage(const MontageOptions& o) {
     Image img = cropped(load_image(path), crop, path);  // InputError naming the file
     // The zoomed tile must fit a montage side (before it is allocated).
     if (o.zoom > 1 && std::max(img.width, img.height) > kMaxMontageSize / o.zoom)
-      throw InputError(fmt::format("--zoom {}: {} ({}x{}) would be wider or taller than {} pixels", o.zoom, quote_path(path),
+      throw InputError(fmt::format("--zoom {}: '{}' ({}x{}) would be wider or taller than {} pixels", o.zoom, quote_path(path),
                                    img.width, img.height, kMaxMontageSize));
     images.push_back(o.zoom > 1 ? zoom_image(img, o.zoom) : std::move(img));
     labels.push_back(std::move(label));
