@@ -66,12 +66,14 @@ CacheSramBits texel_cache_sram_bits(const TexelCacheConfig& c) {
 const std::vector<GateBlock>& filter_gate_table() { return table().blocks; }
 const std::string& filter_gate_source() { return table().source; }
 
-FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes) {
+FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic) {
   std::vector<std::string> need;
   for (const FilterMode& m : modes) {
     need.emplace_back(block_of(m.base));
     if (m.mip == MipMode::Linear) need.emplace_back("level_blend");
   }
+  if (anisotropic)
+    for (const char* b : {"aniso_major_select", "aniso_count", "aniso_lambda", "aniso_probe"}) need.emplace_back(b);
   FilterGates g;
   for (const GateBlock& b : filter_gate_table())
     if (std::find(need.begin(), need.end(), b.block) != need.end()) {
@@ -82,6 +84,16 @@ FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes) {
     if (std::find(g.blocks.begin(), g.blocks.end(), n) == g.blocks.end())
       throw std::logic_error(fmt::format("rtl/sv/filter_gates.json has no block '{}'", n));
   return g;
+}
+
+FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers) {
+  std::vector<FilterMode> modes;
+  bool anisotropic = false;
+  for (const SamplerDescriptor& d : samplers) {
+    modes.push_back(d.mode);
+    anisotropic = anisotropic || d.anisotropic();
+  }
+  return filter_datapath_gates(modes, anisotropic);
 }
 
 }  // namespace tfu::rtl

@@ -46,11 +46,14 @@ const std::vector<GateBlock>& filter_gate_table();
 // Where the table came from (its "source" text).
 const std::string& filter_gate_source();
 
-// The distinct datapath blocks the modes need (in table order) and their summed gate equivalents.
+// The distinct datapath blocks the modes need (in table order) and their summed gate equivalents;
+// `anisotropic`: some sampler filters anisotropically (SamplerDescriptor::anisotropic()).
 struct FilterGates {
   std::vector<std::string> blocks;
   double ge = 0;
 };
-FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes);
+FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic = false);
+// The same for a frame's samplers (their modes, and whether any is anisotropic).
+FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers);
 
 }  // namespace tfu::rtl

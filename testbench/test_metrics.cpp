@@ -1,4 +1,5 @@
-// Image metrics (cmodel/metrics.hpp) and montage layout (cmodel/montage.hpp): hand-derived values.
+// Image metrics (cmodel/metrics.hpp), montage layout (cmodel/montage.hpp) and crops
+// (cmodel/image_crop.hpp): hand-derived values.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,9 +9,11 @@
 #include <random>
 
 #include "cmodel/error.hpp"
+#include "cmodel/image_crop.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/montage.hpp"
 #include "cmodel/texture.hpp"
+#include "testbench/input_error.hpp"
 
 namespace tfu {
 namespace {
@@ -239,6 +242,78 @@ TEST(Montage, PlacesImagesAndNeverFailsOnLabels) {
   EXPECT_EQ(m.height, 4 + 2 * (band + 4 + 4));
   EXPECT_EQ(m.at(4, 4 + band), red.at(0, 0));
   EXPECT_THROW(montage({red}, {"a", "b"}, 1), InputError);
+}
+
+// ---- crop rectangles (cmodel/image_crop.hpp) ----
+
+TEST(ImageCrop, ParsesXYWHAndRefusesEverythingElse) {
+  const CropRect r = parse_crop("120,40,64,48", "--crop");
+  EXPECT_EQ(r.x, 120);
+  EXPECT_EQ(r.y, 40);
+  EXPECT_EQ(r.w, 64);
+  EXPECT_EQ(r.h, 48);
+  const auto why = [](const char* text) { return input_error([&] { (void)parse_crop(text, "--crop"); }); };
+  EXPECT_EQ(why("1,2,3"), "--crop '1,2,3': expected X,Y,W,H, four integers with X, Y >= 0 and W, H >= 1 (fewer than four numbers)");
+  for (const char* bad : {"", "a", "1,2,3,4,5", "-1,2,3,4", "1,-2,3,4", "1, 2,3,4", "1,2,3,4x", "1;2;3;4", "+1,2,3,4", "0x1,2,3,4"})
+    EXPECT_EQ(why(bad).find("--crop '"), 0u) << bad;
+  EXPECT_NE(why("1,2,0,4").find("(W and H must be >= 1)"), std::string::npos);
+  EXPECT_NE(why("1,2,3,0").find("(W and H must be >= 1)"), std::string::npos);
+  EXPECT_NE(why("2147483648,0,1,1").find("at most 2147483647"), std::string::npos);  // no int overflow later
+  EXPECT_EQ(parse_crop("2147483647,0,2147483647,1", "--crop").w, 2147483647);
+}
+
+TEST(ImageCrop, RectangleMustLieInside) {
+  const auto why = [](const char* text, int w, int h) {
+    return input_error([&] { check_crop(parse_crop(text, "--crop"), w, h, "--crop", "a.png"); });
+  };
+  EXPECT_EQ(why("0,0,8,6", 8, 6), "(no InputError)");  // the whole image
+  EXPECT_EQ(why("7,5,1,1", 8, 6), "(no InputError)");  // the last pixel
+  EXPECT_EQ(why("7,5,2,1", 8, 6), "--crop 7,5,2,1: the rectangle (x 7..8, y 5..5) is not inside 'a.png' (8x6)");
+  EXPECT_NE(why("0,6,1,1", 8, 6).find("is not inside"), std::string::npos);
+  EXPECT_NE(why("2147483647,0,2147483647,1", 8, 6).find("is not inside"), std::string::npos);
+}
+
+// The hand-made PNGs of testbench/data: crop_a.png and crop_b.png (12x9; B differs from A by at most
+// 2 levels inside the rectangle 3,2,6,5 and by 40-46 outside it) and the same rectangle cut out by
+// PIL (Image.crop((3, 2, 9, 7))): the crop is PIL's, pixel for pixel, and the metrics on the crop
+// are those of the cut-out files.
+TEST(ImageCrop, MetricsOnACropEqualThoseOfTheCutOutImages) {
+  const std::filesystem::path data = std::filesystem::path(TFU_GOLDEN_DIR).parent_path() / "data";
+  const Image a = load_image((data / "crop_a.png").string()), b = load_image((data / "crop_b.png").string());
+  const Image a_cut = load_image((data / "crop_a_3_2_6_5.png").string());
+  const Image b_cut = load_image((data / "crop_b_3_2_6_5.png").string());
+  const CropRect r = parse_crop("3,2,6,5", "--crop");
+  const Image a_crop = crop_image(a, r), b_crop = crop_image(b, r);
+  ASSERT_EQ(a_crop.width, 6);
+  ASSERT_EQ(a_crop.height, 5);
+  EXPECT_EQ(a_crop.texels, a_cut.texels);
+  EXPECT_EQ(b_crop.texels, b_cut.texels);
+  const ImageMetrics m = compare_images(a_crop, b_crop), cut = compare_images(a_cut, b_cut);
+  EXPECT_EQ(m.mse, cut.mse);
+  EXPECT_EQ(m.psnr_db, cut.psnr_db);
+  EXPECT_EQ(m.ssim, cut.ssim);
+  EXPECT_EQ(m.diff.max_abs, cut.diff.max_abs);
+  EXPECT_EQ(m.diff.max_abs_channel, cut.diff.max_abs_channel);
+  EXPECT_EQ(m.diff.mean_abs, cut.diff.mean_abs);
+  EXPECT_EQ(m.diff.max_abs, 2);  // inside the rectangle: at most 2 levels (R up, B down)
+  EXPECT_GE(compare_images(a, b).diff.max_abs, 40);  // the whole images differ by more
+  EXPECT_THROW((void)crop_image(a, parse_crop("3,2,10,5", "--crop")), std::invalid_argument);
+}
+
+TEST(ImageCrop, ZoomReplicatesEachPixelIntoABlock) {
+  Image im(2, 2);
+  im.at(0, 0) = {1, 0, 0, 255};
+  im.at(1, 0) = {2, 0, 0, 255};
+  im.at(0, 1) = {3, 0, 0, 255};
+  im.at(1, 1) = {4, 0, 0, 128};
+  const Image z = zoom_image(im, 3);
+  ASSERT_EQ(z.width, 6);
+  ASSERT_EQ(z.height, 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x) EXPECT_EQ(z.at(x, y), im.at(x / 3, y / 3)) << x << "," << y;
+  EXPECT_EQ(zoom_image(im, 1).texels, im.texels);
+  EXPECT_THROW((void)zoom_image(im, 0), std::invalid_argument);
+  EXPECT_THROW((void)zoom_image(im, kMaxZoom + 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -99,6 +99,28 @@ TEST(CostModel, FilterGatesSumTheBlocksTheModesNeed) {
   EXPECT_EQ(g.blocks.size(), 3u);
 }
 
+TEST(CostModel, AnisotropicSamplersAddTheAnisoBlocks) {
+  // docs/gates.md: major select 1053.3 + probe count 8951.4 + lambda 1096.9 + probe generator 9266.9.
+  const double aniso = 1053.3 + 8951.4 + 1096.9 + 9266.9;
+  const double trilinear = 13553.9 + 2849.6;
+  const auto sampler = [](const char* mode, int max_aniso) {
+    SamplerDescriptor d;
+    d.mode = filter_mode_from_name(mode);
+    d.max_aniso = max_aniso;
+    return d;
+  };
+  EXPECT_NEAR(rtl::filter_datapath_gates({filter_mode_from_name("trilinear")}, true).ge, trilinear + aniso, 1e-6);
+  EXPECT_NEAR(rtl::filter_datapath_gates({sampler("trilinear", 8)}).ge, trilinear + aniso, 1e-6);
+  // max_aniso 1, or a mode without MIP-mapping (which ignores max_aniso): isotropic, no aniso blocks
+  EXPECT_NEAR(rtl::filter_datapath_gates({sampler("trilinear", 1)}).ge, trilinear, 1e-6);
+  EXPECT_NEAR(rtl::filter_datapath_gates({sampler("LINEAR", 16), sampler("trilinear", 1)}).ge, trilinear, 1e-6);
+  // one figure for every maxAniso; blocks listed in table order
+  const rtl::FilterGates g = rtl::filter_datapath_gates({sampler("LINEAR", 1), sampler("CUBIC_MIPMAP_NEAREST", 2)});
+  EXPECT_NEAR(g.ge, 13553.9 + 46355.2 + aniso, 1e-6);
+  EXPECT_EQ(g.blocks, (std::vector<std::string>{"bilinear_top", "cubic_filter", "aniso_major_select", "aniso_count",
+                                                "aniso_lambda", "aniso_probe"}));
+}
+
 // ---- provenance ----
 
 TEST(Provenance, Fnv1a64KnownValues) {
@@ -356,7 +378,7 @@ TEST(SweepInputs, APointFileMarkedCompleteIsCheckedLikeASpec) {
   // and the reports read what was checked
   std::ofstream(path, std::ios::trunc) << good.dump();
   const std::vector<nlohmann::json> files = sweep::read_point_files(dir, {p});
-  EXPECT_NE(sweep::results_csv(spec, {p}, files).find(",inf,true,"), std::string::npos);
+  EXPECT_NE(sweep::results_csv(spec, {p}, files).find(",inf,1.500000,true,"), std::string::npos);  // psnr, ssim, golden_equal
 }
 
 // tfu ignores SIGPIPE (sim/tfu/main.cpp, TFU-S E15); a child it runs (the plot script, sbatch) starts
@@ -412,7 +434,7 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
   // the header and a row, as the issue lists the columns
   const std::string header = csv[0].substr(0, csv[0].find('\n'));
   for (const char* c : {"cache.capacity_bytes", "scene", "filter", "cycles", "pixels_per_clock", "hit_rate", "bytes_per_pixel",
-                        "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "psnr", "golden_equal", "sram_bits",
+                        "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "psnr", "ssim", "golden_equal", "sram_bits",
                         "filter_gates"})
     EXPECT_NE(header.find(c), std::string::npos) << c;
   EXPECT_NE(csv[0].find(",ground_plane,EDGE_PRESERVING,"), std::string::npos);
@@ -422,6 +444,9 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
   EXPECT_LE(big.at("result").at("memory_bytes").get<uint64_t>(), small.at("result").at("memory_bytes").get<uint64_t>());
   EXPECT_EQ(small.at("result").at("sram_bits").get<uint64_t>(),
             rtl::texel_cache_sram_bits(pts[0].config.cache).total());
+  const double ssim = small.at("result").at("ssim").get<double>();  // of the same image as psnr: below 1 when psnr is finite
+  EXPECT_GT(ssim, 0.0);
+  EXPECT_LT(ssim, 1.0);
   EXPECT_EQ(small.at("provenance").at("command"), "sweep");
   EXPECT_EQ(small.at("provenance").at("engine"), "recurrence");  // a sweep runs the recurrences
   fs::remove_all(root);

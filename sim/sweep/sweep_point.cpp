@@ -124,6 +124,7 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
     }
   };
   put("psnr", psnr_db(res.image, truth.antialiased));
+  r["ssim"] = ssim_luma(res.image, truth.antialiased);
   put("psnr_surface", psnr_db(res.image, truth.surface));
   put("psnr_interior", psnr_db(res.image, truth.surface, truth.interior));
   r["golden_equal"] = res.mismatch.empty();
@@ -135,9 +136,7 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   r["sram_bits_tag"] = units * bits.tag;
   r["sram_bits_valid"] = units * bits.valid;
   r["sram_bits_lru"] = units * bits.lru;
-  std::vector<FilterMode> modes;
-  for (const SamplerDescriptor& d : frame.regs.samplers) modes.push_back(d.mode);
-  const rtl::FilterGates gates = rtl::filter_datapath_gates(modes);
+  const rtl::FilterGates gates = rtl::filter_datapath_gates(frame.regs.samplers);
   r["filter_gates"] = static_cast<double>(s.units) * gates.ge;
   r["filter_blocks"] = gates.blocks;
   return r;

@@ -1,12 +1,12 @@
 // One sweep point, run in-process: its scene rendered by the golden model with the request trace
 // (textures tiled for the point's line size), the trace through the cycle model with the golden
-// compare (rtl/scene_sim.hpp), PSNR of the cycle model's image against the scene's supersampled
-// ground truth, and the cost model's figures (rtl/cost_model.hpp). The result is the point's file:
+// compare (rtl/scene_sim.hpp), PSNR and SSIM of the cycle model's image against the scene's
+// supersampled ground truth, and the cost model's figures (rtl/cost_model.hpp). The result is the point's file:
 //
 //   {"complete": true, "point": {"id", "index", "scene", "filter", "keys": {KEY: value}},
 //    "result": {"cycles", "pixels", "pixels_per_clock", "hit_rate", "bytes_per_pixel", "memory_bytes",
 //               "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "latency_mean",
-//               "psnr", "psnr_surface", "psnr_interior" (dB, or "inf"; against the antialiased truth, the
+//               "psnr", "ssim", "psnr_surface", "psnr_interior" (dB, or "inf"; SSIM beside the first; against the antialiased truth, the
 //               surface truth, the surface truth over the interior), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",
 //               "sram_bits_tag", "sram_bits_valid", "sram_bits_lru", "filter_gates", "filter_blocks"},
 //    "provenance", "definitions", "counters", "values", "histograms", "tables"}

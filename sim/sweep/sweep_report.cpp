@@ -85,6 +85,7 @@ const std::vector<Column>& result_columns() {
       {"latency_mean", "cycles", "mean request latency, accept to response", ResultType::Number},
       {"psnr", "dB", "PSNR of the cycle model's image against the 8x8-supersampled ground truth (antialiased edges)",
        ResultType::NumberOrInf},
+      {"ssim", "", "SSIM (luma, docs/metrics.md) of the cycle model's image against the same ground truth", ResultType::Number},
       {"psnr_surface", "dB",
        "PSNR against the surface truth: the render's own coverage, each surface integrated over its pixels (the filter's error alone)",
        ResultType::NumberOrInf},

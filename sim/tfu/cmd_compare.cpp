@@ -1,6 +1,8 @@
 // tfu compare: image quality metrics (PSNR, SSIM, max/mean absolute difference) and a diff heat map.
 // tfu montage: tile images side by side with labels, for looking at filter outputs together.
-// Definitions in docs/metrics.md.
+// Both take --crop X,Y,W,H (cmodel/image_crop.hpp): compare measures only the rectangle, montage
+// shows only it (enlarged by --zoom N). Definitions in docs/metrics.md.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/image_crop.hpp"
 #include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/metrics.hpp"
@@ -30,6 +33,7 @@ struct CompareOptions {
   int scale = 16;
   std::string json;
   std::string mask;  // an image: the metrics over its non-black pixels
+  std::string crop;  // X,Y,W,H; empty: the whole images
   bool force = false;
   std::optional<double> fail_below_psnr;  // exit 1 when PSNR (dB) is below it
 };
@@ -38,6 +42,8 @@ struct MontageOptions {
   std::vector<std::string> inputs;
   std::string out;
   int columns = 4;
+  std::string crop;  // X,Y,W,H; empty: the whole images
+  int zoom = 1;
   bool force = false;
 };
 
@@ -51,7 +57,22 @@ void print_metrics(const ImageMetrics& m) {
   fmt::print("mean_abs_diff: {}\n", format_metric(m.diff.mean_abs, 6));
 }
 
-void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m, std::ostream& out) {
+// The rectangle of --crop, or nothing without one.
+std::optional<CropRect> crop_of(const std::string& crop) {
+  if (crop.empty()) return std::nullopt;
+  return parse_crop(crop, "--crop");
+}
+
+// `img` (the file `name`) cut to the rectangle; the rectangle must lie inside it.
+Image cropped(const Image& img, const std::optional<CropRect>& r, const std::string& name) {
+  if (!r) return img;
+  check_crop(*r, img.width, img.height, "--crop", name);
+  return crop_image(img, *r);
+}
+
+// `a` is the compared image (the crop when --crop is given).
+void write_json(const CompareOptions& o, const std::optional<CropRect>& crop, const Image& a, const ImageMetrics& m,
+                std::ostream& out) {
   nlohmann::json j = {{"a", o.a},
                       {"b", o.b},
                       {"width", a.width},
@@ -62,6 +83,7 @@ void write_json(const CompareOptions& o, const Image& a, const ImageMetrics& m, 
                       {"max_abs_diff", m.diff.max_abs},
                       {"max_abs_diff_rgba", m.diff.max_abs_channel},
                       {"mean_abs_diff", m.diff.mean_abs}};
+  if (crop) j["crop"] = {{"x", crop->x}, {"y", crop->y}, {"width", crop->w}, {"height", crop->h}};
   // JSON has no infinity: identical images give the string "inf".
   if (std::isinf(m.psnr_db))
     j["psnr_db"] = "inf";
@@ -74,19 +96,23 @@ void run_compare(const CompareOptions& o) {
   if (o.scale < 1) throw InputError(fmt::format("--scale must be >= 1, got {}", o.scale));
   if (o.fail_below_psnr && !std::isfinite(*o.fail_below_psnr))
     throw InputError("--fail-below-psnr must be a finite number of dB");
+  const std::optional<CropRect> crop = crop_of(o.crop);
   OutputFiles outputs(o.force);
   OutputFile* diff_file = o.diff.empty() ? nullptr : &outputs.add_image("--diff", o.diff);
   OutputFile* json_file = o.json.empty() ? nullptr : &outputs.add("--json", o.json);
-  const Image a = load_image(o.a), b = load_image(o.b);  // InputError naming the file
-  if (a.width != b.width || a.height != b.height)
-    throw InputError(fmt::format("image sizes differ: {} is {}x{}, {} is {}x{}", o.a, a.width, a.height, o.b, b.width,
-                                 b.height));
+  const Image full_a = load_image(o.a), full_b = load_image(o.b);  // InputError naming the file
+  if (full_a.width != full_b.width || full_a.height != full_b.height)
+    throw InputError(fmt::format("image sizes differ: {} is {}x{}, {} is {}x{}", o.a, full_a.width, full_a.height, o.b,
+                                 full_b.width, full_b.height));
+  // With --crop every figure (and the heat map) covers the rectangle only.
+  const Image a = cropped(full_a, crop, o.a), b = cropped(full_b, crop, o.b);
   ImageMetrics m = compare_images(a, b);
-  if (!o.mask.empty()) {  // MSE, PSNR and SSIM over the mask's pixels (docs/metrics.md); the differences stay whole-image
-    const Image mi = load_image(o.mask);
-    if (mi.width != a.width || mi.height != a.height)
-      throw InputError(fmt::format("--mask '{}' is {}x{}, the images {}x{}", quote_path(o.mask), mi.width, mi.height,
-                                   a.width, a.height));
+  if (!o.mask.empty()) {  // MSE, PSNR and SSIM over the mask's pixels (docs/metrics.md); the differences stay whole
+    const Image full_mask = load_image(o.mask);
+    if (full_mask.width != full_a.width || full_mask.height != full_a.height)
+      throw InputError(fmt::format("--mask '{}' is {}x{}, the images {}x{}", quote_path(o.mask), full_mask.width,
+                                   full_mask.height, full_a.width, full_a.height));
+    const Image mi = cropped(full_mask, crop, o.mask);
     PixelMask mask(mi.texels.size());
     size_t selected = 0;
     for (size_t i = 0; i < mask.size(); ++i) {
@@ -94,13 +120,13 @@ void run_compare(const CompareOptions& o) {
       mask[i] = (t.r | t.g | t.b) != 0;
       selected += mask[i];
     }
-    if (selected == 0) throw InputError(fmt::format("--mask '{}' selects no pixel (it is black)", quote_path(o.mask)));
+    if (selected == 0) throw InputError(fmt::format("--mask '{}' selects no pixel (it is black there)", quote_path(o.mask)));
     m.mse = mse_rgb(a, b, mask);
     m.psnr_db = psnr_from_mse(m.mse);
     m.ssim = ssim_luma(a, b, mask);
   }
   if (diff_file) diff_file->write_image(diff_heatmap(a, b, o.scale));
-  if (json_file) write_json(o, a, m, json_file->stream());
+  if (json_file) write_json(o, crop, a, m, json_file->stream());
   outputs.commit();
   print_metrics(m);
   if (diff_file) print_summary_line(fmt::format("tfu compare: wrote {}", o.diff));
@@ -126,13 +152,21 @@ std::pair<std::string, std::string> split_input(const std::string& arg) {
 
 void run_montage(const MontageOptions& o) {
   if (o.columns < 1) throw InputError(fmt::format("--columns must be >= 1, got {}", o.columns));
+  if (o.zoom < 1 || o.zoom > kMaxZoom)
+    throw InputError(fmt::format("--zoom must be in 1..{}, got {}", kMaxZoom, o.zoom));
+  const std::optional<CropRect> crop = crop_of(o.crop);
   OutputFiles outputs(o.force);
   OutputFile& out = outputs.add_image("--out", o.out);
   std::vector<Image> images;
   std::vector<std::string> labels;
   for (const std::string& arg : o.inputs) {
     auto [path, label] = split_input(arg);
-    images.push_back(load_image(path));  // InputError naming the file
+    Image img = cropped(load_image(path), crop, path);  // InputError naming the file
+    // The zoomed tile must fit a montage side (before it is allocated).
+    if (o.zoom > 1 && std::max(img.width, img.height) > kMaxMontageSize / o.zoom)
+      throw InputError(fmt::format("--zoom {}: '{}' ({}x{}) would be wider or taller than {} pixels", o.zoom, quote_path(path),
+                                   img.width, img.height, kMaxMontageSize));
+    images.push_back(o.zoom > 1 ? zoom_image(img, o.zoom) : std::move(img));
     labels.push_back(std::move(label));
   }
   bool drawn = false;
@@ -149,6 +183,8 @@ void register_montage(CLI::App& app) {
   cmd->add_option("images", o->inputs, "Input images as IMG or IMG=LABEL")->required();
   cmd->add_option("--out", o->out, "Output image (PNG, ...)")->required();
   cmd->add_option("--columns", o->columns, "Images per row")->capture_default_str();
+  cmd->add_option("--crop", o->crop, "Show only this rectangle of each image: X,Y,W,H in pixels, 0,0 the top left corner");
+  cmd->add_option("--zoom", o->zoom, "Enlarge each (cropped) image N times, each pixel an N x N block (1..16)")->capture_default_str();
   cmd->add_flag("--force", o->force, "Overwrite --out if it exists");
   cmd->callback([o] { run_montage(*o); });
 }
@@ -166,6 +202,7 @@ void register_compare(CLI::App& app) {
   cmd->add_option("--json", o->json, "Also write the metrics as JSON");
   cmd->add_option("--mask", o->mask,
                   "PSNR, SSIM and MSE over the non-black pixels of this image only (e.g. tfu render --interior-out)");
+  cmd->add_option("--crop", o->crop, "Measure only this rectangle: X,Y,W,H in pixels, 0,0 the top left corner (e.g. 120,40,64,48)");
   cmd->add_option("--fail-below-psnr", o->fail_below_psnr, "Exit with status 1 when the PSNR (dB) is below this (as idiff's thresholds)");
   cmd->add_flag("--force", o->force, "Overwrite --diff / --json if they exist");
   cmd->callback([o] { run_compare(*o); });
