@@ -67,9 +67,10 @@ inline constexpr LimitRow kLimits[] = {
 inline std::string limits_markdown() {
   std::string s = "| limit | value | Vulkan core / Roadmap 2022 minimum | from |\n|---|---:|---|---|\n";
   for (const LimitRow& r : kLimits)
-    s += fmt::format("| {} | {} | {} / {}{} | {} |\n", r.name, r.value, r.core_minimum, r.roadmap_minimum,
-                     r.value < r.core_minimum ? " (below core)" : (r.value < r.roadmap_minimum ? " (below Roadmap 2022)" : ""),
-                     fmt::format(fmt::runtime(r.from), kLambdaBaseSaturation, kMaxLevels - 1));
+    s += fmt::format(
+        "| {} | {} | {} / {}{} | {} |\n", r.name, r.value, r.core_minimum, r.roadmap_minimum,
+        r.value < r.core_minimum ? " (below core)" : (r.value < r.roadmap_minimum ? " (below Roadmap 2022)" : ""),
+        fmt::format(fmt::runtime(r.from), kLambdaBaseSaturation, kMaxLevels - 1));
   return s;
 }
 

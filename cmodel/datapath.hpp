@@ -22,7 +22,8 @@ struct LevelCoord {
   uint32_t f;
 };
 [[gnu::always_inline]] inline LevelCoord texel_coord(float s, int size) {
-  const int64_t u = float_to_fixed_fast(s, static_cast<uint32_t>(size), kSubTexelBits) - (int64_t{1} << (kSubTexelBits - 1));
+  const int64_t u =
+      float_to_fixed_fast(s, static_cast<uint32_t>(size), kSubTexelBits) - (int64_t{1} << (kSubTexelBits - 1));
   return {u >> kSubTexelBits, static_cast<uint32_t>(u & ((int64_t{1} << kSubTexelBits) - 1))};
 }
 

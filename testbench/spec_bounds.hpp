@@ -91,7 +91,7 @@ inline Snap snap(float x, int size, int bits, int64_t offset) {
   const auto b = std::bit_cast<uint32_t>(x);
   const int exp = static_cast<int>((b >> 23) & 0xFF);
   const uint64_t sig = exp == 0 ? (b & 0x7FFFFF) : ((b & 0x7FFFFF) | 0x800000);
-  const int e = (exp == 0 ? -149 : exp - 150) + bits;  // x size 2^bits = sig size 2^e
+  const int e = (exp == 0 ? -149 : exp - 150) + bits;    // x size 2^bits = sig size 2^e
   const uint64_t n = sig * static_cast<uint64_t>(size);  // < 2^38
   int64_t q;
   bool frac;
@@ -172,7 +172,8 @@ inline Range level_range(const LevelView& v, BaseFilter f, float s, float t, con
       const Texel4 c00 = v.at(i0, j0), c10 = v.at(i0 + 1, j0), c01 = v.at(i0, j0 + 1), c11 = v.at(i0 + 1, j0 + 1);
       std::array<int64_t, 4> acc{};
       for (size_t k = 0; k < 4; ++k) {
-        const int64_t sum = (one - a) * (one - be) * c00[k] + a * (one - be) * c10[k] + (one - a) * be * c01[k] + a * be * c11[k];
+        const int64_t sum =
+            (one - a) * (one - be) * c00[k] + a * (one - be) * c10[k] + (one - a) * be * c01[k] + a * be * c11[k];
         acc[k] = (sum << 16) >> (2 * b);  // exact: 2 b <= 16
       }
       add(acc);
@@ -191,7 +192,8 @@ inline bool in_domain(const Texture& tex, float s, float t, const LodInput& lod)
   switch (lod.kind) {
     case LodKind::Explicit: return std::isfinite(lod.lod);
     case LodKind::Gradients:
-      return ok(lod.dsdx, tex.width()) && ok(lod.dsdy, tex.width()) && ok(lod.dtdx, tex.height()) && ok(lod.dtdy, tex.height());
+      return ok(lod.dsdx, tex.width()) && ok(lod.dsdy, tex.width()) && ok(lod.dtdx, tex.height()) &&
+             ok(lod.dtdy, tex.height());
     case LodKind::Quad:
       for (size_t k = 0; k < 4; ++k)
         if (!ok(lod.qs[k], tex.width()) || !ok(lod.qt[k], tex.height())) return false;
@@ -213,7 +215,8 @@ inline std::array<long double, 2> lambda_base_range(const Texture& tex, const Lo
     dtdy = static_cast<long double>(lod.qt[2]) - lod.qt[0];
   }
   const long double w = tex.width(), h = tex.height();
-  const long double mux = std::fabs(dsdx) * w, mvx = std::fabs(dtdx) * h, muy = std::fabs(dsdy) * w, mvy = std::fabs(dtdy) * h;
+  const long double mux = std::fabs(dsdx) * w, mvx = std::fabs(dtdx) * h, muy = std::fabs(dsdy) * w,
+                    mvy = std::fabs(dtdy) * h;
   const long double rho_lo = std::max(std::max(mux, mvx), std::max(muy, mvy));
   const long double rho_hi = std::sqrt(2.0L) * std::max(mux + mvx, muy + mvy);
   // log2 in long double: widened by 2^-40 of a level, far below the 2^-8 tolerance it feeds
@@ -232,7 +235,9 @@ inline Bounds filter_bounds(const Texture& tex, const SamplerDescriptor& sd, flo
   const long double min_lod = std::ldexp(static_cast<long double>(sd.lod.min_lod_q8), -kLodFracBits);
   const long double max_lod = std::ldexp(static_cast<long double>(sd.lod.max_lod_q8), -kLodFracBits);
   // lambda within the LOD accuracy, clamped; d' = clamp(lambda, 0, q)
-  const auto d_prime = [&](long double l) { return std::clamp(std::clamp(l, min_lod, max_lod), 0.0L, static_cast<long double>(q)); };
+  const auto d_prime = [&](long double l) {
+    return std::clamp(std::clamp(l, min_lod, max_lod), 0.0L, static_cast<long double>(q));
+  };
   const long double d0 = d_prime(base[0] + bias - tol), d1 = d_prime(base[1] + bias + tol);
 
   const Texel4 border = decode_texel(sd.border, tex.format);
@@ -282,8 +287,8 @@ inline Bounds filter_bounds(const Texture& tex, const SamplerDescriptor& sd, flo
   Bounds out;
   const int shift = 16 + mb;
   for (size_t k = 0; k < 4; ++k) {
-    out.lo[k] = static_cast<int32_t>(lo[k] >> shift);                                       // floor
-    out.hi[k] = static_cast<int32_t>((hi[k] + (int64_t{1} << shift) - 1) >> shift);          // ceil
+    out.lo[k] = static_cast<int32_t>(lo[k] >> shift);                                // floor
+    out.hi[k] = static_cast<int32_t>((hi[k] + (int64_t{1} << shift) - 1) >> shift);  // ceil
   }
   return out;
 }
@@ -295,7 +300,8 @@ inline std::string describe(const Texture& tex, const SamplerDescriptor& sd, flo
     case LodKind::Explicit: l = fmt::format("lod {}", lod.lod); break;
     case LodKind::Gradients: l = fmt::format("grad ({}, {}, {}, {})", lod.dsdx, lod.dtdx, lod.dsdy, lod.dtdy); break;
     case LodKind::Quad:
-      l = fmt::format("quad s ({}, {}, {}) t ({}, {}, {})", lod.qs[0], lod.qs[1], lod.qs[2], lod.qt[0], lod.qt[1], lod.qt[2]);
+      l = fmt::format("quad s ({}, {}, {}) t ({}, {}, {})", lod.qs[0], lod.qs[1], lod.qs[2], lod.qt[0], lod.qt[1],
+                      lod.qt[2]);
       break;
   }
   return fmt::format("{} {}x{} {} levels, {} wraps {}/{}, bias {} lod [{}, {}] (Q.8); s {} t {}; {}",

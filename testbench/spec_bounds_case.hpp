@@ -37,7 +37,7 @@ struct CaseResult {
   // Results outside the spec's bounds but inside them with each level's result rounded to a code
   // first (Precision::level_results_in_codes): the known finding of the unit's per-level rounding.
   int64_t level_rounding = 0;
-  int64_t outside = 0;  // every other result outside the bounds
+  int64_t outside = 0;                      // every other result outside the bounds
   std::string first_level_rounding, first;  // the first of each, described
 };
 
@@ -59,10 +59,10 @@ struct TexelSource {
     for (size_t k = 0; k < 4; ++k) {
       const auto b = static_cast<uint8_t>(r >> (8 * k));
       switch (kind) {
-        case 0: c[k] = b; break;                                          // random
-        case 1: c[k] = b & 1 ? 255 : 0; break;                            // black / white
+        case 0: c[k] = b; break;                                                                  // random
+        case 1: c[k] = b & 1 ? 255 : 0; break;                                                    // black / white
         case 2: c[k] = static_cast<uint8_t>(i * (7 + 13 * k) + j * (3 + 5 * k) + 40 * k); break;  // ramps
-        default: c[k] = static_cast<uint8_t>((b % 3) * 127); break;       // a few values
+        default: c[k] = static_cast<uint8_t>((b % 3) * 127); break;                               // a few values
       }
     }
     if (fmt == TexelFormat::L8) return {c[0], c[0], c[0], 255};
@@ -104,7 +104,8 @@ inline SamplerDescriptor make_sampler(fuzz::ByteReader& in, int bias_limit) {
   SamplerDescriptor sd;
   sd.mode.base = in.flag() ? BaseFilter::Linear : BaseFilter::Nearest;
   sd.mode.mip = in.pick({MipMode::None, MipMode::Nearest, MipMode::Linear});
-  constexpr WrapMode kWraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
+  constexpr WrapMode kWraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
+                                 WrapMode::ClampToBorder};
   sd.wrap_s = in.pick(kWraps);
   sd.wrap_t = in.pick(kWraps);
   sd.border = {in.byte(), in.byte(), in.byte(), in.byte()};
@@ -148,8 +149,8 @@ inline std::array<float, 4> derivatives(fuzz::ByteReader& in, int w, int h) {
           static_cast<float>(len_y * std::cos(ay) / w), static_cast<float>(len_y * std::sin(ay) / h)};
 }
 
-inline void check(const Texture& tex, const SamplerDescriptor& sd, const Sampler& sm, float s, float t, const LodInput& lod,
-                  int32_t lambda_q8, CaseResult& res) {
+inline void check(const Texture& tex, const SamplerDescriptor& sd, const Sampler& sm, float s, float t,
+                  const LodInput& lod, int32_t lambda_q8, CaseResult& res) {
   if (!in_domain(tex, s, t, lod)) {
     ++res.out_of_domain;
     return;
@@ -162,9 +163,10 @@ inline void check(const Texture& tex, const SamplerDescriptor& sd, const Sampler
   rounded.level_results_in_codes = true;
   const bool known = filter_bounds(tex, sd, s, t, lod, rounded).contains(got);
   if ((known ? res.level_rounding++ : res.outside++) == 0)
-    (known ? res.first_level_rounding : res.first) = fmt::format("{}: golden ({}, {}, {}, {}) outside [{}..{}, {}..{}, {}..{}, {}..{}] (lambda_q8 {})",
-                            describe(tex, sd, s, t, lod), got[0], got[1], got[2], got[3], b.lo[0], b.hi[0], b.lo[1], b.hi[1],
-                            b.lo[2], b.hi[2], b.lo[3], b.hi[3], lambda_q8);
+    (known ? res.first_level_rounding : res.first) =
+        fmt::format("{}: golden ({}, {}, {}, {}) outside [{}..{}, {}..{}, {}..{}, {}..{}] (lambda_q8 {})",
+                    describe(tex, sd, s, t, lod), got[0], got[1], got[2], got[3], b.lo[0], b.hi[0], b.lo[1], b.hi[1],
+                    b.lo[2], b.hi[2], b.lo[3], b.hi[3], lambda_q8);
 }
 
 }  // namespace detail

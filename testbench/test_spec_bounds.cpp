@@ -216,11 +216,12 @@ TEST(SpecBounds, GoldenModelInsideOnFuzzedRequests) {
     if (all.first.empty()) all.first = r.first;
     if (all.first_level_rounding.empty()) all.first_level_rounding = r.first_level_rounding;
   }
-  std::printf("spec bounds: %lld requests of %lld cases checked (%lld outside the domain); "
-              "%lld outside by the per-level rounding (first: %s)\n",
-              static_cast<long long>(all.checked), static_cast<long long>(cases),
-              static_cast<long long>(all.out_of_domain), static_cast<long long>(all.level_rounding),
-              all.first_level_rounding.empty() ? "none" : all.first_level_rounding.c_str());
+  std::printf(
+      "spec bounds: %lld requests of %lld cases checked (%lld outside the domain); "
+      "%lld outside by the per-level rounding (first: %s)\n",
+      static_cast<long long>(all.checked), static_cast<long long>(cases), static_cast<long long>(all.out_of_domain),
+      static_cast<long long>(all.level_rounding),
+      all.first_level_rounding.empty() ? "none" : all.first_level_rounding.c_str());
   EXPECT_EQ(all.outside, 0) << all.first;
   // the per-level rounding is rare (the spec's value must be pinned by exact positions and delta)
   EXPECT_LE(all.level_rounding * 10000, all.checked) << all.first_level_rounding;
@@ -281,7 +282,8 @@ TEST(ApiLimits, MaxSamplerLodBiasIsWhereTheDerivativeClampStillReachesTheLastLev
     const auto inside = [&](int bias_levels) {
       sd.lod.bias_q8 = bias_levels << kLodFracBits;
       const Sampler sm(tex, sd);
-      const Texel4 got = decode_texel(sm.sample(0.3f, 0.5f, lambda_from_gradients(dsdx, 0, 0, 0, tex.width(), 1)), tex.format);
+      const Texel4 got =
+          decode_texel(sm.sample(0.3f, 0.5f, lambda_from_gradients(dsdx, 0, 0, 0, tex.width(), 1)), tex.format);
       return spec::filter_bounds(tex, sd, 0.3f, 0.5f, g).contains(got);
     };
     EXPECT_TRUE(inside(-api_limits::kMaxSamplerLodBias));
