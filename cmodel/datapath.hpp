@@ -15,13 +15,16 @@ namespace tfu::dp {
 
 // Address generator: u = floor(s W 2^8) - 128 (Q.8, texel centres at integers); i0 = u >> 8 is
 // the tap left of / above the sample point, f = u & 255 the 8-bit subtexel fraction.
+// kSubTexelBits is the fraction's width (Vulkan's subTexelPrecisionBits, cmodel/api_limits.hpp).
+inline constexpr int kSubTexelBits = 8;
 struct LevelCoord {
   int64_t i0;
   uint32_t f;
 };
 [[gnu::always_inline]] inline LevelCoord texel_coord(float s, int size) {
-  const int64_t u = float_to_fixed_fast(s, static_cast<uint32_t>(size), 8) - 128;
-  return {u >> 8, static_cast<uint32_t>(u & 255)};
+  const int64_t u =
+      float_to_fixed_fast(s, static_cast<uint32_t>(size), kSubTexelBits) - (int64_t{1} << (kSubTexelBits - 1));
+  return {u >> kSubTexelBits, static_cast<uint32_t>(u & ((int64_t{1} << kSubTexelBits) - 1))};
 }
 
 // Bilinear lerp unit: c = (sum c w + 2^15) >> 16 with w = (256 - fu | fu)(256 - fv | fv) in Q.16;
