@@ -378,7 +378,8 @@ TEST(SweepInputs, APointFileMarkedCompleteIsCheckedLikeASpec) {
   // and the reports read what was checked
   std::ofstream(path, std::ios::trunc) << good.dump();
   const std::vector<nlohmann::json> files = sweep::read_point_files(dir, {p});
-  EXPECT_NE(sweep::results_csv(spec, {p}, files).find(",inf,1.500000,true,"), std::string::npos);  // psnr, ssim, golden_equal
+  // psnr, ssim, psnr_surface, psnr_interior, golden_equal
+  EXPECT_NE(sweep::results_csv(spec, {p}, files).find(",inf,1.500000,inf,inf,true,"), std::string::npos);
 }
 
 // tfu ignores SIGPIPE (sim/tfu/main.cpp, TFU-S E15); a child it runs (the plot script, sbatch) starts
