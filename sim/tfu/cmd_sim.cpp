@@ -527,7 +527,8 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");
   cmd->add_option("--vcd", o->vcd,
                   "Write a value-change dump (GTKWave): clock, channels with their request ids, stages, texel cache "
-                  "lines; with --units N also FILE.unitK.vcd per further unit");
+                  "lines, the texture, stage, MIP level and screen position of requests and footprints; with --units N "
+                  "also FILE.unitK.vcd per further unit");
   cmd->add_option("--vcd-from", o->vcd_from, "First cycle the waveform covers")->capture_default_str()->check(unsigned_integer());
   cmd->add_option("--vcd-to", o->vcd_to, "Last cycle the waveform covers (default: the end)")->check(unsigned_integer());
   cmd->add_option(
