@@ -12,9 +12,9 @@ namespace tfu::rtl {
 using detail::cells_inside;
 using detail::probe_coord;
 
-AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o, const Registers& regs,
-                       const WeightRomBank& roms)
-    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs) {
+AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channel<FootprintReq>& o,
+                       const Registers& regs, const WeightRomBank& roms)
+    : Module(s, "address_gen"), in_(i), out_(o), regs_(regs), probe_hist_(stat_slots(regs.textures.size())) {
   for (size_t k = 0; k < regs.samplers.size(); ++k) {
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));
@@ -120,7 +120,7 @@ void AddressGen::begin(const PixelReq& p) {
   count_ = pick_.blend != 0 ? 2 : 1;
   sent_ = 0;
   probe_ = -1;
-  ++probe_hist_[static_cast<size_t>(pixel_.probes)];
+  ++probe_hist_[stat_slot(p.req)][static_cast<size_t>(pixel_.probes)];
   if (pixel_.probes > 1) next_probe();
 }
 
@@ -150,14 +150,31 @@ bool AddressGen::issue(FootprintReq& f) {
   return false;
 }
 
-void AddressGen::publish(sim::Stats& st) const {
-  uint64_t pixels = 0, probes = 0;
-  for (size_t n = 1; n < probe_hist_.size(); ++n) {
-    pixels += probe_hist_[n];
-    probes += n * probe_hist_[n];
-  }
+void AddressGen::publish_histogram(sim::Stats& st, const std::array<uint64_t, kMaxAniso + 1>& hist,
+                                   bool with_histogram) {
+  uint64_t probes = 0;
+  for (size_t n = 1; n < hist.size(); ++n) probes += n * hist[n];
   add(st, UnitStat::Probes, probes);
-  if (probes != pixels) st.set_histogram(stat_key(UnitStat::AnisoProbes), std::vector<uint64_t>(probe_hist_.begin(), probe_hist_.end()));
+  if (with_histogram)
+    st.set_histogram(stat_key(UnitStat::AnisoProbes), std::vector<uint64_t>(hist.begin(), hist.end()));
+}
+
+bool AddressGen::any_anisotropic() const {
+  for (const auto& h : probe_hist_)
+    for (size_t n = 2; n < h.size(); ++n)
+      if (h[n] != 0) return true;
+  return false;
+}
+
+void AddressGen::publish(sim::Stats& st) const {
+  std::array<uint64_t, kMaxAniso + 1> sum{};
+  for (const auto& h : probe_hist_)
+    for (size_t n = 0; n < h.size(); ++n) sum[n] += h[n];
+  publish_histogram(st, sum, any_anisotropic());
+}
+
+void AddressGen::publish_slot(sim::Stats& st, size_t slot) const {
+  publish_histogram(st, probe_hist_[slot], any_anisotropic());
 }
 
 std::string AddressGen::state() const { return fmt::format("{}, {}, holding {}", in_.state(), out_.state(), holding_); }

@@ -66,9 +66,12 @@ class AddressGen : public sim::Module {
   // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
   // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
   // forms their grids through pick_levels() and grid_function() itself.
-  void count_isotropic_pixels(uint64_t n) { probe_hist_[1] += n; }
-  // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1).
+  void count_isotropic_pixels(uint64_t n, size_t slot) { probe_hist_[slot][1] += n; }
+  // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1), of the
+  // run and of one statistics slot (stat_slot()).
   void publish(sim::Stats& st) const;
+  void publish_slot(sim::Stats& st, size_t slot) const;
+  bool any_anisotropic() const;  // some pixel had N > 1 (the histogram is published, for every slot too)
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`
   // for an anisotropic probe. grid_any forms every filter's grid with the wrap modes read at run
   // time (the plain unit); LINEAR and the edge cross use one function per pair of wrap modes
@@ -104,7 +107,8 @@ class AddressGen : public sim::Module {
   int count_ = 0, sent_ = 0;  // level footprints of a probe (1, or 2 when blending), sent so far
   int probe_ = 0;             // the held pixel's probe being issued (0..N-1)
   ProbeOffset offset_{};      // its offset (Q.16 level-0 texels)
-  std::array<uint64_t, kMaxAniso + 1> probe_hist_{};  // pixels per probe count N
+  std::vector<std::array<uint64_t, kMaxAniso + 1>> probe_hist_;  // per statistics slot: pixels per probe count N
+  static void publish_histogram(sim::Stats& st, const std::array<uint64_t, kMaxAniso + 1>& hist, bool with_histogram);
   void next_probe();
 };
 

@@ -31,19 +31,17 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     first_readout_.push_back(readout_.size());
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
   }
-  decoded_blocks_.assign(regs.textures.size(), 0);
-  decoder_busy_.assign(regs.textures.size(), 0);
-  decoder_stall_.assign(regs.textures.size(), 0);
+  slots_.assign(stat_slots(regs.textures.size()), SlotCounters{});
 }
 
-uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, int texture) {
+uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, size_t slot) {
   const uint64_t start = std::max(in, decoder_free_);
   const auto busy = static_cast<uint64_t>((texels + decoder_.texels_per_cycle() - 1) / decoder_.texels_per_cycle());
   decoder_free_ = start + busy;
-  const auto t = static_cast<size_t>(texture);
-  decoded_blocks_[t] += static_cast<uint64_t>(blocks);
-  decoder_busy_[t] += busy;
-  decoder_stall_[t] += start - in;
+  SlotCounters& c = slots_[slot];
+  c.decoded_blocks += static_cast<uint64_t>(blocks);
+  c.decoder_busy += busy;
+  c.decoder_stall += start - in;
   return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
 }
 
@@ -64,18 +62,22 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
       while (k < blocks && seen[static_cast<size_t>(k)] != key) ++k;
       if (k == blocks) seen[static_cast<size_t>(blocks++)] = key;
     }
-    return taps == 0 ? in : decode(in, taps, blocks, texture);
+    return taps == 0 ? in : decode(in, taps, blocks, stat_slot(texture, stage));
   }
   r = cache_.access(texture, level, lookup);
-  stage_hits[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.hits);
-  stage_misses[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.misses);
+  const size_t slot = stat_slot(texture, stage);
+  SlotCounters& c = slots_[slot];
+  c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
+  c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+  c.memory_requests += static_cast<uint64_t>(r.misses);
   bank_cycles = r.cycles > 1 ? r.cycles : 1;
   uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
   for (int m = 0; m < r.misses; ++m) {
     int texels = 0;
     const int blocks = cache_.fill_blocks(texture, level, r.missed_lines[static_cast<size_t>(m)], texels);
+    c.memory_bytes += static_cast<uint64_t>(blocks * b.block_bytes);
     const uint64_t in = mem_.read(now, blocks * b.block_bytes, texture);
-    ready = std::max(ready, decode(in, texels, blocks, texture));
+    ready = std::max(ready, decode(in, texels, blocks, slot));
   }
   return ready;
 }
@@ -127,7 +129,7 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
   if (edge) {
     int missing_arms = 0;
     for (const lee_jen::Arm& arm : lee_jen::kArms) missing_arms += (cur.tag.shape & arm.mask) == 0;
-    ++shape_count_[static_cast<size_t>(std::min(missing_arms, 2))];
+    ++slots_[stat_slot(cur.tag.req)].shapes[static_cast<size_t>(std::min(missing_arms, 2))];
     if (record_shapes_) shapes[cur.tag.id][2u * cur.tag.probe + (cur.tag.is_level1 ? 1u : 0u)] = cur.tag.shape;
   }
   return ready;
@@ -254,9 +256,9 @@ void CacheStage::evaluate() {
   // Output side: the FIFO head leaves when its lines are in (one footprint per cycle).
   if (!fifo_.empty()) {
     if (now < fifo_.front().ready) {
-      ++stall_miss_;
+      ++slots_[stat_slot(fifo_.front().f.tag.req)].stall_miss;
     } else if (!out_of(fifo_.front().f).can_push()) {
-      ++stall_back_;
+      ++slots_[stat_slot(fifo_.front().f.tag.req)].stall_back;
     } else {
       emit();
     }
@@ -264,7 +266,7 @@ void CacheStage::evaluate() {
   // Input side: one tag lookup per cycle while the port is free and the FIFO has room.
   if (in_.can_pop()) {
     if (now < port_free_) {
-      ++stall_bank_;
+      ++slots_[stat_slot(in_.front().tag.req)].stall_bank;
     } else if (!fifo_.full()) {
       accept(now);
       sim_.progress();
@@ -285,9 +287,11 @@ uint64_t CacheStage::wake_cycle(uint64_t now) const {
 void CacheStage::skip_cycles(uint64_t n) {
   // The skipped cycles all lie before wake_cycle(): the same stalls evaluate() would count.
   const uint64_t now = sim_.cycle();
-  if (!fifo_.empty() && now < fifo_.front().ready) stall_miss_ += n;
-  else if (!fifo_.empty() && !out_of(fifo_.front().f).can_push()) stall_back_ += n;
-  if (in_.can_pop() && now < port_free_) stall_bank_ += n;
+  if (!fifo_.empty() && now < fifo_.front().ready)
+    slots_[stat_slot(fifo_.front().f.tag.req)].stall_miss += n;
+  else if (!fifo_.empty() && !out_of(fifo_.front().f).can_push())
+    slots_[stat_slot(fifo_.front().f.tag.req)].stall_back += n;
+  if (in_.can_pop() && now < port_free_) slots_[stat_slot(in_.front().tag.req)].stall_bank += n;
 }
 
 std::string CacheStage::state() const {
@@ -307,24 +311,49 @@ void CacheStage::publish(sim::Stats& st) const {
   }
   add(st, UnitStat::CacheLineHits, hits);
   add(st, UnitStat::CacheLineMisses, misses);
-  add(st, UnitStat::StallCacheMiss, stall_miss_);
-  add(st, UnitStat::StallBankConflict, stall_bank_);
-  add(st, UnitStat::StallBackpressure, stall_back_);
+  SlotCounters sum;
+  for (const SlotCounters& c : slots_) {
+    sum.stall_miss += c.stall_miss;
+    sum.stall_bank += c.stall_bank;
+    sum.stall_back += c.stall_back;
+    for (size_t k = 0; k < 3; ++k) sum.shapes[k] += c.shapes[k];
+    sum.decoded_blocks += c.decoded_blocks;
+    sum.decoder_busy += c.decoder_busy;
+    sum.decoder_stall += c.decoder_stall;
+  }
+  publish_stalls_shapes_decoders(st, sum);
+}
+
+void CacheStage::publish_slot(sim::Stats& st, size_t slot) const {
+  const SlotCounters& c = slots_[slot];
+  uint64_t hits = 0, misses = 0;
+  for (size_t l = 0; l < c.level_hits.size(); ++l) {
+    hits += c.level_hits[l];
+    misses += c.level_misses[l];
+    if (c.level_hits[l] + c.level_misses[l] == 0) continue;
+    st.add(stat_key(UnitStat::CacheLineHitsLevel, static_cast<int>(l)), c.level_hits[l]);
+    st.add(stat_key(UnitStat::CacheLineMissesLevel, static_cast<int>(l)), c.level_misses[l]);
+  }
+  add(st, UnitStat::CacheLineHits, hits);
+  add(st, UnitStat::CacheLineMisses, misses);
+  add(st, UnitStat::MemoryBytes, c.memory_bytes);
+  add(st, UnitStat::MemoryRequests, c.memory_requests);
+  publish_stalls_shapes_decoders(st, c);
+}
+
+void CacheStage::publish_stalls_shapes_decoders(sim::Stats& st, const SlotCounters& c) const {
+  add(st, UnitStat::StallCacheMiss, c.stall_miss);
+  add(st, UnitStat::StallBankConflict, c.stall_bank);
+  add(st, UnitStat::StallBackpressure, c.stall_back);
   if (any_compressed_) {
-    uint64_t blocks = 0, busy = 0, stall = 0;
-    for (size_t t = 0; t < compressed_.size(); ++t) {
-      blocks += decoded_blocks_[t];
-      busy += decoder_busy_[t];
-      stall += decoder_stall_[t];
-    }
-    add(st, UnitStat::DecodedBlocks, blocks);
-    add(st, UnitStat::DecoderBusyCycles, busy);
-    add(st, UnitStat::DecoderStallCycles, stall);
+    add(st, UnitStat::DecodedBlocks, c.decoded_blocks);
+    add(st, UnitStat::DecoderBusyCycles, c.decoder_busy);
+    add(st, UnitStat::DecoderStallCycles, c.decoder_stall);
   }
   if (any_edge_) {
-    add(st, UnitStat::ShapeCross, shape_count_[0]);
-    add(st, UnitStat::ShapeT, shape_count_[1]);
-    add(st, UnitStat::ShapeL, shape_count_[2]);
+    add(st, UnitStat::ShapeCross, c.shapes[0]);
+    add(st, UnitStat::ShapeT, c.shapes[1]);
+    add(st, UnitStat::ShapeL, c.shapes[2]);
   }
 }
 

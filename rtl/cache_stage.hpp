@@ -70,6 +70,8 @@ class CacheStage : public sim::Module {
   void evaluate() override;
   std::string state() const override;
   void publish(sim::Stats& st) const;
+  // The counters of one statistics slot (stat_slot()), lines and memory reads included.
+  void publish_slot(sim::Stats& st, size_t slot) const;
   uint64_t wake_cycle(uint64_t now) const override;
   void skip_cycles(uint64_t n) override;
   bool busy() const { return !fifo_.empty(); }
@@ -89,14 +91,26 @@ class CacheStage : public sim::Module {
   // address).
   uint64_t accepted_tap_address(int k) const;
   int accepted_taps() const { return probes_ ? accepted_.ntaps() : 0; }
+  const FootprintReq& accepted() const { return accepted_; }  // its texture, stage and level
   // Kernel shape chosen per pixel, probe and level, for the golden compare of cache-aware shapes:
   // recorded when some sampler is EDGE_PRESERVING with the cache-aware policy (records_shapes();
   // the other policies' shapes follow from the descriptors), into `shapes` sized by the caller to
   // one entry per request before the run.
   bool records_shapes() const { return record_shapes_; }
   std::vector<ProbeShapes> shapes;
-  // Lines found and fetched per material stage (0..3).
-  std::array<uint64_t, 4> stage_hits{}, stage_misses{};
+  // The block's counters per statistics slot (a texture descriptor and material stage,
+  // stat_slot()): line hits and misses per level, memory reads, stalls (counted for the footprint
+  // that waits: the one at the input for the bank port, the miss-FIFO head for lines and room),
+  // kernel shapes and the decoders' work. The totals are their sums (the lines' also counted by
+  // the cache's tag unit).
+  struct SlotCounters {
+    std::array<uint64_t, kMaxLevels> level_hits{}, level_misses{};
+    uint64_t memory_bytes = 0, memory_requests = 0;
+    uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0;
+    std::array<uint64_t, 3> shapes{};  // cross, T, L
+    uint64_t decoded_blocks = 0, decoder_busy = 0, decoder_stall = 0;
+  };
+  const std::vector<SlotCounters>& slot_counters() const { return slots_; }
   // The block without its miss FIFO and handshakes (the timing recurrences of
   // rtl/unit_recurrence.cpp drive these; evaluate() uses the same code): admit_footprint looks a
   // footprint up at cycle `now` (cache-aware arms, tags, memory reads, statistics) and returns the
@@ -111,8 +125,11 @@ class CacheStage : public sim::Module {
   [[gnu::always_inline]] uint64_t admit_lines(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
                                               int& bank_cycles, FootprintResult& r) {
     r = cache_.access(texture, level, lookup);
-    stage_hits[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.hits);
-    stage_misses[static_cast<size_t>(stage)] += static_cast<uint64_t>(r.misses);
+    SlotCounters& c = slots_[stat_slot(texture, stage)];
+    c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
+    c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+    c.memory_requests += static_cast<uint64_t>(r.misses);
+    c.memory_bytes += static_cast<uint64_t>(r.misses) * static_cast<uint64_t>(cache_.config().line_bytes);
     bank_cycles = r.cycles > 1 ? r.cycles : 1;
     uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
     for (int m = 0; m < r.misses; ++m) {
@@ -121,11 +138,8 @@ class CacheStage : public sim::Module {
     }
     return ready;
   }
-  // The decoders' counters per texture descriptor (compressed textures; zero elsewhere).
+  // Some texture is compressed (the decoders' counters; zero elsewhere).
   bool any_compressed() const { return any_compressed_; }
-  uint64_t decoded_blocks(int texture) const { return decoded_blocks_[static_cast<size_t>(texture)]; }
-  uint64_t decoder_busy(int texture) const { return decoder_busy_[static_cast<size_t>(texture)]; }
-  uint64_t decoder_stall(int texture) const { return decoder_stall_[static_cast<size_t>(texture)]; }
   // The read-out registers of a texture's level (its address, pitch, layout and format).
   const LevelReadout& level_readout(int texture, int level) const {
     return readout_[first_readout_[static_cast<size_t>(texture)] + static_cast<size_t>(level)];
@@ -150,12 +164,14 @@ class CacheStage : public sim::Module {
   class Timing {
    public:
     explicit Timing(CacheStage& b) : b_(b) {}
-    // The cycle the footprint pushed at `pushed` leaves the shaped channel `in` into the miss FIFO.
-    [[gnu::always_inline]] int64_t accept(int64_t pushed, ChannelTimes& in, const ChannelTimes& miss_fifo) {
+    // The cycle the footprint of statistics slot `slot` pushed at `pushed` leaves the shaped
+    // channel `in` into the miss FIFO.
+    [[gnu::always_inline]] int64_t accept(int64_t pushed, ChannelTimes& in, const ChannelTimes& miss_fifo,
+                                          size_t slot) {
       const int64_t visible = std::max(pushed + 1, last_accept_ + 1);
       const int64_t port_free = last_accept_ + port_cycles_;
       const int64_t t = std::max({visible, port_free, miss_fifo.freed()});
-      b_.stall_bank_ += cycles_between(visible, std::min(t, port_free));
+      b_.slots_[slot].stall_bank += cycles_between(visible, std::min(t, port_free));
       in.pop(t);
       last_accept_ = t;
       return t;
@@ -163,12 +179,13 @@ class CacheStage : public sim::Module {
     // The cycle the footprint accepted at `accepted`, holding the tag port `bank_cycles` cycles,
     // with its lines in at `ready`, leaves the miss FIFO into `out`.
     [[gnu::always_inline]] int64_t exit(int64_t accepted, int bank_cycles, int64_t ready, ChannelTimes& miss_fifo,
-                                        const ChannelTimes& out) {
+                                        const ChannelTimes& out, size_t slot) {
       port_cycles_ = bank_cycles;
       const int64_t head = std::max(accepted + 1, last_exit_ + 1);
       const int64_t t = std::max({head, ready, out.room()});
-      b_.stall_miss_ += cycles_between(head, std::min(ready, t));
-      b_.stall_back_ += cycles_between(std::max(head, ready), t);
+      SlotCounters& c = b_.slots_[slot];
+      c.stall_miss += cycles_between(head, std::min(ready, t));
+      c.stall_back += cycles_between(std::max(head, ready), t);
       miss_fifo.pop(t);
       last_exit_ = t;
       return t;
@@ -203,18 +220,17 @@ class CacheStage : public sim::Module {
   uint64_t decoder_free_ = 0;
   bool any_compressed_ = false;
   std::vector<uint8_t> compressed_;  // per texture descriptor
-  std::vector<uint64_t> decoded_blocks_, decoder_busy_, decoder_stall_;
-  // One decoder job (the header's rule): input in at `in`, `texels` to decode; returns the cycle
-  // its texels are ready.
-  uint64_t decode(uint64_t in, int texels, int blocks, int texture);
+  std::vector<SlotCounters> slots_;  // per statistics slot
+  // One decoder job (the header's rule) of statistics slot `slot`: input in at `in`, `texels` to
+  // decode; returns the cycle its texels are ready.
+  uint64_t decode(uint64_t in, int texels, int blocks, size_t slot);
   // admit_lines for a compressed texture: the tags, memory reads and the decoder jobs.
   uint64_t admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now, int& bank_cycles,
                         FootprintResult& r);
   // read_out for a compressed texture: the taps' texels decoded from the blocks in memory.
   void read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const;
-  // Counted in plain registers on the per-cycle path; published to the stats once, after the run.
-  uint64_t stall_miss_ = 0, stall_bank_ = 0, stall_back_ = 0;
-  std::array<uint64_t, 3> shape_count_{};  // cross, T, L
+  // The stalls and shapes are counted in slots_ on the per-cycle path; published once, after the run.
+  void publish_stalls_shapes_decoders(sim::Stats& st, const SlotCounters& c) const;
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
   bool record_shapes_ = false;             // some EDGE_PRESERVING sampler is cache-aware (shapes)
   bool probes_ = false;                    // waveform probes recorded (probes())

@@ -111,7 +111,7 @@ void EdgeDirection::evaluate() {
 void EdgeDirection::stage(const EdgeMedianOut& s, EdgeDirectionOut& o) {
   o.median = s;
   o.direction = direction_select(s.c, s.low, s.tag.shape, s.tag.fu, s.tag.fv, s.tag.format).direction;
-  ++chosen[static_cast<size_t>(o.direction)];
+  ++chosen[stat_slot(s.tag.req)][static_cast<size_t>(o.direction)];
 }
 
 void EdgeMerge::evaluate() {

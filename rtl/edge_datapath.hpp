@@ -61,11 +61,12 @@ class EdgeMedian : public sim::Module {
 
 class EdgeDirection : public sim::Module {
  public:
-  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeMedianOut>& i, sim::Channel<EdgeDirectionOut>& o)
-      : Module(s, "edge_direction"), in_(i), out_(o) {}
+  EdgeDirection(sim::Simulator& s, sim::Channel<EdgeMedianOut>& i, sim::Channel<EdgeDirectionOut>& o, size_t textures)
+      : Module(s, "edge_direction"), chosen(stat_slots(textures)), in_(i), out_(o) {}
   void evaluate() override;
   std::string state() const override { return fmt::format("{}, {}", in_.state(), out_.state()); }
-  std::array<uint64_t, lee_jen::kDirections> chosen{};  // histogram of chosen directions
+  // Histogram of chosen directions per statistics slot (stat_slot(); the total is their sum).
+  std::vector<std::array<uint64_t, lee_jen::kDirections>> chosen;
   // The stage's combinational part (and the histogram).
   void stage(const EdgeMedianOut& s, EdgeDirectionOut& o);
   // The stage's timing for the recurrence engine, beside evaluate(), which takes its input's head

@@ -10,6 +10,7 @@ FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Chann
                        const WeightRomBank& roms, int lanes)
     : Module(s, "filter"), in_(i), out_(o), regs_(regs), roms_(roms), lanes_(lanes), word_lerps_(fast_paths_enabled()) {
   for (size_t n = 0; n < extra_clocks_.size(); ++n) extra_clocks_[n] = (static_cast<int>(n) + 4 * lanes_ - 1) / (4 * lanes_) - 1;
+  busy_cycles_.assign(stat_slots(regs.textures.size()), 0);
 }
 
 Texel4 FilterUnit::filter_level(const FilterReq& r, TexelFormat unpack) const {
@@ -37,7 +38,7 @@ void FilterUnit::evaluate() {
   if (remaining_ < 0) remaining_ = extra_clocks(r.ntaps);
   if (remaining_ > 0) {  // the lanes are still working on this footprint
     --remaining_;
-    ++busy_cycles_;
+    ++busy_cycles_[stat_slot(r.tag.req)];
     sim_.progress();
     return;
   }

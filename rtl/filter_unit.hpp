@@ -36,7 +36,8 @@ class FilterUnit : public sim::Module {
              const WeightRomBank& roms, int lanes);
   void evaluate() override;
   std::string state() const override;
-  uint64_t busy_cycles() const { return busy_cycles_; }
+  // Lane-cycles computed, per statistics slot (stat_slot(); the total is their sum).
+  const std::vector<uint64_t>& busy_cycles() const { return busy_cycles_; }
   // The block without its handshakes (evaluate() and the timing recurrences of
   // rtl/unit_recurrence.cpp): the clocks a footprint of `ntaps` texels keeps the lanes busy before
   // it leaves (ceil(ntaps / (4 lanes)) - 1), and its filtering, true with the pixel's response in
@@ -59,12 +60,12 @@ class FilterUnit : public sim::Module {
   class Timing {
    public:
     explicit Timing(FilterUnit& b) : b_(b) {}
-    // The cycle the footprint of `ntaps` texels pushed at `pushed` leaves `in` (`emits`: it
-    // completes a pixel, pushed into `out`).
+    // The cycle the footprint of `ntaps` texels and statistics slot `slot` pushed at `pushed`
+    // leaves `in` (`emits`: it completes a pixel, pushed into `out`).
     [[gnu::always_inline]] int64_t done(int64_t pushed, int ntaps, bool emits, ChannelTimes& in,
-                                        const ChannelTimes& out) {
+                                        const ChannelTimes& out, size_t slot) {
       const int hold = b_.extra_clocks(ntaps);
-      b_.busy_cycles_ += static_cast<uint64_t>(hold);
+      b_.busy_cycles_[slot] += static_cast<uint64_t>(hold);
       return stage_.move(pushed, in, emits ? &out : nullptr, hold);
     }
 
@@ -82,7 +83,7 @@ class FilterUnit : public sim::Module {
   bool word_lerps_;  // LINEAR on 8-bit words, the fast path (cmodel/fast_paths.hpp), read once
   int remaining_ = -1;  // clocks left on the current footprint (-1: not started)
   std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
-  uint64_t busy_cycles_ = 0;
+  std::vector<uint64_t> busy_cycles_;   // per statistics slot
   // The level0 result of a blending pixel (register): as channels, or as the texel word when
   // LINEAR on an 8-bit format runs dp::fast::bilinear_lerp8 / level_blend8 on the words (the same
   // units as dp::bilinear_lerp / level_blend + encode, bit-identical and tested; fewer instructions).

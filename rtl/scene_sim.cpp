@@ -61,7 +61,18 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     const double t0 = thread_cpu_seconds();
     const auto k = static_cast<size_t>(job.unit);
     std::ostream* vcd = opt.unit_vcds.empty() ? (job.unit == 0 ? opt.vcd : nullptr) : (k < opt.unit_vcds.size() ? opt.unit_vcds[k] : nullptr);
-    job.out = run_unit(frame, job.trace, u, opt.engine, VcdOptions{vcd, opt.vcd_from, opt.vcd_to});
+    // The waveform's screen positions: pixel k of a quad at (x + (k & 1), y + (k >> 1)) (raster.hpp).
+    std::vector<ScreenPosition> positions;
+    if (vcd != nullptr) {
+      positions.reserve(job.trace.requests.size());
+      for (const size_t q : job.quads)
+        for (int p = 0; p < 4; ++p) {
+          const QuadTarget& t = render.quad_targets[q];
+          positions.push_back({static_cast<uint16_t>(t.x + (p & 1)), static_cast<uint16_t>(t.y + (p >> 1))});
+        }
+    }
+    job.out = run_unit(frame, job.trace, u, opt.engine,
+                       VcdOptions{vcd, opt.vcd_from, opt.vcd_to, opt.vcd_signals, &positions});
     const double t1 = thread_cpu_seconds();
     // The golden model on the same requests: LOD unit and sampler (the same work the cycle model
     // does, without timing), timed separately for the cost-of-cycle-accuracy ratio.
@@ -114,6 +125,7 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   add(st, UnitStat::Cycles, res.cycles);
   add(st, UnitStat::Units, static_cast<uint64_t>(opt.units));
   derive_rates(st, res.requests, res.cycles);
+  derive_group_rates(st);  // the groups' counters summed over units, cycles too (unit_stats.hpp)
   res.stats = std::move(st);
   return res;
 }

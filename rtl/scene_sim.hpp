@@ -27,6 +27,7 @@ struct SceneSimOptions {
   std::ostream* vcd = nullptr;  // VCD of unit 0
   std::vector<std::ostream*> unit_vcds;  // if not empty: unit k's VCD (nullptr: none); replaces `vcd`
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles dumped, inclusive
+  std::vector<std::string> vcd_signals;        // the signals dumped (VcdOptions::signals; empty: all)
   // The timing recurrences, as `tfu sim`, `tfu sweep` and UnitEngine{} (the clocked run's results,
   // tested); a unit that writes a waveform still runs clocked. Clocked: the reference blocks.
   UnitEngine engine = UnitEngine::Recurrence;

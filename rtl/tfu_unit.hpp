@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "cmodel/enum_names.hpp"
 #include "cmodel/frame.hpp"
@@ -35,10 +36,22 @@ namespace tfu::rtl {
 // that names an unbound descriptor, CheckFailed on deadlock (with every block's state).
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, std::ostream* vcd = nullptr);
 
-// The waveform of a run (docs/cycle-model.md, "Waveforms"): where it goes and which cycles.
+// The screen position of the pixel a request shades (scene runs; a trace file carries none).
+struct ScreenPosition {
+  uint16_t x = 0, y = 0;
+};
+
+// The waveform of a run (docs/cycle-model.md, "Waveforms"): where it goes, which cycles and which
+// signals.
 struct VcdOptions {
   std::ostream* out = nullptr;  // nullptr: no waveform
   uint64_t from = 0, to = UINT64_MAX;  // cycles dumped, inclusive
+  // Signal patterns (sim::VcdWriter::select); empty: every signal. A pattern that selects no
+  // signal is an InputError naming it, before the run.
+  std::vector<std::string> signals{};
+  // Per request id (its index in the trace): the pixel's screen position, for the x/y signals;
+  // nullptr or empty: no x/y signals.
+  const std::vector<ScreenPosition>* positions = nullptr;
 };
 // How the clocked engine simulates (options of the simulation, not of the hardware: not in UnitConfig
 // nor in its JSON). Results and statistics are the same whatever they are.

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/nearest_name.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
@@ -31,10 +32,17 @@ uint64_t payload_id(const T& p) {
   }
 }
 
+// What a request or footprint at a channel's head carries for the waveform: its descriptor
+// indices and material stage, and its MIP level (footprints).
+const RequestTag& request_tag(const PixelReq& p) { return p.req; }
+const RequestTag& request_tag(const FootprintReq& p) { return p.tag.req; }
+
 // The waveform probes: the clock, every channel's valid / ready / occupancy and head request id, the
 // blocks' busy flags, the texel cache's request, line and per-tap texel addresses, and the pixels
-// retired.
-void add_probes(sim::VcdWriter& vcd, Unit& u) {
+// retired; the texture, material stage and screen position of the request at the pixel channel's
+// head, and the same with the MIP level of the footprint at the footprint channel's head and of
+// the footprint the texel cache accepted last (0 while none: `valid` says when).
+void add_probes(sim::VcdWriter& vcd, Unit& u, const std::vector<ScreenPosition>* positions) {
   vcd.add_clock("tfu.clk");
   const auto channel = [&vcd](const auto& ch) {
     vcd.add(fmt::format("tfu.{}.valid", ch.name()), 1, [&ch] { return uint64_t{ch.can_pop()}; });
@@ -45,6 +53,29 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
       vcd.add(fmt::format("tfu.{}.id", ch.name()), 32,
               [&ch] { return ch.can_pop() ? payload_id(ch.front()) : uint64_t{0}; });
   };
+  // The request-tag signals of a channel whose head is a request (pixel) or a footprint: texture
+  // [11:0], stage [1:0], MIP level [3:0] (footprints) and the pixel's screen position x, y [15:0]
+  // (when given). The value functions read the head only while it is valid.
+  const bool xy = positions != nullptr && !positions->empty();
+  const auto position = [positions](uint64_t id, bool y) -> uint64_t {
+    if (id >= positions->size()) return 0;
+    const ScreenPosition& p = (*positions)[id];
+    return y ? p.y : p.x;
+  };
+  const auto tag_signals = [&](const auto& ch) {
+    using Payload = std::remove_cvref_t<decltype(ch.front())>;
+    const std::string at = fmt::format("tfu.{}", ch.name());
+    vcd.add(at + ".texture", 12, [&ch] { return ch.can_pop() ? uint64_t{request_tag(ch.front()).texture} : 0; });
+    vcd.add(at + ".stage", 2, [&ch] { return ch.can_pop() ? uint64_t{request_tag(ch.front()).stage} : 0; });
+    if constexpr (std::is_same_v<Payload, FootprintReq>)
+      vcd.add(at + ".level", 4, [&ch] { return ch.can_pop() ? static_cast<uint64_t>(ch.front().level) : 0; });
+    if (xy)
+      for (const bool y : {false, true})
+        vcd.add(at + (y ? ".y" : ".x"), 16,
+                [&ch, position, y] { return ch.can_pop() ? position(payload_id(ch.front()), y) : 0; });
+  };
+  tag_signals(u.c_pixel);
+  tag_signals(u.c_addr);
   channel(u.c_quad);
   channel(u.c_pixel);
   channel(u.c_addr);
@@ -66,10 +97,28 @@ void add_probes(sim::VcdWriter& vcd, Unit& u) {
   vcd.add("tfu.texel_cache.miss_line", line_bits, [&u] { return u.cache_stage.last_miss_line(); });
   vcd.add("tfu.texel_cache.misses", 5, [&u] { return static_cast<uint64_t>(u.cache_stage.last_misses()); });
   vcd.add("tfu.texel_cache.accepted_taps", 5, [&u] { return static_cast<uint64_t>(u.cache_stage.accepted_taps()); });
+  vcd.add("tfu.texel_cache.accepted_texture", 12, [&u] { return uint64_t{u.cache_stage.accepted().tag.req.texture}; });
+  vcd.add("tfu.texel_cache.accepted_stage", 2, [&u] { return uint64_t{u.cache_stage.accepted().tag.req.stage}; });
+  vcd.add("tfu.texel_cache.accepted_level", 4, [&u] { return static_cast<uint64_t>(u.cache_stage.accepted().level); });
+  if (xy)
+    for (const bool y : {false, true})
+      vcd.add(y ? "tfu.texel_cache.accepted_y" : "tfu.texel_cache.accepted_x", 16, [&u, position, y] {
+        return u.cache_stage.accepted_taps() > 0 ? position(u.cache_stage.accepted_id(), y) : 0;
+      });
   for (int k = 0; k < static_cast<int>(std::tuple_size_v<decltype(FilterReq::texels)>); ++k)
     vcd.add(fmt::format("tfu.texel_cache.accepted_tap_addr_{:02}", k), kAddressBits,
             [&u, k] { return u.cache_stage.accepted_tap_address(k); });
   vcd.add("tfu.response.retired", 32, [&u] { return uint64_t{u.response.retired()}; });
+}
+
+// The names a waveform signal selection may use: every signal's path and every scope above one.
+std::vector<std::string> signal_names_and_scopes(const std::vector<std::string>& paths) {
+  std::vector<std::string> names;
+  for (const std::string& p : paths)
+    for (size_t dot = p.find('.'); dot != std::string::npos; dot = p.find('.', dot + 1))
+      if (std::find(names.begin(), names.end(), p.substr(0, dot)) == names.end()) names.push_back(p.substr(0, dot));
+  names.insert(names.end(), paths.begin(), paths.end());
+  return names;
 }
 
 }  // namespace
@@ -134,7 +183,13 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
   if (vcd_stream) {
     vcd = std::make_unique<sim::VcdWriter>(*vcd_stream);
     vcd->set_window(vcd_opt.from, vcd_opt.to);
-    add_probes(*vcd, *unit);
+    vcd->select(vcd_opt.signals);
+    add_probes(*vcd, *unit, vcd_opt.positions);
+    if (const std::vector<std::string> bad = vcd->unmatched_patterns(); !bad.empty())
+      throw InputError(
+          fmt::format("--vcd-signals: '{}' selects no signal ({}signals are named tfu.<block or channel>.<signal>; "
+                      "docs/cycle-model.md, \"Waveforms\")",
+                      bad.front(), did_you_mean(bad.front(), signal_names_and_scopes(vcd->offered()))));
     unit->sim.set_vcd(vcd.get());
   }
   unit->sim.set_idle_skip(clocked.idle_skip);

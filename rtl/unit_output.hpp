@@ -19,8 +19,10 @@ struct UnitOutput {
   // EDGE_PRESERVING with the cache-aware policy (the golden compare needs them); else empty.
   std::vector<ProbeShapes> edge_shapes;
   uint64_t cycles = 0;
-  // Counters, values, histograms, and the tables "textures" (per texture descriptor: requests,
-  // line hits, line misses, memory bytes) and "stages" (the same per material stage).
+  // Counters, values, histograms, the tables "textures" (per texture descriptor: requests, line
+  // hits, line misses, memory bytes) and "stages" (the same per material stage), and the groups
+  // "stage" and "texture": every statistic of the run per material stage and per texture
+  // descriptor (rtl/unit_stats.hpp).
   sim::Stats stats;
 };
 
@@ -28,5 +30,8 @@ struct UnitOutput {
 // the slowest): pixels_per_clock, memory_bytes_per_pixel, cache_hit_rate, probes_per_pixel and the
 // latency mean, minimum and maximum from the latency histogram.
 void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles);
+// derive_rates of every group of `st` (per stage, per texture: rtl/unit_stats.hpp), each from its
+// own pixels and cycles.
+void derive_group_rates(sim::Stats& st);
 
 }  // namespace tfu::rtl

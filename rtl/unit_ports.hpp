@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "cmodel/aniso.hpp"
@@ -19,6 +20,15 @@ struct RequestTag {
   uint8_t sampler = 0;
   uint8_t stage = 0;
 };
+
+// The statistics slot of a request (its texture descriptor and material stage): the blocks count
+// per slot, and the per-stage and per-texture statistics are sums of slots (rtl/unit_stats.hpp).
+inline constexpr size_t kStatStages = 4;  // stage[1:0]
+constexpr size_t stat_slot(int texture, int stage) {
+  return kStatStages * static_cast<size_t>(texture) + static_cast<size_t>(stage);
+}
+constexpr size_t stat_slot(const RequestTag& r) { return stat_slot(r.texture, r.stage); }
+constexpr size_t stat_slots(size_t textures) { return kStatStages * textures; }
 
 // request_fifo -> lod_unit: one 2x2 quad (quad traces) or one pixel (lod / grad traces).
 //   id[31:0], descriptor indices, npix[2:0] (4 or 1), s[4] t[4] FP32, lod FP32 | dsdx dtdx dsdy dtdy FP32

@@ -111,17 +111,18 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
   // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
-  // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO.
-  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, auto&& admit) {
+  // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `slot`: its
+  // statistics slot (stat_slot()), where its stalls count.
+  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit) {
     const int64_t pushed = u.address_gen.timing.push(first_footprint, pixel_taken, ch.footprint);
     const int64_t shaped =
         log.at(KernelSelectTakesFootprint, u.kernel_select.timing.move(pushed, ch.footprint, &ch.shaped_footprint));
     const int64_t accepted =
-        log.at(CacheAcceptsFootprint, u.cache_stage.timing.accept(shaped, ch.shaped_footprint, ch.miss_fifo));
+        log.at(CacheAcceptsFootprint, u.cache_stage.timing.accept(shaped, ch.shaped_footprint, ch.miss_fifo, slot));
     int bank_cycles = 1;
     const auto ready = static_cast<int64_t>(admit(static_cast<uint64_t>(accepted), bank_cycles));
     return log.at(CacheEmitsFootprint, u.cache_stage.timing.exit(accepted, bank_cycles, ready, ch.miss_fifo,
-                                                                 edge ? ch.edge_texels : ch.texels));
+                                                                 edge ? ch.edge_texels : ch.texels, slot));
   };
   // The blocks' output registers, reused from item to item as the clocked run reuses its channel
   // slots (every field the datapath functions read is written first).
@@ -139,8 +140,9 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   // filter -> response: the texel words that left the cache at `exit`.
   const auto through_filter = [&](int64_t exit) {
     const bool emits = texel_words.tag.emits();
-    const int64_t done =
-        log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response));
+    const int64_t done = log.at(
+        FilterFinishesFootprint,
+        u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response, stat_slot(texel_words.tag.req)));
     Response r;
     if (u.filter->filter(texel_words, r)) retire(r, ch.response, done, ResponseRetiresFilterPixel);
   };
@@ -183,15 +185,16 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
       // (The level count is a template constant, so that the loop over levels unrolls.)
       const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
         constexpr int kLevels = decltype(level_count)::value;
+        const size_t slot = stat_slot(quad.req);
         for (int k = 0; k < 4; ++k) {
           const int64_t pixel_taken = pixel_taken_at(k);
           for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
-            const int64_t exit = through_cache(level == 0, pixel_taken, false, [&](uint64_t now, int& bank_cycles) {
-              return linear.admit(k, level, now, bank_cycles);
-            });
+            const int64_t exit =
+                through_cache(level == 0, pixel_taken, false, slot,
+                              [&](uint64_t now, int& bank_cycles) { return linear.admit(k, level, now, bank_cycles); });
             const bool emits = level + 1 == kLevels;
             const int64_t done =
-                log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response));
+                log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
             if (emits)
               quad_retire[static_cast<size_t>(k)] =
                   log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done));
@@ -215,9 +218,9 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         last = u.address_gen.issue(f);
         u.kernel_select.shape(f);
         const bool edge = f.tag.base == BaseFilter::EdgePreserving;
-        const int64_t exit = through_cache(first_footprint, pixel_taken, edge, [&](uint64_t now, int& bank_cycles) {
-          return u.cache_stage.admit_footprint(f, now, bank_cycles);
-        });
+        const int64_t exit = through_cache(
+            first_footprint, pixel_taken, edge, stat_slot(f.tag.req),
+            [&](uint64_t now, int& bank_cycles) { return u.cache_stage.admit_footprint(f, now, bank_cycles); });
         u.cache_stage.read_out_footprint(f, texel_words);
         edge ? through_edge_stages(exit) : through_filter(exit);
       }

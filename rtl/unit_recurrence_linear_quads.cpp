@@ -33,7 +33,7 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
     std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
     for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
   }
-  u_.address_gen.count_isotropic_pixels(4);
+  u_.address_gen.count_isotropic_pixels(4, stat_slot(q.req));
   return levels;
 }
 

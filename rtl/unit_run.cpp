@@ -45,52 +45,105 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
 }
 
 void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
+  (void)ucfg;
   sim::Stats& st = out.stats;
   const size_t n = trace.requests.size();
+  const size_t nt = frame.regs.textures.size();
+  const size_t slots = stat_slots(nt);
   u.cache_stage.publish(st);
   u.address_gen.publish(st);
   add(st, UnitStat::Cycles, out.cycles);
   add(st, UnitStat::Pixels, n);
   add(st, UnitStat::MemoryBytes, u.mem.bytes_read());
   add(st, UnitStat::MemoryRequests, u.mem.requests());
-  if (u.filter) add(st, UnitStat::FilterLaneBusyCycles, u.filter->busy_cycles());
-  if (u.edge_direction) st.set_histogram(stat_key(UnitStat::EdgeDirection), std::vector<uint64_t>(u.edge_direction->chosen.begin(), u.edge_direction->chosen.end()));
-  st.set_histogram(stat_key(UnitStat::Latency), u.response.latency);
-  // Traffic per texture descriptor and per material stage.
-  std::vector<uint64_t> tex_requests(frame.textures.size(), 0);
-  std::array<uint64_t, 4> stage_requests{};
-  for (const TraceRequest& r : trace.requests) {
-    ++tex_requests[r.texture];
-    ++stage_requests[r.stage];
+  if (u.filter) {
+    uint64_t busy = 0;
+    for (const uint64_t b : u.filter->busy_cycles()) busy += b;
+    add(st, UnitStat::FilterLaneBusyCycles, busy);
   }
+  const auto directions = [&u](const std::vector<size_t>& of_slots) {
+    std::vector<uint64_t> h(lee_jen::kDirections, 0);
+    for (const size_t k : of_slots)
+      for (size_t d = 0; d < h.size(); ++d) h[d] += u.edge_direction->chosen[k][d];
+    return h;
+  };
+  if (u.edge_direction) {
+    std::vector<size_t> all(slots);
+    for (size_t k = 0; k < slots; ++k) all[k] = k;
+    st.set_histogram(stat_key(UnitStat::EdgeDirection), directions(all));
+  }
+  st.set_histogram(stat_key(UnitStat::Latency), u.response.latency);
+  // Per statistics slot (texture descriptor x material stage), from the requests' own cycles: the
+  // requests, the output cycles given to them (pixels retire in request order, one per cycle at
+  // most: request i is given its retirement cycle minus request i - 1's, the first its retirement
+  // cycle + 1, so that one unit's slots add up to its cycles) and their latencies.
+  std::vector<uint64_t> slot_requests(slots, 0), slot_cycles(slots, 0);
+  std::vector<std::vector<uint64_t>> slot_latency(slots);
+  uint64_t retired_by = 0;  // the cycle after the previous request's retirement
+  for (size_t i = 0; i < n; ++i) {
+    const TraceRequest& r = trace.requests[i];
+    const size_t k = stat_slot(r.texture, r.stage);
+    ++slot_requests[k];
+    slot_cycles[k] += out.response_cycle[i] + 1 - retired_by;
+    retired_by = out.response_cycle[i] + 1;
+    const uint64_t lat = out.response_cycle[i] - u.accept[i];
+    std::vector<uint64_t>& h = slot_latency[k];
+    if (h.size() <= lat) h.resize(lat + 1);
+    ++h[lat];
+  }
+  // The groups: per material stage and per texture descriptor, each the sum of its slots, with
+  // every counter and histogram of the run, and the rates derived from them.
+  const auto texture_label = [&frame](size_t t) { return fmt::format("{} {}", t, frame.textures[t].name); };
+  for (size_t k = 0; k < slots; ++k) {
+    if (slot_requests[k] == 0) continue;
+    sim::Stats s;
+    add(s, UnitStat::Pixels, slot_requests[k]);
+    add(s, UnitStat::Cycles, slot_cycles[k]);
+    u.cache_stage.publish_slot(s, k);
+    u.address_gen.publish_slot(s, k);
+    if (u.filter) add(s, UnitStat::FilterLaneBusyCycles, u.filter->busy_cycles()[k]);
+    if (u.edge_direction) s.set_histogram(stat_key(UnitStat::EdgeDirection), directions({k}));
+    s.set_histogram(stat_key(UnitStat::Latency), slot_latency[k]);
+    st.group(kStageGroups, stage_group_label(static_cast<int>(k % kStatStages))).merge(s);
+    st.group(kTextureGroups, texture_label(k / kStatStages)).merge(s);
+  }
+  derive_group_rates(st);
+  // The tables: traffic per texture descriptor (requests and memory bytes counted apart from the
+  // slots: the request tags, the cache's tag unit, the memory model) and per material stage.
+  std::vector<uint64_t> tex_requests(nt, 0);
+  for (const TraceRequest& r : trace.requests) ++tex_requests[r.texture];
   sim::Stats::Table textures{{"index", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
-  for (size_t t = 0; t < frame.textures.size(); ++t) {
+  for (size_t t = 0; t < nt; ++t) {
     const int ti = static_cast<int>(t);
     if (tex_requests[t] == 0 && u.cache.texture_hits(ti) + u.cache.texture_misses(ti) == 0) continue;
-    textures.rows.emplace_back(fmt::format("{} {}", t, frame.textures[t].name),
+    textures.rows.emplace_back(texture_label(t),
                                std::vector<uint64_t>{t, tex_requests[t], u.cache.texture_hits(ti),
                                                      u.cache.texture_misses(ti), u.mem.texture_bytes(ti)});
   }
   st.set_table(stat_key(UnitStat::Textures), std::move(textures));
   if (u.cache_stage.any_compressed()) {
     sim::Stats::Table decoders{{"index", "decoded_blocks", "decoder_busy_cycles", "decoder_stall_cycles"}, {}};
-    for (size_t t = 0; t < frame.textures.size(); ++t) {
-      const int ti = static_cast<int>(t);
+    for (size_t t = 0; t < nt; ++t) {
       if (!frame.regs.textures[t].compressed || tex_requests[t] == 0) continue;
-      decoders.rows.emplace_back(
-          fmt::format("{} {}", t, frame.textures[t].name),
-          std::vector<uint64_t>{t, u.cache_stage.decoded_blocks(ti), u.cache_stage.decoder_busy(ti),
-                                u.cache_stage.decoder_stall(ti)});
+      uint64_t blocks = 0, busy = 0, stall = 0;
+      for (size_t stage = 0; stage < kStatStages; ++stage) {
+        const CacheStage::SlotCounters& c =
+            u.cache_stage.slot_counters()[stat_slot(static_cast<int>(t), static_cast<int>(stage))];
+        blocks += c.decoded_blocks;
+        busy += c.decoder_busy;
+        stall += c.decoder_stall;
+      }
+      decoders.rows.emplace_back(texture_label(t), std::vector<uint64_t>{t, blocks, busy, stall});
     }
     st.set_table(stat_key(UnitStat::Decoders), std::move(decoders));
   }
   sim::Stats::Table stages{{"stage", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
-  for (size_t k = 0; k < 4; ++k)
-    if (stage_requests[k] > 0)
+  for (size_t k = 0; k < kStatStages; ++k)
+    if (const sim::Stats* g = st.find_group(kStageGroups, stage_group_label(static_cast<int>(k))))
       stages.rows.emplace_back(
-          fmt::format("stage {}", k),
-          std::vector<uint64_t>{k, stage_requests[k], u.cache_stage.stage_hits[k], u.cache_stage.stage_misses[k],
-                                u.cache_stage.stage_misses[k] * static_cast<uint64_t>(ucfg.cache.line_bytes)});
+          stage_group_label(static_cast<int>(k)),
+          std::vector<uint64_t>{k, counter(*g, UnitStat::Pixels), counter(*g, UnitStat::CacheLineHits),
+                                counter(*g, UnitStat::CacheLineMisses), counter(*g, UnitStat::MemoryBytes)});
   st.set_table(stat_key(UnitStat::Stages), std::move(stages));
   derive_rates(st, n, out.cycles);
 }
@@ -99,6 +152,11 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
 
 const char* unit_engine_name(UnitEngine e) { return kUnitEngineNames.name(e); }
 UnitEngine unit_engine_from_name(const std::string& name) { return kUnitEngineNames.from_name(name); }
+
+void derive_group_rates(sim::Stats& st) {
+  for (sim::Stats::Group& g : st.groups())
+    derive_rates(g.stats, counter(g.stats, UnitStat::Pixels), counter(g.stats, UnitStat::Cycles));
+}
 
 void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   const auto n = static_cast<double>(requests);

@@ -66,6 +66,10 @@ struct UnitStatField {
   const char* key;  // a per-level key ends in "_level" and is published as key + N (the MIP level)
   StatKind kind;
   const char* meaning;
+  // In the groups (every statistic per material stage and per texture descriptor, counted over
+  // the group's requests: the JSON's "groups"): nullptr, not published there; "" published with
+  // the same meaning; else what it means in a group.
+  const char* in_group;
   constexpr bool per_level() const {
     return id == UnitStat::CacheLineHitsLevel || id == UnitStat::CacheLineMissesLevel;
   }
@@ -73,55 +77,62 @@ struct UnitStatField {
 
 // Row i is UnitStat i (checked below), so a key is one array read.
 inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
-    {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)"},
+    {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)",
+     "the output cycles given to the group's requests: each request's retirement cycle minus the previous request's "
+     "(the first: its retirement cycle + 1), summed over units; one unit's groups add up to its cycles"},
     {UnitStat::Pixels, "pixels", StatKind::Counter,
-     "requests: every pixel of every shaded 2x2 quad, helper pixels included, once per material stage"},
-    {UnitStat::Units, "units", StatKind::Counter, "units of a scene run (a scene run only)"},
-    {UnitStat::CacheLineHits, "cache_line_hits", StatKind::Counter, "texel-cache line hits (tag unit)"},
-    {UnitStat::CacheLineMisses, "cache_line_misses", StatKind::Counter, "texel-cache line misses (tag unit)"},
+     "requests: every pixel of every shaded 2x2 quad, helper pixels included, once per material stage", ""},
+    {UnitStat::Units, "units", StatKind::Counter, "units of a scene run (a scene run only)", nullptr},
+    {UnitStat::CacheLineHits, "cache_line_hits", StatKind::Counter, "texel-cache line hits (tag unit)", ""},
+    {UnitStat::CacheLineMisses, "cache_line_misses", StatKind::Counter, "texel-cache line misses (tag unit)", ""},
     {UnitStat::CacheLineHitsLevel, "cache_line_hits_level", StatKind::Counter,
-     "line hits on MIP level N (levels with any access)"},
+     "line hits on MIP level N (levels with any access)", ""},
     {UnitStat::CacheLineMissesLevel, "cache_line_misses_level", StatKind::Counter,
-     "line misses on MIP level N (levels with any access)"},
-    {UnitStat::MemoryBytes, "memory_bytes", StatKind::Counter, "bytes read from memory"},
-    {UnitStat::MemoryRequests, "memory_requests", StatKind::Counter, "memory requests (one per missed line)"},
+     "line misses on MIP level N (levels with any access)", ""},
+    {UnitStat::MemoryBytes, "memory_bytes", StatKind::Counter, "bytes read from memory",
+     "bytes read for the group's misses"},
+    {UnitStat::MemoryRequests, "memory_requests", StatKind::Counter, "memory requests (one per missed line)", ""},
     {UnitStat::StallCacheMiss, "stall_cache_miss", StatKind::Counter,
-     "cycles the miss-FIFO head waits for memory (texel cache stage)"},
+     "cycles the miss-FIFO head waits for memory (texel cache stage)",
+     "counted for the footprint at the miss-FIFO head"},
     {UnitStat::StallBankConflict, "stall_bank_conflict", StatKind::Counter,
-     "cycles the tag port is held by a footprint needing several bank cycles (input side)"},
+     "cycles the tag port is held by a footprint needing several bank cycles (input side)",
+     "counted for the footprint waiting for the tag port"},
     {UnitStat::StallBackpressure, "stall_backpressure", StatKind::Counter,
-     "cycles the texel cache stage waits for a full next block"},
-    {UnitStat::ShapeCross, "shape_cross", StatKind::Counter, "edge kernels read as the full cross (edge modes)"},
-    {UnitStat::ShapeT, "shape_T", StatKind::Counter, "edge kernels read as a T shape (edge modes)"},
-    {UnitStat::ShapeL, "shape_L", StatKind::Counter, "edge kernels read as an L shape (edge modes)"},
+     "cycles the texel cache stage waits for a full next block", "counted for the footprint at the miss-FIFO head"},
+    {UnitStat::ShapeCross, "shape_cross", StatKind::Counter, "edge kernels read as the full cross (edge modes)", ""},
+    {UnitStat::ShapeT, "shape_T", StatKind::Counter, "edge kernels read as a T shape (edge modes)", ""},
+    {UnitStat::ShapeL, "shape_L", StatKind::Counter, "edge kernels read as an L shape (edge modes)", ""},
     {UnitStat::FilterLaneBusyCycles, "filter_lane_busy_cycles", StatKind::Counter,
-     "lane-cycles the filter's lanes computed (filter modes)"},
-    {UnitStat::Probes, "probes", StatKind::Counter, "probes (anisotropic samples; 1 per pixel otherwise)"},
-    {UnitStat::PixelsPerClock, "pixels_per_clock", StatKind::Value, "pixels / cycles"},
-    {UnitStat::MemoryBytesPerPixel, "memory_bytes_per_pixel", StatKind::Value, "memory_bytes / pixels"},
-    {UnitStat::ProbesPerPixel, "probes_per_pixel", StatKind::Value, "probes / pixels"},
-    {UnitStat::CacheHitRate, "cache_hit_rate", StatKind::Value, "line hits / (hits + misses); 1 without accesses"},
-    {UnitStat::LatencyMean, "latency_mean", StatKind::Value, "mean request latency in clocks"},
-    {UnitStat::LatencyMin, "latency_min", StatKind::Value, "least request latency in clocks"},
-    {UnitStat::LatencyMax, "latency_max", StatKind::Value, "greatest request latency in clocks"},
-    {UnitStat::Latency, "latency", StatKind::Histogram, "requests per latency (bucket = clocks)"},
+     "lane-cycles the filter's lanes computed (filter modes)", ""},
+    {UnitStat::Probes, "probes", StatKind::Counter, "probes (anisotropic samples; 1 per pixel otherwise)", ""},
+    {UnitStat::PixelsPerClock, "pixels_per_clock", StatKind::Value, "pixels / cycles",
+     "the group's pixels / its cycles"},
+    {UnitStat::MemoryBytesPerPixel, "memory_bytes_per_pixel", StatKind::Value, "memory_bytes / pixels", ""},
+    {UnitStat::ProbesPerPixel, "probes_per_pixel", StatKind::Value, "probes / pixels", ""},
+    {UnitStat::CacheHitRate, "cache_hit_rate", StatKind::Value, "line hits / (hits + misses); 1 without accesses", ""},
+    {UnitStat::LatencyMean, "latency_mean", StatKind::Value, "mean request latency in clocks", ""},
+    {UnitStat::LatencyMin, "latency_min", StatKind::Value, "least request latency in clocks", ""},
+    {UnitStat::LatencyMax, "latency_max", StatKind::Value, "greatest request latency in clocks", ""},
+    {UnitStat::Latency, "latency", StatKind::Histogram, "requests per latency (bucket = clocks)", ""},
     {UnitStat::EdgeDirection, "edge_direction", StatKind::Histogram,
-     "edge-preserving probes per chosen direction index (edge modes)"},
-    {UnitStat::AnisoProbes, "aniso_probes", StatKind::Histogram,
-     "pixels per probe count N (when some pixel has N > 1)"},
+     "edge-preserving probes per chosen direction index (edge modes)", ""},
+    {UnitStat::AnisoProbes, "aniso_probes", StatKind::Histogram, "pixels per probe count N (when some pixel has N > 1)",
+     ""},
     {UnitStat::Textures, "textures", StatKind::Table,
-     "per texture descriptor: index, requests, line_hits, line_misses, memory_bytes"},
+     "per texture descriptor: index, requests, line_hits, line_misses, memory_bytes", nullptr},
     {UnitStat::Stages, "stages", StatKind::Table,
-     "per material stage: stage, requests, line_hits, line_misses, memory_bytes"},
+     "per material stage: stage, requests, line_hits, line_misses, memory_bytes", nullptr},
     {UnitStat::DecodedBlocks, "decoded_blocks", StatKind::Counter,
      "compressed blocks decoded: each footprint's distinct blocks (cache.holds compressed) or each fill's (decoded; "
-     "compressed textures only)"},
+     "compressed textures only)",
+     ""},
     {UnitStat::DecoderBusyCycles, "decoder_busy_cycles", StatKind::Counter,
-     "clocks the block decoders decode (compressed textures only)"},
+     "clocks the block decoders decode (compressed textures only)", ""},
     {UnitStat::DecoderStallCycles, "decoder_stall_cycles", StatKind::Counter,
-     "clocks decode jobs wait for busy decoders (compressed textures only)"},
+     "clocks decode jobs wait for busy decoders (compressed textures only)", ""},
     {UnitStat::Decoders, "decoders", StatKind::Table,
-     "per compressed texture descriptor: index, decoded_blocks, decoder_busy_cycles, decoder_stall_cycles"},
+     "per compressed texture descriptor: index, decoded_blocks, decoder_busy_cycles, decoder_stall_cycles", nullptr},
 }};
 
 constexpr bool unit_stat_rows_in_order() {
@@ -134,6 +145,12 @@ static_assert(unit_stat_rows_in_order(), "kUnitStatFields: row i must be UnitSta
 constexpr const char* stat_key(UnitStat s) { return kUnitStatFields[static_cast<size_t>(s)].key; }
 // A per-level key: "cache_line_hits_level3".
 std::string stat_key(UnitStat s, int level);
+
+// The groups' breakdowns and labels (sim::Stats::group): per material stage ("stage 1") and per
+// texture descriptor ("3 NAME", as the tables' rows).
+inline constexpr const char* kStageGroups = "stage";
+inline constexpr const char* kTextureGroups = "texture";
+std::string stage_group_label(int stage);
 
 // Reads and writes by name (sim::Stats stays a generic name-keyed store).
 inline uint64_t counter(const sim::Stats& st, UnitStat s) { return st.counter(stat_key(s)); }

@@ -57,7 +57,7 @@ struct Unit {
     }
     if (any_edge) {
       edge_median.emplace(sim, c_edge_texels, c_edge_median_out);
-      edge_direction.emplace(sim, c_edge_median_out, c_edge_direction_out);
+      edge_direction.emplace(sim, c_edge_median_out, c_edge_direction_out, frame.regs.textures.size());
       edge_merge.emplace(sim, c_edge_direction_out, c_edge_resp);
       for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_edge_texels, &c_edge_median_out, &c_edge_direction_out, &c_edge_resp}) sim.add_clocked(c);
     }

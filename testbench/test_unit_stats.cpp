@@ -17,6 +17,7 @@
 
 #include "cmodel/block_formats.hpp"
 #include "cmodel/frame.hpp"
+#include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
@@ -39,8 +40,18 @@ const UnitStatField* row_of(const std::string& key) {
   return nullptr;
 }
 
-// Checks every key of `st` against the table; returns the rows it published.
-std::set<UnitStat> check_published(const sim::Stats& st, const std::string& what) {
+// Checks every key of `st` against the table (and of its groups, against the rows published in
+// groups); returns the rows it published.
+std::set<UnitStat> check_published(const sim::Stats& st, const std::string& what, bool in_group = false) {
+  for (const sim::Stats::Group& g : st.groups()) {
+    EXPECT_TRUE(g.breakdown == kStageGroups || g.breakdown == kTextureGroups) << what << ": group " << g.breakdown;
+    const std::string in = fmt::format("{}: group {} '{}'", what, g.breakdown, g.label);
+    EXPECT_TRUE(g.stats.groups().empty()) << in;
+    for (const UnitStat f : check_published(g.stats, in, true))
+      EXPECT_NE(kUnitStatFields[static_cast<size_t>(f)].in_group, nullptr)
+          << in << ": '" << kUnitStatFields[static_cast<size_t>(f)].key
+          << "' is published in a group; the table says not";
+  }
   const nlohmann::json j = nlohmann::json::parse(st.json_text());
   const std::map<std::string, StatKind> sections{{"counters", StatKind::Counter},
                                                  {"values", StatKind::Value},
@@ -50,6 +61,7 @@ std::set<UnitStat> check_published(const sim::Stats& st, const std::string& what
   for (const auto& [section, kind] : sections) {
     if (!j.contains(section)) continue;
     for (const auto& [key, v] : j[section].items()) {
+      if (in_group && section == "tables") ADD_FAILURE() << what << ": a table in a group";
       const UnitStatField* f = row_of(key);
       EXPECT_NE(f, nullptr) << what << ": published " << section << " '" << key << "' is not in kUnitStatFields";
       if (!f) continue;
@@ -129,12 +141,163 @@ TEST(UnitStats, EveryPublishedKeyIsInTheTable) {
     EXPECT_TRUE(all.contains(f.id)) << "kUnitStatFields row '" << f.key << "' is published by none of the runs";
 }
 
+// Every counter and histogram bucket of the groups of one breakdown, summed, against the total's;
+// `cycles_add_up`: one unit (its groups' cycles add up to the run's).
+void expect_groups_add_up(const sim::Stats& st, const char* breakdown, bool cycles_add_up, const std::string& what) {
+  std::map<std::string, uint64_t> counters;
+  std::map<std::string, std::vector<uint64_t>> histograms;
+  size_t groups = 0;
+  for (const sim::Stats::Group& g : st.groups()) {
+    if (g.breakdown != breakdown) continue;
+    ++groups;
+    for (const auto& [k, v] : g.stats.counters()) counters[k] += v;
+    const nlohmann::json j = nlohmann::json::parse(g.stats.json_text());
+    if (j.contains("histograms"))
+      for (const auto& [k, h] : j["histograms"].items()) {
+        std::vector<uint64_t>& into = histograms[k];
+        if (into.size() < h.size()) into.resize(h.size());
+        for (size_t b = 0; b < h.size(); ++b) into[b] += h[b].get<uint64_t>();
+      }
+    // The rates are the group's own.
+    const double px = static_cast<double>(counter(g.stats, UnitStat::Pixels));
+    EXPECT_DOUBLE_EQ(value(g.stats, UnitStat::PixelsPerClock),
+                     px / static_cast<double>(counter(g.stats, UnitStat::Cycles)))
+        << what << " " << g.label;
+    EXPECT_DOUBLE_EQ(value(g.stats, UnitStat::MemoryBytesPerPixel),
+                     static_cast<double>(counter(g.stats, UnitStat::MemoryBytes)) / px)
+        << what << " " << g.label;
+    EXPECT_DOUBLE_EQ(value(g.stats, UnitStat::ProbesPerPixel),
+                     static_cast<double>(counter(g.stats, UnitStat::Probes)) / px)
+        << what << " " << g.label;
+  }
+  EXPECT_GT(groups, 0u) << what;
+  for (const auto& [k, v] : st.counters()) {
+    if (k == stat_key(UnitStat::Units) || (k == stat_key(UnitStat::Cycles) && !cycles_add_up)) continue;
+    EXPECT_EQ(counters[k], v) << what << ": " << breakdown << " groups' '" << k << "'";
+  }
+  for (const auto& [k, v] : counters)
+    EXPECT_TRUE(st.counters().contains(k)) << what << ": '" << k << "' only in groups";
+  for (const char* h : {"latency", "aniso_probes", "edge_direction"}) {
+    const std::vector<uint64_t>* total = st.histogram(h);
+    if (!total) {
+      EXPECT_FALSE(histograms.contains(h)) << what << ": '" << h << "' only in groups";
+      continue;
+    }
+    std::vector<uint64_t> sum = histograms[h];
+    sum.resize(std::max(sum.size(), total->size()));
+    std::vector<uint64_t> want = *total;
+    want.resize(sum.size());
+    EXPECT_EQ(sum, want) << what << ": " << breakdown << " groups' histogram '" << h << "'";
+  }
+}
+
+// The groups add up to the totals: every counter (the cycles of one unit too) and every histogram,
+// per stage and per texture, on the two-stage lightmapped scene (both engines, one and two units,
+// anisotropic and edge-preserving) and a compressed texture's decoder counters.
+TEST(UnitStats, StageAndTextureGroupsAddUpToTheTotals) {
+  struct Case {
+    const char* scene;
+    const char* mode;
+    int max_aniso, units;
+    UnitEngine engine;
+  };
+  for (const Case& c : {Case{"lightmapped", "LINEAR_MIPMAP_LINEAR", 4, 1, UnitEngine::Recurrence},
+                        Case{"lightmapped", "LINEAR_MIPMAP_LINEAR", 4, 1, UnitEngine::Clocked},
+                        Case{"lightmapped", "EDGE_PRESERVING_MIPMAP_LINEAR", 1, 2, UnitEngine::Recurrence},
+                        Case{"lightmapped", "CUBIC", 1, 1, UnitEngine::Clocked}}) {
+    const std::string what =
+        fmt::format("{} {} x{} units {} {}", c.scene, c.mode, c.max_aniso, c.units, unit_engine_name(c.engine));
+    const SceneSimResult r = run_scene(c.scene, c.mode, c.max_aniso, c.units, c.engine);
+    ASSERT_NE(r.stats.find_group(kStageGroups, "stage 1"), nullptr) << what;  // the light maps
+    expect_groups_add_up(r.stats, kStageGroups, c.units == 1, what);
+    expect_groups_add_up(r.stats, kTextureGroups, c.units == 1, what);
+  }
+}
+
+// A two-stage trace whose light-map stage is derived by hand. Stage 0 reads a 16x16 base texture
+// NEAREST, stage 1 a 4x4 light map LINEAR (repeat, no MIP-map), interleaved quad by quad as the
+// rasterizer issues a two-stage material: base quad A at texels (0..1, 0..1), its light-map quad,
+// base quad C at (8..9, 8..9), its light-map quad. Textures tiled in 64-byte lines (4x4 RGBA8
+// texels), so the light map is one line and every LINEAR footprint on it (columns i, i + 1 mod 4)
+// reads that line: stage 1 has 8 pixels, 8 probes, 1 miss (its first footprint) and 7 hits, 64
+// memory bytes in 1 request. Each base quad reads one tile (1 miss, 3 hits): stage 0 has 2 misses,
+// 6 hits, 128 bytes. The 16 KiB cache evicts nothing.
+TEST(UnitStats, LightMapStageCountsDerivedByHand) {
+  const UnitConfig u;
+  ASSERT_EQ(u.cache.line_bytes, 64);
+  FrameBuilder b(u.cache.line_bytes);
+  b.add_texture(std::make_shared<const Texture>(make_checkerboard(16, 4).texture), {"base", {}});
+  b.add_texture(std::make_shared<const Texture>(make_checkerboard(4, 1).texture), {"lightmap", {}});
+  SamplerDescriptor nearest, linear;
+  nearest.mode = FilterMode{BaseFilter::Nearest, MipMode::None};
+  linear.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  linear.wrap_s = linear.wrap_t = WrapMode::Repeat;
+  b.add_sampler(nearest);
+  b.add_sampler(linear);
+  Trace tr;
+  const auto quad = [&tr](int stage, int size, int x, int y) {
+    for (int k = 0; k < 4; ++k) {
+      TraceRequest r;
+      r.texture = r.sampler = static_cast<uint8_t>(stage);
+      r.stage = static_cast<uint8_t>(stage);
+      r.s = (static_cast<float>(x + (k & 1)) + 0.5f) / static_cast<float>(size);
+      r.t = (static_cast<float>(y + (k >> 1)) + 0.5f) / static_cast<float>(size);
+      tr.requests.push_back(r);
+    }
+  };
+  quad(0, 16, 0, 0);
+  quad(1, 4, 0, 0);
+  quad(0, 16, 8, 8);
+  quad(1, 4, 2, 2);
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  for (const UnitEngine e : {UnitEngine::Clocked, UnitEngine::Recurrence}) {
+    const std::string what = unit_engine_name(e);
+    const UnitOutput out = run_unit(frame, tr, u, e, {});
+    const sim::Stats& st = out.stats;
+    const sim::Stats* base = st.find_group(kStageGroups, "stage 0");
+    const sim::Stats* light = st.find_group(kStageGroups, "stage 1");
+    ASSERT_NE(base, nullptr) << what;
+    ASSERT_NE(light, nullptr) << what;
+    EXPECT_EQ(st.find_group(kStageGroups, "stage 2"), nullptr) << what;
+    EXPECT_EQ(counter(*light, UnitStat::Pixels), 8u) << what;
+    EXPECT_EQ(counter(*light, UnitStat::Probes), 8u) << what;
+    EXPECT_EQ(counter(*light, UnitStat::CacheLineMisses), 1u) << what;
+    EXPECT_EQ(counter(*light, UnitStat::CacheLineHits), 7u) << what;
+    EXPECT_EQ(light->counter("cache_line_hits_level0"), 7u) << what;
+    EXPECT_EQ(light->counter("cache_line_misses_level0"), 1u) << what;
+    EXPECT_EQ(counter(*light, UnitStat::MemoryBytes), 64u) << what;
+    EXPECT_EQ(counter(*light, UnitStat::MemoryRequests), 1u) << what;
+    EXPECT_DOUBLE_EQ(value(*light, UnitStat::CacheHitRate), 7.0 / 8.0) << what;
+    EXPECT_DOUBLE_EQ(value(*light, UnitStat::MemoryBytesPerPixel), 8.0) << what;
+    EXPECT_DOUBLE_EQ(value(*light, UnitStat::ProbesPerPixel), 1.0) << what;
+    EXPECT_EQ(counter(*base, UnitStat::Pixels), 8u) << what;
+    EXPECT_EQ(counter(*base, UnitStat::CacheLineMisses), 2u) << what;
+    EXPECT_EQ(counter(*base, UnitStat::CacheLineHits), 6u) << what;
+    EXPECT_EQ(counter(*base, UnitStat::MemoryBytes), 128u) << what;
+    // Each stage reads its own texture: the texture groups are the stage groups.
+    const sim::Stats* lightmap = st.find_group(kTextureGroups, "1 lightmap");
+    ASSERT_NE(lightmap, nullptr) << what;
+    EXPECT_EQ(lightmap->json_text(), light->json_text()) << what;
+    // The output cycles of both stages add up to the run's; each request's latency is counted
+    // once in its stage.
+    EXPECT_EQ(counter(*base, UnitStat::Cycles) + counter(*light, UnitStat::Cycles), out.cycles) << what;
+    EXPECT_EQ(counter(st, UnitStat::MemoryBytes), 192u) << what;
+    expect_groups_add_up(st, kStageGroups, true, what);
+    expect_groups_add_up(st, kTextureGroups, true, what);
+  }
+}
+
 TEST(UnitStats, KeysAndMarkdown) {
   EXPECT_STREQ(stat_key(UnitStat::CacheLineHits), "cache_line_hits");
   EXPECT_EQ(stat_key(UnitStat::CacheLineMissesLevel, 3), "cache_line_misses_level3");
   const std::string md = unit_stats_markdown();
   EXPECT_NE(md.find("| `cache_line_hits_levelN` | counter |"), std::string::npos) << md;
   EXPECT_NE(md.find("| `latency` | histogram |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| `pixels_per_clock` | value | pixels / cycles | yes: the group's pixels / its cycles |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| `units` | counter | units of a scene run (a scene run only) | no |"), std::string::npos) << md;
   EXPECT_EQ(static_cast<size_t>(std::count(md.begin(), md.end(), '\n')), kUnitStatFields.size() + 2);
 }
 

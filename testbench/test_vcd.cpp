@@ -1,6 +1,7 @@
-// Waveforms (docs/cycle-model.md, "Statistics"): the kernel's clock and cycle window written out
+// Waveforms (docs/cycle-model.md, "Waveforms"): the kernel's clock and cycle window written out
 // exactly, and the unit's dump with its clock, request ids, texel cache lines, unique names, one
-// file per unit and the window.
+// file per unit and the window; the texture, stage, MIP level and screen position of requests and
+// footprints; the signal selection (--vcd-signals).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -15,12 +16,13 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/frame.hpp"
+#include "cmodel/mipmap.hpp"
 #include "cmodel/procedural.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "rtl/kernel/kernel.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
-#include "rtl/kernel/kernel.hpp"
 
 namespace tfu {
 namespace {
@@ -179,6 +181,160 @@ TEST(Vcd, TapAddressesAreTheFootprintsTexelAddresses) {
     for (size_t k = 0; k < 4; ++k) ASSERT_EQ(a[k + 1], want[k]) << "request " << id << " tap " << k;
     for (size_t k = 4; k < 16; ++k) ASSERT_EQ(a[k + 1], 0u) << "request " << id << " tap " << k;
   }
+}
+
+// The values of every signal at each dumped cycle (time 2c), by signal name (the full path).
+std::vector<std::map<std::string, uint64_t>> cycle_values(const std::string& v) {
+  std::map<std::string, std::string> path_of;  // code -> path
+  {
+    std::vector<std::string> scopes;
+    std::istringstream in(v);
+    for (std::string line; std::getline(in, line) && line != "$enddefinitions $end";) {
+      std::istringstream w(line);
+      std::string tok, type, width, code, name;
+      w >> tok;
+      if (tok == "$scope") {
+        w >> type >> name;
+        scopes.push_back(name);
+      } else if (tok == "$upscope") {
+        scopes.pop_back();
+      } else if (tok == "$var" && w >> type >> width >> code >> name) {
+        std::string p;
+        for (const std::string& sc : scopes) p += sc + ".";
+        path_of[code] = p + name;
+      }
+    }
+  }
+  std::vector<std::map<std::string, uint64_t>> cycles;
+  std::map<std::string, uint64_t> now;
+  std::istringstream in(body(v));
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      if (std::stoull(line.substr(1)) % 2 == 1) cycles.push_back(now);  // the clock falls: cycle complete
+    } else if (line[0] == 'b') {
+      const size_t sp = line.find(' ');
+      now[path_of.at(line.substr(sp + 1))] = std::stoull(line.substr(1, sp - 1), nullptr, 2);
+    } else {
+      now[path_of.at(line.substr(1))] = static_cast<uint64_t>(line[0] - '0');
+    }
+  }
+  return cycles;
+}
+
+// A hand-checked trace for the request and footprint signals: eight lod-mode requests alternating
+// between a base stage (texture 0, 16x16 with its MIP levels, NEAREST_MIPMAP_NEAREST at lod 1 or 2:
+// GL's nearest level, 1 or 2) and a light-map stage (texture 1, 4x4, LINEAR without MIP-map: level
+// 0), request i at screen position (10 + i, 20 + 2i).
+struct TaggedTrace {
+  Frame frame;
+  Trace trace;
+  std::vector<rtl::ScreenPosition> positions;
+  static int texture(size_t i) { return static_cast<int>(i % 2); }
+  static int level(size_t i) { return i % 2 == 1 ? 0 : (i % 4 == 0 ? 1 : 2); }
+};
+TaggedTrace tagged_trace() {
+  TaggedTrace t;
+  FrameBuilder b(64);
+  Texture base = make_checkerboard(16, 4).texture;
+  generate_mipmaps(base, MipMethod::Box);
+  b.add_texture(std::make_shared<const Texture>(std::move(base)), {"base", {}});
+  b.add_texture(std::make_shared<const Texture>(make_checkerboard(4, 1).texture), {"lightmap", {}});
+  SamplerDescriptor nearest, linear;
+  nearest.mode = FilterMode{BaseFilter::Nearest, MipMode::Nearest};
+  linear.mode = FilterMode{BaseFilter::Linear, MipMode::None};
+  b.add_sampler(nearest);
+  b.add_sampler(linear);
+  t.trace.mode = TraceMode::Lod;
+  for (size_t i = 0; i < 8; ++i) {
+    TraceRequest r;
+    r.texture = r.sampler = r.stage = static_cast<uint8_t>(TaggedTrace::texture(i));
+    r.s = 0.1f + 0.1f * static_cast<float>(i);
+    r.t = 0.3f;
+    r.lod = static_cast<float>(TaggedTrace::level(i));
+    t.trace.requests.push_back(r);
+    t.positions.push_back({static_cast<uint16_t>(10 + i), static_cast<uint16_t>(20 + 2 * i)});
+  }
+  bind_requests(b, t.trace);
+  t.frame = b.finish();
+  return t;
+}
+
+// The request signals at the pixel channel's head, the footprint signals at the footprint
+// channel's head and those of the texel cache's last accepted footprint carry the texture, stage,
+// MIP level and screen position of their request id, for every request.
+TEST(Vcd, RequestAndFootprintSignalsCarryTextureStageLevelAndPosition) {
+  const TaggedTrace t = tagged_trace();
+  std::ostringstream os;
+  rtl::VcdOptions vo;
+  vo.out = &os;
+  vo.positions = &t.positions;
+  const rtl::UnitOutput out = rtl::run_unit(t.frame, t.trace, rtl::UnitConfig{}, vo);
+  ASSERT_EQ(out.pixels.size(), 8u);
+  std::set<uint64_t> at_pixel, at_footprint, accepted;
+  for (const std::map<std::string, uint64_t>& c : cycle_values(os.str())) {
+    const auto expect_tag = [&c](const std::string& at, const std::string& id_name, bool has_level) {
+      const uint64_t id = c.at(id_name);
+      EXPECT_EQ(c.at(at + "texture"), static_cast<uint64_t>(TaggedTrace::texture(id))) << at << " id " << id;
+      EXPECT_EQ(c.at(at + "stage"), static_cast<uint64_t>(TaggedTrace::texture(id))) << at << " id " << id;
+      EXPECT_EQ(c.at(at + "x"), 10 + id) << at << " id " << id;
+      EXPECT_EQ(c.at(at + "y"), 20 + 2 * id) << at << " id " << id;
+      if (has_level) {
+        EXPECT_EQ(c.at(at + "level"), static_cast<uint64_t>(TaggedTrace::level(id))) << at << " id " << id;
+      }
+      return id;
+    };
+    if (c.at("tfu.pixel.valid")) at_pixel.insert(expect_tag("tfu.pixel.", "tfu.pixel.id", false));
+    if (c.at("tfu.footprint.valid")) at_footprint.insert(expect_tag("tfu.footprint.", "tfu.footprint.id", true));
+    if (c.at("tfu.texel_cache.accepted_taps") > 0)
+      accepted.insert(expect_tag("tfu.texel_cache.accepted_", "tfu.texel_cache.accepted_id", true));
+  }
+  const std::set<uint64_t> all{0, 1, 2, 3, 4, 5, 6, 7};
+  EXPECT_EQ(at_pixel, all);
+  EXPECT_EQ(at_footprint, all);
+  EXPECT_EQ(accepted, all);
+}
+
+// --vcd-signals: a selection keeps exactly the signals it names (and the clock) with the same
+// values, in a smaller file; a pattern that selects nothing is one line naming it, before the run.
+TEST(Vcd, SignalSelectionKeepsExactlyTheSelectedSignals) {
+  EXPECT_TRUE(sim::VcdWriter::selects("tfu.texel_cache", "tfu.texel_cache.id"));
+  EXPECT_FALSE(sim::VcdWriter::selects("tfu.texel", "tfu.texel_cache.id"));
+  EXPECT_TRUE(sim::VcdWriter::selects("tfu.*.valid", "tfu.quad.valid"));
+  EXPECT_TRUE(sim::VcdWriter::selects("*_tap_addr_1?", "tfu.texel_cache.accepted_tap_addr_15"));
+  EXPECT_FALSE(sim::VcdWriter::selects("tfu.pixel.x", "tfu.pixel.xy"));
+  const TaggedTrace t = tagged_trace();
+  std::ostringstream full, some;
+  rtl::VcdOptions vo;
+  vo.out = &full;
+  vo.positions = &t.positions;
+  rtl::run_unit(t.frame, t.trace, rtl::UnitConfig{}, vo);
+  vo.out = &some;
+  vo.signals = {"tfu.pixel", "tfu.texel_cache.accepted_l*"};
+  rtl::run_unit(t.frame, t.trace, rtl::UnitConfig{}, vo);
+  const std::vector<std::string> paths = signal_paths(some.str());
+  EXPECT_EQ(std::set<std::string>(paths.begin(), paths.end()),
+            (std::set<std::string>{"tfu.clk", "tfu.pixel.valid", "tfu.pixel.ready", "tfu.pixel.count", "tfu.pixel.id",
+                                   "tfu.pixel.texture", "tfu.pixel.stage", "tfu.pixel.x", "tfu.pixel.y",
+                                   "tfu.texel_cache.accepted_level", "tfu.texel_cache.accepted_line"}));
+  EXPECT_LT(some.str().size() * 3, full.str().size());
+  const std::vector<std::map<std::string, uint64_t>> a = cycle_values(full.str()), b = cycle_values(some.str());
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t c = 0; c < a.size(); ++c)
+    for (const auto& [name, v] : b[c]) EXPECT_EQ(v, a[c].at(name)) << name << " cycle " << c;
+  std::ostringstream none;
+  vo.out = &none;
+  vo.signals = {"tfu.pixel", "tfu.pixl.texture"};
+  try {
+    rtl::run_unit(t.frame, t.trace, rtl::UnitConfig{}, vo);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    EXPECT_EQ(m.rfind("--vcd-signals: 'tfu.pixl.texture' selects no signal (did you mean 'tfu.pixel.texture'?", 0), 0u)
+        << m;
+  }
+  EXPECT_EQ(none.str(), "");  // refused before the first cycle
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include <fnmatch.h>
+
 #include <nlohmann/json.hpp>
 
 #include "cmodel/json_output.hpp"
@@ -26,12 +28,27 @@ std::string Stats::json_text() const {
     }
     j["tables"][k] = rows;
   }
+  for (const Group& g : groups_) j["groups"][g.breakdown][g.label] = nlohmann::json::parse(g.stats.json_text());
   return json_dump(j, 2);
+}
+
+Stats& Stats::group(const std::string& breakdown, const std::string& label) {
+  for (Group& g : groups_)
+    if (g.breakdown == breakdown && g.label == label) return g.stats;
+  groups_.push_back({breakdown, label, Stats{}});
+  return groups_.back().stats;
+}
+
+const Stats* Stats::find_group(const std::string& breakdown, const std::string& label) const {
+  for (const Group& g : groups_)
+    if (g.breakdown == breakdown && g.label == label) return &g.stats;
+  return nullptr;
 }
 
 void Stats::write_json(std::ostream& os) const { os << json_text() << '\n'; }
 
 void Stats::merge(const Stats& from, bool add_counters) {
+  for (const Group& g : from.groups_) group(g.breakdown, g.label).merge(g.stats, true);
   if (add_counters)
     for (const auto& [k, v] : from.counters_) counters_[k] += v;
   for (const auto& [k, h] : from.histograms_) {
@@ -75,9 +92,36 @@ std::string binary(uint64_t v, int width) {
 }
 }  // namespace
 
+bool VcdWriter::selects(const std::string& pattern, const std::string& path) {
+  return fnmatch(pattern.c_str(), path.c_str(), 0) == 0 || fnmatch((pattern + ".*").c_str(), path.c_str(), 0) == 0;
+}
+
+void VcdWriter::select(std::vector<std::string> patterns) {
+  if (!signals_.empty() || header_done_) throw CheckFailed("VCD signal selection must come before the first signal");
+  patterns_ = std::move(patterns);
+  matched_.assign(patterns_.size(), 0);
+}
+
+std::vector<std::string> VcdWriter::unmatched_patterns() const {
+  std::vector<std::string> out;
+  for (size_t k = 0; k < patterns_.size(); ++k)
+    if (!matched_[k]) out.push_back(patterns_[k]);
+  return out;
+}
+
 void VcdWriter::add(const std::string& path, int width, std::function<uint64_t()> value) {
   if (header_done_) throw CheckFailed("VCD signals must be added before the first sample");
   if (width < 1 || width > 64) throw InputError(fmt::format("VCD signal {}: width {} outside 1..64", path, width));
+  offered_.push_back(path);
+  if (!patterns_.empty()) {
+    bool selected = false;
+    for (size_t k = 0; k < patterns_.size(); ++k)
+      if (selects(patterns_[k], path)) {
+        matched_[k] = 1;
+        selected = true;
+      }
+    if (!selected) return;
+  }
   signals_.push_back({path, width, std::move(value), vcd_id(signals_.size()), 0, false});
 }
 

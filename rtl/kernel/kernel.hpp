@@ -172,10 +172,20 @@ class Stats {
     const auto it = tables_.find(name);
     return it == tables_.end() ? nullptr : &it->second;
   }
-  // Adds `from`'s counters, histograms and table rows (rows with equal labels summed) into this.
+  // Groups: the same statistics for a part of the run, e.g. one material stage or one texture, each
+  // a Stats of its own under a breakdown ("stage", "texture") and a label ("stage 1", "3 name").
+  struct Group;
+  Stats& group(const std::string& breakdown, const std::string& label);  // created empty if absent
+  const Stats* find_group(const std::string& breakdown, const std::string& label) const;
+  std::vector<Group>& groups() { return groups_; }
+  const std::vector<Group>& groups() const { return groups_; }
+  // Adds `from`'s counters, histograms and table rows (rows with equal labels summed) into this,
+  // and its groups (each merged whole, counters too, whatever `add_counters`; values not at all:
+  // they are derived, again after a merge).
   void merge(const Stats& from, bool add_counters = true);
   void write_json(std::ostream& os) const;
-  // The same as a JSON object (to embed in a larger document).
+  // The same as a JSON object (to embed in a larger document); the groups under "groups":
+  // {breakdown: {label: {counters, values, histograms}}}.
   std::string json_text() const;
 
  private:
@@ -183,6 +193,12 @@ class Stats {
   std::map<std::string, double> values_;
   std::map<std::string, std::vector<uint64_t>> histograms_;
   std::map<std::string, Table> tables_;
+  std::vector<Group> groups_;  // in order of creation
+};
+
+struct Stats::Group {
+  std::string breakdown, label;
+  Stats stats;
 };
 
 class Simulator;
@@ -245,6 +261,16 @@ class VcdWriter {
   void add_clock(const std::string& path);
   // Only cycles from..to (inclusive) are dumped; the first of them dumps every signal.
   void set_window(uint64_t from, uint64_t to);
+  // Only the signals a pattern selects are dumped (before the first add; none given: every
+  // signal); the clock always. A pattern selects a path it matches as a glob ('*' any characters,
+  // dots included; '?' one; [...] a set: POSIX fnmatch without flags) and every path under a scope
+  // it matches ("tfu.texel_cache" selects tfu.texel_cache.*).
+  void select(std::vector<std::string> patterns);
+  static bool selects(const std::string& pattern, const std::string& path);
+  // The patterns that selected none of the signals offered to add() so far, and every path
+  // offered (selected or not): for the caller's error line.
+  std::vector<std::string> unmatched_patterns() const;
+  const std::vector<std::string>& offered() const { return offered_; }
   void sample(uint64_t cycle);
 
  private:
@@ -263,6 +289,9 @@ class VcdWriter {
   bool header_done_ = false;
   std::string clock_path_, clock_id_;  // empty: no clock
   uint64_t from_ = 0, to_ = UINT64_MAX;
+  std::vector<std::string> patterns_;  // empty: every signal
+  std::vector<uint8_t> matched_;       // per pattern
+  std::vector<std::string> offered_;
 };
 
 class Simulator {

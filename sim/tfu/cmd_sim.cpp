@@ -50,6 +50,8 @@ struct SimOptions {
   int units = 1;
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
+  std::string vcd_signals;                     // comma-separated patterns (empty: every signal)
+  std::vector<std::string> vcd_patterns;       // from vcd_signals
   bool force = false, bench = false, config_fields = false, stats_fields = false, compare_engines = false;
   std::string engine;  // empty: recurrence, or clocked when a waveform is asked for
   rtl::UnitEngine unit_engine = rtl::UnitEngine::Recurrence;  // from engine
@@ -79,6 +81,33 @@ rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
   return u;
 }
 
+// A table row's name in lines of at most `width` characters: whole, wrapped (after a '/', ':' or
+// ' ' where one falls in the line's second half), never cut.
+std::vector<std::string> wrap_name(const std::string& name, size_t width) {
+  std::vector<std::string> lines;
+  size_t p = 0;
+  while (name.size() - p > width) {
+    size_t cut = width;
+    for (size_t k = width; k > width / 2; --k)
+      if (const char c = name[p + k - 1]; c == '/' || c == ':' || c == ' ') {
+        cut = k;
+        break;
+      }
+    lines.push_back(name.substr(p, cut));
+    p += cut;
+  }
+  lines.push_back(name.substr(p));
+  return lines;
+}
+
+// One table row: the name's first line with the figures, its further lines below, indented.
+void print_row(const std::string& name, const std::string& figures) {
+  constexpr size_t kNameWidth = 40;
+  const std::vector<std::string> lines = wrap_name(name, kNameWidth);
+  std::cout << fmt::format("    {:<{}} {}\n", lines[0], kNameWidth, figures);
+  for (size_t k = 1; k < lines.size(); ++k) std::cout << fmt::format("      {}\n", lines[k]);
+}
+
 void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
   const uint64_t hits = rtl::counter(st, rtl::UnitStat::CacheLineHits), misses = rtl::counter(st, rtl::UnitStat::CacheLineMisses);
   const auto dn = static_cast<double>(n);
@@ -104,18 +133,31 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
         "  block decoders: {} blocks decoded, {} busy and {} stall cycles; per compressed texture:\n",
         rtl::counter(st, rtl::UnitStat::DecodedBlocks), rtl::counter(st, rtl::UnitStat::DecoderBusyCycles),
         rtl::counter(st, rtl::UnitStat::DecoderStallCycles));
-    for (const auto& [label, v] : t->rows)
-      std::cout << fmt::format("    {:<40} {:>10} {:>10} {:>10}\n",
-                               label.size() > 40 ? label.substr(0, 37) + "..." : label, v[1], v[2], v[3]);
+    for (const auto& [label, v] : t->rows) print_row(label, fmt::format("{:>10} {:>10} {:>10}", v[1], v[2], v[3]));
   }
-  for (const char* name : {rtl::stat_key(rtl::UnitStat::Textures), rtl::stat_key(rtl::UnitStat::Stages)}) {
-    const sim::Stats::Table* t = st.table(name);
-    if (!t || t->rows.empty()) continue;
-    std::cout << fmt::format("  per {}: requests, line hit rate, memory bytes\n", name == std::string("textures") ? "texture" : "stage");
-    for (const auto& [label, v] : t->rows) {
-      const uint64_t h = v[2], m = v[3];
-      std::cout << fmt::format("    {:<40} {:>10} {:>8.4f} {:>12}\n", label.size() > 40 ? label.substr(0, 37) + "..." : label,
-                               v[1], h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0, v[4]);
+  // The groups (every statistic per stage and per texture: --stats), their main figures; stages in
+  // order, textures by descriptor index (the label's leading number).
+  for (const char* breakdown : {rtl::kStageGroups, rtl::kTextureGroups}) {
+    std::vector<const sim::Stats::Group*> rows;
+    for (const sim::Stats::Group& g : st.groups())
+      if (g.breakdown == breakdown) rows.push_back(&g);
+    if (rows.empty()) continue;
+    std::sort(rows.begin(), rows.end(), [](const sim::Stats::Group* a, const sim::Stats::Group* b) {
+      const auto index = [](const std::string& l) { return std::stoull(l.substr(l.find_first_of("0123456789"))); };
+      return index(a->label) < index(b->label);
+    });
+    std::cout << fmt::format(
+        "  per {}: requests, pixels/clock (of the cycles given to them), probes/pixel, line hit rate, "
+        "memory bytes/pixel, memory bytes, mean latency\n",
+        breakdown);
+    for (const sim::Stats::Group* g : rows) {
+      const sim::Stats& s = g->stats;
+      print_row(g->label,
+                fmt::format("{:>10} {:>7.3f} {:>7.3f} {:>8.4f} {:>8.3f} {:>12} {:>8.1f}",
+                            rtl::counter(s, rtl::UnitStat::Pixels), rtl::value(s, rtl::UnitStat::PixelsPerClock),
+                            rtl::value(s, rtl::UnitStat::ProbesPerPixel), rtl::value(s, rtl::UnitStat::CacheHitRate),
+                            rtl::value(s, rtl::UnitStat::MemoryBytesPerPixel),
+                            rtl::counter(s, rtl::UnitStat::MemoryBytes), rtl::value(s, rtl::UnitStat::LatencyMean)));
     }
   }
 }
@@ -132,7 +174,8 @@ sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfi
   rec.trace = o.requests;
   rec.textures = frame_texture_names(frame);
   const rtl::UnitOutput got =
-      rtl::run_unit(frame, trace, unit, o.unit_engine, rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to});
+      rtl::run_unit(frame, trace, unit, o.unit_engine,
+                    rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to, o.vcd_patterns});
   const GoldenUnit golden(frame);
   mismatch = rtl::first_mismatch(trace, rtl::golden_outputs(golden, trace, got), got);
   if (mismatch.empty() && o.compare_engines) mismatch = rtl::compare_engines(frame, trace, unit);
@@ -168,6 +211,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   so.unit_vcds = std::move(vcds);
   so.vcd_from = o.vcd_from;
   so.vcd_to = o.vcd_to;
+  so.vcd_signals = o.vcd_patterns;
   so.engine = o.unit_engine;
   so.compare_engines = o.compare_engines;
   SceneRun run = render_and_simulate(scene, ro, unit, so, o.bench);
@@ -265,6 +309,20 @@ void run(SimOptions& o, CLI::App& cmd) {
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }
   if (o.vcd_from > o.vcd_to) throw InputError(fmt::format("--vcd-from {} is after --vcd-to {}", o.vcd_from, o.vcd_to));
+  if (given("--vcd-signals")) {
+    if (o.vcd.empty()) throw InputError("--vcd-signals needs --vcd (it selects the waveform's signals)");
+    for (size_t p = 0; p <= o.vcd_signals.size();) {
+      const size_t comma = std::min(o.vcd_signals.find(',', p), o.vcd_signals.size());
+      const std::string pattern = o.vcd_signals.substr(p, comma - p);
+      if (pattern.empty() || pattern.find_first_of(" \t") != std::string::npos)
+        throw InputError(
+            fmt::format("--vcd-signals '{}': expected comma-separated signal names or globs without spaces, "
+                        "e.g. 'tfu.pixel.*,tfu.texel_cache.accepted_*'",
+                        o.vcd_signals));
+      o.vcd_patterns.push_back(pattern);
+      p = comma + 1;
+    }
+  }
   if (config_out_file) config_out_file->stream() << rtl::unit_config_to_json(unit) << '\n';
   std::vector<std::ostream*> vcds;
   for (OutputFile* f : vcd_files) vcds.push_back(&f->stream());
@@ -469,9 +527,14 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");
   cmd->add_option("--vcd", o->vcd,
                   "Write a value-change dump (GTKWave): clock, channels with their request ids, stages, texel cache "
-                  "lines; with --units N also FILE.unitK.vcd per further unit");
+                  "lines, the texture, stage, MIP level and screen position of requests and footprints; with --units N "
+                  "also FILE.unitK.vcd per further unit");
   cmd->add_option("--vcd-from", o->vcd_from, "First cycle the waveform covers")->capture_default_str()->check(unsigned_integer());
   cmd->add_option("--vcd-to", o->vcd_to, "Last cycle the waveform covers (default: the end)")->check(unsigned_integer());
+  cmd->add_option(
+      "--vcd-signals", o->vcd_signals,
+      "Only these waveform signals (and the clock): comma-separated names or globs, a scope selecting "
+      "everything under it, e.g. 'tfu.pixel,tfu.texel_cache.accepted_*' (docs/cycle-model.md, \"Waveforms\")");
   cmd->add_option("--engine", o->engine,
                   "How the cycle model runs: recurrence (request by request through every block, by the timing "
                   "recurrences of rtl/unit_recurrence.cpp; the default) or clocked (every block every cycle: the "
