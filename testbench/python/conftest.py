@@ -50,5 +50,10 @@ def read_json(path):
         return json.load(f)
 
 
+def cli_samples(cli, *args):
+    _, out, _ = cli.run("sample", *args, "--out", "-")
+    return np.array([[int(v) for v in line.split(",")] for line in out.splitlines()], dtype=np.uint8)
+
+
 def data(name):
     return os.path.join(DATA, name)
