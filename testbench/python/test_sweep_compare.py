@@ -48,3 +48,14 @@ def test_compare_equals_tfu_compare(cli, tmp_path):
     for key in ("mse", "psnr_db", "ssim"):
         assert got[key] == pytest.approx(want[key], rel=1e-12), key
     assert got == tfu.compare(str(tmp_path / "a.png"), str(tmp_path / "b.png"))
+
+
+def test_sweep_from_a_dict_is_the_same_spec_as_its_file(tmp_path):
+    spec = {"scenes": ["ground_plane"], "filters": ["trilinear"], "width": 32, "height": 24,
+            "grid": {"cache.capacity_bytes": [2048, 8192]}}
+    rows = tfu.sweep(spec, str(tmp_path / "dict"))
+    assert read_json(tmp_path / "dict" / "spec.json") == spec
+    again = tfu.sweep(str(tmp_path / "dict" / "spec.json"), str(tmp_path / "file"))
+    assert rows == again and [r["cache.capacity_bytes"] for r in rows] == [2048, 8192]
+    assert all(r["golden_equal"] and r["filter"] == "LINEAR_MIPMAP_LINEAR" for r in rows)
+    assert rows[1]["bytes_per_pixel"] <= rows[0]["bytes_per_pixel"]  # a larger cache reads no more
