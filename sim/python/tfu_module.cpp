@@ -7,7 +7,8 @@
 //
 // Errors: tfu::InputError raises tfu.InputError (a ValueError), CheckFailed tfu.CheckFailed,
 // DeadlockError tfu.DeadlockError (both RuntimeErrors), each with the one-line message the command
-// line prints after "tfu: error: ", "tfu: check failed: " and "tfu: deadlock: ".
+// line prints after "tfu: error: " and "tfu: check failed: ", and a deadlock's summary line (the
+// command line also writes the per-stage dump to a file).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
