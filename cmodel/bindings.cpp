@@ -171,59 +171,22 @@ Params sampler_to_params(const SamplerDescriptor& s) {
 
 std::span<const char* const> texture_param_keys() { return kTextureParamKeys; }
 
-LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir,
-                                const std::string& game_dir) {
-  for (const auto& [key, value] : spec.params) {
+Texture texture_with_params(Texture tex, const Params& params, const std::string& where) {
+  for (const auto& [key, value] : params) {
     bool known = false;
     for (const char* k : kTextureParamKeys) known = known || key == k;
     if (!known) throw InputError(fmt::format("{}: unknown texture key '{}'", where, quote_input(key)));
   }
-  const auto param = [&spec](const char* key, const char* def) {
-    const auto it = spec.params.find(key);
-    return it == spec.params.end() ? std::string(def) : it->second;
+  const auto param = [&params](const char* key, const char* def) {
+    const auto it = params.find(key);
+    return it == params.end() ? std::string(def) : it->second;
   };
   const auto fail = [&where](const std::string& key, const std::string& msg) -> InputError {
     return InputError(fmt::format("{}: key '{}': {}", where, key, msg));
   };
-  LoadedTexture out;
-  if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
-    if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
-    out.texture = level_texture(spec.source, where, game_dir);
-    return out;
-  }
-  Texture tex;
-  const std::string prefix = "proc:";
-  if (spec.source.rfind(prefix, 0) == 0) {
-    std::string name = spec.source.substr(prefix.size());
-    int size = 256;
-    if (const auto colon = name.find(':'); colon != std::string::npos) {
-      try {
-        size = static_cast<int>(parse_int(name.substr(colon + 1), 1, kMaxTextureSize));
-      } catch (const InputError& e) {
-        throw InputError(fmt::format("{}: texture '{}': size {}", where, quote_input(spec.source), e.what()));
-      }
-      name.resize(colon);
-    }
-    try {
-      Procedural p = make_procedural(name, size);
-      tex = std::move(p.texture);
-      out.truth = std::move(p.eval);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", where, e.what()));
-    }
-  } else {
-    std::filesystem::path path(spec.source);
-    if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
-    try {
-      tex = load_texture(path.string());  // its errors name the file ...
-    } catch (const InputError& e) {
-      // ... and `where` the scene key, trace line or option that named it (TFU-S E13)
-      throw InputError(fmt::format("{}: {}", where, e.what()));
-    }
-  }
   if (tex.compressed) {  // a DDS, KTX or .astc file: its format and levels are the file's
     for (const char* key : {"format", "mipmaps", "alpha"})
-      if (spec.params.contains(key) && !(std::string(key) == "mipmaps" && (param(key, "") == "auto" || param(key, "") == "stored")))
+      if (params.contains(key) && !(std::string(key) == "mipmaps" && (param(key, "") == "auto" || param(key, "") == "stored")))
         throw fail(key, "a compressed file's texels and MIP levels are its own (the key applies to uncompressed images)");
   }
   const std::string format = param("format", "auto");
@@ -251,9 +214,9 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   }
   if (!valid_tile_bytes(tex.tile_bytes)) throw fail("tile_bytes", "must be 64, 256 or 1024");
   double alpha = 0.5;
-  if (spec.params.contains("alpha")) {
+  if (params.contains("alpha")) {
     char* end = nullptr;
-    const std::string& a = spec.params.at("alpha");
+    const std::string& a = params.at("alpha");
     alpha = std::strtod(a.c_str(), &end);
     if (a.empty() || end != a.c_str() + a.size() || !(alpha >= 0.0 && alpha <= 1.0)) throw fail("alpha", "must be a number in 0..1");
   }
@@ -295,7 +258,53 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       throw fail("compress", e.what());
     }
   }
-  out.texture = std::make_shared<const Texture>(std::move(tex));
+  return tex;
+}
+
+LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir,
+                                const std::string& game_dir) {
+  for (const auto& [key, value] : spec.params) {
+    bool known = false;
+    for (const char* k : kTextureParamKeys) known = known || key == k;
+    if (!known) throw InputError(fmt::format("{}: unknown texture key '{}'", where, quote_input(key)));
+  }
+  LoadedTexture out;
+  if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
+    if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
+    out.texture = level_texture(spec.source, where, game_dir);
+    return out;
+  }
+  Texture tex;
+  const std::string prefix = "proc:";
+  if (spec.source.rfind(prefix, 0) == 0) {
+    std::string name = spec.source.substr(prefix.size());
+    int size = 256;
+    if (const auto colon = name.find(':'); colon != std::string::npos) {
+      try {
+        size = static_cast<int>(parse_int(name.substr(colon + 1), 1, kMaxTextureSize));
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: texture '{}': size {}", where, quote_input(spec.source), e.what()));
+      }
+      name.resize(colon);
+    }
+    try {
+      Procedural p = make_procedural(name, size);
+      tex = std::move(p.texture);
+      out.truth = std::move(p.eval);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", where, e.what()));
+    }
+  } else {
+    std::filesystem::path path(spec.source);
+    if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;
+    try {
+      tex = load_texture(path.string());  // its errors name the file ...
+    } catch (const InputError& e) {
+      // ... and `where` the scene key, trace line or option that named it (TFU-S E13)
+      throw InputError(fmt::format("{}: {}", where, e.what()));
+    }
+  }
+  out.texture = std::make_shared<const Texture>(texture_with_params(std::move(tex), spec.params, where));
   return out;
 }
 

@@ -47,6 +47,10 @@ struct LoadedTexture {
   std::shared_ptr<const Texture> texture;
   ColourFn truth;  // analytic colour (procedural textures), empty for files
 };
+// The keys format, mipmaps, alpha, layout, tile_bytes and compress applied to a texture's level 0
+// (or to a file's stored levels), as load_texture_spec applies them to what it loaded: also for
+// textures made in memory (the Python module's numpy arrays). InputError "WHERE: key 'k': ...".
+Texture texture_with_params(Texture tex, const Params& params, const std::string& where);
 // `base_dir`: where a relative file name is found; `game_dir`: the OpenArena data of oa:MAP:... textures
 // (empty: $TFU_OPENARENA_DIR, else Debian's).
 LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& where, const std::string& base_dir = {},

@@ -132,7 +132,9 @@ nlohmann::json provenance_json(const RunRecord& run) {
   if (run.has_scene) {
     j["scene"] = scene_fingerprint(run.scene);
   } else {
-    j["scene"] = {{"kind", "trace"}, {"path", run.trace}, {"fnv1a64", file_fnv1a64(run.trace, "--requests", kMaxTraceBytes)}};
+    const std::string hash =
+        run.trace_fnv1a64.empty() ? file_fnv1a64(run.trace, "--requests", kMaxTraceBytes) : run.trace_fnv1a64;
+    j["scene"] = {{"kind", "trace"}, {"path", run.trace}, {"fnv1a64", hash}};
   }
   j["width"] = run.width;
   j["height"] = run.height;

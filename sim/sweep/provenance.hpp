@@ -54,6 +54,7 @@ struct RunRecord {
   SceneRequest scene;              // as requested (width/height 0: the scene's own)
   bool has_scene = true;           // false: a request trace (`trace` names it)
   std::string trace;               // request-trace path (tfu sim --requests)
+  std::string trace_fnv1a64;       // a trace that is no file (the Python module's arrays): its text's hash
   int width = 0, height = 0;       // the rendered resolution
   std::string filter = "scene";    // canonical filter name of the base stages, or "scene" (their own)
   Params sampler_overrides;        // further sampler keys of the base stages
