@@ -159,10 +159,12 @@ void AddressGen::publish_histogram(sim::Stats& st, const std::array<uint64_t, kM
     st.set_histogram(stat_key(UnitStat::AnisoProbes), std::vector<uint64_t>(hist.begin(), hist.end()));
 }
 
+// Decided by the registers, not by the pixels this unit saw: every unit of a run then publishes the
+// histogram, and the run's total (the units' histograms added) keeps the one-probe pixels of a unit
+// that met no anisotropic pixel.
 bool AddressGen::any_anisotropic() const {
-  for (const auto& h : probe_hist_)
-    for (size_t n = 2; n < h.size(); ++n)
-      if (h[n] != 0) return true;
+  for (const SamplerDescriptor& d : regs_.samplers)
+    if (d.anisotropic()) return true;
   return false;
 }
 

@@ -67,11 +67,11 @@ class AddressGen : public sim::Module {
   // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
   // forms their grids through pick_levels() and grid_function() itself.
   void count_isotropic_pixels(uint64_t n, size_t slot) { probe_hist_[slot][1] += n; }
-  // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when some N > 1), of the
+  // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when a sampler is anisotropic), of the
   // run and of one statistics slot (stat_slot()).
   void publish(sim::Stats& st) const;
   void publish_slot(sim::Stats& st, size_t slot) const;
-  bool any_anisotropic() const;  // some pixel had N > 1 (the histogram is published, for every slot too)
+  bool any_anisotropic() const;  // a bound sampler is anisotropic (the histogram is published, for every slot too)
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`
   // for an anisotropic probe. grid_any forms every filter's grid with the wrap modes read at run
   // time (the plain unit); LINEAR and the edge cross use one function per pair of wrap modes

@@ -76,7 +76,10 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
     int texels = 0;
     const int blocks = cache_.fill_blocks(texture, level, r.missed_lines[static_cast<size_t>(m)], texels);
     c.memory_bytes += static_cast<uint64_t>(blocks * b.block_bytes);
-    const uint64_t in = mem_.read(now, blocks * b.block_bytes, texture);
+    // The fill reads the line's blocks; the DRAM sees them at the line's address (a tile of blocks
+    // is block rows apart in memory: docs/memory-system.md, what the model leaves out).
+    const uint64_t line = r.missed_lines[static_cast<size_t>(m)];
+    const uint64_t in = mem_.read(now, blocks * b.block_bytes, texture, line * static_cast<uint64_t>(cache_.config().line_bytes));
     ready = std::max(ready, decode(in, texels, blocks, slot));
   }
   return ready;

@@ -133,7 +133,8 @@ class CacheStage : public sim::Module {
     bank_cycles = r.cycles > 1 ? r.cycles : 1;
     uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
     for (int m = 0; m < r.misses; ++m) {
-      const uint64_t in = mem_.read(now, cache_.config().line_bytes, texture);
+      const int line_bytes = cache_.config().line_bytes;
+      const uint64_t in = mem_.read(now, line_bytes, texture, r.missed_lines[static_cast<size_t>(m)] * static_cast<uint64_t>(line_bytes));
       ready = in > ready ? in : ready;
     }
     return ready;

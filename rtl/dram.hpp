@@ -92,6 +92,12 @@ const Part& part(std::string_view name, std::string_view key = "dram.part");
 // channels, then along a row; rows of one bank are the farthest apart). Every field must appear
 // once; every count must be a power of two.
 enum class Field { row, rank, bank, bank_group, column, channel };
+// The mappings a unit configuration names (memory.dram_mapping): bank groups above the column (a
+// stream stays in one bank group: tCCD_L apart), below it (a stream alternates groups: tCCD_S), and
+// the banks below the column too (consecutive bursts spread over every bank).
+inline constexpr std::array<const char*, 3> kMappings = {"row:rank:bank:bank_group:column:channel",
+                                                         "row:rank:bank:column:bank_group:channel",
+                                                         "row:column:rank:bank:bank_group:channel"};
 struct Location {
   int channel = 0, rank = 0, bank_group = 0, bank = 0, row = 0, column = 0;
   friend bool operator==(const Location&, const Location&) = default;

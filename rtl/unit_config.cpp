@@ -15,6 +15,13 @@ namespace tfu::rtl {
 
 namespace {
 
+// "ideal", then the DRAM parts' names (string literals: they live as long as the table).
+std::vector<const char*> dram_part_names() {
+  std::vector<const char*> names{"ideal"};
+  for (const dram::Part& p : dram::parts()) names.push_back(p.name.data());
+  return names;
+}
+
 #define TFU_INT_FIELD(member) \
   [](const UnitConfig& c) { return c.member; }, [](UnitConfig& c, int v) { c.member = v; }
 
@@ -47,6 +54,16 @@ const std::vector<UnitField>& fields() {
        TFU_INT_FIELD(memory.latency)},
       {"memory.bytes_per_cycle", "--bandwidth", "memory interface bandwidth, bytes per cycle", 1, 65536, {}, {},
        TFU_INT_FIELD(memory.bytes_per_cycle)},
+      {"memory.dram", "--dram",
+       "what serves the misses: the ideal memory (memory.latency) or a DRAM part, each unit its own (docs/memory-system.md)",
+       0, static_cast<int64_t>(dram::parts().size()), {}, dram_part_names(), TFU_INT_FIELD(memory.dram)},
+      {"memory.dram_policy", "--dram-policy", "DRAM page policy: rows stay open, or every read auto-precharges", 0, 1, {},
+       {"open", "close"}, TFU_INT_FIELD(memory.dram_policy)},
+      {"memory.dram_mapping", "--dram-mapping", "DRAM address mapping, fields most significant first (docs/memory-system.md)",
+       0, static_cast<int64_t>(dram::kMappings.size()) - 1, {},
+       std::vector<const char*>(dram::kMappings.begin(), dram::kMappings.end()), TFU_INT_FIELD(memory.dram_mapping)},
+      {"memory.unit_clock_mhz", "--unit-clock-mhz", "the unit's clock in MHz, for the DRAM's timing (DRAM parts only)", 1,
+       100000, {}, {}, TFU_INT_FIELD(memory.unit_clock_mhz)},
       {"channel_depth", "--channel-depth", "skid-buffer depth between blocks", 1, 64, {}, {},
        TFU_INT_FIELD(channel_depth)},
       {"miss_fifo_depth", "--miss-fifo-depth", "footprints queued behind outstanding misses (Igehy et al. 1998)", 1, 1024, {}, {},

@@ -56,6 +56,18 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   add(st, UnitStat::Pixels, n);
   add(st, UnitStat::MemoryBytes, u.mem.bytes_read());
   add(st, UnitStat::MemoryRequests, u.mem.requests());
+  if (const dram::DramModel* d = u.mem.dram()) {
+    const dram::Stats& ds = d->stats();
+    add(st, UnitStat::DramBursts, ds.bursts);
+    add(st, UnitStat::DramRowHits, ds.row_hits);
+    add(st, UnitStat::DramRowEmpty, ds.row_empty);
+    add(st, UnitStat::DramRowConflicts, ds.row_conflicts);
+    add(st, UnitStat::DramActivates, ds.activates);
+    add(st, UnitStat::DramRefreshes, ds.refreshes);
+    std::vector<uint64_t> h = ds.latency_histogram;  // trailing empty buckets dropped
+    while (!h.empty() && h.back() == 0) h.pop_back();
+    st.set_histogram(stat_key(UnitStat::DramLatency), std::move(h));
+  }
   if (u.filter) {
     uint64_t busy = 0;
     for (const uint64_t b : u.filter->busy_cycles()) busy += b;
@@ -176,6 +188,16 @@ void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   set(st, UnitStat::LatencyMean, requests ? static_cast<double>(lat_sum) / n : 0.0);
   set(st, UnitStat::LatencyMin, requests ? static_cast<double>(lat_min) : 0.0);
   set(st, UnitStat::LatencyMax, static_cast<double>(lat_max));
+  if (const uint64_t bursts = counter(st, UnitStat::DramBursts)) {
+    set(st, UnitStat::DramRowHitRate, static_cast<double>(counter(st, UnitStat::DramRowHits)) / static_cast<double>(bursts));
+    uint64_t reads = 0, sum = 0;
+    if (const std::vector<uint64_t>* dl = st.histogram(stat_key(UnitStat::DramLatency)))
+      for (size_t c = 0; c < dl->size(); ++c) {
+        reads += (*dl)[c];
+        sum += c * (*dl)[c];
+      }
+    set(st, UnitStat::DramLatencyMean, reads ? static_cast<double>(sum) / static_cast<double>(reads) : 0.0);
+  }
 }
 
 }  // namespace tfu::rtl

@@ -53,6 +53,15 @@ enum class UnitStat {
   DecoderBusyCycles,
   DecoderStallCycles,
   Decoders,
+  DramBursts,
+  DramRowHits,
+  DramRowEmpty,
+  DramRowConflicts,
+  DramActivates,
+  DramRefreshes,
+  DramLatency,
+  DramRowHitRate,
+  DramLatencyMean,
 };
 
 inline constexpr EnumNames<StatKind, 4> kStatKindNames{"statistic kind",
@@ -76,7 +85,7 @@ struct UnitStatField {
 };
 
 // Row i is UnitStat i (checked below), so a key is one array read.
-inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
+inline constexpr std::array<UnitStatField, 42> kUnitStatFields{{
     {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)",
      "the output cycles given to the group's requests: each request's retirement cycle minus the previous request's "
      "(the first: its retirement cycle + 1), summed over units; one unit's groups add up to its cycles"},
@@ -117,7 +126,7 @@ inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
     {UnitStat::Latency, "latency", StatKind::Histogram, "requests per latency (bucket = clocks)", ""},
     {UnitStat::EdgeDirection, "edge_direction", StatKind::Histogram,
      "edge-preserving probes per chosen direction index (edge modes)", ""},
-    {UnitStat::AnisoProbes, "aniso_probes", StatKind::Histogram, "pixels per probe count N (when some pixel has N > 1)",
+    {UnitStat::AnisoProbes, "aniso_probes", StatKind::Histogram, "pixels per probe count N (when a bound sampler is anisotropic)",
      ""},
     {UnitStat::Textures, "textures", StatKind::Table,
      "per texture descriptor: index, requests, line_hits, line_misses, memory_bytes", nullptr},
@@ -133,6 +142,18 @@ inline constexpr std::array<UnitStatField, 33> kUnitStatFields{{
      "clocks decode jobs wait for busy decoders (compressed textures only)", ""},
     {UnitStat::Decoders, "decoders", StatKind::Table,
      "per compressed texture descriptor: index, decoded_blocks, decoder_busy_cycles, decoder_stall_cycles", nullptr},
+    {UnitStat::DramBursts, "dram_bursts", StatKind::Counter, "DRAM bursts read (memory.dram a DRAM part only)", nullptr},
+    {UnitStat::DramRowHits, "dram_row_hits", StatKind::Counter, "DRAM bursts to the open row", nullptr},
+    {UnitStat::DramRowEmpty, "dram_row_empty", StatKind::Counter, "DRAM bursts to a precharged bank (ACTIVATE, READ)",
+     nullptr},
+    {UnitStat::DramRowConflicts, "dram_row_conflicts", StatKind::Counter,
+     "DRAM bursts to a bank with another row open (PRECHARGE, ACTIVATE, READ): bank conflicts", nullptr},
+    {UnitStat::DramActivates, "dram_activates", StatKind::Counter, "DRAM ACTIVATE commands", nullptr},
+    {UnitStat::DramRefreshes, "dram_refreshes", StatKind::Counter, "DRAM REFRESH commands", nullptr},
+    {UnitStat::DramLatency, "dram_latency", StatKind::Histogram,
+     "DRAM reads per latency, request to last data (bucket = DRAM clocks; the last bucket: more)", nullptr},
+    {UnitStat::DramRowHitRate, "dram_row_hit_rate", StatKind::Value, "dram_row_hits / dram_bursts", nullptr},
+    {UnitStat::DramLatencyMean, "dram_latency_mean", StatKind::Value, "mean DRAM read latency in DRAM clocks", nullptr},
 }};
 
 constexpr bool unit_stat_rows_in_order() {

@@ -1,11 +1,16 @@
 // The DRAM model (rtl/dram): each timing rule on its own with hand-set state, the presets'
 // clock counts against the datasheet figures worked by hand, the address mapping, and whole read
-// streams whose cycles are derived by hand from the rules.
+// streams whose cycles are derived by hand from the rules; then units whose misses go to a DRAM.
 #include <gtest/gtest.h>
 
 #include "cmodel/error.hpp"
-#include "testbench/docs_text.hpp"
+#include "cmodel/raster.hpp"
+#include "cmodel/scene.hpp"
 #include "rtl/dram.hpp"
+#include "rtl/scene_sim.hpp"
+#include "rtl/unit_config.hpp"
+#include "rtl/unit_stats.hpp"
+#include "testbench/docs_text.hpp"
 
 namespace tfu::rtl::dram {
 namespace {
@@ -255,3 +260,74 @@ TEST(DramModel, ReadsSpanningBurstsAndPercentiles) {
 
 }  // namespace
 }  // namespace tfu::rtl::dram
+
+// ---- The DRAM behind a unit (memory.dram) ----
+
+
+namespace tfu::rtl {
+namespace {
+
+// A scene through units whose misses go to a DDR4 part: both engines give the same cycles and
+// statistics, the golden compare holds, every 64-byte line is one 64-byte burst, each burst is a
+// row hit, a row-empty or a row conflict, and the run takes longer than with an ideal memory of
+// latency 0 (the DRAM adds at least tRCD + CL + the burst to a first miss).
+TEST(DramUnit, SceneThroughDdr4IsBitExactInBothEnginesAndCountsEveryBurst) {
+  Scene s = load_scene("ground_plane");
+  s.width = 96;
+  s.height = 64;
+  RenderOptions ro;
+  ro.trace = true;
+  const RenderResult render = render_scene(s, ro);
+  UnitConfig u;
+  u.memory.dram = 1;  // ddr4-2400-x64
+  const UnitField* f = find_unit_field("memory.dram");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->value_text(u), "\"ddr4-2400-x64\"");
+  for (int units : {1, 2}) {
+    SceneSimOptions so;
+    so.units = units;
+    so.engine = UnitEngine::Recurrence;
+    const SceneSimResult rec = simulate_scene(s, render, u, so);
+    so.engine = UnitEngine::Clocked;
+    const SceneSimResult clk = simulate_scene(s, render, u, so);
+    ASSERT_TRUE(rec.mismatch.empty()) << rec.mismatch;
+    ASSERT_TRUE(clk.mismatch.empty()) << clk.mismatch;
+    EXPECT_EQ(rec.cycles, clk.cycles) << units;
+    EXPECT_EQ(rec.stats.counters(), clk.stats.counters()) << units;
+    const sim::Stats& st = rec.stats;
+    const uint64_t bursts = counter(st, UnitStat::DramBursts);
+    EXPECT_EQ(bursts * 64, counter(st, UnitStat::MemoryBytes));
+    EXPECT_EQ(counter(st, UnitStat::DramRowHits) + counter(st, UnitStat::DramRowEmpty) +
+                  counter(st, UnitStat::DramRowConflicts),
+              bursts);
+    EXPECT_GT(value(st, UnitStat::DramRowHitRate), 0.0);
+    EXPECT_GE(value(st, UnitStat::DramLatencyMean), 16.0 + 16.0 + 4.0);  // tRCD + CL + burst at least
+    UnitConfig ideal;
+    ideal.memory.latency = 0;
+    SceneSimOptions io;
+    io.units = units;
+    EXPECT_GT(rec.cycles, simulate_scene(s, render, ideal, io).cycles);
+  }
+  // The ideal memory publishes no DRAM statistics.
+  const SceneSimResult plain = simulate_scene(s, render, UnitConfig{}, SceneSimOptions{});
+  EXPECT_EQ(plain.stats.counters().count("dram_bursts"), 0u);
+}
+
+TEST(DramUnit, ConfigNamesThePartPolicyAndMapping) {
+  UnitConfig u = unit_config_from_json(
+      R"({"memory.dram": "lpddr4-3200-x16", "memory.dram_policy": "close", "memory.dram_mapping": "row:column:rank:bank:bank_group:channel"})",
+      "c.json");
+  EXPECT_EQ(u.memory.dram, 2);
+  EXPECT_EQ(u.memory.dram_policy, 1);
+  EXPECT_EQ(u.memory.dram_mapping, 2);
+  EXPECT_EQ(u.memory.dram_config().part, "lpddr4-3200-x16");
+  try {
+    (void)unit_config_from_json(R"({"memory.dram": "ddr5"})", "c.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("memory.dram"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tfu::rtl

@@ -308,3 +308,39 @@ TEST(Docs, CycleModelShowsTheStatFields) {
 
 }  // namespace
 }  // namespace tfu::rtl
+
+namespace tfu {
+namespace {
+
+// The run's probe histogram is the units' histograms added: it must count every pixel of every unit,
+// those of a unit that met only one-probe pixels included (each unit publishes it when a bound
+// sampler is anisotropic, not when its own pixels happen to need more than one probe).
+TEST(UnitStats, ProbeHistogramOfSeveralUnitsCountsEveryPixel) {
+  Scene s = load_scene("ground_plane");
+  s.width = 128;
+  s.height = 96;
+  RenderOptions ro;
+  ro.trace = true;
+  ro.sampler_overrides["max_aniso"] = "16";
+  const RenderResult render = render_scene(s, ro);
+  for (int units : {1, 3, 12}) {
+    rtl::SceneSimOptions so;
+    so.units = units;
+    so.tile = 16;
+    const rtl::SceneSimResult r = rtl::simulate_scene(s, render, rtl::UnitConfig{}, so);
+    ASSERT_TRUE(r.mismatch.empty()) << r.mismatch;
+    const std::vector<uint64_t>* h = r.stats.histogram("aniso_probes");
+    ASSERT_NE(h, nullptr) << units;
+    uint64_t pixels = 0, probes = 0;
+    for (size_t n = 0; n < h->size(); ++n) {
+      pixels += (*h)[n];
+      probes += n * (*h)[n];
+    }
+    EXPECT_EQ(pixels, r.requests) << units << " units";
+    EXPECT_EQ(probes, r.stats.counter("probes")) << units << " units";
+    EXPECT_GT((*h)[1], 0u);
+  }
+}
+
+}  // namespace
+}  // namespace tfu
