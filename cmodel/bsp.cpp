@@ -16,6 +16,7 @@ static_assert(std::endian::native == std::endian::little, "the BSP reader assume
 
 constexpr size_t kHeaderBytes = 8 + 8 * kLumpCount;
 constexpr size_t kTextureRecord = 72, kVertexRecord = 44, kMeshvertRecord = 4, kFaceRecord = 104;
+constexpr size_t kPlaneRecord = 16, kModelRecord = 40, kBrushRecord = 12, kBrushSideRecord = 8;
 constexpr size_t kLightmapRecord = size_t{kLightmapSize} * kLightmapSize * 3;
 
 // Little-endian field reads from a byte range already checked to be inside the file.
@@ -94,6 +95,75 @@ std::vector<BspTexture> read_textures(const LumpReader& r) {
   return out;
 }
 
+// [first, first + count) inside [0, size)?
+bool range_inside(int64_t first, int64_t count, size_t size) {
+  return first >= 0 && count >= 0 && first + count <= static_cast<int64_t>(size);
+}
+
+// A float of the collision lumps: finite and within the scene bound.
+double checked_float(const LumpReader& r, int lump, size_t record, const uint8_t* p) {
+  const double v = get_f32(p);
+  if (!std::isfinite(v) || std::fabs(v) > kMaxSceneMagnitude)
+    r.fail(lump, fmt::format("record {}: {:g} is not a finite number within +-{:g}", record, v, kMaxSceneMagnitude));
+  return v;
+}
+
+void read_collision(const LumpReader& r, Bsp& bsp) {
+  const size_t textures = bsp.textures.size();
+  const size_t np = r.records(kLumpPlanes, kPlaneRecord);
+  bsp.planes.resize(np);
+  for (size_t i = 0; i < np; ++i) {
+    const uint8_t* p = r.lump(kLumpPlanes).data() + i * kPlaneRecord;
+    BspPlane& pl = bsp.planes[i];
+    pl.normal = {checked_float(r, kLumpPlanes, i, p), checked_float(r, kLumpPlanes, i, p + 4),
+                 checked_float(r, kLumpPlanes, i, p + 8)};
+    pl.dist = checked_float(r, kLumpPlanes, i, p + 12);
+    if (std::fabs(glm::length(pl.normal) - 1.0) > 1e-3)
+      r.fail(kLumpPlanes, fmt::format("plane {}: normal of length {:g}, not a unit vector", i, glm::length(pl.normal)));
+  }
+  const size_t ns = r.records(kLumpBrushSides, kBrushSideRecord);
+  bsp.brush_sides.resize(ns);
+  for (size_t i = 0; i < ns; ++i) {
+    const uint8_t* p = r.lump(kLumpBrushSides).data() + i * kBrushSideRecord;
+    BspBrushSide& s = bsp.brush_sides[i];
+    s.plane = get_i32(p);
+    s.texture = get_i32(p + 4);
+    if (!range_inside(s.plane, 1, np))
+      r.fail(kLumpBrushSides, fmt::format("side {}: plane {} outside the {} of lump 2", i, s.plane, np));
+    if (!range_inside(s.texture, 1, textures))
+      r.fail(kLumpBrushSides, fmt::format("side {}: texture {} outside the {} of lump 1", i, s.texture, textures));
+  }
+  const size_t nb = r.records(kLumpBrushes, kBrushRecord);
+  bsp.brushes.resize(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    const uint8_t* p = r.lump(kLumpBrushes).data() + i * kBrushRecord;
+    BspBrush& b = bsp.brushes[i];
+    b.first_side = get_i32(p);
+    b.side_count = get_i32(p + 4);
+    b.texture = get_i32(p + 8);
+    if (!range_inside(b.first_side, b.side_count, ns))
+      r.fail(kLumpBrushes,
+             fmt::format("brush {}: sides {}+{} outside the {} of lump 9", i, b.first_side, b.side_count, ns));
+    if (!range_inside(b.texture, 1, textures))
+      r.fail(kLumpBrushes, fmt::format("brush {}: texture {} outside the {} of lump 1", i, b.texture, textures));
+  }
+  const size_t nm = r.records(kLumpModels, kModelRecord);
+  bsp.models.resize(nm);
+  for (size_t i = 0; i < nm; ++i) {
+    const uint8_t* p = r.lump(kLumpModels).data() + i * kModelRecord;
+    BspModel& m = bsp.models[i];
+    for (int k = 0; k < 3; ++k) {
+      m.mins[k] = checked_float(r, kLumpModels, i, p + 4 * k);
+      m.maxs[k] = checked_float(r, kLumpModels, i, p + 12 + 4 * k);
+    }
+    m.first_brush = get_i32(p + 32);
+    m.brush_count = get_i32(p + 36);
+    if (!range_inside(m.first_brush, m.brush_count, nb))
+      r.fail(kLumpModels,
+             fmt::format("model {}: brushes {}+{} outside the {} of lump 8", i, m.first_brush, m.brush_count, nb));
+  }
+}
+
 // Fields 5 and 6 (lightmap s, t): q3map2 leaves NaN there on some vertices of vertex-lit faces.
 constexpr bool is_lightmap_uv_field(size_t k) { return k == 5 || k == 6; }
 
@@ -156,11 +226,6 @@ BspFace decode_face(const uint8_t* p) {
   return f;
 }
 
-// [first, first + count) inside [0, size)?
-bool range_inside(int64_t first, int64_t count, size_t size) {
-  return first >= 0 && count >= 0 && first + count <= static_cast<int64_t>(size);
-}
-
 void check_patch_size(const LumpReader& r, size_t i, const BspFace& f) {
   const auto [w, h] = f.patch_size;
   const auto odd_in_range = [](int32_t s) { return s >= 3 && s <= kMaxPatchControlSize && s % 2 == 1; };
@@ -219,6 +284,7 @@ Bsp parse_bsp(std::span<const uint8_t> file, const std::string& source) {
   Bsp bsp;
   bsp.entities = read_entities(r);
   bsp.textures = read_textures(r);
+  read_collision(r, bsp);
   read_vertices(r, bsp);
   bsp.meshverts = read_meshverts(r);
   bsp.lightmaps = read_lightmaps(r);

@@ -6,6 +6,11 @@
 // Lumps read here (record size in bytes):
 //   0  entities    text: { "key" "value" ... } blocks (parsed by parse_entities)
 //   1  textures    72: char name[64] (NUL-terminated), int32 surface flags, int32 content flags
+//   2  planes      16: float normal[3], float dist (points p with dot(normal, p) = dist)
+//   7  models      40: float mins[3], maxs[3]; int32 first_face, face_count, first_brush, brush_count
+//                      (model 0 is the world; the others are brush entities: doors, platforms)
+//   8  brushes     12: int32 first_side, side_count, texture (its content flags are the brush's)
+//   9  brush sides 8:  int32 plane, texture
 //   10 vertices    44: float position[3], float uv[2] (base), float lightmap_uv[2], float normal[3],
 //                      uint8 colour[4] (RGBA)
 //   11 meshverts   4:  int32, an offset added to the face's first vertex
@@ -13,8 +18,9 @@
 //                      meshvert_count, lightmap, lightmap_start[2], lightmap_size[2]; float
 //                      lightmap_origin[3], lightmap_vecs[2][3], normal[3]; int32 patch_size[2]
 //   14 lightmaps   49152: 128 x 128 RGB8, row-major, row 0 first
-// The other lumps (planes, nodes, leaves, brushes, models, effects, light volumes, visibility) are
-// not needed to draw the level and are only bounds-checked.
+// Planes, models, brushes and brush sides are the collision world (q3_collision.hpp: where a
+// player spawned at a spot comes to rest). The other lumps (nodes, leaves, effects, light volumes,
+// visibility) are only bounds-checked.
 //
 // Checks (each failure is an InputError "SOURCE: lump N (name): what", one line): the magic and
 // version; every lump inside the file; each read lump a whole number of records; every count
@@ -23,7 +29,11 @@
 // lightmap); per face: texture index inside lump 1, type 1..4,
 // vertex range inside lump 10, meshvert range inside lump 11, meshvert_count a multiple of 3,
 // every meshvert inside the face's own vertex range, lightmap index < the lightmap count (negative:
-// vertex-lit), patch control size odd and 3..kMaxPatchControlSize with width x height vertices.
+// vertex-lit), patch control size odd and 3..kMaxPatchControlSize with width x height vertices;
+// plane floats finite within +-kMaxSceneMagnitude and the normal of unit length (+-1e-3); per
+// brush: side range inside lump 9, texture inside lump 1; per side: plane inside lump 2, texture
+// inside lump 1 (Quake III's CMod_LoadBrushSides refuses the same); per model: brush range inside
+// lump 8 (its face range is not used).
 #pragma once
 
 #include <array>
@@ -45,6 +55,10 @@ inline constexpr int kMaxPatchControlSize = 65;              // control points p
 enum Lump : int {
   kLumpEntities = 0,
   kLumpTextures = 1,
+  kLumpPlanes = 2,
+  kLumpModels = 7,
+  kLumpBrushes = 8,
+  kLumpBrushSides = 9,
   kLumpVertices = 10,
   kLumpMeshverts = 11,
   kLumpFaces = 13,
@@ -56,6 +70,13 @@ const char* lump_name(int lump);  // "entities", "textures", ... for every lump 
 inline constexpr int32_t kSurfSky = 0x4;       // drawn by the sky box, not as a textured face
 inline constexpr int32_t kSurfNodraw = 0x80;   // no draw surface at all
 inline constexpr int32_t kSurfSkip = 0x200;    // ignored by the compiler and the renderer
+
+// Content flags (q3map's surfaceflags.h) of the texture entries: what a brush or patch is made of.
+inline constexpr int32_t kContentsSolid = 0x1;
+inline constexpr int32_t kContentsPlayerClip = 0x10000;
+inline constexpr int32_t kContentsBody = 0x2000000;
+// What a player's movement collides with (bg_public.h MASK_PLAYERSOLID).
+inline constexpr int32_t kMaskPlayerSolid = kContentsSolid | kContentsPlayerClip | kContentsBody;
 
 enum class FaceType : int32_t { Polygon = 1, Patch = 2, Mesh = 3, Billboard = 4 };
 
@@ -82,9 +103,32 @@ struct BspFace {
   std::array<int32_t, 2> patch_size{};  // control points along s (width) and t (height): patches only
 };
 
+struct BspPlane {
+  glm::dvec3 normal{0.0};
+  double dist = 0.0;
+};
+
+struct BspBrush {
+  int32_t first_side = 0, side_count = 0;
+  int32_t texture = 0;  // its content flags are the brush's contents
+};
+
+struct BspBrushSide {
+  int32_t plane = 0, texture = 0;
+};
+
+struct BspModel {
+  glm::dvec3 mins{0.0}, maxs{0.0};
+  int32_t first_brush = 0, brush_count = 0;
+};
+
 struct Bsp {
   std::string entities;  // lump 0 text (up to its first NUL)
   std::vector<BspTexture> textures;
+  std::vector<BspPlane> planes;
+  std::vector<BspModel> models;  // model 0: the world
+  std::vector<BspBrush> brushes;
+  std::vector<BspBrushSide> brush_sides;
   std::vector<Vertex> vertices;
   std::vector<bool> nonfinite_lightmap_uv;  // per vertex, true where the file's lightmap uv was not finite (empty: none)
   std::vector<int32_t> meshverts;

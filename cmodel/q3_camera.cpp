@@ -14,13 +14,17 @@ double vertical_fov_deg(double fov_x_deg, double aspect) {
   return 2.0 * std::atan(std::tan(half_x) / aspect) * 180.0 / std::numbers::pi;
 }
 
-Camera spawn_camera(const Level& level, int spawn, int width, int height) {
+glm::dvec3 spawn_eye(const SpawnPoint& s, EyeRule rule) {
+  return (rule == EyeRule::Rest ? s.rest : s.origin) + glm::dvec3(0, 0, kViewHeight);
+}
+
+Camera spawn_camera(const Level& level, int spawn, int width, int height, EyeRule rule) {
   if (spawn < 0 || static_cast<size_t>(spawn) >= level.spawns.size())
     throw InputError(fmt::format("level '{}' has {} spawn points ({}), no spawn point {}", level.name,
                                  level.spawns.size(), level.spawn_class.empty() ? "none" : level.spawn_class, spawn));
   const SpawnPoint& s = level.spawns[static_cast<size_t>(spawn)];
   Camera cam;
-  cam.position = s.origin + glm::dvec3(0, 0, kViewHeight);
+  cam.position = spawn_eye(s, rule);
   const double yaw = s.yaw_deg * std::numbers::pi / 180.0;
   cam.look_at = cam.position + glm::dvec3(std::cos(yaw), std::sin(yaw), 0.0);
   cam.up = {0, 0, 1};

@@ -1,9 +1,12 @@
 // Cameras of a Quake III level: the player's view at a spawn point (docs/real-frames.md, "Camera").
 //
-//   eye        spawn origin + (0, 0, kViewHeight). Quake III spawns the player 9 units above the
-//              spot, lets it fall onto the floor (the spot sits 24 units, the player box's depth,
-//              above the floor) and views from DEFAULT_VIEWHEIGHT = 26 units above the player
-//              origin: standing at the spot, the eye is 26 units above the spot's origin.
+//   eye        EyeRule::Rest (the engine's): the resting player origin + (0, 0, kViewHeight). Quake
+//              III spawns the player 9 units above the spot and lets it fall onto whatever is below
+//              (q3_collision.hpp spawn_rest: the player box, -15 -15 -24 .. 15 15 32, swept down
+//              against the world's brushes, stopping 0.125 unit above the floor); the view is
+//              DEFAULT_VIEWHEIGHT = 26 units above the player origin: on a floor at height F the
+//              eye is at F + 24.125 + 26. EyeRule::Spot (the earlier rule): spot origin + 26, right
+//              only where the spot sits exactly 24 units above the floor.
 //   direction  horizontal, yaw = the spot's "angle" (degrees about +z from +x): look_at = eye +
 //              (cos yaw, sin yaw, 0); up = (0, 0, 1). Quake's axes are used as they are (z up,
 //              right-handed); gluLookAt handles them, no axis conversion.
@@ -27,8 +30,14 @@ inline constexpr double kFarMargin = 16.0;
 // Vertical field of view (degrees) for a horizontal one at aspect = width / height.
 double vertical_fov_deg(double fov_x_deg, double aspect);
 
+enum class EyeRule { Rest, Spot };
+inline constexpr EnumNames<EyeRule, 2> kEyeRuleNames{"eye rule", {{{EyeRule::Rest, "rest"}, {EyeRule::Spot, "spot"}}}};
+
+// The eye position at spawn point `s` under `rule`.
+glm::dvec3 spawn_eye(const SpawnPoint& s, EyeRule rule = EyeRule::Rest);
+
 // The camera at spawn point `spawn` of `level` for a width x height image; throws InputError if
 // the level has no such spawn point.
-Camera spawn_camera(const Level& level, int spawn, int width, int height);
+Camera spawn_camera(const Level& level, int spawn, int width, int height, EyeRule rule = EyeRule::Rest);
 
 }  // namespace tfu::q3

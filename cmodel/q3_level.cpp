@@ -12,6 +12,7 @@
 
 #include "cmodel/bezier_patch.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/q3_collision.hpp"
 
 namespace tfu::q3 {
 namespace {
@@ -207,18 +208,60 @@ std::vector<SpawnPoint> spawn_points(const std::vector<Entity>& entities, const 
   return out;
 }
 
+void place_spawns(const Bsp& bsp, std::vector<SpawnPoint>& spawns, int64_t* world_brushes) {
+  const BrushWorld world(bsp, 0);
+  if (world_brushes) *world_brushes = static_cast<int64_t>(world.brush_count());
+  double floor_z = bsp.models.empty() ? 0.0 : bsp.models[0].mins.z;
+  for (const Vertex& v : bsp.vertices) floor_z = std::min(floor_z, v.pos.z);
+  floor_z -= 64.0;  // below everything: a drop that hits nothing ends here
+  struct Box {
+    glm::dvec3 lo, hi;
+  };
+  std::vector<Box> patches;
+  for (const BspFace& f : bsp.faces) {
+    if (f.type != FaceType::Patch ||
+        (bsp.textures[static_cast<size_t>(f.texture)].content_flags & kMaskPlayerSolid) == 0)
+      continue;
+    Box b{glm::dvec3(std::numeric_limits<double>::infinity()), glm::dvec3(-std::numeric_limits<double>::infinity())};
+    for (int32_t k = 0; k < f.vertex_count; ++k) {
+      b.lo = glm::min(b.lo, bsp.vertices[static_cast<size_t>(f.first_vertex + k)].pos);
+      b.hi = glm::max(b.hi, bsp.vertices[static_cast<size_t>(f.first_vertex + k)].pos);
+    }
+    patches.push_back(b);
+  }
+  for (SpawnPoint& s : spawns) {
+    const SpawnRest r = spawn_rest(world, s.origin, floor_z);
+    s.rest = r.origin;
+    s.landed = r.landed;
+    s.start_solid = r.start_solid;
+    const double top = s.origin.z + kSpawnLift + kPlayerMaxs.z, feet = r.origin.z + kPlayerMins.z;
+    s.patch_in_drop = false;
+    for (const Box& b : patches)
+      if (b.lo.x <= s.origin.x + kPlayerMaxs.x && b.hi.x >= s.origin.x + kPlayerMins.x &&
+          b.lo.y <= s.origin.y + kPlayerMaxs.y && b.hi.y >= s.origin.y + kPlayerMins.y && b.hi.z >= feet &&
+          b.lo.z <= top)
+        s.patch_in_drop = true;
+  }
+}
+
+std::vector<SpawnPoint> level_spawn_points(const Bsp& bsp, const std::string& source, std::string* spawn_class) {
+  const std::vector<Entity> entities = parse_entities(bsp.entities, source);
+  for (const char* classname : kSpawnClasses) {
+    std::vector<SpawnPoint> spawns = spawn_points(entities, classname, source);
+    if (spawns.empty()) continue;
+    if (spawn_class) *spawn_class = classname;
+    place_spawns(bsp, spawns, nullptr);
+    return spawns;
+  }
+  return {};
+}
+
 Level build_level(const Bsp& bsp, const std::string& name, const std::string& source, TextureCache& cache) {
   Level level;
   level.name = name;
   level.source = source;
-  const std::vector<Entity> entities = parse_entities(bsp.entities, source);
-  for (const char* classname : kSpawnClasses) {
-    level.spawns = spawn_points(entities, classname, source);
-    if (!level.spawns.empty()) {
-      level.spawn_class = classname;
-      break;
-    }
-  }
+  level.spawns = level_spawn_points(bsp, source, &level.spawn_class);
+  level.counts.world_brushes = bsp.models.empty() ? 0 : bsp.models[0].brush_count;
   LevelBuilder b(bsp, level, cache);
   b.add_textures();
   b.add_lightmaps();

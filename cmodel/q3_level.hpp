@@ -69,6 +69,13 @@ struct LevelFace {
 struct SpawnPoint {
   glm::dvec3 origin{0.0};  // world units, z up (the entity's "origin")
   double yaw_deg = 0.0;    // "angle" (degrees about +z, 0 = +x, 90 = +y)
+  // Where the player spawned here comes to rest (q3_collision.hpp spawn_rest; build_level fills it).
+  glm::dvec3 rest{0.0};
+  bool landed = false;       // a world brush stopped the drop
+  bool start_solid = false;  // the box at origin + 9 is inside a brush
+  // A patch whose contents the player collides with overlaps the drop column above the resting
+  // box's feet: the engine may stop the player on it, higher than the brush trace says.
+  bool patch_in_drop = false;
 };
 
 struct LevelCounts {
@@ -82,6 +89,7 @@ struct LevelCounts {
   int64_t resolved_textures = 0;  // distinct texture names with an image, used by a drawn face
   int64_t patches = 0;            // drawn type-2 faces
   int64_t vertex_lit_faces = 0;   // drawn faces with lightmap index < 0
+  int64_t world_brushes = 0;      // brushes of model 0 (the collision world)
   int64_t triangles = 0;
   int64_t vertices = 0;
 };
@@ -111,6 +119,15 @@ Level load_level(const GameArchives& archives, const std::string& name, TextureC
 // InputError naming lump 0 and the entity.
 std::vector<SpawnPoint> spawn_points(const std::vector<Entity>& entities, const std::string& classname,
                                      const std::string& source);
+
+// Drops the player at every spawn point (q3_collision.hpp spawn_rest against the world's brushes,
+// down to 64 units below the lowest vertex or world bound) and sets rest, landed, start_solid and
+// patch_in_drop; `world_brushes` (if given) receives the world's brush count.
+void place_spawns(const Bsp& bsp, std::vector<SpawnPoint>& spawns, int64_t* world_brushes = nullptr);
+// The spawn points of a BSP: the entities of the first of kSpawnClasses it has (its name into
+// `spawn_class`), placed (place_spawns). Needs no textures.
+std::vector<SpawnPoint> level_spawn_points(const Bsp& bsp, const std::string& source,
+                                           std::string* spawn_class = nullptr);
 
 // One line for logs and the render summary: faces by type, skipped, fallbacks, triangles.
 std::string level_summary(const Level& level);

@@ -27,6 +27,7 @@ int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1)
 struct ClipVertex {
   glm::dvec4 p;
   std::array<glm::dvec2, 2> uv;  // UV sets 0 and 1
+  glm::dvec4 colour{255.0};      // vertex colour, 0..255 per channel
 };
 using Polygon = std::vector<ClipVertex>;
 
@@ -44,7 +45,9 @@ Polygon clip_against(const Polygon& in, const glm::dvec4& plane) {
     if (da >= 0) out.push_back(a);
     if ((da >= 0) != (db >= 0)) {
       const double t = da / (da - db);
-      out.push_back({a.p + t * (b.p - a.p), {a.uv[0] + t * (b.uv[0] - a.uv[0]), a.uv[1] + t * (b.uv[1] - a.uv[1])}});
+      out.push_back({a.p + t * (b.p - a.p),
+                     {a.uv[0] + t * (b.uv[0] - a.uv[0]), a.uv[1] + t * (b.uv[1] - a.uv[1])},
+                     a.colour + t * (b.colour - a.colour)});
     }
   }
   return out;
@@ -68,6 +71,7 @@ ScreenVertex to_screen(const ClipVertex& c, int width, int height) {
   v.z = (c.p.z * inv_w + 1.0) * 0.5;
   v.inv_w = inv_w;
   for (size_t k = 0; k < 2; ++k) v.uv_w[k] = c.uv[k] * inv_w;
+  v.colour_w = c.colour * inv_w;
   return v;
 }
 
@@ -111,6 +115,31 @@ glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>
     inv_w = 1e-6 * std::min({tri.v[0].inv_w, tri.v[1].inv_w, tri.v[2].inv_w});
   }
   return {s_w / inv_w, t_w / inv_w};
+}
+
+// Perspective-correct vertex colour (0..255 per channel) at barycentrics b.
+glm::dvec4 interpolate_colour(const RasterTriangle& tri, const std::array<double, 3>& b) {
+  double inv_w = 0;
+  glm::dvec4 c_w{0.0};
+  for (size_t i = 0; i < 3; ++i) {
+    inv_w += b[i] * tri.v[i].inv_w;
+    c_w += b[i] * tri.v[i].colour_w;
+  }
+  if (!(inv_w > 0)) inv_w = 1e-6 * std::min({tri.v[0].inv_w, tri.v[1].inv_w, tri.v[2].inv_w});
+  return c_w / inv_w;
+}
+
+// The primary colour of a pixel: the interpolated vertex colour rounded to 8 bits per channel.
+Rgba8 primary_colour(const RasterTriangle& tri, const std::array<double, 3>& b) {
+  const glm::dvec4 c = interpolate_colour(tri, b);
+  const auto q = [](double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); };
+  return {q(c.r), q(c.g), q(c.b), q(c.a)};
+}
+
+// The display ramp in real arithmetic (the ideal path's and the truth's).
+std::array<double, 4> display_ramp_real(std::array<double, 4> c, int shift) {
+  for (size_t i = 0; i < 3; ++i) c[i] = std::min(1.0, c[i] * (1 << shift));
+  return c;
 }
 
 double interpolate_z(const RasterTriangle& tri, const std::array<double, 3>& b) {
@@ -159,8 +188,13 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       }
       if (mask == 0) continue;
       std::array<Rgba8, 4> colour{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};
+      if (mesh.vertex_colour)
+        for (size_t k = 0; k < 4; ++k)
+          if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
+      const std::array<Rgba8, 4> primary = colour;
       std::array<std::array<double, 4>, 4> ideal{};
-      ideal.fill({1, 1, 1, 1});
+      for (size_t k = 0; k < 4; ++k)
+        ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
       std::array<float, 4> s0{}, t0{};  // UV set of stage 0 (kept coordinates)
       for (size_t st = 0; st < mesh.stages.size(); ++st) {
         const TextureStage& stage = mesh.stages[st];
@@ -205,7 +239,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
             if (mask >> k & 1u) colour[k] = combine_stage(colour[k], texel[next++], stage.combine);
         }
         if (ctx.opts->trace) {
-          out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st)});
+          out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st), primary});
           for (size_t k = 0; k < 4; ++k) {
             TraceRequest r;
             r.texture = static_cast<uint16_t>(bindings[st].texture);
@@ -221,7 +255,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(ideal[uk]) : colour[uk];
+        const int shift = ctx.scene->display_shift;
+        res.image.texels[idx] =
+            ctx.opts->ideal ? to_rgba8(display_ramp_real(ideal[uk], shift)) : display_ramp(colour[uk], shift);
         ctx.depth[idx] = static_cast<float>(z[uk]);
         if (!ctx.winner.empty()) ctx.winner[idx] = static_cast<int32_t>(&tri - ctx.triangles.data());
         if (ctx.opts->keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
@@ -296,6 +332,10 @@ std::array<double, 4> truth_colour(const TextureStage& stage, double s, double t
 // Every stage of the material at barycentrics b, combined in real arithmetic.
 std::array<double, 4> truth_material(const Mesh& mesh, const RasterTriangle& tri, const std::array<double, 3>& b) {
   std::array<double, 4> c{1, 1, 1, 1};
+  if (mesh.vertex_colour) {
+    const glm::dvec4 v = interpolate_colour(tri, b);
+    for (int i = 0; i < 4; ++i) c[static_cast<size_t>(i)] = std::clamp(v[i] / 255.0, 0.0, 1.0);
+  }
   for (const TextureStage& stage : mesh.stages) {
     const glm::dvec2 st = interpolate_st(tri, b, stage.uv_set);
     c = combine_stage(c, truth_colour(stage, st.x, st.y), stage.combine);
@@ -329,7 +369,7 @@ void truth_band(const Context& ctx, int band, int y0, int y1) {
           TruthSample& smp = buf[(static_cast<size_t>(py - y0) * static_cast<size_t>(W) + static_cast<size_t>(px)) *
                                      kTruthSamples + static_cast<size_t>(k)];
           if (!(z < smp.depth)) continue;
-          const auto c = truth_material(mesh, tri, b);
+          const auto c = display_ramp_real(truth_material(mesh, tri, b), scene.display_shift);
           smp.depth = z;
           for (size_t i = 0; i < 4; ++i) smp.c[i] = static_cast<float>(c[i]);
         }
@@ -387,7 +427,7 @@ void surface_truth_band(const Context& ctx, int y0, int y1) {
       for (int k = 0; k < kTruthSamples; ++k) {
         const int64_t sx = int64_t{px} * kOne + (k % kTruthSamplesPerAxis) * step + step / 2;
         const int64_t sy = int64_t{py} * kOne + (k / kTruthSamplesPerAxis) * step + step / 2;
-        const auto c = truth_material(mesh, tri, tri.barycentric(sx, sy));
+        const auto c = display_ramp_real(truth_material(mesh, tri, tri.barycentric(sx, sy)), scene.display_shift);
         for (size_t i = 0; i < 4; ++i) sum[i] += static_cast<double>(static_cast<float>(c[i]));
       }
       for (double& v : sum) v /= kTruthSamples;
@@ -416,7 +456,10 @@ void setup_scene(Context& ctx) {
         continue;
       }
       Polygon poly;
-      for (const Vertex* v : {&a, &b, &c}) poly.push_back({mvp * glm::dvec4(v->pos, 1.0), {v->uv, v->uv1}});
+      for (const Vertex* v : {&a, &b, &c})
+        poly.push_back({mvp * glm::dvec4(v->pos, 1.0),
+                        {v->uv, v->uv1},
+                        glm::dvec4(v->colour.r, v->colour.g, v->colour.b, v->colour.a)});
       poly = clip_polygon(std::move(poly));
       if (poly.empty()) {
         ++st.clipped_away;
@@ -429,6 +472,11 @@ void setup_scene(Context& ctx) {
                                  ctx.width, ctx.height);
         if (!rt) {
           ++st.degenerate;
+          continue;
+        }
+        if ((scene.cull == CullWinding::Clockwise && rt->clockwise) ||
+            (scene.cull == CullWinding::CounterClockwise && !rt->clockwise)) {
+          ++st.culled;
           continue;
         }
         if (rt->xmin > rt->xmax || rt->ymin > rt->ymax) continue;  // off screen inside the guard band
@@ -535,7 +583,8 @@ std::optional<RasterTriangle> setup_triangle(const std::array<ScreenVertex, 3>& 
   }
   t.area = (t.X[1] - t.X[0]) * (t.Y[2] - t.Y[0]) - (t.Y[1] - t.Y[0]) * (t.X[2] - t.X[0]);
   if (t.area == 0) return std::nullopt;
-  if (t.area < 0) {  // no culling: flip to the orientation the edge functions expect
+  t.clockwise = t.area > 0;  // y down: a positive area turns clockwise as seen on the screen
+  if (t.area < 0) {          // flip to the orientation the edge functions expect
     std::swap(t.v[1], t.v[2]);
     std::swap(t.X[1], t.X[2]);
     std::swap(t.Y[1], t.Y[2]);
@@ -613,11 +662,12 @@ void compose_quad_outputs(const Scene& scene, const std::vector<QuadTarget>& tar
   for (size_t q = 0; q < targets.size(); ++q) {
     const QuadTarget& t = targets[q];
     const Mesh& mesh = scene.meshes.at(static_cast<size_t>(t.mesh));
-    if (t.stage == 0) colour.fill(kPrimaryColour);
+    if (t.stage == 0) colour = t.primary;
     for (size_t k = 0; k < 4; ++k) colour[k] = combine_stage(colour[k], outputs[q * 4 + k], mesh.stages[t.stage].combine);
     if (t.stage + 1u != mesh.stages.size()) continue;
     for (int k = 0; k < 4; ++k)
-      if ((t.mask >> k) & 1u) image.at(t.x + (k & 1), t.y + (k >> 1)) = colour[static_cast<size_t>(k)];
+      if ((t.mask >> k) & 1u)
+        image.at(t.x + (k & 1), t.y + (k >> 1)) = display_ramp(colour[static_cast<size_t>(k)], scene.display_shift);
   }
 }
 

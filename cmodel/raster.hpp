@@ -10,7 +10,12 @@
 //                 top-left fill rule: a centre on an edge belongs to the triangle only if the edge is a
 //                 top edge (horizontal, interior below) or a left edge (interior to its right)
 //   degenerate    triangles with zero area in world space or after snapping are skipped (counted)
-//   culling       none: both windings are drawn; a depth buffer (z_ndc, less-than) resolves visibility
+//   culling       Scene::cull: triangles of that on-screen winding (decided on the snapped vertices)
+//                 are not drawn (counted); none by default; a depth buffer (z_ndc, less-than)
+//                 resolves visibility
+//   primary       stage 0 combines with white, or with the vertex colour (Mesh::vertex_colour):
+//                 interpolated perspective-correct like (s, t), rounded to 8 bits per channel
+//   display       Scene::display_shift: each drawn pixel min(255, v << shift) after the last stage
 //   interpolation z affine in screen space; s, t perspective-correct: (sum b_i s_i / w_i) / (sum b_i / w_i)
 //                 with barycentrics b_i from the snapped edge functions (helper pixels extrapolate)
 //   quads         pixel order (0,0), (1,0), (0,1), (1,1) of a quad at even (x, y); a quad is shaded when
@@ -58,6 +63,7 @@ struct ScreenVertex {
   double x = 0, y = 0, z = 0;
   double inv_w = 1;
   std::array<glm::dvec2, 2> uv_w{};
+  glm::dvec4 colour_w{0.0};  // vertex colour (0..255 per channel) / w
 };
 
 // A triangle ready for scan conversion (counter-clockwise on screen after setup, area > 0).
@@ -65,6 +71,7 @@ struct RasterTriangle {
   std::array<ScreenVertex, 3> v{};
   std::array<int64_t, 3> X{}, Y{};  // snapped vertex positions, Q.8 pixels
   int64_t area = 0;                 // twice the snapped area, Q.16, > 0
+  bool clockwise = false;           // the winding as given was clockwise on screen (y down: area > 0)
   std::array<int64_t, 3> bias{};    // 0 for top-left edges, -1 otherwise (edge i is opposite vertex i)
   int xmin = 0, xmax = -1, ymin = 0, ymax = -1;  // pixel bounding box, clipped to the viewport
   int mesh = 0;
@@ -99,6 +106,7 @@ struct RenderStats {
   int64_t triangles = 0;   // in the scene
   int64_t degenerate = 0;  // skipped: zero area in world space or after snapping
   int64_t clipped_away = 0;  // entirely outside the view volume
+  int64_t culled = 0;        // screen triangles not drawn for their winding (Scene::cull)
   int64_t rasterized = 0;  // screen triangles after clipping and setup
   int64_t quads = 0;       // shaded quads (= trace requests / 4)
   int64_t pixels = 0;      // sampled pixels (including overdraw)
@@ -113,6 +121,7 @@ struct QuadTarget {
   int x = 0, y = 0;
   uint8_t mask = 0;
   uint8_t stage = 0;
+  std::array<Rgba8, 4> primary{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};  // stage 0's Cp
 };
 
 struct RenderResult {
@@ -131,7 +140,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
 
 // Writes the covered pixels of traced quads into `image` from the filtered outputs of their
 // requests (4 per quad target, in target order): each quad's stages combined in order by their
-// texture environments, as the renderer does.
+// texture environments, as the renderer does, then the display ramp (Scene::display_shift).
 void compose_quad_outputs(const Scene& scene, const std::vector<QuadTarget>& targets, const std::vector<Rgba8>& outputs,
                           Image& image);
 

@@ -445,7 +445,8 @@ Mesh make_bezier_patch_mesh(const std::array<glm::dvec3, 16>& control, int tesse
 Scene parse_scene(const std::string& json_text, const std::string& source, const std::string& base_dir) {
   const std::string label = quote_path(source);  // the file in messages
   const json j = parse_json(json_text, label);
-  const Obj o(j, "", label, {"description", "width", "height", "camera", "background", "meshes"});
+  const Obj o(j, "", label,
+              {"description", "width", "height", "camera", "background", "meshes", "cull", "display_shift"});
   Scene scene;
   scene.name = std::filesystem::path(source).stem().string();
   scene.description = o.string("description", "");
@@ -453,6 +454,14 @@ Scene parse_scene(const std::string& json_text, const std::string& source, const
   scene.height = o.integer("height", scene.height, 1, kMaxRenderSize);
   scene.camera = parse_camera(o);
   scene.background = parse_background(o);
+  if (o.has("cull")) {
+    try {
+      scene.cull = kCullWindingNames.from_name(o.string("cull", ""));
+    } catch (const InputError& e) {
+      o.fail_key("cull", e.what());
+    }
+  }
+  scene.display_shift = o.integer("display_shift", 0, 0, kMaxDisplayShift);
   o.require("meshes");
   const json& meshes = o.raw("meshes");
   if (!meshes.is_array()) o.fail_key("meshes", fmt::format("expected an array, got {}", meshes.type_name()));

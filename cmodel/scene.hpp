@@ -13,6 +13,7 @@
 // builtin_scene_names() / builtin_scene_json() work without the source tree.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <string>
@@ -44,7 +45,19 @@ struct Vertex {
   glm::dvec3 pos{};  // world space (after the mesh transform)
   glm::dvec2 uv{};   // texture coordinates (s, t), UV set 0
   glm::dvec2 uv1{};  // UV set 1 (e.g. a light map's own coordinates)
+  Rgba8 colour{255, 255, 255, 255};  // the vertex's primary colour (glColor), read by Mesh::vertex_colour meshes
 };
+
+// Which triangles the renderer does not draw, by their winding as seen on the screen (GL
+// GL_CULL_FACE: glFrontFace(GL_CCW) with glCullFace(GL_FRONT) culls the counter-clockwise ones).
+enum class CullWinding { None, CounterClockwise, Clockwise };
+inline constexpr EnumNames<CullWinding, 3> kCullWindingNames{
+    "cull winding",
+    {{{CullWinding::None, "none"}, {CullWinding::CounterClockwise, "ccw"}, {CullWinding::Clockwise, "cw"}}}};
+
+// The display's gamma ramp as a left shift: each drawn colour channel becomes min(255, v << shift)
+// (Quake III's R_SetColorMappings with r_gamma 1: the overbright bits of a hardware gamma ramp).
+inline constexpr int kMaxDisplayShift = 2;
 
 inline constexpr int kMaxStages = 4;
 
@@ -60,6 +73,9 @@ struct TextureStage {
 
 struct Mesh {
   std::string primitive;  // "quad", "plane", ...
+  // Stage 0 combines with the interpolated vertex colour (perspective-correct, rounded to 8 bits
+  // per channel) instead of white: the texture environment's primary colour.
+  bool vertex_colour = false;
   std::vector<Vertex> vertices;
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<TextureStage> stages;  // 1..kMaxStages, applied in order
@@ -72,7 +88,15 @@ struct Scene {
   Camera camera;
   std::array<double, 4> background{0, 0, 0, 1};
   std::vector<Mesh> meshes;
+  CullWinding cull = CullWinding::None;  // triangles of this on-screen winding are not drawn
+  int display_shift = 0;                 // 0..kMaxDisplayShift: the display's gamma ramp on drawn pixels
 };
+
+// The display's gamma ramp: rgb min(255, v << shift), alpha kept.
+constexpr Rgba8 display_ramp(Rgba8 c, int shift) {
+  const auto ramp = [shift](uint8_t v) { return static_cast<uint8_t>(std::min(255, int{v} << shift)); };
+  return {ramp(c.r), ramp(c.g), ramp(c.b), c.a};
+}
 
 // Parses a scene. `source` names the input in error messages; relative texture file paths are
 // resolved against `base_dir` (empty: the current directory).

@@ -55,7 +55,7 @@ Scene open_scene(const SceneRequest& r) {
     const q3::LevelSceneSpec spec = q3::parse_level_scene(r.name);
     const auto level = cached_level(r.game_dir, spec.level);
     return q3::level_scene(*level, spec.spawn, r.width > 0 ? r.width : q3::kLevelSceneWidth,
-                           r.height > 0 ? r.height : q3::kLevelSceneHeight);
+                           r.height > 0 ? r.height : q3::kLevelSceneHeight, spec.options);
   }
   Scene s = load_scene(r.name);
   if (r.width > 0) s.width = r.width;
@@ -64,10 +64,12 @@ Scene open_scene(const SceneRequest& r) {
 }
 
 std::shared_ptr<const Texture> level_texture(const std::string& spec, const std::string& where, const std::string& game_dir) {
-  // oa:MAP:texture:NAME | oa:MAP:lightmap:N
+  // oa:MAP:texture:NAME | oa:MAP:lightmap:N | oa:MAP:lightmap-shiftK:N
   const auto fail = [&](const std::string& why) {
-    return InputError(fmt::format("{}: texture '{}': {} (expected oa:MAP:texture:NAME or oa:MAP:lightmap:N)", where,
-                                  spec.substr(0, 80), why));
+    return InputError(
+        fmt::format("{}: texture '{}': {} (expected oa:MAP:texture:NAME, oa:MAP:lightmap:N or "
+                    "oa:MAP:lightmap-shiftK:N)",
+                    where, spec.substr(0, 80), why));
   };
   const std::string rest = spec.substr(std::string(q3::kLevelScenePrefix).size());
   const size_t c1 = rest.find(':');
@@ -76,12 +78,24 @@ std::shared_ptr<const Texture> level_texture(const std::string& spec, const std:
   if (c2 == std::string::npos) throw fail("no texture name");
   const std::string map = rest.substr(0, c1), kind = rest.substr(c1 + 1, c2 - c1 - 1), name = rest.substr(c2 + 1);
   const auto level = cached_level(game_dir, map);
-  if (kind == "lightmap") {
+  const std::string shifted = "lightmap-shift";
+  if (kind == "lightmap" || kind.starts_with(shifted)) {
+    int shift = 0;
+    if (kind != "lightmap") {
+      const char* first = kind.data() + shifted.size();
+      const auto [end, ec] = std::from_chars(first, kind.data() + kind.size(), shift);
+      if (end == first || ec != std::errc{} || end != kind.data() + kind.size() || shift < 1 ||
+          shift > q3::kMaxLightingShift)
+        throw fail(
+            fmt::format("light-map shift '{}' outside 1..{}", kind.substr(shifted.size(), 10), q3::kMaxLightingShift));
+    }
     size_t n = 0;
     const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), n);
     if (ec != std::errc{} || end != name.data() + name.size() || n >= level->lightmaps.size())
       throw fail(fmt::format("level '{}' has light maps 0..{}", map, level->lightmaps.size() - 1));
-    return level->lightmaps[n];
+    // The white light map is never shifted (level_scene names it oa:MAP:lightmap:N).
+    return static_cast<int32_t>(n) == level->white_lightmap ? level->lightmaps[n]
+                                                            : q3::shifted_lightmap(level->lightmaps[n], shift);
   }
   if (kind != "texture") throw fail(fmt::format("unknown kind '{}'", kind.substr(0, 20)));
   for (const q3::LevelTexture& t : level->textures)

@@ -34,7 +34,7 @@ with zipfile.ZipFile(f"{game}/pak6-patch088.pk3", "w") as out:
     out.writestr("textures/e7/e7walldesign01.jpg", textures.read(jpeg))
 PY
 export TFU_OPENARENA_DIR=$game
-"$tfu" render --list | grep -qx 'oa:zz_added_level' ||
+"$tfu" render --list | grep -q '^oa:zz_added_level  pak6-patch088.pk3:maps/zz_added_level.bsp$' ||
   { echo "game_data_overridden_test: FAIL: tfu render --list does not read the added archive"; exit 1; }
 "$tests" --gtest_filter='OpenArena.*' --gtest_brief=1
 echo "game_data_overridden_test: the OpenArena tests pass with an overriding archive installed"

@@ -46,10 +46,14 @@ struct FaceSpec {
   int32_t patch_w = 0, patch_h = 0;
 };
 
-// Builds a BSP file: lumps 0, 1, 10, 11, 13, 14 from the fields, the other lumps empty.
+// Builds a BSP file: lumps 0, 1, 2, 7, 8, 9, 10, 11, 13, 14 from the fields, the other lumps empty.
 struct BspBuilder {
   std::string entities;
   std::vector<BspTexture> textures;
+  std::vector<BspPlane> planes;
+  std::vector<BspModel> models;
+  std::vector<BspBrush> brushes;
+  std::vector<BspBrushSide> brush_sides;
   std::vector<Vertex> vertices;
   std::vector<int32_t> meshverts;
   std::vector<FaceSpec> faces;
@@ -68,6 +72,20 @@ struct BspBuilder {
         put_i32(b, t.surface_flags);
         put_i32(b, t.content_flags);
       }
+    } else if (k == kLumpPlanes) {
+      for (const BspPlane& p : planes)
+        for (double f : {p.normal.x, p.normal.y, p.normal.z, p.dist}) put_f32(b, f);
+    } else if (k == kLumpModels) {
+      for (const BspModel& m : models) {
+        for (double f : {m.mins.x, m.mins.y, m.mins.z, m.maxs.x, m.maxs.y, m.maxs.z}) put_f32(b, f);
+        for (int32_t v : {0, 0, m.first_brush, m.brush_count}) put_i32(b, v);
+      }
+    } else if (k == kLumpBrushes) {
+      for (const BspBrush& br : brushes)
+        for (int32_t v : {br.first_side, br.side_count, br.texture}) put_i32(b, v);
+    } else if (k == kLumpBrushSides) {
+      for (const BspBrushSide& sd : brush_sides)
+        for (int32_t v : {sd.plane, sd.texture}) put_i32(b, v);
     } else if (k == kLumpVertices) {
       for (const Vertex& v : vertices) {
         for (double f : {v.pos.x, v.pos.y, v.pos.z, v.uv0.x, v.uv0.y, v.uv1.x, v.uv1.y, v.normal.x, v.normal.y, v.normal.z})
@@ -89,6 +107,21 @@ struct BspBuilder {
       for (const Bytes& l : lightmaps) b.insert(b.end(), l.begin(), l.end());
     }
     return b;
+  }
+
+  // Adds a brush of texture `texture`: the box [lo, hi] (its six axial sides first, in q3map2's
+  // order -x, +x, -y, +y, -z, +z) cut by further planes.
+  int32_t add_brush(glm::dvec3 lo, glm::dvec3 hi, int32_t texture, const std::vector<BspPlane>& cuts = {}) {
+    std::vector<BspPlane> sides = {{{-1, 0, 0}, -lo.x}, {{1, 0, 0}, hi.x},   {{0, -1, 0}, -lo.y},
+                                   {{0, 1, 0}, hi.y},   {{0, 0, -1}, -lo.z}, {{0, 0, 1}, hi.z}};
+    sides.insert(sides.end(), cuts.begin(), cuts.end());
+    BspBrush br{static_cast<int32_t>(brush_sides.size()), static_cast<int32_t>(sides.size()), texture};
+    for (const BspPlane& p : sides) {
+      brush_sides.push_back({static_cast<int32_t>(planes.size()), texture});
+      planes.push_back(p);
+    }
+    brushes.push_back(br);
+    return static_cast<int32_t>(brushes.size()) - 1;
   }
 
   Bytes build(const char* magic = "IBSP", int32_t version = kBspVersion) const {

@@ -51,6 +51,9 @@ BspBuilder small_bsp() {
   Bytes lm0(size_t{128} * 128 * 3), lm1(size_t{128} * 128 * 3, 200);
   for (size_t i = 0; i < lm0.size(); ++i) lm0[i] = static_cast<uint8_t>(i % 251);
   b.lightmaps = {lm0, lm1};
+  b.add_brush({-64, -64, -16}, {64, 64, 0}, 0);  // a floor, and a wedge cut by z <= y
+  b.add_brush({0, 0, 0}, {32, 32, 32}, 1, {{{0, -0.6, 0.8}, 0.0}});
+  b.models = {{{-64, -64, -16}, {64, 64, 32}, 0, 2}};
   return b;
 }
 
@@ -174,6 +177,44 @@ TEST(Bsp, FaceRangesAndIndices) {
   b = small_bsp();
   b.faces[3].type = static_cast<FaceType>(0);
   EXPECT_ERROR_HAS(b.build(), "face 3: unknown type 0");
+}
+
+TEST(Bsp, CollisionLumps) {
+  const Bsp ok = parse_bsp(small_bsp().build(), "t.bsp");
+  ASSERT_EQ(ok.brushes.size(), 2u);
+  EXPECT_EQ(ok.brushes[1].side_count, 7);
+  EXPECT_EQ(ok.brushes[1].texture, 1);
+  ASSERT_EQ(ok.planes.size(), 13u);
+  EXPECT_EQ(ok.planes[12].normal, glm::dvec3(0, static_cast<float>(-0.6), static_cast<float>(0.8)));
+  EXPECT_EQ(ok.planes[4].dist, 16.0);  // the floor's -z side: dot((0, 0, -1), p) <= 16
+  EXPECT_EQ(ok.brush_sides[7].plane, 7);
+  ASSERT_EQ(ok.models.size(), 1u);
+  EXPECT_EQ(ok.models[0].brush_count, 2);
+  EXPECT_EQ(ok.models[0].maxs, glm::dvec3(64, 64, 32));
+  BspBuilder b = small_bsp();
+  b.planes[3].normal = {0, 0.5, 0};
+  EXPECT_ERROR_HAS(b.build(), "lump 2 (planes): plane 3: normal of length 0.5, not a unit vector");
+  b = small_bsp();
+  b.planes[2].dist = std::numeric_limits<double>::infinity();
+  EXPECT_ERROR_HAS(b.build(), "lump 2 (planes): record 2: inf is not a finite number");
+  b = small_bsp();
+  b.brush_sides[5].plane = 13;
+  EXPECT_ERROR_HAS(b.build(), "lump 9 (brush sides): side 5: plane 13 outside the 13 of lump 2");
+  b = small_bsp();
+  b.brush_sides[0].texture = -1;
+  EXPECT_ERROR_HAS(b.build(), "lump 9 (brush sides): side 0: texture -1 outside the 3 of lump 1");
+  b = small_bsp();
+  b.brushes[1].side_count = 8;
+  EXPECT_ERROR_HAS(b.build(), "lump 8 (brushes): brush 1: sides 6+8 outside the 13 of lump 9");
+  b = small_bsp();
+  b.brushes[0].texture = 3;
+  EXPECT_ERROR_HAS(b.build(), "lump 8 (brushes): brush 0: texture 3 outside the 3 of lump 1");
+  b = small_bsp();
+  b.models[0].brush_count = 3;
+  EXPECT_ERROR_HAS(b.build(), "lump 7 (models): model 0: brushes 0+3 outside the 2 of lump 8");
+  b = small_bsp();
+  b.models[0].mins.x = std::nan("");
+  EXPECT_ERROR_HAS(b.build(), "lump 7 (models): record 0: nan is not a finite number");
 }
 
 TEST(Bsp, PatchSizes) {

@@ -47,6 +47,16 @@ std::string absolute_text(const std::string& path) {
 }
 
 // The .pk3 archives of a game directory: name, size and modification time (seconds since the epoch).
+// Which archive entry the level and each texture it draws came from: {"level": "pak1-maps.pk3:maps/X.bsp",
+// "textures": {NAME: "ARCHIVE:ENTRY", or "fallback" for a name with no image}}.
+nlohmann::json level_sources(const SceneRequest& r) {
+  const auto level = requested_level(r);
+  nlohmann::json textures = nlohmann::json::object();
+  for (const q3::LevelTexture& t : level->textures)
+    if (t.faces_drawn > 0) textures[t.name] = t.fallback ? std::string("fallback") : t.source;
+  return {{"level", level->source}, {"textures", textures}};
+}
+
 nlohmann::json archive_list(const std::string& dir) {
   nlohmann::json list = nlohmann::json::array();
   std::error_code ec;
@@ -107,8 +117,13 @@ nlohmann::json scene_fingerprint(const SceneRequest& r) {
   if (q3::is_level_scene(r.name)) {
     const q3::LevelSceneSpec spec = q3::parse_level_scene(r.name);
     const std::string dir = q3::openarena_dir(r.game_dir);
-    return {{"kind", "level"}, {"name", r.name},     {"map", spec.level},
-            {"spawn", spec.spawn}, {"game_dir", dir}, {"archives", archive_list(dir)}};
+    return {{"kind", "level"},
+            {"name", r.name},
+            {"map", spec.level},
+            {"spawn", spec.spawn},
+            {"game_dir", dir},
+            {"archives", archive_list(dir)},
+            {"sources", level_sources(r)}};
   }
   const auto& names = builtin_scene_names();
   if (std::find(names.begin(), names.end(), r.name) != names.end())

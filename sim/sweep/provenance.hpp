@@ -42,8 +42,10 @@ std::string file_fnv1a64(const std::string& path, const std::string& what, uint6
 //   built-in  {"kind": "builtin", "name", "fnv1a64" (of the embedded JSON text)}
 //   file      {"kind": "file", "path" (as given), "absolute", "bytes", "fnv1a64",
 //              "texture_files": [{"path", "fnv1a64"}] for the textures that are files}
-//   level     {"kind": "level", "name" (oa:MAP[:SPAWN]), "map", "spawn", "game_dir",
-//              "archives": [{"file", "bytes", "mtime"}] of every .pk3 in game_dir}
+//   level     {"kind": "level", "name" (oa:MAP[:SPAWN][:KEY=VALUE...]), "map", "spawn", "game_dir",
+//              "archives": [{"file", "bytes", "mtime"}] of every .pk3 in game_dir,
+//              "sources": {"level": "ARCHIVE:maps/MAP.bsp", "textures": {NAME: "ARCHIVE:ENTRY" or
+//              "fallback"} for every texture a drawn face uses}}
 // Levels are fingerprinted by their archives' sizes and modification times, not by hashing
 // ~140 MB of game data. Throws InputError for an unreadable file.
 nlohmann::json scene_fingerprint(const SceneRequest& request);

@@ -51,8 +51,11 @@ void list_levels(std::ostream& os, const std::string& game_dir) {
   try {
     const q3::GameArchives archives(dir);
     const auto names = archives.level_names();
-    os << fmt::format("\nOpenArena levels in {} ({}, as --scene oa:MAP[:SPAWN]):\n", dir, names.size());
-    for (const std::string& n : names) os << q3::kLevelScenePrefix << n << '\n';
+    os << fmt::format(
+        "\nOpenArena levels in {} ({}, as --scene oa:MAP[:SPAWN], each with the archive it is read from):\n", dir,
+        names.size());
+    for (const std::string& n : names)
+      os << fmt::format("{}{}  {}\n", q3::kLevelScenePrefix, n, archives.describe(archives.locate_level(n)));
   } catch (const InputError& e) {
     os << fmt::format("\nNo OpenArena levels: {}\n", e.what());
   }
@@ -122,9 +125,11 @@ void run(const RenderCliOptions& o) {
   if (truth_file) std::cout << o.truth_out << '\n';
   if (surface_file) std::cout << o.surface_truth_out << '\n';
   if (interior_file) std::cout << o.interior_out << '\n';
-  print_summary_line(fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels",
-                                 scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate,
-                                 r.stats.clipped_away, r.stats.quads, r.stats.pixels));
+  print_summary_line(
+      fmt::format("tfu render: {} {}x{}, {} triangles ({} degenerate, {} clipped away), {} quads, {} pixels",
+                  scene.name, scene.width, scene.height, r.stats.triangles, r.stats.degenerate, r.stats.clipped_away,
+                  r.stats.quads, r.stats.pixels) +
+      (r.stats.culled > 0 ? fmt::format(", {} culled", r.stats.culled) : std::string()));
   if (level_scene) print_summary_line("tfu render: " + scene.description);
 }
 
