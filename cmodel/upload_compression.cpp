@@ -54,14 +54,15 @@ std::optional<BlockFormat> upload_block_format(const UploadCompression& c, const
 }
 
 Texture compress_texture(const Texture& texture, BlockFormat f, const std::string& what) {
-  const BlockImage blocks = encode_block_image(texture.levels, f, /*srgb=*/false, BlockEncodeOptions{kUploadEncodeQuality});
+  const BlockImage blocks =
+      encode_block_image(texture.levels, f, /*srgb=*/false, BlockEncodeOptions{kUploadEncodeQuality});
   Texture out = texture_from_block_image(blocks, BlockDecodeRules{}, what, texture.layout, texture.tile_bytes);
   out.memory = texture.memory;  // the budget's charge for the decoded chain stays with the texture
   return out;
 }
 
-std::shared_ptr<const Texture> upload_compressed(const std::shared_ptr<const Texture>& texture, const UploadCompression& c,
-                                                 const std::string& what) {
+std::shared_ptr<const Texture> upload_compressed(const std::shared_ptr<const Texture>& texture,
+                                                 const UploadCompression& c, const std::string& what) {
   if (!texture) return texture;
   const std::optional<BlockFormat> f = upload_block_format(c, *texture);
   if (!f) return texture;

@@ -57,7 +57,7 @@ Texture compress_texture(const Texture& texture, BlockFormat f, const std::strin
 // upload_block_format, then compress_texture, remembered for the process (thread-safe): the spawn
 // points, modes and traces of one run that ask for the same texture and format encode it once.
 // Returns `texture` itself when the rule leaves it uncompressed.
-std::shared_ptr<const Texture> upload_compressed(const std::shared_ptr<const Texture>& texture, const UploadCompression& c,
-                                                 const std::string& what);
+std::shared_ptr<const Texture> upload_compressed(const std::shared_ptr<const Texture>& texture,
+                                                 const UploadCompression& c, const std::string& what);
 
 }  // namespace tfu

@@ -28,10 +28,10 @@ namespace tfu {
 namespace {
 
 // The one-line InputError that `expr` throws contains `text` (or the test fails showing the message).
-#define EXPECT_INPUT_ERROR(expr, text)                                 \
-  do {                                                                 \
-    const std::string message = input_error([&] { (void)(expr); });    \
-    EXPECT_NE(message.find(text), std::string::npos) << message;       \
+#define EXPECT_INPUT_ERROR(expr, text)                              \
+  do {                                                              \
+    const std::string message = input_error([&] { (void)(expr); }); \
+    EXPECT_NE(message.find(text), std::string::npos) << message;    \
   } while (false)
 
 // A w x h RGBA8 texture of opaque texels (a smooth pattern) with its box MIP chain.
@@ -40,7 +40,8 @@ Texture opaque_texture(int w, int h) {
   t.levels.emplace_back(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      t.levels[0].at(x, y) = {static_cast<uint8_t>(8 * x), static_cast<uint8_t>(16 * y), static_cast<uint8_t>(4 * (x + y)), 255};
+      t.levels[0].at(x, y) = {static_cast<uint8_t>(8 * x), static_cast<uint8_t>(16 * y),
+                              static_cast<uint8_t>(4 * (x + y)), 255};
   generate_mipmaps(t, MipMethod::Box);
   return t;
 }
@@ -61,7 +62,8 @@ TEST(UploadCompression, NamesAndErrors) {
   EXPECT_EQ(astc.format, BlockFormat::ASTC_6x6);
   EXPECT_EQ(astc.name(), "astc6x6");
   EXPECT_INPUT_ERROR(upload_compression_from_name("bc8"), "unknown block-compressed format 'bc8' (did you mean 'bc1'?");
-  EXPECT_INPUT_ERROR(upload_compression_from_name("bc4s"), "'bc4s' is a signed format; the unit filters unsigned texels only");
+  EXPECT_INPUT_ERROR(upload_compression_from_name("bc4s"),
+                     "'bc4s' is a signed format; the unit filters unsigned texels only");
 }
 
 // Upload32 (ioquake3 renderergl1/tr_image.c): samples = 4 as soon as one texel's alpha is not 255,
@@ -74,7 +76,8 @@ TEST(UploadCompression, S3tcRuleIsIoquake3s) {
   EXPECT_EQ(upload_block_format(upload_compression_from_name("bc7"), t), BlockFormat::BC7);
   t.levels[0].at(19, 11).a = 254;  // one texel of level 0
   EXPECT_EQ(upload_block_format(s3tc, t), std::nullopt);
-  EXPECT_EQ(upload_block_format(upload_compression_from_name("astc8x8"), t), BlockFormat::ASTC_8x8);  // ASTC keeps alpha
+  EXPECT_EQ(upload_block_format(upload_compression_from_name("astc8x8"), t),
+            BlockFormat::ASTC_8x8);  // ASTC keeps alpha
   Texture lower = opaque_texture(20, 12);
   lower.levels[2].at(0, 0).a = 0;  // only level 0 is scanned, as Upload32 scans the image it is given
   EXPECT_EQ(upload_block_format(s3tc, lower), BlockFormat::BC1A);
@@ -119,7 +122,8 @@ struct FrameRun {
 // organization.
 FrameRun run_frame(const std::string& compress, rtl::CacheHolds holds) {
   FrameRun out;
-  out.scene = open_scene({"oa:aggressor:0", 256, 144, checked_game_data().dir()}, upload_compression_from_name(compress));
+  out.scene =
+      open_scene({"oa:aggressor:0", 256, 144, checked_game_data().dir()}, upload_compression_from_name(compress));
   for (const Mesh& m : out.scene.meshes)
     if (m.stages.at(0).texture->compressed) out.compressed.insert(m.stages.at(0).spec.source);
   RenderOptions ro;
@@ -213,7 +217,8 @@ TEST(OpenArena, CompressedFramesAsTheyShip) {
 // binding again gives the same compressed texture (one encoding per process).
 TEST(OpenArena, CompressedLevelTraceBindings) {
   if (!checked_game_data().present()) GTEST_SKIP() << checked_game_data().missing();
-  const Scene s = open_scene({"oa:aggressor:0", 64, 36, checked_game_data().dir()}, upload_compression_from_name("s3tc"));
+  const Scene s =
+      open_scene({"oa:aggressor:0", 64, 36, checked_game_data().dir()}, upload_compression_from_name("s3tc"));
   const TextureStage& base = s.meshes.front().stages.front();
   EXPECT_EQ(base.spec.params.at("compress"), "s3tc");
   const LoadedTexture again = load_texture_spec(base.spec, "trace line 2", {}, checked_game_data().dir());
