@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "cmodel/block_encode.hpp"
 #include "cmodel/block_formats.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/nearest_name.hpp"
@@ -14,6 +13,7 @@
 #include "cmodel/mipmap.hpp"
 #include "cmodel/q3_scene.hpp"
 #include "cmodel/scene_source.hpp"
+#include "cmodel/upload_compression.hpp"
 
 namespace tfu {
 
@@ -241,19 +241,9 @@ Texture texture_with_params(Texture tex, const Params& params, const std::string
   const std::string compress = param("compress", "none");
   if (compress != "none") {
     if (tex.compressed) throw fail("compress", "the file is compressed already");
-    BlockFormat f{};
     try {
-      f = block_format_from_name(compress);
-    } catch (const InputError& e) {
-      throw fail("compress", e.what());
-    }
-    try {
-      const BlockImage blocks = encode_block_image(tex.levels, f, /*srgb=*/false);
-      const MemoryLayout layout = tex.layout;
-      const int tile_bytes = tex.tile_bytes;
-      auto memory = tex.memory;  // the budget's charge for the decoded chain stays with the texture
-      tex = texture_from_block_image(blocks, BlockDecodeRules{}, where, layout, tile_bytes);
-      tex.memory = std::move(memory);
+      if (const std::optional<BlockFormat> f = upload_block_format(upload_compression_from_name(compress), tex))
+        tex = compress_texture(tex, *f, where);
     } catch (const InputError& e) {
       throw fail("compress", e.what());
     }
@@ -270,8 +260,17 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   }
   LoadedTexture out;
   if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
-    if (!spec.params.empty()) throw InputError(fmt::format("{}: a level's texture takes no keys", where));
+    // A level's texture as the game uploads it: the one key is compress (a level run's --compress).
+    for (const auto& [key, value] : spec.params)
+      if (key != "compress") throw InputError(fmt::format("{}: a level's texture takes no key but compress", where));
     out.texture = level_texture(spec.source, where, game_dir);
+    if (const auto it = spec.params.find("compress"); it != spec.params.end()) {
+      try {
+        out.texture = upload_compressed(out.texture, upload_compression_from_name(it->second), where);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: key 'compress': {}", where, e.what()));
+      }
+    }
     return out;
   }
   Texture tex;

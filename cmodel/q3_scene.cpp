@@ -8,6 +8,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/q3_camera.hpp"
+#include "cmodel/upload_compression.hpp"
 
 namespace tfu::q3 {
 
@@ -106,7 +107,8 @@ LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& op
   return spec;
 }
 
-Scene level_scene(const Level& level, int spawn, int width, int height, const LevelSceneOptions& options) {
+Scene level_scene(const Level& level, int spawn, int width, int height, const LevelSceneOptions& options,
+                  const UploadCompression& compress) {
   if (width < 1 || height < 1 || width > kMaxRenderSize || height > kMaxRenderSize)
     throw InputError(fmt::format("preview size {}x{} outside 1..{}", width, height, kMaxRenderSize));
   Scene scene;
@@ -133,6 +135,7 @@ Scene level_scene(const Level& level, int spawn, int width, int height, const Le
 
   std::map<std::pair<int32_t, int32_t>, size_t> mesh_of_material;  // (texture, light map) -> mesh
   std::vector<std::map<uint32_t, uint32_t>> remap;                  // per mesh: level vertex -> mesh vertex
+  std::map<int32_t, std::string> compressed_as;                     // base texture -> its block format ("": none)
   for (const LevelFace& f : level.faces) {
     auto [it, added] = mesh_of_material.try_emplace({f.texture, f.lightmap}, scene.meshes.size());
     if (added) {
@@ -142,6 +145,11 @@ Scene level_scene(const Level& level, int spawn, int width, int height, const Le
       TextureStage base;
       base.spec = {fmt::format("oa:{}:texture:{}", level.name, t.name), {}};
       base.texture = t.texture;
+      if (compress.rule != UploadRule::None) {  // as the game uploads it; the trace binding says so too
+        base.spec.params["compress"] = compress.name();
+        base.texture = upload_compressed(t.texture, compress, base.spec.source);
+        compressed_as[f.texture] = base.texture->compressed ? block_format_name(base.texture->compressed->image.format) : "";
+      }
       base.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
       base.sampler.wrap_s = base.sampler.wrap_t = WrapMode::Repeat;
       base.combine = {TexEnv::Replace, 1};
@@ -181,6 +189,14 @@ Scene level_scene(const Level& level, int spawn, int width, int height, const Le
       }
       mesh.triangles.push_back(tri);
     }
+  }
+  if (compress.rule != UploadRule::None) {
+    std::map<std::string, int> count;  // format name -> textures
+    for (const auto& [texture, format] : compressed_as) ++count[format];
+    std::string list;
+    for (const auto& [format, n] : count)
+      list += fmt::format("{}{} {}", list.empty() ? "" : ", ", n, format.empty() ? "uncompressed" : format);
+    scene.description += fmt::format("; textures compressed at upload ({}): {}; light maps uncompressed", compress.name(), list);
   }
   return scene;
 }

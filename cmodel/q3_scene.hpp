@@ -41,6 +41,7 @@
 #include "cmodel/q3_camera.hpp"
 #include "cmodel/q3_level.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/upload_compression.hpp"
 
 namespace tfu::q3 {
 
@@ -90,7 +91,10 @@ bool is_level_scene(const std::string& scene);  // starts with "oa:"
 LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& option = "--scene");
 
 inline constexpr int kLightmapOverbright = 2;  // rgb_scale of the light-map stage under LightRule::Double
+// `compress`: the base textures as the game uploads them (cmodel/upload_compression.hpp; the base
+// stages' texture specs carry the key compress = its name); light maps stay uncompressed, as ioquake3
+// uploads them (IMGFLAG_NO_COMPRESSION). The description then ends with the textures per format.
 Scene level_scene(const Level& level, int spawn, int width = kLevelSceneWidth, int height = kLevelSceneHeight,
-                  const LevelSceneOptions& options = {});
+                  const LevelSceneOptions& options = {}, const UploadCompression& compress = {});
 
 }  // namespace tfu::q3

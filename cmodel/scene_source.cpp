@@ -48,15 +48,18 @@ std::shared_ptr<const q3::Level> requested_level(const SceneRequest& r) {
   return cached_level(r.game_dir, q3::parse_level_scene(r.name).level);
 }
 
-Scene open_scene(const SceneRequest& r) {
+Scene open_scene(const SceneRequest& r, const UploadCompression& compress) {
   if (r.width < 0 || r.height < 0 || r.width > kMaxRenderSize || r.height > kMaxRenderSize)
     throw InputError(fmt::format("render size {}x{} outside 1..{} (0: the scene's own)", r.width, r.height, kMaxRenderSize));
   if (q3::is_level_scene(r.name)) {
     const q3::LevelSceneSpec spec = q3::parse_level_scene(r.name);
     const auto level = cached_level(r.game_dir, spec.level);
     return q3::level_scene(*level, spec.spawn, r.width > 0 ? r.width : q3::kLevelSceneWidth,
-                           r.height > 0 ? r.height : q3::kLevelSceneHeight, spec.options);
+                           r.height > 0 ? r.height : q3::kLevelSceneHeight, spec.options, compress);
   }
+  if (compress.rule != UploadRule::None)
+    throw InputError(fmt::format("--compress {} applies to oa: level scenes; scene '{}' names its textures' compress keys itself",
+                                 compress.name(), r.name.substr(0, 80)));
   Scene s = load_scene(r.name);
   if (r.width > 0) s.width = r.width;
   if (r.height > 0) s.height = r.height;

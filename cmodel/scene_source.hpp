@@ -13,6 +13,7 @@
 
 #include "cmodel/q3_level.hpp"
 #include "cmodel/scene.hpp"
+#include "cmodel/upload_compression.hpp"
 
 namespace tfu {
 
@@ -22,7 +23,10 @@ struct SceneRequest {
   std::string game_dir;  // OpenArena data (empty: $TFU_OPENARENA_DIR or the Debian path)
 };
 
-Scene open_scene(const SceneRequest& request);
+// `compress`: a level's base textures compressed as the game uploads them (q3::level_scene;
+// cmodel/upload_compression.hpp); InputError for any other scene unless it is none (a scene file's
+// textures carry their own compress key).
+Scene open_scene(const SceneRequest& request, const UploadCompression& compress = {});
 
 // The level of an "oa:MAP[:SPAWN]" request (loaded once, cached), null for any other scene.
 std::shared_ptr<const q3::Level> requested_level(const SceneRequest& request);

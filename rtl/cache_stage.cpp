@@ -32,6 +32,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
   }
   slots_.assign(stat_slots(regs.textures.size()), SlotCounters{});
+  if (any_compressed_) decoded_memo_.resize(kDecodedMemoEntries);
 }
 
 uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, size_t slot) {
@@ -216,15 +217,29 @@ void CacheStage::read_out_footprint(const FootprintReq& cur, FilterReq& f) const
   }
 }
 
+const Rgba8* CacheStage::decoded_block(const TextureDescriptor& d, uint64_t address, const HeldBlock* held, size_t n,
+                                       Rgba8* scratch) const {
+  const int shift = d.block().block_bytes == 8 ? 3 : 4;  // consecutive blocks, consecutive entries
+  DecodedBlock& e = decoded_memo_[(address >> shift) & (kDecodedMemoEntries - 1)];
+  if (e.address == address && e.format == d.block_format && e.rules == d.decode) return e.texels.data();
+  for (size_t k = 0; k < n; ++k)
+    if (held[k].texels == e.texels.data()) {  // the entry holds another block of this footprint
+      decode_block(d.block_format, memory_.bytes_at(address), d.decode, scratch);
+      return scratch;
+    }
+  decode_block(d.block_format, memory_.bytes_at(address), d.decode, e.texels.data());
+  e.address = address;
+  e.format = d.block_format;
+  e.rules = d.decode;
+  return e.texels.data();
+}
+
 void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(cur.tag.req.texture)];
   const BlockFormatInfo& b = d.block();
   const TapGrid& g = cur.grid;
-  struct Decoded {
-    uint64_t address;
-    std::array<Rgba8, 144> texels;  // up to 12 x 12
-  };
-  std::array<Decoded, 16> blocks;  // the footprint's distinct blocks, each decoded once
+  std::array<HeldBlock, 16> blocks;  // the footprint's distinct blocks, each decoded once
+  std::array<std::array<Rgba8, 144>, 16> scratch;  // for blocks whose memo entry another one holds
   size_t n = 0;
   const auto texel = [&](size_t cell) {
     const int x = g.x[cell & 3u], y = g.y[cell >> 2];
@@ -232,8 +247,7 @@ void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 ou
     size_t k = 0;
     while (k < n && blocks[k].address != address) ++k;
     if (k == n) {
-      blocks[n].address = address;
-      decode_block(d.block_format, memory_.bytes_at(address), d.decode, blocks[n].texels.data());
+      blocks[n] = {address, decoded_block(d, address, blocks.data(), n, scratch[n].data())};
       ++n;
     }
     return blocks[k].texels[static_cast<size_t>((y % b.block_h) * b.block_w + x % b.block_w)];

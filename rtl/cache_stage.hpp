@@ -38,6 +38,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <deque>
 #include <vector>
 
@@ -232,6 +233,26 @@ class CacheStage : public sim::Module {
   void read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const;
   // The stalls and shapes are counted in slots_ on the per-cycle path; published once, after the run.
   void publish_stalls_shapes_decoders(sim::Stats& st, const SlotCounters& c) const;
+  // A memo of decoded blocks, for the model's speed only (no hardware counterpart; cycles,
+  // statistics and outputs are the same without it): texel memory is written before a run and only
+  // read during it, so the block at an address decodes to the same texels under the same format and
+  // rules. Direct-mapped by block address, kDecodedMemoEntries entries, allocated when a texture is
+  // compressed. decoded_block returns the texels of the block at `address`: the memo entry's, or
+  // `scratch` when the entry holds another block of the same footprint (`held`, `n` of them).
+  struct DecodedBlock {
+    uint64_t address = UINT64_MAX;
+    BlockFormat format{};
+    BlockDecodeRules rules{};
+    std::array<Rgba8, 144> texels;  // up to 12 x 12
+  };
+  struct HeldBlock {
+    uint64_t address;
+    const Rgba8* texels;
+  };
+  static constexpr size_t kDecodedMemoEntries = 1024;
+  mutable std::vector<DecodedBlock> decoded_memo_;
+  const Rgba8* decoded_block(const TextureDescriptor& d, uint64_t address, const HeldBlock* held, size_t n,
+                             Rgba8* scratch) const;
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
   bool record_shapes_ = false;             // some EDGE_PRESERVING sampler is cache-aware (shapes)
   bool probes_ = false;                    // waveform probes recorded (probes())

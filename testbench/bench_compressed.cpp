@@ -1,8 +1,13 @@
 // tfu_bench_compressed: decode speed of the compressed-texture decoders (Google Benchmark, one
-// thread), side by side with the outside decoder on the same blocks. ASTC: a 256x256 procedural
-// RGBA image encoded once by libastcenc 4.2.0 (ASTCENC_PRE_FAST) at 4x4, 6x6, 8x8 and 12x12,
-// decoded whole by decode_astc_image (BM_AstcDecode) and by astcenc_decompress_image to
-// ASTCENC_TYPE_U8 (BM_AstcencDecode); items are texels. Target: ASTC 8x8 >= 10 M texels/s.
+// thread), side by side with the outside decoder on the same blocks; items are texels.
+//   * ASTC: a 256x256 procedural RGBA image encoded once by libastcenc 4.2.0 (ASTCENC_PRE_FAST) at
+//     4x4, 6x6, 8x8 and 12x12, decoded whole by decode_astc_image (BM_AstcDecode) and by
+//     astcenc_decompress_image to ASTCENC_TYPE_U8 (BM_AstcencDecode). Target: ASTC 8x8 >= 10 M texels/s.
+//   * BC1 and BC3: the same image encoded once by libsquish 1.15 (block_encode.hpp, cluster fit),
+//     decoded whole by decode_block_level, the dispatch every model calls (BM_BcDecode), and by
+//     squish::DecompressImage to RGBA8 (BM_SquishDecode). Target: BC1 >= 50 M texels/s. The golden
+//     decoder rounds the interpolated colours to nearest (the spec), libsquish truncates: the same
+//     work, one LSB apart on some texels (docs/compressed-bc.md).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -10,7 +15,11 @@
 #include <cstdint>
 #include <vector>
 
+#include <squish.h>
+
 #include "cmodel/astc_decode.hpp"
+#include "cmodel/block_encode.hpp"
+#include "cmodel/block_formats.hpp"
 #include "testbench/astc_reference.hpp"
 
 namespace {
@@ -81,6 +90,48 @@ void BM_AstcencDecode(benchmark::State& state) {
   state.SetLabel(std::to_string(f.w) + "x" + std::to_string(f.h));
 }
 
+// ---- BC1 and BC3 against libsquish ----
+constexpr std::array<tfu::BlockFormat, 2> kBenchBcFormats{tfu::BlockFormat::BC1, tfu::BlockFormat::BC3};
+
+const tfu::BlockLevel& bc_encoded(size_t i) {
+  static std::array<tfu::BlockImage, kBenchBcFormats.size()> cache;
+  tfu::BlockImage& image = cache[i];
+  if (image.levels.empty()) {
+    const std::vector<uint8_t> px = procedural_image();
+    tfu::Image level(kSize, kSize);
+    for (size_t t = 0; t < level.texels.size(); ++t)
+      level.texels[t] = {px[4 * t], px[4 * t + 1], px[4 * t + 2], px[4 * t + 3]};
+    image = tfu::encode_block_image(std::span<const tfu::Image>(&level, 1), kBenchBcFormats[i], false);
+  }
+  return image.levels.front();
+}
+
+void BM_BcDecode(benchmark::State& state) {
+  const auto i = static_cast<size_t>(state.range(0));
+  const tfu::BlockLevel& level = bc_encoded(i);
+  for (auto _ : state) {
+    tfu::Image img = tfu::decode_block_level(kBenchBcFormats[i], kSize, kSize, level.blocks, tfu::BlockDecodeRules{});
+    benchmark::DoNotOptimize(img.texels.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kSize * kSize);
+  state.SetLabel(tfu::block_format_name(kBenchBcFormats[i]));
+}
+
+void BM_SquishDecode(benchmark::State& state) {
+  const auto i = static_cast<size_t>(state.range(0));
+  const tfu::BlockLevel& level = bc_encoded(i);
+  const int flags = kBenchBcFormats[i] == tfu::BlockFormat::BC1 ? squish::kDxt1 : squish::kDxt5;
+  std::vector<uint8_t> rgba(static_cast<size_t>(kSize * kSize * 4));
+  for (auto _ : state) {
+    squish::DecompressImage(rgba.data(), kSize, kSize, level.blocks.data(), flags);
+    benchmark::DoNotOptimize(rgba.data());
+  }
+  state.SetItemsProcessed(state.iterations() * kSize * kSize);
+  state.SetLabel(tfu::block_format_name(kBenchBcFormats[i]));
+}
+
+BENCHMARK(BM_BcDecode)->DenseRange(0, static_cast<int>(kBenchBcFormats.size()) - 1);
+BENCHMARK(BM_SquishDecode)->DenseRange(0, static_cast<int>(kBenchBcFormats.size()) - 1);
 BENCHMARK(BM_AstcDecode)->DenseRange(0, static_cast<int>(kBenchFootprints.size()) - 1);
 BENCHMARK(BM_AstcencDecode)->DenseRange(0, static_cast<int>(kBenchFootprints.size()) - 1);
 

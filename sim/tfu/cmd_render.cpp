@@ -20,6 +20,7 @@
 #include "cmodel/scene_frame.hpp"
 #include "cmodel/scene_source.hpp"
 #include "cmodel/trace.hpp"
+#include "cmodel/upload_compression.hpp"
 #include "sim/tfu/commands.hpp"
 #include "sim/tfu/sampler_options.hpp"
 
@@ -32,6 +33,7 @@ struct RenderCliOptions {
   std::string max_aniso, aniso_rounding;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
+  std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
   bool ideal = false, force = false, list = false;
   int threads = 0;
   int width = 0, height = 0;  // 0: the scene's size
@@ -75,7 +77,15 @@ void run(const RenderCliOptions& o) {
   check_size_override("--width", o.width);
   check_size_override("--height", o.height);
   const bool level_scene = q3::is_level_scene(o.scene);
-  const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir});
+  UploadCompression compress;
+  if (!o.compress.empty()) {
+    try {
+      compress = upload_compression_from_name(o.compress);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--compress: {}", e.what()));
+    }
+  }
+  const Scene scene = open_scene({o.scene, o.width, o.height, o.game_dir}, compress);
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);
@@ -144,6 +154,9 @@ void register_render(CLI::App& app) {
   cmd->add_option("--game-dir", o->game_dir,
                   fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
                               q3::kDefaultOpenArenaDir));
+  cmd->add_option("--compress", o->compress,
+                  "oa: scenes: compress the base textures as the game uploads them: none (default), s3tc (ioquake3's rule: "
+                  "DXT1 when opaque, else uncompressed) or a block format (bc1, bc7, astc4x4 ... astc12x12; docs/compressed.md)");
   cmd->add_option("--filter", o->filter,
                   "Override the filter of every mesh's base stage (e.g. trilinear, cubic, edge_preserving_mipmap_linear)");
   cmd->add_option("--max-aniso", o->max_aniso,

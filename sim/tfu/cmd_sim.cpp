@@ -17,9 +17,11 @@
 #include "cmodel/input_file.hpp"
 #include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
+#include "cmodel/q3_scene.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
+#include "cmodel/upload_compression.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
@@ -197,7 +199,15 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   const std::string name = o.scene.empty() ? kDefaultScene : o.scene;
   if (o.width < 0 || o.height < 0 || o.width == 1 || o.height == 1 || o.width > kMaxRenderSize || o.height > kMaxRenderSize)
     throw InputError(fmt::format("--width/--height must be in 2..{} (0: the scene's own size)", kMaxRenderSize));
-  const Scene scene = open_scene({name, o.width, o.height, o.game_dir});
+  UploadCompression compress;  // --compress with an oa: scene: the level's textures as the game uploads them
+  if (cmd.count("--compress") > 0) {
+    try {
+      compress = upload_compression_from_name(o.tex.values.at("compress"));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--compress: {}", e.what()));
+    }
+  }
+  const Scene scene = open_scene({name, o.width, o.height, o.game_dir}, compress);
   RenderOptions ro;
   ro.trace = true;
   ro.line_bytes = unit.cache.line_bytes;
@@ -297,8 +307,11 @@ void run(SimOptions& o, CLI::App& cmd) {
       if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
   } else {
     if (given("--texture")) throw InputError("--texture applies to --requests runs; a scene's stages carry their own textures");
-    for (const char* key : texture_param_keys())
-      if (given(flag_of(key))) throw InputError(fmt::format("{} applies to --requests runs", flag_of(key)));
+    for (const char* key : texture_param_keys()) {
+      const bool compress = std::string(key) == "compress";
+      if (given(flag_of(key)) && !(compress && q3::is_level_scene(o.scene)))
+        throw InputError(fmt::format("{} applies to --requests runs{}", flag_of(key), compress ? " and oa: level scenes" : ""));
+    }
     for (const SamplerParam& p : sampler_params())
       if (given(flag_of(p.key)) && std::string(p.key) != "filter" &&
           std::find(std::begin(kSceneSamplerOverrides), std::end(kSceneSamplerOverrides), std::string(p.key)) ==

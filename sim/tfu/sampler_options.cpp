@@ -28,8 +28,10 @@ void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required
       {"alpha", "Edge-preserving MIP weight alpha of Lee & Jen Eq. 7 (0..1)"},
       {"layout", "Memory layout: tiled (one tile per cache line) or linear rows"},
       {"tile_bytes", "Tiled layout: bytes per tile, one cache line (64, 256 or 1024)"},
-      {"compress", "Compress the texture at load as a driver does: none (default) or a block format (bc1, bc3, bc7, etc2, "
-                   "astc4x4 ... astc12x12; docs/compressed.md); a DDS, KTX or .astc file is read compressed as it is"}};
+      {"compress", "Compress the texture at load as a driver does: none (default), a block format (bc1, bc3, bc7, etc2, "
+                   "astc4x4 ... astc12x12) or s3tc (ioquake3's rule: bc1a when every alpha is 255, else uncompressed; "
+                   "docs/compressed.md); a DDS, KTX or .astc file is read compressed as it is. tfu sim: also an oa: level "
+                   "scene's base textures"}};
   for (const char* key : texture_param_keys()) cmd.add_option(flag_of(key), o.values[key], help.at(key));
 }
 
