@@ -860,7 +860,9 @@ TEST(TfuUnit, AnisotropicThresholdBitExactInBothEngines) {
           const uint64_t probes = got.stats.counter("probes");
           EXPECT_LE(probes, prev) << what;
           if (t == 0) first = probes;
-          if (t == 7) EXPECT_LT(probes, first) << what;
+          if (t == 7) {
+            EXPECT_LT(probes, first) << what;
+          }
           prev = probes;
         }
       }
