@@ -99,7 +99,9 @@ TEST(Scene, EveryBuiltinSceneParsesAndRendersNonTrivially) {
     std::set<uint32_t> colours;
     for (const Rgba8& c : r.image.texels) colours.insert(uint32_t{c.r} << 16 | uint32_t{c.g} << 8 | c.b);
     EXPECT_GT(colours.size(), 8u) << name;
-    // The filtered image is close to the ground truth on average (mean |difference| per channel).
+    // The filtered image is close to the ground truth on average (mean |difference| per channel);
+    // the tunnel's mip_colours texture has no truth beyond level 0's colour (procedural.hpp).
+    if (name == "tunnel") continue;
     double diff = 0;
     for (size_t i = 0; i < r.image.texels.size(); ++i)
       diff += std::abs(r.image.texels[i].r - r.truth.texels[i].r) + std::abs(r.image.texels[i].g - r.truth.texels[i].g);
