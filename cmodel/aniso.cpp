@@ -12,18 +12,21 @@ namespace {
 
 int clamp_max_aniso(int max_aniso) { return std::clamp(max_aniso, 1, kMaxAniso); }
 
-// n^2 pmin2 >= pmax2, exactly: the product needs up to 71 bits; when it does not fit 64 bits it
-// exceeds every pmax2 (< 2^64).
-bool covers(uint64_t pmin2, uint64_t pmax2, uint64_t n2) {
-  if (pmin2 > std::numeric_limits<uint64_t>::max() / n2) return true;
-  return n2 * pmin2 >= pmax2;
+__extension__ using u128 = unsigned __int128;
+
+// n^2 (8 + t)^2 pmin2 >= 64 pmax2, exactly: n^2 <= 2^8, (8 + t)^2 < 2^8, pmin2, pmax2 < 2^64, so
+// both sides fit 80 bits (79 for the descriptor's 63-bit lengths). For t = 0 this is n^2 pmin2 >=
+// pmax2, the spec's ceil.
+bool covers(uint64_t pmin2, uint64_t pmax2, uint64_t n2, uint32_t threshold_scale) {
+  return u128{n2} * threshold_scale * pmin2 >= u128{pmax2} << 6;
 }
 
 }  // namespace
 
 int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams& p) {
+  const uint32_t scale = aniso_threshold_scale(p.aniso_threshold);
   int n = 1;
-  while (n <= kMaxAniso && !covers(pmin2_q32, pmax2_q32, static_cast<uint64_t>(n) * static_cast<uint64_t>(n))) ++n;
+  while (n <= kMaxAniso && !covers(pmin2_q32, pmax2_q32, static_cast<uint64_t>(n) * static_cast<uint64_t>(n), scale)) ++n;
   n = std::min(n, clamp_max_aniso(p.max_aniso));  // n = 17 (no n covers) becomes maxAniso
   if (p.aniso_rounding == AnisoRounding::PowerOfTwo) n = static_cast<int>(std::bit_ceil(static_cast<unsigned>(n)));
   return n;

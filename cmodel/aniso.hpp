@@ -13,7 +13,9 @@
 //   major axis       x if Px^2 >= Py^2, else y (ties: x)
 //   N                smallest n in 1..16 with n^2 Pmin^2 >= Pmax^2 (exact: 15 compares of 71-bit
 //                    products), 16 + 1 if none, then min(., maxAniso); aniso_rounding
-//                    PowerOfTwo: rounded UP to a power of two (the spec's "round N up to the nearest supported sampling rate")
+//                    PowerOfTwo: rounded UP to a power of two (the spec's "round N up to the nearest supported sampling rate");
+//                    aniso_threshold t (0..7, 0 = the spec's N): smallest n with n (1 + t/8) Pmin >= Pmax,
+//                    compared as n^2 (8 + t)^2 Pmin^2 >= 64 Pmax^2 (79-bit products)
 //   lambda           (log2_q8(Pmax^2) - 32 * 256 - R[N] + 1) >> 1, R[N] = round(512 log2 N) from a
 //                    16-entry ROM (R[1] = 0: N = 1 is the isotropic lambda bit for bit);
 //                    |lambda - 256 log2(Pmax / N)| <= 0.45 + 0.25 + 0.5 = 1.2 LSB of Q.8 (log2 ROM,
@@ -39,6 +41,8 @@ inline constexpr int kMaxAniso = 16;          // probes per pixel at most
 inline constexpr int kProbeFracBits = 16;     // probe fraction q(N, i): Q.16, |q| < 2^15
 inline constexpr int kAnisoWeightBits = 8;    // probe weights sum to 2^8
 inline constexpr int kProbeRomAddrBits = 8;   // address {N - 1, i - 1}, 4 + 4 bits
+inline constexpr int kAnisoThresholdBits = 3;  // aniso_threshold t: 0..7, in eighths of Pmin
+inline constexpr int kAnisoThresholdMax = (1 << kAnisoThresholdBits) - 1;
 
 // How the probe count is rounded (sampler-descriptor field aniso_rounding): any integer 1..maxAniso,
 // or up to a power of two (1, 2, 4, 8, 16; the spec's "round N up to the nearest supported
@@ -47,9 +51,18 @@ enum class AnisoRounding { Integer, PowerOfTwo };
 
 // The sampler-descriptor fields of anisotropic filtering (SamplerDescriptor::aniso() hands them to
 // the LOD unit; a sampler without MIP-mapping gives max_aniso 1: it has no lambda to lower).
+//
+// aniso_threshold t (0..7) widens each probe's allowed footprint from Pmin to (1 + t/8) Pmin
+// before the count grows: N = min(ceil(Pmax / ((1 + t/8) Pmin)), maxAniso). t = 0 is the spec's N
+// bit for bit; a larger t spends fewer probes where the footprint is barely anisotropic (a
+// real frame's Pmax / Pmin just above 1), at a probe footprint Pmax / N of at most (1 + t/8) Pmin,
+// so lambda lies at most log2(1 + t/8) levels (0.91 for t = 7) above the spec's bound log2 Pmin.
+// The idea of a sampler-descriptor threshold is AMD's (ANISO_THRESHOLD; Mesa ac_descriptors.c sets
+// it to max_aniso_ratio >> 1); AMD does not document its meaning, this one is the model's own.
 struct AnisoParams {
   int max_aniso = 1;  // maxAniso, 1..16 (1 = isotropic); values outside are clamped into 1..16
   AnisoRounding aniso_rounding = AnisoRounding::Integer;
+  int aniso_threshold = 0;  // t, 0..7 (0: the spec's N); values outside are clamped into 0..7
 };
 
 // The anisotropic LOD unit's result for one pixel (or quad).
@@ -75,9 +88,16 @@ constexpr AnisoLod isotropic_lod(int32_t lambda_q8) {
 AnisoLod aniso_lod(const TexelDerivatives& d, const AnisoParams& p);
 
 // N from the squared axis lengths (pmin2 <= pmax2 expected; any pair is defined): smallest n in
-// 1..16 with n^2 pmin2 >= pmax2 (17 if none, e.g. pmin2 = 0 < pmax2), capped at max_aniso, then
-// rounded up to a power of two with AnisoRounding::PowerOfTwo. pmax2 = pmin2 (also both 0) gives 1.
+// 1..16 with n^2 (8 + t)^2 pmin2 >= 64 pmax2 (t = aniso_threshold; t = 0: n^2 pmin2 >= pmax2; 17
+// if none, e.g. pmin2 = 0 < pmax2), capped at max_aniso, then rounded up to a power of two with
+// AnisoRounding::PowerOfTwo. pmax2 = pmin2 (also both 0) gives 1.
 int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams& p);
+// The threshold's scale (8 + t)^2 for t = aniso_threshold clamped into 0..7: 64, 81, ..., 225
+// (an 8-entry x 8-bit table in the SV count unit).
+constexpr uint32_t aniso_threshold_scale(int t) {
+  const int c = 8 + (t < 0 ? 0 : t > kAnisoThresholdMax ? kAnisoThresholdMax : t);
+  return static_cast<uint32_t>(c * c);
+}
 
 // R[N - 1] = round(512 log2 N) = 256 log2(N^2) in Q.8, N = 1..16 (0, 512, 811, 1024, ...).
 const std::array<int32_t, kMaxAniso>& aniso_log2_sq_rom();

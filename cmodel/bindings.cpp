@@ -128,6 +128,9 @@ const SamplerParam kSamplerParams[] = {
     {"aniso_rounding", "probe count: integer or pow2",
      [](SD& s, const std::string& v) { s.aniso_rounding = pick(v, kAnisoRounding); },
      [](const SD& s) { return name_of(s.aniso_rounding, kAnisoRounding); }},
+    {"aniso_threshold", "probe threshold in eighths of Pmin (0..7; 0 the spec's N)",
+     [](SD& s, const std::string& v) { s.aniso_threshold = static_cast<int>(parse_int(v, 0, kAnisoThresholdMax)); },
+     [](const SD& s) { return std::to_string(s.aniso_threshold); }},
 };
 
 constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress"};

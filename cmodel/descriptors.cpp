@@ -94,6 +94,8 @@ void SamplerDescriptor::validate() const {
       throw InputError(fmt::format("sampler {} {}/256 outside -1000..1000 levels", name, v));
   if (lod.min_lod_q8 > lod.max_lod_q8) throw InputError("sampler min_lod is above max_lod");
   if (max_aniso < 1 || max_aniso > 16) throw InputError(fmt::format("sampler max_aniso {} outside 1..16", max_aniso));
+  if (aniso_threshold < 0 || aniso_threshold > kAnisoThresholdMax)
+    throw InputError(fmt::format("sampler aniso_threshold {} outside 0..{}", aniso_threshold, kAnisoThresholdMax));
 }
 
 uint64_t TextureDescriptor::level_bytes(int l) const {
@@ -334,6 +336,9 @@ const std::vector<Codec<SD>>& sampler_codecs() {
       {{"aniso_rounding", 5, 4, 1, 1, 0, "probe count N: 0 any integer, 1 rounded up to a power of two"},
        [](const SD& d, int) { return u(d.aniso_rounding); },
        [](SD& d, int, uint32_t b) { d.aniso_rounding = static_cast<AnisoRounding>(b); }},
+      {{"aniso_threshold", 5, 5, 3, 1, 0, "probe threshold t: N = ceil(Pmax / ((1 + t/8) Pmin)), 0 the spec's N"},
+       [](const SD& d, int) { return static_cast<uint32_t>(d.aniso_threshold); },
+       [](SD& d, int, uint32_t b) { d.aniso_threshold = static_cast<int>(b); }},
   };
   return c;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <numbers>
 
@@ -146,6 +147,34 @@ Procedural make_checkerboard(int size, int cells) {
   return {"checkerboard", texture_from_function(eval, size), eval};
 }
 
+Rgba8 mip_level_colour(int level) {
+  // Hue steps that keep neighbouring levels apart (the trilinear blend of two neighbours is never
+  // another level's colour): red, yellow, green, cyan, blue, magenta, white, grey, orange, violet,
+  // dark green, brown.
+  static constexpr Rgba8 kColours[] = {{255, 0, 0, 255},   {255, 255, 0, 255},   {0, 255, 0, 255},    {0, 255, 255, 255},
+                                       {0, 0, 255, 255},   {255, 0, 255, 255},   {255, 255, 255, 255}, {128, 128, 128, 255},
+                                       {255, 128, 0, 255}, {128, 0, 255, 255},   {0, 128, 64, 255},    {96, 48, 0, 255}};
+  constexpr int n = static_cast<int>(std::size(kColours));
+  return kColours[static_cast<size_t>(((level % n) + n) % n)];
+}
+
+Procedural make_mip_colours(int size) {
+  check_size("mip_colours", size);
+  if ((size & (size - 1)) != 0) throw InputError(fmt::format("procedural texture 'mip_colours': size {} is not a power of two", size));
+  Texture tex;
+  tex.format = TexelFormat::RGBA8;
+  for (int l = 0, w = size; w >= 1; ++l, w /= 2) {
+    Image img(w, w);
+    for (Rgba8& t : img.texels) t = mip_level_colour(l);
+    tex.levels.push_back(std::move(img));
+  }
+  const Rgba8 c0 = mip_level_colour(0);
+  ColourFn eval = [c0](double, double) {
+    return std::array<double, 4>{c0.r / 255.0, c0.g / 255.0, c0.b / 255.0, c0.a / 255.0};
+  };
+  return {"mip_colours", std::move(tex), eval};
+}
+
 Procedural make_zoneplate(int size) {
   check_size("zoneplate", size);
   const double n = size;
@@ -230,7 +259,7 @@ Procedural make_text(int size, int lines) {
 }
 
 const std::vector<std::string>& procedural_names() {
-  static const std::vector<std::string> names{"checkerboard", "text", "zoneplate", "lightmap", "noise"};
+  static const std::vector<std::string> names{"checkerboard", "text", "zoneplate", "lightmap", "noise", "mip_colours"};
   return names;
 }
 
@@ -242,6 +271,7 @@ Procedural make_procedural_texels(const std::string& name, int size) {
   if (name == "zoneplate") return make_zoneplate(size);
   if (name == "lightmap") return make_lightmap(size);
   if (name == "noise") return make_noise(size, std::clamp(size / 16, 2, 16));
+  if (name == "mip_colours") return make_mip_colours(size);
   throw InputError(fmt::format("unknown procedural texture '{}' ({}valid: {})", quote_input(name),
                                did_you_mean(name, procedural_names()), fmt::join(procedural_names(), ", ")));
 }

@@ -40,8 +40,15 @@ Procedural make_zoneplate(int size);
 Procedural make_lightmap(int size);
 // Value noise: a cells x cells lattice of hashed values, C1 (smoothstep) interpolated, two octaves.
 Procedural make_noise(int size, int cells);
+// MIP-level colours (the filter testers' tunnel texture): a full chain whose level L is one flat
+// colour, mip_level_colour(L), so the colour of a trilinear result shows lambda (the blend of
+// levels floor(lambda) and floor(lambda) + 1 by its fraction). size a power of two; the chain is
+// the texture's own (load_texture_spec keeps it). eval() is level 0's colour: the supersampled
+// truth of such a texture has no meaning beyond that.
+Procedural make_mip_colours(int size);
+Rgba8 mip_level_colour(int level);  // 12 distinct colours, repeating from level 12 on
 
-// By name: checkerboard, text, zoneplate, lightmap, noise (each with its default parameters for
+// By name: checkerboard, text, zoneplate, lightmap, noise, mip_colours (each with its default parameters for
 // the size). Unknown name or size outside 1..4096 -> InputError naming it.
 Procedural make_procedural(const std::string& name, int size);
 const std::vector<std::string>& procedural_names();

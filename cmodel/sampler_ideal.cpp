@@ -119,7 +119,8 @@ std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) c
 
 // ---------------------------------------------------------------- anisotropic ideal
 // EXT_texture_filter_anisotropic in real arithmetic: Px, Py exact lengths, N = min(ceil(Pmax /
-// Pmin), maxAniso) (rounded up to a power of two with AnisoRounding::PowerOfTwo), lambda =
+// Pmin), maxAniso) (with aniso_threshold t: ceil(Pmax / ((1 + t/8) Pmin)); rounded up to a power
+// of two with AnisoRounding::PowerOfTwo), lambda =
 // log2(Pmax / N), probe i at the centre + (-1/2 + i / (N + 1)) times the major derivative vector,
 // each probe the ideal sample of the mode, the plain mean.
 std::array<double, 4> Sampler::sample_ideal_aniso(double s, double t, const std::array<double, 4>& d) const {
@@ -129,7 +130,9 @@ std::array<double, 4> Sampler::sample_ideal_aniso(double s, double t, const std:
   const AnisoParams ap = cfg_.aniso();
   const int cap = std::clamp(ap.max_aniso, 1, kMaxAniso);
   int n = 1;
-  if (pmax > 0 && std::isfinite(pmax)) n = pmin > 0 ? static_cast<int>(std::min<double>(cap, std::ceil(pmax / pmin))) : cap;
+  const double widen = 1.0 + std::clamp(ap.aniso_threshold, 0, kAnisoThresholdMax) / 8.0;
+  if (pmax > 0 && std::isfinite(pmax))
+    n = pmin > 0 ? static_cast<int>(std::min<double>(cap, std::max(1.0, std::ceil(pmax / (widen * pmin))))) : cap;
   if (ap.aniso_rounding == AnisoRounding::PowerOfTwo)
     while ((n & (n - 1)) != 0) ++n;
   const double lambda = pmax > 0 ? std::log2(pmax / n) : kLodMinusInfinity / 256.0;

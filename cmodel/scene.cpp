@@ -286,6 +286,7 @@ const std::map<std::string, std::set<std::string>>& primitive_keys() {
       {"plane", {"size", "uv_repeat"}},
       {"cube", {}},
       {"sphere", {"segments"}},
+      {"cylinder", {"segments", "uv_repeat"}},
       {"bezier_patch", {"control_points", "tessellation", "uv_repeat"}},
   };
   return keys;
@@ -314,6 +315,12 @@ Mesh build_primitive(const Obj& o, const std::string& primitive, bool unit) {
       o.fail_key("segments", "needs integers [lon >= 3, lat >= 2], at most 1024");
     return make_sphere_mesh(static_cast<int>(seg.x), static_cast<int>(seg.y));
   }
+  if (primitive == "cylinder") {
+    glm::dvec2 seg = o.vec2("segments", {64, 16});
+    if (seg.x < 3 || seg.y < 1 || seg.x > 1024 || seg.y > 1024 || seg.x != std::floor(seg.x) || seg.y != std::floor(seg.y))
+      o.fail_key("segments", "needs integers [around >= 3, along >= 1], at most 1024");
+    return make_cylinder_mesh(static_cast<int>(seg.x), static_cast<int>(seg.y), repeat);
+  }
   o.require("control_points");
   const auto c = o.points("control_points", 16, 3);
   std::array<glm::dvec3, 16> control;
@@ -335,7 +342,7 @@ Mesh parse_mesh(const json& j, const std::string& path, const std::string& sourc
   primitive = o.string("primitive", "");
   if (!keys.contains(primitive))
     o.fail_key("primitive",
-               fmt::format("unknown primitive '{}' (valid: quad, plane, cube, sphere, bezier_patch)", primitive));
+               fmt::format("unknown primitive '{}' (valid: quad, plane, cube, sphere, cylinder, bezier_patch)", primitive));
   o.string("name", "");
   if (o.has("stages"))
     for (const char* k : {"uv_set", "env", "rgb_scale"})
@@ -408,6 +415,23 @@ Mesh make_sphere_mesh(int segments_lon, int segments_lat) {
   const auto idx = [&](int i, int j) { return static_cast<uint32_t>(j * (segments_lon + 1) + i); };
   for (int j = 0; j < segments_lat; ++j)
     for (int i = 0; i < segments_lon; ++i) {
+      m.triangles.push_back({idx(i, j), idx(i, j + 1), idx(i + 1, j + 1)});
+      m.triangles.push_back({idx(i, j), idx(i + 1, j + 1), idx(i + 1, j)});
+    }
+  return m;
+}
+
+Mesh make_cylinder_mesh(int segments_around, int segments_along, glm::dvec2 uv_repeat) {
+  Mesh m;
+  for (int j = 0; j <= segments_along; ++j)
+    for (int i = 0; i <= segments_around; ++i) {
+      const double u = static_cast<double>(i) / segments_around, v = static_cast<double>(j) / segments_along;
+      const double phi = 2 * std::numbers::pi * u;
+      m.vertices.push_back({{0.5 * std::cos(phi), 0.5 * std::sin(phi), -v}, {u * uv_repeat.x, v * uv_repeat.y}});
+    }
+  const auto idx = [&](int i, int j) { return static_cast<uint32_t>(j * (segments_around + 1) + i); };
+  for (int j = 0; j < segments_along; ++j)
+    for (int i = 0; i < segments_around; ++i) {
       m.triangles.push_back({idx(i, j), idx(i, j + 1), idx(i + 1, j + 1)});
       m.triangles.push_back({idx(i, j), idx(i + 1, j + 1), idx(i + 1, j)});
     }

@@ -114,6 +114,9 @@ Mesh make_quad_mesh(const std::array<glm::dvec3, 4>& corners, const std::array<g
 Mesh make_plane_mesh(glm::dvec2 size, glm::dvec2 uv_repeat);           // y = 0 plane, centred
 Mesh make_cube_mesh();                                                  // unit cube, centred
 Mesh make_sphere_mesh(int segments_lon, int segments_lat);              // radius 0.5, lat/long uv
+// Open cylinder of radius 0.5 around the z axis from z = 0 to z = -1 (a tunnel seen from inside):
+// s = angle / 2 pi (angle from +x towards +y) times uv_repeat.x, t = -z times uv_repeat.y.
+Mesh make_cylinder_mesh(int segments_around, int segments_along, glm::dvec2 uv_repeat);
 Mesh make_bezier_patch_mesh(const std::array<glm::dvec3, 16>& control,  // row-major 4x4
                             int tessellation, glm::dvec2 uv_repeat);
 

@@ -11,7 +11,7 @@
 //   out pixel      PixelReq: lambda[15:0] Q.8 before bias and clamp, probes[4:0], major_du[31:0],
 //                  major_dv[31:0]; one per cycle
 //   in  registers  texture descriptors (width_m1, height_m1), sampler descriptors (mip_mode,
-//                  max_aniso_m1, aniso_rounding)
+//                  max_aniso_m1, aniso_rounding, aniso_threshold)
 // A sampler without MIP-mapping has no level to select (GL: level 0), so its lambda is not used:
 // the model then leaves it at 0 instead of evaluating the derivatives and the log2 ROM (software
 // speed only; the pixels' timing is the same). A lod trace has no derivatives: one probe (N = 1).

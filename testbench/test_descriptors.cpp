@@ -45,6 +45,7 @@ SamplerDescriptor random_sampler(std::mt19937& rng) {
   s.edge_shape = static_cast<EdgeShape>(rng() % 3);
   s.max_aniso = 1 + static_cast<int>(rng() % 16);
   s.aniso_rounding = static_cast<AnisoRounding>(rng() % 2);
+  s.aniso_threshold = static_cast<int>(rng() % 8);
   return s;
 }
 

@@ -4,6 +4,7 @@
 // compare follows the switch.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -34,11 +35,12 @@ struct PathsRun {
   rtl::SceneSimResult clocked, recurrence;
 };
 
-PathsRun run_scene(const Scene& scene, bool fast) {
+PathsRun run_scene(const Scene& scene, bool fast, const std::map<std::string, std::string>& sampler_overrides = {}) {
   const FastPathsGuard guard(fast);
   EXPECT_EQ(fast_paths_enabled(), fast);
   PathsRun r;
   RenderOptions o;
+  o.sampler_overrides = sampler_overrides;
   o.trace = true;
   o.line_bytes = rtl::UnitConfig{}.cache.line_bytes;
   r.render = render_scene(scene, o);
@@ -51,6 +53,28 @@ PathsRun run_scene(const Scene& scene, bool fast) {
 }
 
 }  // namespace
+
+// The anisotropic probe threshold (aniso_threshold) on the tunnel and the grazing scene: both
+// golden paths, both engines, the same bytes and cycles; the threshold takes probes away.
+TEST(PlainPaths, AnisotropicThresholdIsTheSameWithAndWithoutFastPaths) {
+  for (const char* name : {"tunnel", "grazing"})
+    for (const char* max_aniso : {"2", "16"}) {
+      Scene scene = load_scene(name);
+      scene.width = 96;
+      scene.height = 64;
+      const std::map<std::string, std::string> literal{{"max_aniso", max_aniso}},
+          thresholded{{"max_aniso", max_aniso}, {"aniso_threshold", "4"}};
+      const PathsRun fast = run_scene(scene, true, thresholded), plain = run_scene(scene, false, thresholded);
+      EXPECT_EQ(fast.render.image.texels, plain.render.image.texels) << name << " " << max_aniso;
+      for (const rtl::SceneSimResult* s : {&fast.clocked, &fast.recurrence, &plain.clocked, &plain.recurrence}) {
+        EXPECT_EQ(s->mismatch, "") << name;
+        EXPECT_EQ(s->image.texels, fast.render.image.texels) << name;
+        EXPECT_EQ(s->cycles, fast.clocked.cycles) << name;
+      }
+      const PathsRun lit = run_scene(scene, true, literal);
+      EXPECT_LT(fast.clocked.cycles, lit.clocked.cycles) << name << " " << max_aniso;  // fewer probes, fewer clocks
+    }
+}
 
 TEST(PlainPaths, EveryBuiltinSceneIsTheSameWithAndWithoutFastPaths) {
   for (const std::string& name : builtin_scene_names()) {

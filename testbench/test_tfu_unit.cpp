@@ -23,6 +23,7 @@
 #include "cmodel/scene.hpp"
 #include "rtl/address_gen.hpp"
 #include "rtl/edge_datapath.hpp"
+#include "rtl/engine_compare.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
@@ -531,6 +532,7 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     s.wrap_t = static_cast<WrapMode>(rng() % 4);
     s.max_aniso = 2 + static_cast<int>(rng() % 15);
     s.aniso_rounding = static_cast<AnisoRounding>(rng() % 2);
+    s.aniso_threshold = static_cast<int>(rng() % 8);
     s.edge_shape = static_cast<EdgeShape>(rng() % 3);
     samplers.push_back(s);
   }
@@ -831,6 +833,37 @@ TEST(TfuUnit, AnisotropicScenesBitExact) {
           const UnitOutput got = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, small_cache(4),
                                                  fmt::format("{} {} max {} {}", scene, mode, max_aniso, edge_shape_name(p)));
           EXPECT_GT(got.stats.counter("probes"), st.trace.requests.size()) << scene << " " << mode;  // some N > 1
+        }
+      }
+  }
+}
+
+// The probe threshold (aniso_threshold, docs/anisotropic.md): the cycle model equals the golden model
+// in both engines at every threshold; the threshold never adds probes and at maxAniso 2 removes
+// most of the barely anisotropic pixels' second probe.
+TEST(TfuUnit, AnisotropicThresholdBitExactInBothEngines) {
+  for (const char* scene : {"ground_plane", "grazing"}) {
+    const SceneTrace st = scene_trace(scene, 64, 48);
+    const Mesh& mesh = st.scene.meshes.front();
+    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"})
+      for (int max_aniso : {2, 16}) {
+        uint64_t prev = ~uint64_t{0}, first = 0;
+        for (int t : {0, 3, 7}) {
+          SamplerDescriptor cfg = mesh.stages[0].sampler;
+          cfg.mode = filter_mode_from_name(mode);
+          cfg.max_aniso = max_aniso;
+          cfg.aniso_threshold = t;
+          const std::string what = fmt::format("{} {} max {} t {}", scene, mode, max_aniso, t);
+          const UnitOutput got = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, small_cache(4), what);
+          const OneTexture one = one_texture(*mesh.stages[0].texture, cfg, st.trace, small_cache(4));
+          EXPECT_EQ(compare_engines(one.frame, one.trace, small_cache(4)), "") << what;
+          const uint64_t probes = got.stats.counter("probes");
+          EXPECT_LE(probes, prev) << what;
+          if (t == 0) first = probes;
+          if (t == 7) {
+            EXPECT_LT(probes, first) << what;
+          }
+          prev = probes;
         }
       }
   }

@@ -30,7 +30,7 @@ namespace {
 struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
-  std::string max_aniso, aniso_rounding;  // empty: each mesh keeps its own
+  std::string max_aniso, aniso_rounding, aniso_threshold;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
@@ -89,9 +89,10 @@ void run(const RenderCliOptions& o) {
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);
-  // Anisotropy of every base stage: the sampler keys max_aniso and aniso_rounding (bindings.hpp).
+  // Anisotropy of every base stage: the sampler keys max_aniso, aniso_rounding and aniso_threshold (bindings.hpp).
   for (const auto& [flag, key, value] : {std::tuple{"--max-aniso", "max_aniso", &o.max_aniso},
-                                         std::tuple{"--aniso-rounding", "aniso_rounding", &o.aniso_rounding}}) {
+                                         std::tuple{"--aniso-rounding", "aniso_rounding", &o.aniso_rounding},
+                                         std::tuple{"--aniso-threshold", "aniso_threshold", &o.aniso_threshold}}) {
     if (value->empty()) continue;
     SamplerDescriptor scratch;
     try {
@@ -162,6 +163,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--max-aniso", o->max_aniso,
                   "Override the maximum anisotropy (probes per pixel, 1..16) of every mesh's base stage (MIP-mapped modes)");
   cmd->add_option("--aniso-rounding", o->aniso_rounding, "Override the probe-count rounding of every base stage: integer or pow2");
+  cmd->add_option("--aniso-threshold", o->aniso_threshold,
+                  "Override the probe threshold of every base stage: 0..7 eighths of Pmin (0: the spec's N; docs/anisotropic.md)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--truth-out", o->truth_out,

@@ -126,6 +126,7 @@ tfu::SamplerDescriptor make_sampler(ByteReader& in) {
   c.edge_shape = in.pick({tfu::EdgeShape::Static, tfu::EdgeShape::Cross, tfu::EdgeShape::CacheAware});
   c.max_aniso = static_cast<int>(in.in_range(1, 16));
   c.aniso_rounding = in.flag() ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer;
+  c.aniso_threshold = static_cast<int>(in.in_range(0, 7));
   return c;
 }
 

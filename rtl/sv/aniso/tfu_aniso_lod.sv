@@ -7,6 +7,7 @@
 //   dudx, dvdx, dudy, dvdy  [48:0] signed  derivatives, Q.16 level-0 texels (lod.hpp TexelDerivatives)
 //   max_aniso               [4:0]          maxAniso, 1..16 (0 acts as 1, 17..31 as 16)
 //   aniso_rounding                         1: N rounded up to a power of two
+//   aniso_threshold         [2:0]          probe threshold t, 0..7 (0: the spec's N; tfu_aniso_count)
 //   px2, py2                [62:0]         Px^2, Py^2, Q.32 (clamped magnitudes, lod.hpp)
 //   major_x                                Px^2 >= Py^2: the probes step along (du/dx, dv/dx)
 //   major_du, major_dv      [31:0] signed  the major derivative vector, magnitudes clamped to
@@ -24,6 +25,7 @@ module tfu_aniso_lod (
   input  logic signed [48:0] dvdy,
   input  logic        [4:0]  max_aniso,
   input  logic               aniso_rounding,
+  input  logic        [2:0]  aniso_threshold,
   output logic        [62:0] px2,
   output logic        [62:0] py2,
   output logic               major_x,
@@ -42,6 +44,7 @@ module tfu_aniso_lod (
     .neg_udx(dudx[48]), .neg_vdx(dvdx[48]), .neg_udy(dudy[48]), .neg_vdy(dvdy[48]),
     .major_x(major_x), .pmax2(pmax2), .pmin2(pmin2), .major_du(major_du), .major_dv(major_dv));
 
-  tfu_aniso_count u_count (.pmax2(pmax2), .pmin2(pmin2), .max_aniso(max_aniso), .aniso_rounding(aniso_rounding), .probes(probes));
+  tfu_aniso_count u_count (.pmax2(pmax2), .pmin2(pmin2), .max_aniso(max_aniso), .aniso_rounding(aniso_rounding),
+                           .aniso_threshold(aniso_threshold), .probes(probes));
   tfu_aniso_lambda u_lambda (.pmax2(pmax2), .probes(probes), .lambda_q8(lambda_q8));
 endmodule

@@ -105,13 +105,22 @@ TEST(SvAnisoCount, MatchesAnisoProbeCountAtTiesAndEveryMaxAniso) {
     m.pmin2 = pmin2;
     for (int max_aniso = 0; max_aniso < 32; ++max_aniso)
       for (const bool pow2 : {false, true}) {
-        m.max_aniso = static_cast<uint8_t>(max_aniso);
-        m.aniso_rounding = pow2;
-        m.eval();
-        ++vectors;
-        const int want = tfu::aniso_probe_count(pmax2, pmin2, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer});
-        if (m.probes != want)
-          bad.add(fmt::format("pmax2 {} pmin2 {} max {} pow2 {}: sv {} c++ {}", pmax2, pmin2, max_aniso, pow2, m.probes, want));
+        // The threshold: 0 (the spec's N) at every maxAniso, and one of 1..7 in rotation at the
+        // maxAniso values 1, 2, 4, 8, 15, 16 and 31 (the cap below, at and above 16).
+        const bool with_threshold = max_aniso == 1 || max_aniso == 2 || max_aniso == 4 || max_aniso == 8 || max_aniso == 15 ||
+                                    max_aniso == 16 || max_aniso == 31;
+        for (const int t : {0, 1 + static_cast<int>((vectors / 64) % 7)}) {
+          if (t != 0 && !with_threshold) continue;
+          m.max_aniso = static_cast<uint8_t>(max_aniso);
+          m.aniso_rounding = pow2;
+          m.aniso_threshold = static_cast<uint8_t>(t);
+          m.eval();
+          ++vectors;
+          const int want =
+              tfu::aniso_probe_count(pmax2, pmin2, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer, t});
+          if (m.probes != want)
+            bad.add(fmt::format("pmax2 {} pmin2 {} max {} pow2 {} t {}: sv {} c++ {}", pmax2, pmin2, max_aniso, pow2, t, m.probes, want));
+        }
       }
   };
   std::mt19937_64 rng(kSeed + 1);
@@ -122,6 +131,14 @@ TEST(SvAnisoCount, MatchesAnisoProbeCountAtTiesAndEveryMaxAniso) {
         const uint64_t pmin2 = (uint64_t{1} << e) | (rng() >> (64 - std::max(e, 1)));
         const uint64_t pmax2 = k * k * pmin2;
         for (const uint64_t d : {pmax2 - 1, pmax2, pmax2 + 1}) check(d, pmin2);
+      }
+  // Threshold ties k (8 + t) m = Pmax, 8 m = Pmin, and one unit of Pmax^2 either side.
+  for (uint64_t t = 1; t <= 7; ++t)
+    for (uint64_t k = 1; k <= 17; ++k)
+      for (int it = 0; it < 20; ++it) {
+        const uint64_t mm = 1 + (rng() >> (41 + it));  // Pmax = k (8 + t) m < 2^31.5
+        const uint64_t pmax = k * (8 + t) * mm, pmin = 8 * mm;
+        for (const uint64_t d : {pmax * pmax - 1, pmax * pmax, pmax * pmax + 1}) check(d, pmin * pmin);
       }
   for (const uint64_t pmax2 : {uint64_t{0}, uint64_t{1}, uint64_t{1} << 40, (uint64_t{1} << 63) - 1}) {
     check(pmax2, 0);
@@ -166,22 +183,23 @@ TEST(SvAnisoLod, MatchesAnisoLodOnTheDerivativeGridAndRandomDerivatives) {
   Vtfu_aniso_lod m{&ctx};
   Mismatches bad;
   int64_t vectors = 0;
-  const auto check = [&](const tfu::TexelDerivatives& d, int max_aniso, bool pow2) {
+  const auto check = [&](const tfu::TexelDerivatives& d, int max_aniso, bool pow2, int t = 0) {
     m.dudx = port(d.dudx, 49);
     m.dvdx = port(d.dvdx, 49);
     m.dudy = port(d.dudy, 49);
     m.dvdy = port(d.dvdy, 49);
     m.max_aniso = static_cast<uint8_t>(max_aniso);
     m.aniso_rounding = pow2;
+    m.aniso_threshold = static_cast<uint8_t>(t);
     m.eval();
     ++vectors;
-    const tfu::AnisoLod a = tfu::aniso_lod(d, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer});
+    const tfu::AnisoLod a = tfu::aniso_lod(d, {max_aniso, pow2 ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer, t});
     const bool same = m.px2 == a.px2_q32 && m.py2 == a.py2_q32 && (m.major_x != 0) == a.major_x &&
                       sext(m.major_du, 32) == a.major_du_q16 && sext(m.major_dv, 32) == a.major_dv_q16 &&
                       m.probes == a.probes && sext(m.lambda_q8, 16) == a.lambda_q8;
     if (!same)
-      bad.add(fmt::format("d ({}, {}, {}, {}) max {} pow2 {}: sv N {} lambda {} major ({}, {}) c++ N {} lambda {} major ({}, {})",
-                          d.dudx, d.dvdx, d.dudy, d.dvdy, max_aniso, pow2, m.probes, sext(m.lambda_q8, 16),
+      bad.add(fmt::format("d ({}, {}, {}, {}) max {} pow2 {} t {}: sv N {} lambda {} major ({}, {}) c++ N {} lambda {} major ({}, {})",
+                          d.dudx, d.dvdx, d.dudy, d.dvdy, max_aniso, pow2, t, m.probes, sext(m.lambda_q8, 16),
                           sext(m.major_du, 32), sext(m.major_dv, 32), a.probes, a.lambda_q8, a.major_du_q16,
                           a.major_dv_q16));
   };
@@ -192,13 +210,13 @@ TEST(SvAnisoLod, MatchesAnisoLodOnTheDerivativeGridAndRandomDerivatives) {
       for (const int64_t dudy : g)
         for (const int64_t dvdy : g) {
           ++k;
-          check({dudx, dvdx, dudy, dvdy}, 1 + k % 16, (k / 16) % 2 == 1);
+          check({dudx, dvdx, dudy, dvdy}, 1 + k % 16, (k / 16) % 2 == 1, (k / 32) % 8);
         }
   std::mt19937_64 rng(kSeed + 3);
   for (int i = 0; i < kRandomVectors; ++i) {
     const tfu::TexelDerivatives d{random_derivative(rng), random_derivative(rng), random_derivative(rng),
                                   random_derivative(rng)};
-    check(d, static_cast<int>(rng() % 32), rng() % 2 == 1);
+    check(d, static_cast<int>(rng() % 32), rng() % 2 == 1, i % 8);
   }
   EXPECT_EQ(bad.count, 0);
   const auto n = static_cast<int64_t>(g.size());
