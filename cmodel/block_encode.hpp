@@ -52,6 +52,20 @@ struct BlockEncodeOptions {
   int quality = 60;  // 0..100: libastcenc's effort; libsquish's fit (see above); unused by the own encoders
 };
 
+// Signed texels in 8-bit images, the one convention of `tfu decompress` (which writes them) and the
+// signed encoders (which read them): SNORM8 s (-127..127) is the byte s + 128 (1..255, 0.0 as 128);
+// the byte 0 reads as -127 (-1.0, as SNORM8 reads -128).
+constexpr uint8_t snorm8_to_image_byte(int s) { return static_cast<uint8_t>(s + 128); }
+constexpr int snorm8_from_image_byte(uint8_t v) { return v == 0 ? -127 : v - 128; }
+// The inverse of eac11_signed_to_snorm8 (cmodel/etc2_decode.hpp) for the signed EAC encoder:
+// SNORM8 s (-127..127) to the nearest 11-bit signed value, round(s * 1023 / 127) (never halfway:
+// 1023 and 127 are odd), which eac11_signed_to_snorm8 maps back to s.
+constexpr int16_t eac11_signed_from_snorm8(int s) {
+  const int m = s < 0 ? -s : s;
+  const int e = (m * 1023 + 63) / 127;
+  return static_cast<int16_t>(s < 0 ? -e : e);
+}
+
 // The encoder of a format, for messages and docs (every format has one).
 const char* block_encoder_name(BlockFormat f);
 

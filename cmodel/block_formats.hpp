@@ -116,11 +116,6 @@ const char* block_format_name(BlockFormat f);
 
 // True when the unit filters the format (not signed: see the header).
 constexpr bool unit_filterable(BlockFormat f) { return !block_format_info(f).is_signed; }
-// Signed texels in 8-bit images, the one convention of `tfu decompress` (which writes them) and the
-// signed encoders (which read them): SNORM8 s (-127..127) is the byte s + 128 (1..255, 0.0 as 128);
-// the byte 0 reads as -127 (-1.0, as SNORM8 reads -128).
-constexpr uint8_t snorm8_to_image_byte(int s) { return static_cast<uint8_t>(s + 128); }
-constexpr int snorm8_from_image_byte(uint8_t v) { return v == 0 ? -127 : v - 128; }
 
 // Blocks per row and column, and the bytes, of a w x h level (partial blocks at the right and
 // bottom edges count whole).

@@ -171,13 +171,6 @@ constexpr int8_t eac11_signed_to_snorm8(int16_t v) {
   const int e = (m * 127 + 511) / 1023;
   return static_cast<int8_t>(v < 0 ? -e : e);
 }
-// The inverse for the encoders: SNORM8 s (-127..127) to the nearest 11-bit signed value,
-// round(s * 1023 / 127) (never halfway: 1023 and 127 are odd), so eac11_signed_to_snorm8 gives s back.
-constexpr int16_t eac11_signed_from_snorm8(int s) {
-  const int m = s < 0 ? -s : s;
-  const int e = (m * 1023 + 63) / 127;
-  return static_cast<int16_t>(s < 0 ? -e : e);
-}
 
 // Whole images: width x height texels (1..kMaxTextureSize each) from ceil(width / 4) x
 // ceil(height / 4) blocks, block rows top to bottom, blocks left to right in a row; partial edge
