@@ -12,6 +12,7 @@
 #include <squish.h>
 
 #include "cmodel/bc7_decode.hpp"
+#include "cmodel/bc_decode.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/etc2_decode.hpp"
 
@@ -143,10 +144,74 @@ void put_be64(uint64_t w, uint8_t* out) {
 }
 
 // ---- EAC ----
-// The decoded value of modifier `mod` (KDFS "Format RGBA ETC2 EAC" and "Format R11 EAC").
-int eac_value(bool r11, int base, int mult, int mod) {
-  if (!r11) return std::clamp(base + mod * mult, 0, 255);
-  return std::clamp(base * 8 + 4 + mod * (mult == 0 ? 1 : mult * 8), 0, 2047);
+// The three EAC channels: ETC2 RGBA8's 8-bit alpha, unsigned R11 and signed R11.
+enum class EacKind { Alpha8, R11, R11Signed };
+
+// The decoded value of modifier `mod` (KDFS "Format RGBA ETC2 EAC", "Format R11 EAC" and "Format
+// Signed R11 EAC"; the decoder's datapath, cmodel/etc2_decode.hpp). Signed: `base` in -127..127.
+int eac_value(EacKind k, int base, int mult, int mod) {
+  switch (k) {
+    case EacKind::Alpha8: return std::clamp(base + mod * mult, 0, 255);
+    case EacKind::R11: return std::clamp(base * 8 + 4 + mod * (mult == 0 ? 1 : mult * 8), 0, 2047);
+    case EacKind::R11Signed: break;
+  }
+  return std::clamp(base * 8 + mod * (mult == 0 ? 1 : mult * 8), -1023, 1023);
+}
+
+// floor(a / b) for b > 0 (integer division truncates toward zero).
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+void encode_eac(const int values[16], EacKind kind, uint8_t out[8]);
+
+// ---- BC4 signed ----
+// The eight SNORM8 values of signed BC4 endpoints (r0, r1) as the decoder gives them in the golden
+// rule (decode_bc4_snorm8, EXACT): a block with codes 0..7 in texels 0..7, decoded.
+std::array<int, 8> bc4_signed_palette(int r0, int r1) {
+  uint8_t block[8] = {static_cast<uint8_t>(r0), static_cast<uint8_t>(r1), 0, 0, 0, 0, 0, 0};
+  uint64_t codes = 0;
+  for (uint64_t c = 0; c < 8; ++c) codes |= c << (3 * c);
+  for (int i = 0; i < 6; ++i) block[2 + i] = static_cast<uint8_t>(codes >> (8 * i));
+  const std::array<int8_t, 16> v = decode_bc4_snorm8(block, Bc4Interpolation::EXACT);
+  std::array<int, 8> p{};
+  for (size_t c = 0; c < 8; ++c) p[c] = v[c];
+  return p;
+}
+
+// ---- ETC2 punch-through alpha ----
+// Table and per-texel indices of least squared error for one sub-block of a punch-through block
+// whose opaque bit is 0 (KDFS "Format RGB ETC2 with punchthrough alpha", differential mode): index
+// 0 is the base colour, 1 base + b, 3 base - b, and 2 transparent black, which every transparent
+// texel takes (opaque texels choose among 0, 1, 3).
+EtcSubblockFit fit_etc_subblock_transparent(const Rgba8 t[16], const bool opaque[16], int flip, int sub,
+                                            const std::array<int, 3>& base) {
+  EtcSubblockFit best;
+  for (int table = 0; table < 8; ++table) {
+    const int b = kEtcModifiers[static_cast<size_t>(table)][1];
+    const int mods[4] = {0, b, 0, -b};
+    EtcSubblockFit fit;
+    fit.table = table;
+    fit.error = 0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) {
+        if (etc_subblock(flip, x, y) != sub) continue;
+        const int k = 4 * y + x;
+        if (!opaque[k]) {
+          fit.index[static_cast<size_t>(k)] = 2;
+          continue;
+        }
+        int best_e = INT_MAX, best_i = 0;
+        for (int i : {0, 1, 3}) {
+          const int e = sq(std::clamp(base[0] + mods[i], 0, 255) - t[k].r) +
+                        sq(std::clamp(base[1] + mods[i], 0, 255) - t[k].g) +
+                        sq(std::clamp(base[2] + mods[i], 0, 255) - t[k].b);
+          if (e < best_e) best_e = e, best_i = i;
+        }
+        fit.error += best_e;
+        fit.index[static_cast<size_t>(k)] = best_i;
+      }
+    if (fit.error < best.error) best = fit;
+  }
+  return best;
 }
 
 void encode_own(const Image& img, BlockFormat f, std::vector<uint8_t>& out) {
@@ -176,6 +241,24 @@ void encode_own(const Image& img, BlockFormat f, std::vector<uint8_t>& out) {
             encode_eac_block(values, true, block + 8 * c);
           }
           break;
+        case BlockFormat::ETC2A1: encode_etc2_punchthrough_block(t.data(), block); break;
+        case BlockFormat::EAC_R11S:
+        case BlockFormat::EAC_RG11S:  // red, then green; 8-bit image bytes as SNORM8, then 11 bits
+          for (int c = 0; c < info.channels; ++c) {
+            for (int i = 0; i < 16; ++i)
+              values[i] = eac11_signed_from_snorm8(
+                  snorm8_from_image_byte(c == 0 ? t[static_cast<size_t>(i)].r : t[static_cast<size_t>(i)].g));
+            encode_eac_r11_signed_block(values, block + 8 * c);
+          }
+          break;
+        case BlockFormat::BC4S:
+        case BlockFormat::BC5S:  // red, then green
+          for (int c = 0; c < info.channels; ++c) {
+            for (int i = 0; i < 16; ++i)
+              values[i] = snorm8_from_image_byte(c == 0 ? t[static_cast<size_t>(i)].r : t[static_cast<size_t>(i)].g);
+            encode_bc4_signed_block(values, block + 8 * c);
+          }
+          break;
         default: throw std::logic_error("encode_own: no own encoder for this format");
       }
     }
@@ -183,18 +266,18 @@ void encode_own(const Image& img, BlockFormat f, std::vector<uint8_t>& out) {
 
 }  // namespace
 
-bool has_block_encoder(BlockFormat f) {
-  if (block_format_info(f).is_signed) return false;
-  return f != BlockFormat::ETC2A1;
-}
-
 const char* block_encoder_name(BlockFormat f) {
-  if (!has_block_encoder(f)) return "none";
   switch (block_format_info(f).family) {
     case BlockFamily::ASTC: return "libastcenc 4.2";
-    case BlockFamily::BC: return f == BlockFormat::BC7 ? "tfu BC7 mode 6" : "libsquish 1.15";
+    case BlockFamily::BC:
+      return f == BlockFormat::BC7                              ? "tfu BC7 mode 6"
+             : f == BlockFormat::BC4S || f == BlockFormat::BC5S ? "tfu BC4 signed"
+                                                                : "libsquish 1.15";
     case BlockFamily::ETC:
-      return f == BlockFormat::ETC2 ? "tfu ETC1 modes" : f == BlockFormat::ETC2A ? "tfu ETC1 modes + EAC" : "tfu EAC";
+      return f == BlockFormat::ETC2     ? "tfu ETC1 modes"
+             : f == BlockFormat::ETC2A  ? "tfu ETC1 modes + EAC"
+             : f == BlockFormat::ETC2A1 ? "tfu ETC2 differential punch-through"
+                                        : "tfu EAC";
   }
   return "none";
 }
@@ -305,6 +388,15 @@ void encode_etc1_block(const Rgba8 texels[16], uint8_t out[8]) {
 }
 
 void encode_eac_block(const int values[16], bool r11, uint8_t out[8]) {
+  encode_eac(values, r11 ? EacKind::R11 : EacKind::Alpha8, out);
+}
+
+void encode_eac_r11_signed_block(const int values[16], uint8_t out[8]) { encode_eac(values, EacKind::R11Signed, out); }
+
+namespace {
+
+void encode_eac(const int values[16], EacKind kind, uint8_t out[8]) {
+  const bool r11 = kind != EacKind::Alpha8;
   int lo = INT_MAX, hi = INT_MIN;
   for (int i = 0; i < 16; ++i) lo = std::min(lo, values[i]), hi = std::max(hi, values[i]);
   const int unit = r11 ? 8 : 1;  // what one multiplier step moves a modifier of 1
@@ -318,15 +410,18 @@ void encode_eac_block(const int values[16], bool r11, uint8_t out[8]) {
       // The base that centres the table's range on the block's: (lo + hi) / 2 - (mmin + mmax) / 2 * step.
       const int step = r11 ? (mult == 0 ? 1 : mult * 8) : mult;
       const int centre = (lo + hi) / 2 - (mmin + mmax) * step / 2;
-      const int base = std::clamp(r11 ? (centre - 4 + 4) / 8 : centre, 0, 255);
+      // R11: 8 base + 4 nearest the centre (unsigned), 8 base nearest it (signed, base -127..127).
+      const int base = kind == EacKind::Alpha8 ? std::clamp(centre, 0, 255)
+                       : kind == EacKind::R11  ? std::clamp(floor_div(centre, 8), 0, 255)
+                                               : std::clamp(floor_div(centre + 4, 8), -127, 127);
       int64_t err = 0;
-      uint64_t w = uint64_t(base) << 56 | uint64_t(mult) << 52 | uint64_t(table) << 48;
+      uint64_t w = uint64_t(static_cast<uint8_t>(base)) << 56 | uint64_t(mult) << 52 | uint64_t(table) << 48;
       for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) {
           const int v = values[4 * y + x];
           int be = INT_MAX, bi = 0;
           for (int i = 0; i < 8; ++i) {
-            const int e = sq(eac_value(r11, base, mult, mods[static_cast<size_t>(i)]) - v);
+            const int e = sq(eac_value(kind, base, mult, mods[static_cast<size_t>(i)]) - v);
             if (e < be) be = e, bi = i;
           }
           err += be;
@@ -339,13 +434,97 @@ void encode_eac_block(const int values[16], bool r11, uint8_t out[8]) {
   put_be64(best_word, out);
 }
 
+}  // namespace
+
+void encode_bc4_signed_block(const int values[16], uint8_t out[8]) {
+  int lo = INT_MAX, hi = INT_MIN;
+  for (int i = 0; i < 16; ++i) lo = std::min(lo, values[i]), hi = std::max(hi, values[i]);
+  // Both orders of the extremes: (hi, lo) is the eight-value mode (red0 > red1, six interpolants),
+  // (lo, hi) the six-value mode (four interpolants, then -1.0 and 1.0), which wins when the block
+  // holds -127 or 127 beside values in a narrower range. Equal extremes: every texel code 0.
+  int best_err = INT_MAX;
+  uint64_t best = 0;
+  for (const auto& [r0, r1] : {std::pair{hi, lo}, std::pair{lo, hi}}) {
+    const std::array<int, 8> palette = bc4_signed_palette(r0, r1);
+    int err = 0;
+    uint64_t w = uint64_t(static_cast<uint8_t>(r0)) | uint64_t(static_cast<uint8_t>(r1)) << 8;
+    for (int t = 0; t < 16; ++t) {
+      int be = INT_MAX, bc = 0;
+      for (int c = 0; c < 8; ++c) {
+        const int e = sq(palette[static_cast<size_t>(c)] - values[t]);
+        if (e < be) be = e, bc = c;
+      }
+      err += be;
+      w |= uint64_t(bc) << (16 + 3 * t);  // texel t's code: bits 3t..3t+2 of bytes 2..7, little-endian
+    }
+    if (err < best_err) best_err = err, best = w;
+  }
+  for (int i = 0; i < 8; ++i) out[i] = static_cast<uint8_t>(best >> (8 * i));
+}
+
+void encode_etc2_punchthrough_block(const Rgba8 texels[16], uint8_t out[8]) {
+  bool opaque[16];
+  bool all_opaque = true;
+  for (int i = 0; i < 16; ++i) {
+    opaque[i] = texels[i].a >= 128;
+    all_opaque = all_opaque && opaque[i];
+  }
+  uint64_t best_word = 0;
+  int best_err = INT_MAX;
+  for (int flip = 0; flip < 2; ++flip) {
+    // Per sub-block, the rounded mean of its opaque texels on the 5-bit grid; a sub-block without
+    // one takes the other's, and the second is moved into the 3-bit delta's reach (-4..3).
+    std::array<std::array<int, 3>, 2> q{};
+    std::array<int, 2> count{};
+    for (int sub = 0; sub < 2; ++sub) {
+      std::array<int, 3> sum{};
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+          if (etc_subblock(flip, x, y) == sub && opaque[4 * y + x]) {
+            const Rgba8& v = texels[4 * y + x];
+            sum[0] += v.r, sum[1] += v.g, sum[2] += v.b;
+            ++count[static_cast<size_t>(sub)];
+          }
+      const int n = count[static_cast<size_t>(sub)];
+      for (size_t c = 0; c < 3; ++c)
+        q[static_cast<size_t>(sub)][c] = n == 0 ? 0 : ((2 * sum[c] + n) / (2 * n) * 31 + 127) / 255;
+    }
+    if (count[0] == 0) q[0] = q[1];
+    if (count[1] == 0) q[1] = q[0];
+    std::array<std::array<int, 3>, 2> base{};
+    for (size_t c = 0; c < 3; ++c) {
+      q[1][c] = q[0][c] + std::clamp(q[1][c] - q[0][c], -4, 3);
+      for (size_t s = 0; s < 2; ++s) base[s][c] = (q[s][c] << 3) | (q[s][c] >> 2);
+    }
+    const EtcSubblockFit f0 = all_opaque ? fit_etc_subblock(texels, flip, 0, base[0])
+                                         : fit_etc_subblock_transparent(texels, opaque, flip, 0, base[0]);
+    const EtcSubblockFit f1 = all_opaque ? fit_etc_subblock(texels, flip, 1, base[1])
+                                         : fit_etc_subblock_transparent(texels, opaque, flip, 1, base[1]);
+    if (f0.error + f1.error >= best_err) continue;
+    best_err = f0.error + f1.error;
+    uint64_t w = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const int shift = 59 - 8 * static_cast<int>(c);  // R at 63-59, G at 55-51, B at 47-43; deltas below
+      w |= uint64_t(q[0][c]) << shift;
+      w |= uint64_t((q[1][c] - q[0][c]) & 7) << (shift - 3);
+    }
+    // Bit 33 is the opaque bit: 1, every texel opaque (the ETC2 RGB differential block); 0, index 2
+    // is transparent and indices 0 and 2 have modifier 0.
+    w |= uint64_t(f0.table) << 37 | uint64_t(f1.table) << 34 | uint64_t(all_opaque) << 33 | uint64_t(flip) << 32;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) {
+        const int i = (etc_subblock(flip, x, y) ? f1 : f0).index[static_cast<size_t>(4 * y + x)];
+        const int j = 4 * x + y;  // texel order: column-major
+        w |= uint64_t(i >> 1) << (16 + j) | uint64_t(i & 1) << j;
+      }
+    best_word = w;
+  }
+  put_be64(best_word, out);
+}
+
 BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb,
                               const BlockEncodeOptions& options) {
   const BlockFormatInfo& info = block_format_info(f);
-  if (!has_block_encoder(f))
-    throw InputError(fmt::format("no encoder for {} ({})", info.name,
-                                 info.is_signed ? "a signed format: an RGBA8 image has no signed source"
-                                                : "punch-through alpha is not encoded"));
   if (srgb && info.gl_srgb_internal_format == 0) throw InputError(fmt::format("{} has no sRGB variant", info.name));
   if (levels.empty()) throw InputError(fmt::format("{}: no levels to encode", info.name));
   if (options.quality < 0 || options.quality > 100)
@@ -380,7 +559,8 @@ BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool
       check_astc(astcenc_compress_image(astc.get(), &image, &swizzle, level.blocks.data(), level.blocks.size(), 0),
                  "compress");
       check_astc(astcenc_compress_reset(astc.get()), "reset");
-    } else if (f == BlockFormat::BC7 || info.family == BlockFamily::ETC) {
+    } else if (f == BlockFormat::BC7 || f == BlockFormat::BC4S || f == BlockFormat::BC5S ||
+               info.family == BlockFamily::ETC) {
       encode_own(img, f, level.blocks);
     } else {
       encode_squish(img, f, options.quality, level.blocks);

@@ -21,8 +21,20 @@
 //         range over the table's span (and its neighbours), the base centring the range; each texel
 //         the modifier of least squared error (R11 in the 11-bit domain, 8-bit input v as
 //         round(v * 2047 / 255)).
-// Not encoded: the signed formats (BC4S, BC5S, EAC signed; an RGBA8 image has no signed source)
-// and ETC2 punch-through alpha (etc2a1): InputError.
+//       - BC4 and BC5 signed (bc4s, bc5s) and EAC signed R11 / RG11 (eac_r11s, eac_rg11s): the
+//         image's red (and green) bytes read as SNORM8 by snorm8_from_image_byte (cmodel/
+//         block_formats.hpp: byte v is v - 128, the inverse of what `tfu decompress` writes; EAC
+//         then to 11 bits by eac11_signed_from_snorm8). BC4 signed: the block's extremes as the
+//         endpoints in both orders (eight-value and six-value mode), each texel the code of least
+//         squared error against the decoder's own palette (decode_bc4_snorm8, golden rule); the
+//         order of least error wins. EAC signed: the EAC search above with the signed base
+//         (-127..127, 8 base nearest the centre).
+//       - ETC2 punch-through alpha (etc2a1): alpha >= 128 is opaque. Differential mode only (RGB8A1
+//         has no individual mode): per flip, the sub-blocks' means of their opaque texels on the
+//         5-bit grid, the second clamped into the 3-bit delta's reach (never T, H or planar). Every
+//         texel opaque: opaque bit 1 and the ETC1 table fit; else opaque bit 0, transparent texels
+//         index 2, opaque ones the best of base, base + b, base - b per table (KDFS "Format RGB
+//         ETC2 with punchthrough alpha"). The flip of least error wins.
 // Partial blocks at the right and bottom edges repeat the last column and row (libsquish masks
 // them out, libastcenc pads them itself).
 // Tested: BlockEncode.* (testbench/test_texture_containers.cpp): PSNR floors per format on a
@@ -40,12 +52,25 @@ struct BlockEncodeOptions {
   int quality = 60;  // 0..100: libastcenc's effort; libsquish's fit (see above); unused by the own encoders
 };
 
-// True when encode_block_image encodes the format; the encoder's name for messages and docs.
-bool has_block_encoder(BlockFormat f);
+// Signed texels in 8-bit images, the one convention of `tfu decompress` (which writes them) and the
+// signed encoders (which read them): SNORM8 s (-127..127) is the byte s + 128 (1..255, 0.0 as 128);
+// the byte 0 reads as -127 (-1.0, as SNORM8 reads -128).
+constexpr uint8_t snorm8_to_image_byte(int s) { return static_cast<uint8_t>(s + 128); }
+constexpr int snorm8_from_image_byte(uint8_t v) { return v == 0 ? -127 : v - 128; }
+// The inverse of eac11_signed_to_snorm8 (cmodel/etc2_decode.hpp) for the signed EAC encoder:
+// SNORM8 s (-127..127) to the nearest 11-bit signed value, round(s * 1023 / 127) (never halfway:
+// 1023 and 127 are odd), which eac11_signed_to_snorm8 maps back to s.
+constexpr int16_t eac11_signed_from_snorm8(int s) {
+  const int m = s < 0 ? -s : s;
+  const int e = (m * 1023 + 63) / 127;
+  return static_cast<int16_t>(s < 0 ? -e : e);
+}
+
+// The encoder of a format, for messages and docs (every format has one).
 const char* block_encoder_name(BlockFormat f);
 
 // Encodes each level (any sizes; normally a MIP chain as cmodel/mipmap.hpp makes it). InputError
-// when the format has no encoder, `srgb` is set for a format without an sRGB variant, or there are
+// when `srgb` is set for a format without an sRGB variant, or there are
 // no levels.
 BlockImage encode_block_image(std::span<const Image> levels, BlockFormat f, bool srgb,
                               const BlockEncodeOptions& options = {});
@@ -56,5 +81,11 @@ void encode_bc7_mode6_block(const Rgba8 texels[16], uint8_t out[16]);
 void encode_etc1_block(const Rgba8 texels[16], uint8_t out[8]);
 // EAC of one channel: `values` in 0..255 (alpha8: ETC2 RGBA's alpha) or 0..2047 (R11).
 void encode_eac_block(const int values[16], bool r11, uint8_t out[8]);
+// Signed EAC R11 of one channel: `values` in -1023..1023.
+void encode_eac_r11_signed_block(const int values[16], uint8_t out[8]);
+// Signed BC4 of one channel: `values` SNORM8 in -127..127.
+void encode_bc4_signed_block(const int values[16], uint8_t out[8]);
+// ETC2 RGB8 punch-through alpha (8 bytes).
+void encode_etc2_punchthrough_block(const Rgba8 texels[16], uint8_t out[8]);
 
 }  // namespace tfu

@@ -47,7 +47,6 @@ BlockContainer container_for(const std::string& out, BlockFormat f) {
 void run_compress(const CompressOptions& o) {
   const BlockFormat format = block_format_from_name(o.format);
   const BlockFormatInfo& info = block_format_info(format);
-  if (!has_block_encoder(format)) (void)encode_block_image({}, format, o.srgb);  // its one-line refusal
   if (o.srgb && info.gl_srgb_internal_format == 0)
     throw InputError(fmt::format("--srgb: {} has no sRGB variant", info.name));
   if (o.quality < 0 || o.quality > 100) throw InputError(fmt::format("--quality {} is outside 0..100", o.quality));
@@ -112,7 +111,8 @@ void run_decompress(const DecompressOptions& o) {
   Image decoded = decode_block_level(img.format, level.width, level.height, level.blocks, {.srgb = img.srgb}, label);
   if (info.is_signed)  // SNORM8 (two's complement) stored as value + 128: -127..127 -> 1..255, 0 -> 128
     for (Rgba8& t : decoded.texels)
-      t = Rgba8{static_cast<uint8_t>(t.r + 128), static_cast<uint8_t>(info.channels == 2 ? t.g + 128 : 0), 0, 255};
+      t = Rgba8{snorm8_to_image_byte(static_cast<int8_t>(t.r)),
+                info.channels == 2 ? snorm8_to_image_byte(static_cast<int8_t>(t.g)) : uint8_t{0}, 0, 255};
   file.write_image(decoded);
   outputs.commit();
   std::cout << fmt::format("level {}  {} x {}  {}{}  {}\n", o.level, level.width, level.height, info.name,
@@ -125,7 +125,8 @@ void register_compress(CLI::App& app) {
   auto c = std::make_shared<CompressOptions>();
   CLI::App* cmd = app.add_subcommand("compress", "Encode a texture and its MIP levels into a DDS, KTX or .astc file");
   cmd->add_option("--format", c->format,
-                  "bc1 bc1a bc2 bc3 bc4 bc5 bc7 etc2 etc2a eac_r11 eac_rg11 astc4x4 .. astc12x12")
+                  "bc1 bc1a bc2 bc3 bc4 bc4s bc5 bc5s bc7 etc2 etc2a1 etc2a eac_r11 eac_r11s eac_rg11 eac_rg11s "
+                  "astc4x4 .. astc12x12 (signed formats read the image's bytes v as v - 128)")
       ->required();
   cmd->add_flag("--srgb", c->srgb, "Mark the texture sRGB (ASTC: encoded with libastcenc's sRGB profile)");
   cmd->add_option("--texture", c->texture, "Base level: image file or proc:NAME[:SIZE]")->required();
