@@ -263,14 +263,30 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
 
 TEST(MemoryModel, BandwidthAndLatency) {
   MemoryModel m({100, 16}, 2);
-  EXPECT_EQ(m.read(0, 64, 0), 104u);   // 4 cycles on the interface + 100 latency
-  EXPECT_EQ(m.read(0, 64, 1), 108u);   // queued behind the first: outstanding misses overlap latency
-  EXPECT_EQ(m.read(500, 1, 1), 601u);  // idle interface: 1 cycle + latency
+  EXPECT_EQ(m.read(0, 64, 0, 0), 104u);    // 4 cycles on the interface + 100 latency
+  EXPECT_EQ(m.read(0, 64, 1, 64), 108u);   // queued behind the first: outstanding misses overlap latency
+  EXPECT_EQ(m.read(500, 1, 1, 128), 601u);  // idle interface: 1 cycle + latency (the address is the DRAM's only)
   EXPECT_EQ(m.bytes_read(), 129u);
   EXPECT_EQ(m.texture_bytes(0), 64u);
   EXPECT_EQ(m.texture_bytes(1), 65u);
   EXPECT_EQ(m.requests(), 3u);
   EXPECT_THROW(MemoryModel({10, 0}, 1), InputError);
+}
+
+// With a DRAM part the interface still serializes the bytes, and the data arrives when the DRAM
+// delivers it (rtl/dram.hpp): DDR4-2400 at a unit clock of 1200 MHz, so a unit clock is a DRAM clock.
+TEST(MemoryModel, DramPartServesTheMisses) {
+  MemoryConfig cfg;
+  cfg.dram = 1;  // ddr4-2400-x64
+  cfg.unit_clock_mhz = 1200;
+  MemoryModel m(cfg, 1);
+  // Interface 0..3 (64 bytes at 16 per cycle); the DRAM takes it at 0: ACT 0, READ 16, data 32..36.
+  EXPECT_EQ(m.read(0, 64, 0, 0), 36u);
+  ASSERT_NE(m.dram(), nullptr);
+  EXPECT_EQ(m.dram()->stats().bursts, 1u);
+  MemoryConfig bad = cfg;
+  bad.dram = 9;
+  EXPECT_THROW(MemoryModel(bad, 1), InputError);
 }
 
 }  // namespace

@@ -136,6 +136,11 @@ TEST(UnitStats, EveryPublishedKeyIsInTheTable) {
       const std::set<UnitStat> seen = check_published(run_unit(frame, tr, UnitConfig{}, e, {}).stats, "bc3");
       all.insert(seen.begin(), seen.end());
     }
+    // The misses served by a DRAM part (memory.dram): its statistics.
+    UnitConfig with_dram;
+    with_dram.memory.dram = 1;
+    const std::set<UnitStat> seen = check_published(run_unit(frame, tr, with_dram, UnitEngine::Recurrence, {}).stats, "dram");
+    all.insert(seen.begin(), seen.end());
   }
   for (const UnitStatField& f : kUnitStatFields)
     EXPECT_TRUE(all.contains(f.id)) << "kUnitStatFields row '" << f.key << "' is published by none of the runs";
@@ -338,7 +343,6 @@ TEST(UnitStats, ProbeHistogramOfSeveralUnitsCountsEveryPixel) {
     }
     EXPECT_EQ(pixels, r.requests) << units << " units";
     EXPECT_EQ(probes, r.stats.counter("probes")) << units << " units";
-    EXPECT_GT((*h)[1], 0u);
   }
 }
 
