@@ -111,6 +111,19 @@ struct EtcSubblockFit {
   std::array<int, 16> index{};  // per texel of the block (only this sub-block's are set)
 };
 
+// The 32 index bits of an ETC1-mode block (KDFS: MSBs in bits 31..16, LSBs in 15..0, texels in
+// column-major order), each texel's index from the fit of its sub-block.
+uint64_t etc_index_bits(int flip, const EtcSubblockFit& f0, const EtcSubblockFit& f1) {
+  uint64_t w = 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const int i = (etc_subblock(flip, x, y) ? f1 : f0).index[static_cast<size_t>(4 * y + x)];
+      const int j = 4 * x + y;  // texel order: column-major
+      w |= uint64_t(i >> 1) << (16 + j) | uint64_t(i & 1) << j;
+    }
+  return w;
+}
+
 // The table and per-texel modifier indices of least squared error for one sub-block of base colour `base`.
 EtcSubblockFit fit_etc_subblock(const Rgba8 t[16], int flip, int sub, const std::array<int, 3>& base) {
   EtcSubblockFit best;
@@ -375,12 +388,7 @@ void encode_etc1_block(const Rgba8 texels[16], uint8_t out[8]) {
         }
       }
       w |= uint64_t(f0.table) << 37 | uint64_t(f1.table) << 34 | uint64_t(differential) << 33 | uint64_t(flip) << 32;
-      for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) {
-          const int i = (etc_subblock(flip, x, y) ? f1 : f0).index[static_cast<size_t>(4 * y + x)];
-          const int j = 4 * x + y;  // texel order: column-major
-          w |= uint64_t(i >> 1) << (16 + j) | uint64_t(i & 1) << j;
-        }
+      w |= etc_index_bits(flip, f0, f1);
       best_word = w;
     }
   }
@@ -511,12 +519,7 @@ void encode_etc2_punchthrough_block(const Rgba8 texels[16], uint8_t out[8]) {
     // Bit 33 is the opaque bit: 1, every texel opaque (the ETC2 RGB differential block); 0, index 2
     // is transparent and indices 0 and 2 have modifier 0.
     w |= uint64_t(f0.table) << 37 | uint64_t(f1.table) << 34 | uint64_t(all_opaque) << 33 | uint64_t(flip) << 32;
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) {
-        const int i = (etc_subblock(flip, x, y) ? f1 : f0).index[static_cast<size_t>(4 * y + x)];
-        const int j = 4 * x + y;  // texel order: column-major
-        w |= uint64_t(i >> 1) << (16 + j) | uint64_t(i & 1) << j;
-      }
+    w |= etc_index_bits(flip, f0, f1);
     best_word = w;
   }
   put_be64(best_word, out);
