@@ -67,15 +67,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tfu::fuzz::ByteReader in(data, size);
   const BcCase& c = kCases[in.byte() % std::size(kCases)];
   const tfu::BlockFormatInfo& info = tfu::block_format_info(c.block_format);
-  const uint8_t wb = in.byte(), hb = in.byte();
-  const int bx = 1 + wb % 4, by = 1 + hb % 4;
-  const int width = (bx - 1) * 4 + 1 + (wb / 4) % 4, height = (by - 1) * 4 + 1 + (hb / 4) % 4;
-  const auto bytes = static_cast<size_t>(info.block_bytes);
-  std::vector<uint8_t> blocks(static_cast<size_t>(bx * by) * bytes);
-  for (uint8_t& b : blocks) b = in.byte();
-  const auto block_of = [&](int x, int y) {
-    return std::span<const uint8_t>(blocks).subspan(static_cast<size_t>((y / 4) * bx + x / 4) * bytes, bytes);
-  };
+  const tfu::fuzz::FuzzBlockImage img = tfu::fuzz::read_block_image(in, static_cast<size_t>(info.block_bytes));
+  const int width = img.width, height = img.height;
+  const std::vector<uint8_t>& blocks = img.blocks;
+  const auto block_of = [&img](int x, int y) { return img.block_at(x, y); };
 
   // The unit's level decoder against the family's image decoder, in every rule.
   for (const tfu::Bc1Interpolation colour : {tfu::Bc1Interpolation::EXACT, tfu::Bc1Interpolation::TRUNCATE,
@@ -115,7 +110,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (c.block_format == BlockFormat::BC1) r.a = ours.a;
         if (ours != r) fail(c, block, x, y, "libsquish", ours, r);
       } else if (c.block_format == BlockFormat::BC4 || c.block_format == BlockFormat::BC5) {
-        for (size_t half = 0; half < bytes / 8; ++half) {  // red, then green: a DXT5 alpha block each
+        for (size_t half = 0; half < img.block_bytes / 8; ++half) {  // red, then green: a DXT5 alpha block each
           std::array<uint8_t, 16> dxt5{};
           std::copy_n(block.begin() + static_cast<std::ptrdiff_t>(8 * half), 8, dxt5.begin());
           squish::Decompress(ref.data(), dxt5.data(), squish::kDxt5);

@@ -63,15 +63,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const EtcCase& c = kCases[in.byte() % std::size(kCases)];
   const tfu::EtcFormatInfo& info = tfu::etc_format_info(c.etc_format);
   const tfu::BlockFormatInfo& unit = tfu::block_format_info(c.block_format);
-  const uint8_t wb = in.byte(), hb = in.byte();
-  const int bx = 1 + wb % 4, by = 1 + hb % 4;
-  const int width = (bx - 1) * 4 + 1 + (wb / 4) % 4, height = (by - 1) * 4 + 1 + (hb / 4) % 4;
-  const auto bytes = static_cast<size_t>(info.block_bytes);
-  std::vector<uint8_t> blocks(static_cast<size_t>(bx * by) * bytes);
-  for (uint8_t& b : blocks) b = in.byte();
-  const auto block_of = [&](int x, int y) {
-    return std::span<const uint8_t>(blocks).subspan(static_cast<size_t>((y / 4) * bx + x / 4) * bytes, bytes);
-  };
+  const tfu::fuzz::FuzzBlockImage img = tfu::fuzz::read_block_image(in, static_cast<size_t>(info.block_bytes));
+  const int width = img.width, height = img.height;
+  const std::vector<uint8_t>& blocks = img.blocks;
+  const auto block_of = [&img](int x, int y) { return img.block_at(x, y); };
   const auto at = [&](int x, int y) { return static_cast<size_t>(y * width + x); };
 
   // The unit's view (RGBA8 words; signed: SNORM8 bytes) against the image decoders.

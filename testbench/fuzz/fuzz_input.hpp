@@ -8,7 +8,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
+#include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 
@@ -101,5 +103,31 @@ class ByteReader {
 
 // The whole input as a string (JSON, trace text).
 inline std::string as_text(const uint8_t* data, size_t size) { return std::string(reinterpret_cast<const char*>(data), size); }
+
+// An image of 4x4-texel blocks read from the input: two bytes give the blocks per side (1..4) and
+// how many texels the last block column and row keep (partial edge blocks); then the blocks, row by
+// row, zeros past the input's end.
+struct FuzzBlockImage {
+  int blocks_x = 1, blocks_y = 1, width = 1, height = 1;
+  size_t block_bytes = 0;
+  std::vector<uint8_t> blocks;
+  // The block holding texel (x, y).
+  std::span<const uint8_t> block_at(int x, int y) const {
+    return std::span<const uint8_t>(blocks).subspan(static_cast<size_t>((y / 4) * blocks_x + x / 4) * block_bytes,
+                                                    block_bytes);
+  }
+};
+inline FuzzBlockImage read_block_image(ByteReader& in, size_t block_bytes) {
+  FuzzBlockImage img;
+  const uint8_t wb = in.byte(), hb = in.byte();
+  img.blocks_x = 1 + wb % 4;
+  img.blocks_y = 1 + hb % 4;
+  img.width = (img.blocks_x - 1) * 4 + 1 + (wb / 4) % 4;
+  img.height = (img.blocks_y - 1) * 4 + 1 + (hb / 4) % 4;
+  img.block_bytes = block_bytes;
+  img.blocks.resize(static_cast<size_t>(img.blocks_x * img.blocks_y) * block_bytes);
+  for (uint8_t& b : img.blocks) b = in.byte();
+  return img;
+}
 
 }  // namespace tfu::fuzz
