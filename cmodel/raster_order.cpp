@@ -16,10 +16,12 @@ std::pair<std::string, int> split_name(const std::string& s, const char* what) {
   if (colon == std::string::npos) return {s, -1};
   const std::string num = s.substr(colon + 1);
   int n = 0;
-  const bool digits = !num.empty() && num.size() <= 4 && std::all_of(num.begin(), num.end(), [](char c) { return c >= '0' && c <= '9'; });
+  const bool digits = !num.empty() && num.size() <= 4 &&
+                      std::all_of(num.begin(), num.end(), [](char c) { return c >= '0' && c <= '9'; });
   if (digits) n = std::stoi(num);
   if (!digits || n < 2 || n > kMaxRasterTile)
-    throw InputError(fmt::format("{} '{}': the tile size after ':' must be an integer 2..{}", what, quote_input(s), kMaxRasterTile));
+    throw InputError(
+        fmt::format("{} '{}': the tile size after ':' must be an integer 2..{}", what, quote_input(s), kMaxRasterTile));
   return {s.substr(0, colon), n};
 }
 
@@ -42,8 +44,10 @@ RasterOrder raster_order_from_name(const std::string& name) {
     if (n >= 0) throw InputError(fmt::format("raster order '{}': scanline takes no tile size", quote_input(name)));
     return o;
   }
-  if (n < 0) throw InputError(fmt::format("raster order '{}': {} needs a tile size, e.g. {}:8", quote_input(name), base, base));
-  if (n % 2 != 0) throw InputError(fmt::format("raster order '{}': the tile size must be even (whole 2x2 quads)", quote_input(name)));
+  if (n < 0)
+    throw InputError(fmt::format("raster order '{}': {} needs a tile size, e.g. {}:8", quote_input(name), base, base));
+  if (n % 2 != 0)
+    throw InputError(fmt::format("raster order '{}': the tile size must be even (whole 2x2 quads)", quote_input(name)));
   if (o.traversal == RasterTraversal::Morton && !power_of_two(n))
     throw InputError(fmt::format("raster order '{}': a Morton tile size must be a power of two", quote_input(name)));
   o.tile = n;
@@ -74,7 +78,8 @@ std::vector<size_t> raster_sequence(const RasterOrder& o, const std::vector<Quad
   std::vector<std::pair<uint64_t, uint64_t>> key(quads.size());
   for (size_t i = 0; i < quads.size(); ++i) {
     const QuadPlace& q = quads[i];
-    const auto tile = static_cast<uint64_t>(q.y / o.tile) * static_cast<uint64_t>(tiles_x) + static_cast<uint64_t>(q.x / o.tile);
+    const auto tile =
+        static_cast<uint64_t>(q.y / o.tile) * static_cast<uint64_t>(tiles_x) + static_cast<uint64_t>(q.x / o.tile);
     const uint32_t rank = quad_rank_in_tile(o, (q.x % o.tile) / 2, (q.y % o.tile) / 2);
     key[i] = {tile << 32 | q.triangle, rank};
   }
@@ -87,13 +92,17 @@ UnitTiles unit_tiles_from_name(const std::string& name) {
   UnitTiles t;
   t.distribution = kUnitDistributionNames.from_name(base);
   if (n >= 0) {
-    if (n % 2 != 0) throw InputError(fmt::format("unit distribution '{}': the tile size must be even (whole 2x2 quads)", quote_input(name)));
+    if (n % 2 != 0)
+      throw InputError(
+          fmt::format("unit distribution '{}': the tile size must be even (whole 2x2 quads)", quote_input(name)));
     t.tile = n;
   }
   return t;
 }
 
-std::string unit_tiles_name(const UnitTiles& t) { return fmt::format("{}:{}", kUnitDistributionNames.name(t.distribution), t.tile); }
+std::string unit_tiles_name(const UnitTiles& t) {
+  return fmt::format("{}:{}", kUnitDistributionNames.name(t.distribution), t.tile);
+}
 
 int unit_of_quad(const UnitTiles& t, int units, int width, int height, int x, int y) {
   const int tiles_x = (width + t.tile - 1) / t.tile, tile_rows = (height + t.tile - 1) / t.tile;

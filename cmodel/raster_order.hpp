@@ -30,8 +30,10 @@
 namespace tfu {
 
 enum class RasterTraversal { Scanline, Tiled, Morton };
-inline constexpr EnumNames<RasterTraversal, 3> kRasterTraversalNames{
-    "raster order", {{{RasterTraversal::Scanline, "scanline"}, {RasterTraversal::Tiled, "tiled"}, {RasterTraversal::Morton, "morton"}}}};
+inline constexpr EnumNames<RasterTraversal, 3> kRasterTraversalNames{"raster order",
+                                                                     {{{RasterTraversal::Scanline, "scanline"},
+                                                                       {RasterTraversal::Tiled, "tiled"},
+                                                                       {RasterTraversal::Morton, "morton"}}}};
 
 inline constexpr int kMaxRasterTile = 256;  // pixels per side of a raster or unit tile
 

@@ -83,9 +83,11 @@ TEST(RasterOrder, HandCheckedSequencesOnAnEightByEightScreen) {
   EXPECT_EQ(quad_rank_in_tile(raster_order_from_name("morton:16"), 3, 5), 39u);
   EXPECT_EQ(quad_rank_in_tile(raster_order_from_name("tiled:16"), 3, 5), 43u);  // 5 rows of 8 quads + 3
   // morton:16 on a 16x4 screen: the second 2x2 block of quads comes before the second quad row.
+  // clang-format off
   EXPECT_EQ(sequence("morton:16", full_screen(16, 4)),
             (std::vector<XY>{{0, 0}, {2, 0}, {0, 2}, {2, 2}, {4, 0}, {6, 0}, {4, 2}, {6, 2},
                              {8, 0}, {10, 0}, {8, 2}, {10, 2}, {12, 0}, {14, 0}, {12, 2}, {14, 2}}));
+  // clang-format on
 
   // Two triangles: 0 covers the quads with qx + qy <= 3, 1 those with qx + qy >= 3 (the anti-diagonal
   // quads are shaded by both), recorded in scanline order (one band: triangle 0, then 1).
@@ -95,10 +97,10 @@ TEST(RasterOrder, HandCheckedSequencesOnAnEightByEightScreen) {
       for (int qx = 0; qx < 4; ++qx)
         if (tri == 0 ? qx + qy <= 3 : qx + qy >= 3) two.push_back({tri, 2 * qx, 2 * qy});
   // tiled:4, by hand: in each tile triangle 0's quads, then triangle 1's, each row by row.
-  const std::vector<XY> want{{0, 0}, {2, 0}, {0, 2}, {2, 2},                      // tile (0,0): 0 only
+  const std::vector<XY> want{{0, 0}, {2, 0}, {0, 2}, {2, 2},                       // tile (0,0): 0 only
                              {4, 0}, {6, 0}, {4, 2}, /**/ {6, 0}, {4, 2}, {6, 2},  // tile (1,0): 0, then 1
                              {0, 4}, {2, 4}, {0, 6}, /**/ {2, 4}, {0, 6}, {2, 6},  // tile (0,1)
-                             {4, 4}, {6, 4}, {4, 6}, {6, 6}};                     // tile (1,1): 1 only
+                             {4, 4}, {6, 4}, {4, 6}, {6, 6}};                      // tile (1,1): 1 only
   EXPECT_EQ(sequence("tiled:4", two), want);
   EXPECT_EQ(sequence("morton:4", two), want);
   // Records of one quad (its stages) keep their order: tiled:2 puts each triangle's quad together.
@@ -234,8 +236,9 @@ TEST(RasterOrder, TracesRecordScreenPositions) {
   ASSERT_EQ(back.requests.size(), r.trace.requests.size());
   for (size_t i = 0; i < back.requests.size(); ++i) EXPECT_EQ(key(back.requests[i]), key(r.trace.requests[i]));
   // Old traces read unchanged, without positions.
-  std::istringstream old("# tfu-trace mode=quad fields=texture,sampler,stage,s,t\n0,0,0,0.5,0.5\n0,0,0,0.5,0.5\n"
-                         "0,0,0,0.5,0.5\n0,0,0,0.5,0.5\n");
+  std::istringstream old(
+      "# tfu-trace mode=quad fields=texture,sampler,stage,s,t\n0,0,0,0.5,0.5\n0,0,0,0.5,0.5\n"
+      "0,0,0,0.5,0.5\n0,0,0,0.5,0.5\n");
   EXPECT_FALSE(parse_trace(old, "old.trace").positions);
   const auto error = [](const std::string& text) {
     std::istringstream e(text);
@@ -251,7 +254,8 @@ TEST(RasterOrder, TracesRecordScreenPositions) {
             "e.txt:1: screen positions 'x', 'y' belong to quad traces, not to a lod trace");
   EXPECT_EQ(error("# tfu-trace mode=quad fields=x,y,s,t\n0,0,0,0\n2,0,0,0\n"),
             "e.txt:3: the four pixels of a quad name one screen position x, y");
-  EXPECT_EQ(error("# tfu-trace mode=quad fields=x,y,s,t\n8192,0,0,0\n"), "e.txt:2: field 1 '8192' is not an integer 0..8191");
+  EXPECT_EQ(error("# tfu-trace mode=quad fields=x,y,s,t\n8192,0,0,0\n"),
+            "e.txt:2: field 1 '8192' is not an integer 0..8191");
 
   // A loaded trace re-ordered: tiles in the render's order, the same requests.
   RenderOptions tiled = o;
