@@ -93,6 +93,7 @@ struct Context {
 struct BandOutput {
   std::vector<TraceRequest> trace;
   std::vector<QuadTarget> targets;
+  std::vector<uint32_t> triangles;  // per target: the triangle that shaded it (raster_sequence)
   int64_t quads = 0, pixels = 0;
 };
 
@@ -240,11 +241,14 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         }
         if (ctx.opts->trace) {
           out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st), primary});
+          out.triangles.push_back(static_cast<uint32_t>(&tri - ctx.triangles.data()));
           for (size_t k = 0; k < 4; ++k) {
             TraceRequest r;
             r.texture = static_cast<uint16_t>(bindings[st].texture);
             r.sampler = static_cast<uint8_t>(bindings[st].sampler);
             r.stage = static_cast<uint8_t>(st);
+            r.x = static_cast<uint16_t>(qx);
+            r.y = static_cast<uint16_t>(qy);
             r.s = s[k];
             r.t = t[k];
             out.trace.push_back(r);
@@ -500,6 +504,7 @@ void make_samplers(Context& ctx, RenderResult& result) {
   SceneOverrides ov;
   ov.filter = ctx.opts->filter;
   ov.sampler = ctx.opts->sampler_overrides;
+  ov.layout = ctx.opts->texture_layout;
   result.frame = std::make_shared<const SceneFrame>(build_scene_frame(*ctx.scene, ov, ctx.opts->line_bytes));
   ctx.frame = result.frame.get();
   ctx.golden = std::make_unique<GoldenUnit>(ctx.frame->frame);
@@ -647,11 +652,28 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   run_bands(ctx, threads, outputs);
 
   result.trace.mode = TraceMode::Quad;
+  result.trace.positions = opts.trace;
+  std::vector<QuadPlace> places;
   for (BandOutput& b : outputs) {
     result.stats.quads += b.quads;
     result.stats.pixels += b.pixels;
     result.trace.requests.insert(result.trace.requests.end(), b.trace.begin(), b.trace.end());
     result.quad_targets.insert(result.quad_targets.end(), b.targets.begin(), b.targets.end());
+    if (opts.raster.traversal != RasterTraversal::Scanline)
+      for (size_t i = 0; i < b.targets.size(); ++i) places.push_back({b.triangles[i], b.targets[i].x, b.targets[i].y});
+  }
+  if (opts.raster.traversal != RasterTraversal::Scanline) {
+    // The bands recorded the quads in scanline order; the same quads, masks and outputs in the
+    // raster order (every order shades the same quads: raster_order.hpp).
+    const std::vector<size_t> seq = raster_sequence(opts.raster, places);
+    std::vector<TraceRequest> requests(result.trace.requests.size());
+    std::vector<QuadTarget> targets(result.quad_targets.size());
+    for (size_t i = 0; i < seq.size(); ++i) {
+      targets[i] = result.quad_targets[seq[i]];
+      std::copy_n(result.trace.requests.begin() + static_cast<ptrdiff_t>(seq[i] * 4), 4, requests.begin() + static_cast<ptrdiff_t>(i * 4));
+    }
+    result.trace.requests = std::move(requests);
+    result.quad_targets = std::move(targets);
   }
   return result;
 }

@@ -24,7 +24,8 @@
 //   threads       the image is cut into bands of kBandRows rows; threads take bands in turn; a band
 //                 draws triangles in scene order, so the image and the trace do not depend on the
 //                 number of threads
-//   trace         quad mode, 4 lines per shaded quad, ordered by band, then triangle, then quad (row-major)
+//   trace         quad mode, 4 lines per shaded quad with its screen position; in the raster order
+//                 (raster_order.hpp); scanline: by band, then triangle, then quad (row-major)
 //   ground truth  8 x 8 stratified sample points per pixel at ((i + 1/2) / 8, (j + 1/2) / 8), each with
 //                 its own coverage, depth test and perspective-correct (s, t), colour from the texture's
 //                 analytic function (procedural.hpp; file textures: bilinear on level 0), averaged
@@ -44,6 +45,7 @@
 #include <glm/glm.hpp>
 
 #include "cmodel/golden_unit.hpp"
+#include "cmodel/raster_order.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_frame.hpp"
@@ -95,7 +97,9 @@ struct RenderOptions {
   std::optional<FilterMode> filter;  // replaces the filter mode of every mesh's base stage
   Params sampler_overrides;          // further sampler keys of every base stage (bindings.hpp)
   int line_bytes = 64;               // the unit's cache line: textures are tiled in tiles of it
+  std::optional<MemoryLayout> texture_layout;  // every texture's layout (SceneOverrides::layout)
   bool trace = false;                // record the quad request trace
+  RasterOrder raster;                // the order of the trace's quads (cmodel/raster_order.hpp)
   bool ground_truth = false;         // also render the supersampled analytic references (both truths)
   bool ideal = false;                // Sampler::sample_ideal (double path) instead of sample
   bool keep_coords = false;          // keep each visible pixel's (s, t) (NaN where nothing is drawn)

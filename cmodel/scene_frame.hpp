@@ -22,6 +22,9 @@ struct StageBinding {
 struct SceneOverrides {
   std::optional<FilterMode> filter;  // the base stage's filter mode
   Params sampler;                    // further sampler keys of the base stage (bindings.hpp)
+  // The memory layout of every texture of every stage (level textures included); nullopt: each
+  // texture's own. A tiled texture is tiled for the unit's cache line (FrameBuilder).
+  std::optional<MemoryLayout> layout;
 };
 
 struct SceneFrame {

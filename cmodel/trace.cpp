@@ -13,6 +13,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/lod.hpp"
+#include "cmodel/raster_order.hpp"
 
 namespace tfu {
 
@@ -21,9 +22,10 @@ const char* trace_mode_name(TraceMode m) { return kTraceModeNames.name(m); }
 namespace {
 
 // The columns of a request line.
-enum class Column { Texture, Sampler, Stage, S, T, Lod, Dsdx, Dtdx, Dsdy, Dtdy };
+enum class Column { Texture, Sampler, Stage, X, Y, S, T, Lod, Dsdx, Dtdx, Dsdy, Dtdy };
 constexpr std::pair<const char*, Column> kColumns[] = {
-    {"texture", Column::Texture}, {"sampler", Column::Sampler}, {"stage", Column::Stage}, {"s", Column::S},
+    {"texture", Column::Texture}, {"sampler", Column::Sampler}, {"stage", Column::Stage}, {"x", Column::X},
+    {"y", Column::Y},             {"s", Column::S},
     {"t", Column::T},             {"lod", Column::Lod},         {"dsdx", Column::Dsdx},   {"dtdx", Column::Dtdx},
     {"dsdy", Column::Dsdy},       {"dtdy", Column::Dtdy}};
 
@@ -101,6 +103,12 @@ void parse_trace_header(const std::string& line, Trace& tr, Header& h, const std
   for (Column c : default_columns(tr.mode))
     if (std::find(h.columns.begin(), h.columns.end(), c) == h.columns.end())
       throw InputError(fmt::format("{}: a {} trace needs the field '{}'", where, trace_mode_name(tr.mode), column_name(c)));
+  const bool x = std::find(h.columns.begin(), h.columns.end(), Column::X) != h.columns.end();
+  const bool y = std::find(h.columns.begin(), h.columns.end(), Column::Y) != h.columns.end();
+  if (x != y) throw InputError(fmt::format("{}: a screen position needs both fields 'x' and 'y'", where));
+  if (x && tr.mode != TraceMode::Quad)
+    throw InputError(fmt::format("{}: screen positions 'x', 'y' belong to quad traces, not to a {} trace", where, trace_mode_name(tr.mode)));
+  tr.positions = x;
   for (Column c : h.columns) {
     const auto need = default_columns(tr.mode);
     if (c >= Column::S && std::find(need.begin(), need.end(), c) == need.end())
@@ -270,6 +278,8 @@ Trace parse_trace(std::istream& in, const std::string& name) {
         case Column::Texture: r.texture = static_cast<uint16_t>(parse_index(f, c + 1, 4095, where)); break;
         case Column::Sampler: r.sampler = static_cast<uint8_t>(parse_index(f, c + 1, 255, where)); break;
         case Column::Stage: r.stage = static_cast<uint8_t>(parse_index(f, c + 1, 3, where)); break;
+        case Column::X: r.x = static_cast<uint16_t>(parse_index(f, c + 1, kMaxTracePosition, where)); break;
+        case Column::Y: r.y = static_cast<uint16_t>(parse_index(f, c + 1, kMaxTracePosition, where)); break;
         case Column::S: r.s = parse_float(f, c + 1, where); break;
         case Column::T: r.t = parse_float(f, c + 1, where); break;
         case Column::Lod: r.lod = parse_float(f, c + 1, where); break;
@@ -283,6 +293,8 @@ Trace parse_trace(std::istream& in, const std::string& name) {
       const TraceRequest& q = tr.requests[tr.requests.size() - tr.requests.size() % 4];
       if (q.texture != r.texture || q.sampler != r.sampler || q.stage != r.stage)
         throw InputError(fmt::format("{}: the four pixels of a quad name one texture, sampler and stage", where));
+      if (q.x != r.x || q.y != r.y)
+        throw InputError(fmt::format("{}: the four pixels of a quad name one screen position x, y", where));
     }
     if (tr.requests.size() == tr.requests.capacity()) {
       // The vector grows by doubling, reserved here so that what it holds is what the budget is charged
@@ -322,11 +334,14 @@ void write_trace(std::ostream& out, const Trace& trace) {
       if (b.params.contains(""))
         throw InputError(fmt::format("trace binding {} {} ('{}'): a parameter with an empty key", kind, b.index, quote_input(b.spec)));
     }
-  bool indexed = !trace.textures.empty() || !trace.samplers.empty();
+  if (trace.positions && trace.mode != TraceMode::Quad)
+    throw InputError("a trace with screen positions must be a quad trace");
+  bool indexed = trace.positions || !trace.textures.empty() || !trace.samplers.empty();
   for (const TraceRequest& r : trace.requests) indexed = indexed || r.texture != 0 || r.sampler != 0 || r.stage != 0;
   out << "# tfu-trace mode=" << trace_mode_name(trace.mode);
   if (indexed) {
     out << " fields=texture,sampler,stage";
+    if (trace.positions) out << ",x,y";
     for (Column c : default_columns(trace.mode)) out << ',' << column_name(c);
   }
   out << '\n';
@@ -340,11 +355,26 @@ void write_trace(std::ostream& out, const Trace& trace) {
   for (const TraceBinding& b : trace.samplers) binding("tfu-sampler", b);
   for (const TraceRequest& r : trace.requests) {
     if (indexed) out << r.texture << ',' << int{r.sampler} << ',' << int{r.stage} << ',';
+    if (trace.positions) out << r.x << ',' << r.y << ',';
     out << fmt::format("{:.9g},{:.9g}", r.s, r.t);
     if (trace.mode == TraceMode::Lod) out << fmt::format(",{:.9g}", r.lod);
     if (trace.mode == TraceMode::Grad) out << fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", r.dsdx, r.dtdx, r.dsdy, r.dtdy);
     out << '\n';
   }
+}
+
+Trace reorder_trace(const Trace& trace, const RasterOrder& order) {
+  if (trace.mode != TraceMode::Quad || !trace.positions)
+    throw InputError(fmt::format("trace {}: re-ordering needs a quad trace with screen positions (fields x, y)", quote_input(trace.source, 100)));
+  // One place per quad; the triangle is unknown, so every quad counts as triangle 0 and the stable
+  // sort keeps the trace's order among quads of one position.
+  std::vector<QuadPlace> places(trace.requests.size() / 4);
+  for (size_t q = 0; q < places.size(); ++q) places[q] = {0, trace.requests[q * 4].x, trace.requests[q * 4].y};
+  const std::vector<size_t> seq = raster_sequence(order, places);
+  Trace out = trace;
+  for (size_t i = 0; i < seq.size(); ++i)
+    std::copy_n(trace.requests.begin() + static_cast<ptrdiff_t>(seq[i] * 4), 4, out.requests.begin() + static_cast<ptrdiff_t>(i * 4));
+  return out;
 }
 
 int32_t request_lambda(const Trace& tr, size_t i, int width, int height) {

@@ -2,7 +2,7 @@
 // Full description with examples: docs/traces.md.
 //
 //   # comment lines and blank lines are ignored anywhere
-//   # tfu-trace mode=quad [fields=texture,sampler,stage,s,t]
+//   # tfu-trace mode=quad [fields=texture,sampler,stage,x,y,s,t]
 //                                  optional header fixing the mode (lod | grad | quad) and, with
 //                                  fields=, the columns of a request line by name
 //   # tfu-texture N SPEC [key=value ...]   binds texture descriptor N (docs/traces.md)
@@ -16,7 +16,9 @@
 // the unit's interface format. Fields are separated by commas with
 // optional spaces. Without a header the mode follows from the field count of the first request; every
 // line must then have the same count. A trace without texture / sampler columns names descriptor 0
-// in every request (old traces read unchanged). Errors name the file and line.
+// in every request (old traces read unchanged). A quad trace may carry each quad's screen position
+// (columns x and y, both or neither: the top-left pixel of the quad), so that it can be re-ordered
+// (reorder_trace). Errors name the file and line.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +34,7 @@
 #include "cmodel/enum_names.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/memory_budget.hpp"
+#include "cmodel/raster_order.hpp"
 
 namespace tfu {
 
@@ -44,6 +47,7 @@ struct TraceRequest {
   uint16_t texture = 0;  // texture descriptor index
   uint8_t sampler = 0;   // sampler descriptor index
   uint8_t stage = 0;     // texture stage of the material that issued it (statistics only)
+  uint16_t x = 0, y = 0;  // quad mode, Trace::positions: the screen position of the quad's top-left pixel
   float s = 0, t = 0;
   float lod = 0;                              // mode lod
   float dsdx = 0, dtdx = 0, dsdy = 0, dtdy = 0;  // mode grad
@@ -61,6 +65,7 @@ struct TraceBinding {
 struct Trace {
   TraceMode mode = TraceMode::Quad;
   std::vector<TraceRequest> requests;  // quad mode: a multiple of 4, in quad order
+  bool positions = false;  // the requests carry their quads' screen positions (columns x, y)
   std::vector<TraceBinding> textures, samplers;  // header bindings, in file order
   std::string source;  // the file it was read from (relative texture paths resolve against its directory)
   // The memory budget's charge for `requests` as parse_trace reserved them (cmodel/memory_budget.hpp).
@@ -92,6 +97,17 @@ AnisoLod request_lod(const Trace& trace, size_t i, int width, int height, const 
 // lambda of every request, in order; `extent(texture index)` gives the texture's level-0 size.
 std::vector<int32_t> trace_lambdas(const Trace& trace, const std::function<std::pair<int, int>(int)>& extent);
 std::vector<int32_t> trace_lambdas(const Trace& trace, int width, int height);  // every request, one texture
+
+// Largest screen coordinate a trace position may hold (a render is at most 8192 pixels a side).
+inline constexpr int kMaxTracePosition = 8191;
+
+// Re-orders a quad trace that carries positions into `order` (cmodel/raster_order.hpp): quads
+// grouped by screen tile (row order), inside a tile by their rank in the tile's order (row-major or
+// Morton), equal positions keeping the trace's order. A trace records no triangles, so this equals
+// the render's order where every triangle covers a quad position once per tile in the trace's own
+// order: always for the tile's grouping; within a tile the render draws triangle by triangle, this
+// quad position by quad position (docs/traces.md). InputError for a trace without positions.
+Trace reorder_trace(const Trace& trace, const RasterOrder& order);
 
 // Largest trace accepted (requests), so that a bad file cannot exhaust memory.
 inline constexpr size_t kMaxTraceRequests = size_t{1} << 26;

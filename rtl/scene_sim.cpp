@@ -47,11 +47,11 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     jobs[j].unit = static_cast<int>(j);
     jobs[j].trace.mode = TraceMode::Quad;
   }
-  const int tiles_x = (scene.width + opt.tile - 1) / opt.tile;
+  if (opt.tiles.tile < 2 || opt.tiles.tile > kMaxRasterTile || opt.tiles.tile % 2 != 0)
+    throw InputError(fmt::format("unit tile size {} outside the even sizes 2..{}", opt.tiles.tile, kMaxRasterTile));
   for (size_t q = 0; q < render.quad_targets.size(); ++q) {
     const QuadTarget& t = render.quad_targets[q];
-    const int tile = (t.y / opt.tile) * tiles_x + t.x / opt.tile;
-    Job& job = jobs[static_cast<size_t>(tile % opt.units)];
+    Job& job = jobs[static_cast<size_t>(unit_of_quad(opt.tiles, opt.units, scene.width, scene.height, t.x, t.y))];
     job.quads.push_back(q);
     for (size_t k = 0; k < 4; ++k) job.trace.requests.push_back(render.trace.requests[q * 4 + k]);
   }

@@ -3,8 +3,9 @@
 //
 // The unit works as a GPU's does: every texture and sampler of the frame is resident (the render's
 // frame: descriptors and one texel memory), and each unit receives, in the order the rasterizer
-// issues them, the requests of every material stage of the quads in its screen tiles (32x32-pixel
-// tiles dealt round-robin over the units). Meshes follow each other in submission order with no
+// issues them (RenderOptions::raster), the requests of every material stage of the quads in its
+// screen tiles (by default 32x32-pixel tiles dealt round-robin over the units; `tiles`,
+// cmodel/raster_order.hpp). Meshes follow each other in submission order with no
 // cache flush between them. Units run on their own threads (the simulation of each is
 // single-threaded and deterministic, so results do not depend on the thread count). Cycles = the
 // slowest unit's; every other statistic is summed over units.
@@ -23,7 +24,7 @@ namespace tfu::rtl {
 
 struct SceneSimOptions {
   int units = 1;
-  int tile = 32;
+  UnitTiles tiles;  // which unit draws which screen tile (round-robin:32 by default)
   std::ostream* vcd = nullptr;  // VCD of unit 0
   std::vector<std::ostream*> unit_vcds;  // if not empty: unit k's VCD (nullptr: none); replaces `vcd`
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles dumped, inclusive

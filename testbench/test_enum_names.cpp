@@ -12,6 +12,7 @@
 #include "cmodel/enum_names.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/q3_textures.hpp"
+#include "cmodel/raster_order.hpp"
 #include "cmodel/texenv.hpp"
 #include "cmodel/texture.hpp"
 #include "cmodel/trace.hpp"
@@ -59,6 +60,8 @@ TEST(EnumNames, EveryTableNamesEveryValueOnce) {
   expect_table_complete(kTexEnvNames, 4);
   expect_table_complete(kEdgeShapeNames, 3);
   expect_table_complete(kTraceModeNames, 3);
+  expect_table_complete(kRasterTraversalNames, 3);
+  expect_table_complete(kUnitDistributionNames, 2);
   expect_table_complete(q3::kSurfaceClassNames, 3);
   expect_table_complete(rtl::kUnitEngineNames, 2);
   expect_table_complete(rtl::kStatKindNames, 4);

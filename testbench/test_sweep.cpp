@@ -254,6 +254,52 @@ TEST(SweepSpec, ExpansionOrderAndExplicitPoints) {
   EXPECT_EQ(sweep::expand(s)[5].id, pts[5].id);
 }
 
+TEST(SweepSpec, RunKeysAreGridKeys) {
+  const sweep::Spec s = sweep::parse_spec(
+      R"({"scenes": ["ground_plane"], "width": 64, "height": 48,
+          "grid": {"raster": ["scanline", "tiled:08", "morton:16"], "units": [1, 4], "unit_tiles": ["bands"]},
+          "points": [{"width": 96, "height": 64}]})",
+      "s.json");
+  const std::vector<sweep::Point> pts = sweep::expand(s);
+  ASSERT_EQ(pts.size(), 3u * 2 + 1);
+  EXPECT_EQ(pts[2].values, (std::vector<std::string>{"tiled:8", "1", "bands:32", "64", "48"}));  // canonical names
+  EXPECT_EQ(pts[2].raster, (RasterOrder{RasterTraversal::Tiled, 8}));
+  EXPECT_EQ(pts[3].units, 4);
+  EXPECT_EQ(pts[3].unit_tiles.distribution, UnitDistribution::Bands);
+  EXPECT_EQ(pts[0].width, 64);
+  EXPECT_EQ(pts[6].width, 96);  // the explicit point's size; the grid keys keep the spec's defaults
+  EXPECT_EQ(pts[6].height, 64);
+  EXPECT_EQ(pts[6].raster, RasterOrder{});
+  std::set<std::string> ids;
+  for (const auto& p : pts) ids.insert(p.id);
+  EXPECT_EQ(ids.size(), pts.size());
+  // Run keys at their defaults leave the point ids as a spec without them has them.
+  const auto id0 = [](const std::string& grid) {
+    return sweep::expand(sweep::parse_spec(R"({"scenes": ["ground_plane"], "width": 64, "height": 48, "grid": {)" + grid + "}}",
+                                           "s.json"))[0].id;
+  };
+  EXPECT_EQ(id0(R"("cache.ways": [4])"), id0(R"("cache.ways": [4], "raster": ["scanline"], "unit_tiles": ["round-robin:32"], "units": [1])"));
+  EXPECT_NE(id0(R"("cache.ways": [4])"), id0(R"("cache.ways": [4], "raster": ["tiled:8"])"));
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"raster": ["tiled:8", "tiled:08"]}})").find("grid.raster: value tiled:8 is listed twice"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"raster": ["tiled:7"]}})").find("grid.raster: raster order 'tiled:7'"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"width": [1]}})").find("grid.width: must be 0"), std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"units": [0]}})").find("grid.units: 0 is outside 1..256"), std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "raster": 8, "grid": {"units": [1]}})").find("s.json: raster: values must be strings"),
+            std::string::npos);
+  // The layout of every texture, and the spawn point of level scenes only.
+  const std::vector<sweep::Point> lay = sweep::expand(sweep::parse_spec(
+      R"({"scenes": ["ground_plane"], "width": 64, "height": 48, "grid": {"texture_layout": ["own", "linear", "tiled"]}})", "s.json"));
+  ASSERT_EQ(lay.size(), 3u);
+  EXPECT_EQ(lay[1].texture_layout, "linear");
+  EXPECT_EQ(lay[0].id, id0(R"("units": [1])"));
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"texture_layout": ["swizzled"]}})").find("grid.texture_layout: unknown memory layout"),
+            std::string::npos);
+  EXPECT_NE(spec_error(R"({"scenes": ["ground_plane"], "grid": {"spawn": [1]}})").find("point 0: spawn applies to oa: level scenes, not to 'ground_plane'"),
+            std::string::npos);
+}
+
 // TFU-S E10: the duplicate checks are a hash set. A duplicate at the far end of a long list is still
 // found (the speed is shown by build/bin/tfu_bench_sweep, not timed here).
 TEST(SweepSpec, DuplicatesAreFoundAtTheFarEndOfLongLists) {

@@ -157,6 +157,9 @@ nlohmann::json provenance_json(const RunRecord& run) {
   j["sampler_overrides"] = nlohmann::json::object();
   for (const auto& [k, v] : run.sampler_overrides) j["sampler_overrides"][k] = v;
   j["units"] = run.units;
+  if (run.raster != "scanline") j["raster"] = run.raster;
+  if (run.unit_tiles != "round-robin:32") j["unit_tiles"] = run.unit_tiles;
+  if (run.texture_layout != "own") j["texture_layout"] = run.texture_layout;
   j["textures"] = run.textures;
   if (run.config) {
     j["unit_config"] = nlohmann::json::parse(rtl::unit_config_to_json(*run.config));

@@ -61,6 +61,8 @@ struct RunRecord {
   std::string filter = "scene";    // canonical filter name of the base stages, or "scene" (their own)
   Params sampler_overrides;        // further sampler keys of the base stages
   int units = 1;
+  std::string raster = "scanline", unit_tiles = "round-robin:32";  // cmodel/raster_order.hpp
+  std::string texture_layout = "own";  // every texture's layout override (own: none)
   const rtl::UnitConfig* config = nullptr;  // the whole effective configuration (nullptr: golden only)
   rtl::UnitEngine engine = rtl::UnitEngine::Recurrence;  // the cycle model's engine (with `config`)
   std::vector<std::string> textures;        // the frame's textures, "INDEX NAME"
@@ -71,7 +73,7 @@ nlohmann::json tool_provenance(const std::string& command);
 
 // {"tool": "tfu", "version", "command", "command_line": [...], "scene": scene_fingerprint or
 //  {"kind": "trace", "path", "fnv1a64"}, "width", "height", "filter", "sampler_overrides", "units",
-//  "textures", "unit_config": every field, defaults included (unit_config_to_json), "engine":
+//  "raster", "unit_tiles" and "texture_layout" (each only when not scanline, round-robin:32, own), "textures", "unit_config": every field, defaults included (unit_config_to_json), "engine":
 //  "recurrence" or "clocked"}; the last two only where a cycle model ran (`config`)
 nlohmann::json provenance_json(const RunRecord& run);
 

@@ -23,15 +23,17 @@ using Clock = std::chrono::steady_clock;
 // One point as `tfu sim` runs it: open the scene, render with the trace, simulate with the golden compare.
 double single_run(const Spec& s, const Point& p) {
   const auto t0 = Clock::now();
-  const Scene scene = open_scene({p.scene_path, s.width, s.height, s.game_dir});
+  const Scene scene = open_scene({p.scene_path, p.width, p.height, s.game_dir});
   RenderOptions ro;
   ro.trace = true;
   ro.threads = 1;
   ro.line_bytes = p.config.cache.line_bytes;
+  ro.raster = p.raster;
+  if (p.texture_layout != "own") ro.texture_layout = memory_layout_from_name(p.texture_layout);
   ro.sampler_overrides = p.sampler;
   if (p.filter != kSceneFilter) ro.filter = filter_mode_from_name(p.filter);
   const RenderResult render = render_scene(scene, ro);
-  const rtl::SceneSimOptions so = scene_sim_options(s);
+  const rtl::SceneSimOptions so = scene_sim_options(p);
   (void)rtl::simulate_scene(scene, render, p.config, so);
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }

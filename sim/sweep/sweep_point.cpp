@@ -26,7 +26,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-std::string scene_key(const Spec& s, const Point& p) { return fmt::format("{}\n{}x{}", p.scene_path, s.width, s.height); }
+std::string scene_key(const Spec&, const Point& p) { return fmt::format("{}\n{}x{}", p.scene_path, p.width, p.height); }
 
 std::string truth_key(const Spec& s, const Point& p) {
   std::string k = scene_key(s, p);
@@ -35,7 +35,8 @@ std::string truth_key(const Spec& s, const Point& p) {
 }
 
 std::string render_key(const Spec& s, const Point& p) {
-  return fmt::format("{}\nfilter={}\nline_bytes={}", truth_key(s, p), p.filter, p.config.cache.line_bytes);
+  return fmt::format("{}\nfilter={}\nline_bytes={}\nraster={}\nlayout={}", truth_key(s, p), p.filter, p.config.cache.line_bytes,
+                     raster_order_name(p.raster), p.texture_layout);
 }
 
 // Made once under the cache's lock; other threads wait on the shared future.
@@ -78,6 +79,8 @@ RenderOptions render_options(const Point& p, bool truth) {
   } else {
     ro.trace = true;
     ro.line_bytes = p.config.cache.line_bytes;
+    ro.raster = p.raster;
+    if (p.texture_layout != "own") ro.texture_layout = memory_layout_from_name(p.texture_layout);
     if (p.filter != kSceneFilter) ro.filter = filter_mode_from_name(p.filter);
   }
   return ro;
@@ -92,19 +95,22 @@ nlohmann::json point_json(const Spec& s, const Point& p) {
 RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
   RunRecord r;
   r.command = "sweep";
-  r.scene = {p.scene_path, s.width, s.height, s.game_dir};
+  r.scene = {p.scene_path, p.width, p.height, s.game_dir};
   r.width = width;
   r.height = height;
   r.filter = p.filter;
   r.sampler_overrides = p.sampler;
-  r.units = s.units;
+  r.units = p.units;
+  r.raster = raster_order_name(p.raster);
+  r.unit_tiles = unit_tiles_name(p.unit_tiles);
+  r.texture_layout = p.texture_layout;
   r.config = &p.config;
-  r.engine = scene_sim_options(s).engine;
+  r.engine = scene_sim_options(p).engine;
   return r;
 }
 
 // The point's figures beside its statistics (what results.csv shows).
-nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
+nlohmann::json result_json(const Spec&, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
   const sim::Stats& st = res.stats;
   nlohmann::json r;
   r["cycles"] = res.cycles;
@@ -130,14 +136,14 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   r["golden_equal"] = res.mismatch.empty();
   r["mismatch"] = res.mismatch;
   const rtl::CacheSramBits bits = rtl::texel_cache_sram_bits(p.config.cache);
-  const auto units = static_cast<uint64_t>(s.units);
+  const auto units = static_cast<uint64_t>(p.units);
   r["sram_bits"] = units * bits.total();
   r["sram_bits_data"] = units * bits.data;
   r["sram_bits_tag"] = units * bits.tag;
   r["sram_bits_valid"] = units * bits.valid;
   r["sram_bits_lru"] = units * bits.lru;
   const rtl::FilterGates gates = rtl::filter_datapath_gates(frame.regs.samplers);
-  r["filter_gates"] = static_cast<double>(s.units) * gates.ge;
+  r["filter_gates"] = static_cast<double>(p.units) * gates.ge;
   r["filter_blocks"] = gates.blocks;
   return r;
 }
@@ -146,7 +152,7 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
 
 std::shared_ptr<const Scene> SceneCache::scene(const Spec& s, const Point& p) {
   return once<Scene>(mutex_, scenes_, scene_key(s, p), [&] {
-    return std::make_shared<const Scene>(open_scene({p.scene_path, s.width, s.height, s.game_dir}));
+    return std::make_shared<const Scene>(open_scene({p.scene_path, p.width, p.height, s.game_dir}));
   });
 }
 
@@ -190,7 +196,7 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
     const auto t1 = std::chrono::steady_clock::now();
     const std::shared_ptr<const RenderResult> shared = cache.render(s, p);
     const RenderResult& render = *shared;
-    const rtl::SceneSimOptions so = scene_sim_options(s);
+    const rtl::SceneSimOptions so = scene_sim_options(p);
     const rtl::SceneSimResult res = rtl::simulate_scene(*scene, render, p.config, so);
     sim_seconds = seconds_since(t1);
     RunRecord rec = run_record(s, p, scene->width, scene->height);
@@ -202,12 +208,12 @@ std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTim
   } catch (const InputError& e) {
     cache.done_with_render(s, p);
     doc["error"] = e.what();
-    doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
+    doc["provenance"] = provenance_json(run_record(s, p, p.width, p.height));
   } catch (const CheckFailed& e) {
     cache.done_with_render(s, p);
     std::string what = e.what();
     doc["error"] = what.substr(0, what.find('\n'));
-    doc["provenance"] = provenance_json(run_record(s, p, s.width, s.height));
+    doc["provenance"] = provenance_json(run_record(s, p, p.width, p.height));
   }
   std::string text = json_dump(doc, 2) + "\n";
   if (timing) {

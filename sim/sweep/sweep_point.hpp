@@ -70,11 +70,12 @@ struct PointTiming {
 
 std::string run_point(const Spec& s, const Point& p, SceneCache& cache, PointTiming* timing = nullptr);
 
-// How a sweep simulates a point's scene: `units` units, by the timing recurrences (the clocked
-// run's results, tested; the sweep writes no waveforms).
-inline rtl::SceneSimOptions scene_sim_options(const Spec& s) {
+// How a sweep simulates a point's scene: the point's units and unit tiles, by the timing recurrences
+// (the clocked run's results, tested; the sweep writes no waveforms).
+inline rtl::SceneSimOptions scene_sim_options(const Point& p) {
   rtl::SceneSimOptions so;
-  so.units = s.units;
+  so.units = p.units;
+  so.tiles = p.unit_tiles;
   so.engine = rtl::UnitEngine::Recurrence;
   return so;
 }

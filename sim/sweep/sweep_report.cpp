@@ -104,7 +104,10 @@ const std::vector<Column>& result_columns() {
 std::vector<Column> csv_columns(const Spec& spec) {
   std::vector<Column> cols;
   for (const Key& k : spec.keys)
-    cols.push_back({k.name, k.field ? field_unit(k.name) : "", k.field ? k.field->meaning : "sampler key of every base stage"});
+    cols.push_back({k.name, k.field ? field_unit(k.name) : k.name == "width" || k.name == "height" ? "pixels" : "",
+                    k.field ? k.field->meaning
+                    : k.run ? "run key: the units, render size, raster order or unit tiles (docs/design-space.md)"
+                            : "sampler key of every base stage"});
   cols.push_back({"scene", "", "the scene as the spec names it"});
   cols.push_back({"filter", "", "the filter of the base stages (\"scene\": the scene's own)"});
   for (const Column& c : result_columns()) cols.push_back(c);

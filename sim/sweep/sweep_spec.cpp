@@ -41,6 +41,10 @@ struct Where {
 Key make_key(const std::string& name, const Where& where, const std::string& where_key) {
   Key k;
   k.name = name;
+  if (std::find(std::begin(kRunKeys), std::end(kRunKeys), name) != std::end(kRunKeys)) {
+    k.run = true;
+    return k;
+  }
   if (name.rfind(kSamplerPrefix, 0) == 0) {
     k.sampler_key = name.substr(std::string(kSamplerPrefix).size());
     if (k.sampler_key == "filter") throw where(where_key, "the filter is swept by \"filters\", not sampler.filter");
@@ -50,13 +54,52 @@ Key make_key(const std::string& name, const Where& where, const std::string& whe
     return k;
   }
   k.field = rtl::find_unit_field(name);
-  if (!k.field) throw where(where_key, "unknown key (a unit configuration field of docs/cycle-model.md, or sampler.KEY)");
+  if (!k.field)
+    throw where(where_key, "unknown key (a unit configuration field of docs/cycle-model.md, sampler.KEY, units, width, height, raster, "
+                           "unit_tiles, texture_layout or spawn)");
   return k;
 }
 
 // The text of one value of `key` from JSON, type-checked (names: strings; integer fields: integers;
 // sampler keys: strings or numbers) and checked against the field's range.
+int int_member(const Json& j, const std::string& key, int lo, int hi, const Where& where) {
+  if (!j.is_number_integer()) throw where(key, "must be an integer");
+  const int64_t v = j.is_number_unsigned() && j.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX) ? INT64_MAX : j.get<int64_t>();
+  if (v < lo || v > hi) throw where(key, fmt::format("{} is outside {}..{}", v, lo, hi));
+  return static_cast<int>(v);
+}
+
+// A run key's value, canonical: units 1..256, width and height 0 (the scene's own) or 2..8192, a raster
+// order (cmodel/raster_order.hpp), a unit distribution.
+std::string run_value_text(const Key& key, const Json& v, const Where& where, const std::string& where_key) {
+  if (key.name == "raster" || key.name == "unit_tiles") {
+    if (!v.is_string()) throw where(where_key, "values must be strings");
+    try {
+      return key.name == "raster" ? raster_order_name(raster_order_from_name(v.get<std::string>()))
+                                  : unit_tiles_name(unit_tiles_from_name(v.get<std::string>()));
+    } catch (const InputError& e) {
+      throw where(where_key, e.what());
+    }
+  }
+  if (key.name == "texture_layout") {
+    if (!v.is_string()) throw where(where_key, "values must be strings");
+    const std::string l = v.get<std::string>();
+    if (l == "own") return l;
+    try {
+      return memory_layout_name(memory_layout_from_name(l));
+    } catch (const InputError& e) {
+      throw where(where_key, fmt::format("{} (or own: each texture's)", e.what()));
+    }
+  }
+  if (key.name == "spawn") return std::to_string(int_member(v, where_key, 0, 1 << 20, where));
+  if (key.name == "units") return std::to_string(int_member(v, where_key, 1, 256, where));
+  const int n = int_member(v, where_key, 0, kMaxRenderSize, where);
+  if (n == 1) throw where(where_key, "must be 0 (the scene's own) or 2..8192");
+  return std::to_string(n);
+}
+
 std::string value_text(const Key& key, const Json& v, const Where& where, const std::string& where_key) {
+  if (key.run) return run_value_text(key, v, where, where_key);
   if (key.field) {
     std::string text;
     if (!key.field->names.empty()) {
@@ -106,13 +149,6 @@ std::vector<std::string> string_list(const Json& j, const std::string& key, cons
     out.push_back(s);
   }
   return out;
-}
-
-int int_member(const Json& j, const std::string& key, int lo, int hi, const Where& where) {
-  if (!j.is_number_integer()) throw where(key, "must be an integer");
-  const int64_t v = j.is_number_unsigned() && j.get<uint64_t>() > static_cast<uint64_t>(INT64_MAX) ? INT64_MAX : j.get<int64_t>();
-  if (v < lo || v > hi) throw where(key, fmt::format("{} is outside {}..{}", v, lo, hi));
-  return static_cast<int>(v);
 }
 
 std::string canonical_filter(const std::string& name, const Where& where, const std::string& key) {
@@ -203,12 +239,30 @@ std::string resolve_scene(const Spec& s, const std::string& scene) {
   return p.is_relative() && !s.dir.empty() ? (fs::path(s.dir) / p).lexically_normal().string() : scene;
 }
 
-void apply(const Key& key, const std::string& text, rtl::UnitConfig& c, Params& sampler) {
-  if (key.field) {
-    key.field->set_text(c, text);
+void apply(const Key& key, const std::string& text, Point& p) {
+  if (key.run) {
+    if (key.name == "raster") p.raster = raster_order_from_name(text);
+    if (key.name == "unit_tiles") p.unit_tiles = unit_tiles_from_name(text);
+    if (key.name == "units") p.units = std::stoi(text);
+    if (key.name == "texture_layout") p.texture_layout = text;
+    if (key.name == "spawn") p.spawn = std::stoi(text);
+    if (key.name == "width") p.width = std::stoi(text);
+    if (key.name == "height") p.height = std::stoi(text);
+  } else if (key.field) {
+    key.field->set_text(p.config, text);
   } else {
-    sampler[key.sampler_key] = text;
+    p.sampler[key.sampler_key] = text;
   }
+}
+
+// The text of run key `name` at point p.
+std::string run_value(const std::string& name, const Point& p) {
+  if (name == "raster") return raster_order_name(p.raster);
+  if (name == "unit_tiles") return unit_tiles_name(p.unit_tiles);
+  if (name == "units") return std::to_string(p.units);
+  if (name == "texture_layout") return p.texture_layout;
+  if (name == "spawn") return p.spawn < 0 ? std::string() : std::to_string(p.spawn);
+  return std::to_string(name == "width" ? p.width : p.height);
 }
 
 }  // namespace
@@ -228,10 +282,11 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   s.path = path;
   s.text = text;
   s.dir = fs::path(path).parent_path().string();
-  static const std::set<std::string> kSpecKeys{"scenes", "filters", "width", "height", "units",
+  static const std::set<std::string> kSpecKeys{"scenes", "filters", "width", "height", "units", "raster", "unit_tiles", "texture_layout",
                                                "game_dir", "base", "grid", "points"};
   if (const auto k = first_unknown_key(j, kSpecKeys))
-    throw where(*k, "unknown key (expected scenes, filters, width, height, units, game_dir, base, grid, points)");
+    throw where(*k, "unknown key (expected scenes, filters, width, height, units, raster, unit_tiles, texture_layout, game_dir, base, "
+                    "grid, points)");
   if (!j.contains("scenes")) throw where("scenes", "missing (a list of scene names, files or oa: levels)");
   s.scenes = string_list(j["scenes"], "scenes", where);
   s.filters = {kSceneFilter};
@@ -248,6 +303,13 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   if (j.contains("height")) s.height = int_member(j["height"], "height", 0, kMaxRenderSize, where);
   if (s.width == 1 || s.height == 1) throw where(s.width == 1 ? "width" : "height", "must be 0 (the scene's own) or 2..8192");
   if (j.contains("units")) s.units = int_member(j["units"], "units", 1, 256, where);
+  for (const char* key : {"raster", "unit_tiles", "texture_layout"}) {
+    if (!j.contains(key)) continue;
+    const std::string value = run_value_text(make_key(key, where, key), j[key], where, key);
+    if (std::string(key) == "raster") s.raster = raster_order_from_name(value);
+    else if (std::string(key) == "unit_tiles") s.unit_tiles = unit_tiles_from_name(value);
+    else s.texture_layout = value;
+  }
   if (j.contains("game_dir")) {
     if (!j["game_dir"].is_string()) throw where("game_dir", "must be a directory path");
     s.game_dir = j["game_dir"].get<std::string>();
@@ -271,13 +333,13 @@ std::vector<Point> expand(const Spec& s) {
   const Where where{s.path};
   // Every distinct scene opened once (errors name it) and fingerprinted for the point ids.
   std::map<std::string, std::string> fingerprint;
-  const auto scene_fp = [&](const std::string& scene, const std::string& where_key) {
-    const std::string path = resolve_scene(s, scene);
-    auto it = fingerprint.find(path);
+  const auto scene_fp = [&](const std::string& path, int width, int height, const std::string& where_key) {
+    const std::string fp_key = fmt::format("{}\n{}x{}", path, width, height);
+    auto it = fingerprint.find(fp_key);
     if (it != fingerprint.end()) return it->second;
     try {
-      (void)open_scene({path, s.width, s.height, s.game_dir});
-      return fingerprint[path] = json_dump(scene_fingerprint({path, s.width, s.height, s.game_dir}));
+      (void)open_scene({path, width, height, s.game_dir});
+      return fingerprint[fp_key] = json_dump(scene_fingerprint({path, width, height, s.game_dir}));
     } catch (const InputError& e) {
       throw where(where_key, e.what());
     }
@@ -325,9 +387,23 @@ std::vector<Point> expand(const Spec& s) {
     p.filter = pr.filter;
     p.config = s.base;
     p.sampler = s.base_sampler;
-    for (const auto& [k, text] : pr.values) apply(s.keys[k], text, p.config, p.sampler);
+    p.width = s.width;
+    p.height = s.height;
+    p.units = s.units;
+    p.raster = s.raster;
+    p.unit_tiles = s.unit_tiles;
+    p.texture_layout = s.texture_layout;
+    for (const auto& [k, text] : pr.values) apply(s.keys[k], text, p);
+    if (p.spawn >= 0) {  // the level scene at this spawn point: oa:MAP:SPAWN
+      if (!q3::is_level_scene(p.scene_path))
+        throw where(pr.where_key, fmt::format("point {}: spawn applies to oa: level scenes, not to '{}'", p.index, quote_input(p.scene, 60)));
+      const q3::LevelSceneSpec level = q3::parse_level_scene(p.scene_path, "scene");
+      p.scene_path = fmt::format("{}{}:{}", q3::kLevelScenePrefix, level.level, p.spawn);
+    }
     for (const Key& k : s.keys)
-      p.values.push_back(k.field ? k.field->value_text(p.config) : (p.sampler.contains(k.sampler_key) ? p.sampler.at(k.sampler_key) : ""));
+      p.values.push_back(k.run     ? run_value(k.name, p)
+                         : k.field ? k.field->value_text(p.config)
+                                   : (p.sampler.contains(k.sampler_key) ? p.sampler.at(k.sampler_key) : ""));
     for (std::string& v : p.values)
       if (v.size() >= 2 && v.front() == '"') v = v.substr(1, v.size() - 2);  // names: without JSON quotes
     try {
@@ -336,13 +412,18 @@ std::vector<Point> expand(const Spec& s) {
       throw where(pr.where_key, fmt::format("point {} ({}): {}", p.index, describe(s, p), e.what()));
     }
     nlohmann::json id = {{"scene", p.scene_path},
-                         {"scene_source", scene_fp(pr.scene, pr.where_key == "grid" ? "scenes" : pr.where_key + ".scene")},
+                         {"scene_source", scene_fp(p.scene_path, p.width, p.height, pr.where_key == "grid" ? "scenes" : pr.where_key + ".scene")},
                          {"filter", p.filter},
-                         {"width", s.width},
-                         {"height", s.height},
-                         {"units", s.units},
+                         {"width", p.width},
+                         {"height", p.height},
+                         {"units", p.units},
                          {"unit_config", nlohmann::json::parse(rtl::unit_config_to_json(p.config))},
                          {"sampler", p.sampler}};
+    // The raster order and the unit tiles enter the id only when they are not the defaults, so that
+    // every point of a spec that sets neither keeps the id (and result file) it always had.
+    if (!(p.raster == RasterOrder{})) id["raster"] = raster_order_name(p.raster);
+    if (!(p.unit_tiles == UnitTiles{})) id["unit_tiles"] = unit_tiles_name(p.unit_tiles);
+    if (p.texture_layout != "own") id["texture_layout"] = p.texture_layout;
     p.id = hex64(fnv1a64(json_dump(id)));
     if (const auto [it, fresh] = seen_ids.emplace(p.id, p.index); !fresh)
       throw where(pr.where_key, fmt::format("point {} ({}) repeats point {}", p.index, describe(s, p), it->second));

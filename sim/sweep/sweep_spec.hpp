@@ -4,12 +4,15 @@
 //    "filters": ["LINEAR_MIPMAP_LINEAR", "bilinear", "scene"],        optional; default ["scene"]
 //    "width": 512, "height": 384,                                     optional; 0: each scene's own
 //    "units": 1, "game_dir": "...",                                   optional
+//    "raster": "scanline", "unit_tiles": "round-robin:32",            optional (cmodel/raster_order.hpp)
+//    "texture_layout": "own",                                         optional: linear, tiled or own
 //    "base": {"memory": {"latency": 200}, "sampler": {"max_aniso": 4}},  optional unit config + base-stage sampler keys
 //    "grid": {"cache.capacity_bytes": [4096, 16384], "sampler.edge_shape": ["static", "cross"]},
 //    "points": [{"cache.ways": 16, "scene": "ground_plane", "filter": "LINEAR"}]}   optional
 //
-// Grid keys are the dotted unit-configuration fields (rtl/unit_config.hpp) or "sampler.KEY" for a
-// sampler key of every mesh's base stage (cmodel/bindings.hpp). The points are the cartesian product
+// Grid keys are the dotted unit-configuration fields (rtl/unit_config.hpp), "sampler.KEY" for a
+// sampler key of every mesh's base stage (cmodel/bindings.hpp), or a run key (kRunKeys), whose
+// defaults are the spec's top-level keys of the same names ("spawn" has none: an oa: scene's own). The points are the cartesian product
 // scenes x filters x grid (first grid key slowest), then every explicit point, which is crossed with
 // the scenes and filters unless it names its own. A relative scene path is relative to the spec
 // file's directory. Every problem is an InputError "SPEC: KEY: ..." naming the key.
@@ -21,18 +24,25 @@
 #include <vector>
 
 #include "cmodel/bindings.hpp"
+#include "cmodel/raster_order.hpp"
 #include "rtl/unit_config.hpp"
 
 namespace tfu::sweep {
 
 inline constexpr const char* kSceneFilter = "scene";  // the filter column of a point that keeps the scene's filters
 
-// One key a sweep varies: a unit-configuration field or a sampler key of the base stages.
+// One key a sweep varies: a unit-configuration field, a sampler key of the base stages or a run key.
 struct Key {
-  std::string name;                       // "cache.ways", "sampler.max_aniso"
-  const rtl::UnitField* field = nullptr;  // the unit field; nullptr for a sampler key
+  std::string name;                       // "cache.ways", "sampler.max_aniso", "raster"
+  const rtl::UnitField* field = nullptr;  // the unit field; nullptr for a sampler or run key
   std::string sampler_key;                // "max_aniso" (sampler keys only)
+  bool run = false;                       // a run key (kRunKeys)
 };
+
+// The run keys, as they are named in a spec's top level and grid: the units, the render size, the
+// raster order, the tiles' distribution over units, the layout of every texture ("linear", "tiled" or
+// "own": each texture's), and the spawn point of oa: level scenes.
+inline constexpr const char* kRunKeys[] = {"units", "width", "height", "raster", "unit_tiles", "texture_layout", "spawn"};
 
 struct ExplicitPoint {
   std::vector<std::pair<size_t, std::string>> values;  // key index, value text
@@ -43,7 +53,10 @@ struct Spec {
   std::string path, dir;                // the spec file as given; its directory (scene paths)
   std::vector<std::string> scenes;      // as given
   std::vector<std::string> filters;     // canonical names (filter_mode_name) or kSceneFilter
-  int width = 0, height = 0, units = 1;
+  int width = 0, height = 0, units = 1;  // the defaults of the run keys
+  RasterOrder raster;
+  UnitTiles unit_tiles;
+  std::string texture_layout = "own";
   std::string game_dir;
   rtl::UnitConfig base;
   Params base_sampler;
@@ -66,6 +79,11 @@ struct Point {
   std::string filter;           // canonical name or kSceneFilter
   rtl::UnitConfig config;
   Params sampler;               // base-stage sampler overrides (base, then the point's)
+  int width = 0, height = 0, units = 1;  // the run keys (the spec's, then the point's)
+  RasterOrder raster;
+  UnitTiles unit_tiles;
+  std::string texture_layout = "own";  // linear, tiled or own (each texture's)
+  int spawn = -1;                      // -1: the scene as named; else the oa: level's spawn point
   std::vector<std::string> values;  // per Spec::keys: the value the point runs with ("" for an unset sampler key)
 };
 

@@ -34,6 +34,8 @@ struct RenderCliOptions {
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
+  std::string raster = "scanline";  // the trace's quad order (cmodel/raster_order.hpp)
+  std::string texture_layout;       // empty: each texture's own
   bool ideal = false, force = false, list = false;
   int threads = 0;
   int width = 0, height = 0;  // 0: the scene's size
@@ -105,6 +107,16 @@ void run(const RenderCliOptions& o) {
   ro.ideal = o.ideal;
   ro.threads = o.threads;
   ro.trace = !o.trace_out.empty();
+  try {
+    ro.raster = raster_order_from_name(o.raster);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--raster: {}", e.what()));
+  }
+  if (!o.texture_layout.empty()) try {
+      ro.texture_layout = memory_layout_from_name(o.texture_layout);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--texture-layout: {}", e.what()));
+    }
   ro.ground_truth = !o.truth_out.empty() || !o.surface_truth_out.empty() || !o.interior_out.empty();
 
   const std::string out = o.out.empty() ? fmt::format("out/render/{}.png", scene.name) : o.out;
@@ -167,6 +179,13 @@ void register_render(CLI::App& app) {
                   "Override the probe threshold of every base stage: 0..7 eighths of Pmin (0: the spec's N; docs/anisotropic.md)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
+  cmd->add_option("--raster", o->raster,
+                  "The order of the trace's quads: scanline (16-row bands), tiled:N (NxN-pixel tiles in row order, "
+                  "quads row by row) or morton:N (quads in Z order in each tile) (docs/renderer.md)")
+      ->capture_default_str();
+  cmd->add_option("--texture-layout", o->texture_layout,
+                  "The memory layout of every texture, level textures included: linear or tiled (tiles of one cache line); "
+                  "default: each texture's own");
   cmd->add_option("--truth-out", o->truth_out,
                   "Also write the 8x8-supersampled analytic ground truth image (antialiased polygon edges)");
   cmd->add_option("--surface-truth-out", o->surface_truth_out,

@@ -50,6 +50,8 @@ struct SimOptions {
   std::map<std::string, std::string> unit_flags;  // one per unit config field (the flags' storage)
   std::string shape_policy;
   int units = 1;
+  std::string raster = "scanline", unit_tiles = "round-robin:32";  // cmodel/raster_order.hpp
+  std::string texture_layout;  // scene runs: every texture's layout (empty: each texture's own)
   std::string stats, out, vcd, config_out;
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
   std::string vcd_signals;                     // comma-separated patterns (empty: every signal)
@@ -164,16 +166,26 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
   }
 }
 
+RasterOrder raster_option(const SimOptions& o) {
+  try {
+    return raster_order_from_name(o.raster);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--raster: {}", e.what()));
+  }
+}
+
 // A request trace through the unit and the golden model.
 // A golden-compare failure is returned in `mismatch` (the outputs are still written: they show it).
 sim::Stats run_requests(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds,
                         RunRecord& rec, std::string& mismatch) {
   if (!o.out.empty()) throw InputError("--out needs a scene (a request trace has no image)");
   Trace trace = load_trace(o.requests);
+  if (const RasterOrder order = raster_option(o); !(order == RasterOrder{})) trace = reorder_trace(trace, order);
   if (!o.shape_policy.empty()) o.smp.values["edge_shape"] = o.shape_policy;
   const Frame frame = frame_for_trace(cmd, o.tex, o.smp, trace, unit.cache.line_bytes, o.game_dir);
   rec.has_scene = false;
   rec.trace = o.requests;
+  rec.raster = raster_order_name(raster_option(o));
   rec.textures = frame_texture_names(frame);
   const rtl::UnitOutput got =
       rtl::run_unit(frame, trace, unit, o.unit_engine,
@@ -216,8 +228,19 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   for (const char* key : kSceneSamplerOverrides)
     if (given.contains(key)) ro.sampler_overrides[key] = given.at(key);
   if (!o.shape_policy.empty()) ro.sampler_overrides["edge_shape"] = o.shape_policy;
+  ro.raster = raster_option(o);
+  if (!o.texture_layout.empty()) try {
+      ro.texture_layout = memory_layout_from_name(o.texture_layout);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("--texture-layout: {}", e.what()));
+    }
   rtl::SceneSimOptions so;
   so.units = o.units;
+  try {
+    so.tiles = unit_tiles_from_name(o.unit_tiles);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--unit-tiles: {}", e.what()));
+  }
   so.unit_vcds = std::move(vcds);
   so.vcd_from = o.vcd_from;
   so.vcd_to = o.vcd_to;
@@ -233,6 +256,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   rec.filter = ro.filter ? filter_mode_name(*ro.filter) : std::string("scene");
   rec.sampler_overrides = ro.sampler_overrides;
   rec.units = o.units;
+  rec.raster = raster_order_name(ro.raster);
+  rec.unit_tiles = unit_tiles_name(so.tiles);
+  if (ro.texture_layout) rec.texture_layout = memory_layout_name(*ro.texture_layout);
   rec.textures = frame_texture_names(render.frame->frame);
   if (const auto level = requested_level({name, o.width, o.height, o.game_dir})) {
     std::cout << "tfu sim: " << scene.description << '\n';
@@ -303,7 +329,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   };
   if (!o.requests.empty()) {
     // --game-dir applies to both: a level's trace binds oa:MAP:... textures (TFU-S E16)
-    for (const char* opt : {"--scene", "--width", "--height", "--units"})
+    for (const char* opt : {"--scene", "--width", "--height", "--units", "--unit-tiles", "--texture-layout"})
       if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
   } else {
     if (given("--texture")) throw InputError("--texture applies to --requests runs; a scene's stages carry their own textures");
@@ -535,7 +561,18 @@ void register_sim(CLI::App& app) {
   cmd->add_flag("--stats-fields", o->stats_fields, "Print the statistics' fields (Markdown) and exit");
   cmd->add_option("--shape-policy", o->shape_policy,
                   "Edge kernel shapes of every edge-preserving sampler (a scene: its base stages): static, cache-aware or cross");
-  cmd->add_option("--units", o->units, "Texture filter units, each taking 32x32 screen tiles round-robin (threads)");
+  cmd->add_option("--units", o->units, "Texture filter units, each taking its screen tiles (--unit-tiles; threads)");
+  cmd->add_option("--unit-tiles", o->unit_tiles,
+                  "Which unit draws which screen tile: round-robin:T (TxT-pixel tiles dealt in turn) or bands:T "
+                  "(contiguous rows of tiles per unit) (docs/cycle-model.md)")
+      ->capture_default_str();
+  cmd->add_option("--raster", o->raster,
+                  "The rasterizer's quad order: scanline, tiled:N or morton:N (docs/renderer.md); with --requests, "
+                  "re-orders a trace that records screen positions")
+      ->capture_default_str();
+  cmd->add_option("--texture-layout", o->texture_layout,
+                  "Scene runs: the memory layout of every texture, level textures included: linear or tiled (tiles of one "
+                  "cache line); default: each texture's own (--requests runs: --layout)");
   cmd->add_option("--out", o->out, "Write the cycle model's image (scenes) as PNG");
   cmd->add_option("--stats", o->stats, "Write the statistics as JSON");
   cmd->add_option("--vcd", o->vcd,
