@@ -130,7 +130,7 @@ const SamplerParam kSamplerParams[] = {
      [](const SD& s) { return name_of(s.aniso_rounding, kAnisoRounding); }},
 };
 
-constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress"};
+constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress", "srgb"};
 
 }  // namespace
 
@@ -239,6 +239,18 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
         for (Rgba8& t : l.texels) t = {t.r, t.r, t.r, 255};
     tex.format = f;
   }
+  // srgb=true: R, G, B hold sRGB codes (srgba8: decoded to linear before filtering, docs/srgb.md);
+  // set before the MIP levels are made so that they are averaged in linear, as GL's sRGB mipmaps.
+  bool srgb = false;
+  try {
+    srgb = parse_bool(param("srgb", "false"));
+  } catch (const InputError& e) {
+    throw fail("srgb", e.what());
+  }
+  if (srgb) {
+    if (tex.format == TexelFormat::VS16X2) throw fail("srgb", "a vs16x2 texture holds signed numbers, not colours");
+    tex.format = TexelFormat::SRGBA8;  // an l8 texture's words are (L, L, L, 255) already
+  }
   try {
     tex.layout = memory_layout_from_name(param("layout", "tiled"));
   } catch (const InputError& e) {
@@ -285,12 +297,13 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       throw fail("compress", e.what());
     }
     try {
-      const BlockImage blocks = encode_block_image(tex.levels, f, /*srgb=*/false);
+      const BlockImage blocks = encode_block_image(tex.levels, f, srgb);
       const MemoryLayout layout = tex.layout;
       const int tile_bytes = tex.tile_bytes;
       auto memory = tex.memory;  // the budget's charge for the decoded chain stays with the texture
-      tex = texture_from_block_image(blocks, BlockDecodeRules{}, where, layout, tile_bytes);
+      tex = texture_from_block_image(blocks, BlockDecodeRules{{}, srgb}, where, layout, tile_bytes);
       tex.memory = std::move(memory);
+      if (srgb) tex.format = TexelFormat::SRGBA8;
     } catch (const InputError& e) {
       throw fail("compress", e.what());
     }
