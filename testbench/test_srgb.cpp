@@ -9,8 +9,11 @@
 
 #include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/metrics.hpp"
 #include "cmodel/mipmap.hpp"
+#include "cmodel/raster.hpp"
 #include "cmodel/sampler.hpp"
+#include "cmodel/scene.hpp"
 #include "cmodel/srgb.hpp"
 #include "cmodel/texture.hpp"
 
@@ -209,6 +212,59 @@ TEST(SrgbFormat, TextureKeyDeclaresSrgbAndMipmapsAverageInLinear) {
     for (int x = 0; x < 2; ++x) sum += srgb::decode(l0.at(x, y).r);
   EXPECT_EQ(got.r, srgb::encode((sum + 2) >> 2));
   EXPECT_THROW(load_texture_spec({"proc:checkerboard:16", {{"srgb", "maybe"}}}, "test"), InputError);
+}
+
+// A ground plane seen at a grazing angle (minification up to many texels per pixel), one stage.
+Scene srgb_plane(std::shared_ptr<const Texture> tex) {
+  Scene s;
+  s.width = 64;
+  s.height = 48;
+  s.camera.position = {0, 1, 0};
+  s.camera.look_at = {0, 1, -1};
+  s.camera.fov_y_deg = 90;
+  s.camera.near_plane = 0.1;
+  s.camera.far_plane = 100;
+  Mesh m = make_quad_mesh({glm::dvec3{-4, 0, -1.5}, {4, 0, -1.5}, {4, 0, -30}, {-4, 0, -30}},
+                          {glm::dvec2{0, 0}, {8, 0}, {8, 28}, {0, 28}});
+  TextureStage st;
+  st.spec.source = "test";
+  st.texture = std::move(tex);
+  st.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};
+  m.stages.push_back(std::move(st));
+  s.meshes.push_back(std::move(m));
+  return s;
+}
+
+// The surface truth of an srgba8 stage integrates in linear light: a constant texture's truth is its
+// colour; on a noise texture the linear-light filter is closer to that truth than the filter of the
+// stored codes (which darkens every average: codes 0 and 255 average to 128, light to code 188).
+TEST(SrgbFormat, SurfaceTruthInLinearLightAndTheLinearFilterCloserToIt) {
+  RenderOptions o;
+  o.ground_truth = true;
+  o.filter = FilterMode{BaseFilter::Linear, MipMode::Linear};
+  Texture flat;
+  flat.format = TexelFormat::SRGBA8;
+  flat.levels.emplace_back(8, 8, Rgba8{100, 150, 200, 255});
+  generate_mipmaps(flat, MipMethod::Box);
+  const RenderResult c = render_scene(srgb_plane(std::make_shared<const Texture>(flat)), o);
+  int drawn = 0;
+  for (size_t i = 0; i < c.image.texels.size(); ++i)
+    if (c.image.texels[i] == Rgba8{100, 150, 200, 255}) {
+      ++drawn;
+      EXPECT_EQ(c.surface_truth.texels[i], (Rgba8{100, 150, 200, 255})) << i;
+    }
+  EXPECT_GT(drawn, 500);
+  Texture noise = random_texture(TexelFormat::SRGBA8, 64, 64, 21);
+  for (Image& l : noise.levels)
+    for (Rgba8& t : l.texels) t.a = 255;
+  Texture codes = random_texture(TexelFormat::RGBA8, 64, 64, 21);  // the same level 0, box MIPs of codes
+  for (Image& l : codes.levels)
+    for (Rgba8& t : l.texels) t.a = 255;
+  ASSERT_EQ(noise.levels[0].texels, codes.levels[0].texels);
+  const RenderResult lin = render_scene(srgb_plane(std::make_shared<const Texture>(noise)), o);
+  const RenderResult cod = render_scene(srgb_plane(std::make_shared<const Texture>(codes)), o);
+  const double p_lin = psnr_db(lin.image, lin.surface_truth), p_cod = psnr_db(cod.image, lin.surface_truth);
+  EXPECT_GT(p_lin, p_cod + 6.0) << p_lin << " " << p_cod;
 }
 
 }  // namespace
