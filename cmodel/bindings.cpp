@@ -133,7 +133,7 @@ const SamplerParam kSamplerParams[] = {
      [](const SD& s) { return std::to_string(s.aniso_threshold); }},
 };
 
-constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress"};
+constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress", "srgb"};
 
 }  // namespace
 
@@ -204,6 +204,18 @@ Texture texture_with_params(Texture tex, const Params& params, const std::string
       for (Image& l : tex.levels)
         for (Rgba8& t : l.texels) t = {t.r, t.r, t.r, 255};
     tex.format = f;
+  }
+  // srgb=true: R, G, B hold sRGB codes (srgba8: decoded to linear before filtering, docs/srgb.md);
+  // set before the MIP levels are made so that they are averaged in linear, as GL's sRGB mipmaps.
+  bool srgb = false;
+  try {
+    srgb = parse_bool(param("srgb", "false"));
+  } catch (const InputError& e) {
+    throw fail("srgb", e.what());
+  }
+  if (srgb) {
+    if (tex.format == TexelFormat::VS16X2) throw fail("srgb", "a vs16x2 texture holds signed numbers, not colours");
+    tex.format = TexelFormat::SRGBA8;  // an l8 texture's words are (L, L, L, 255) already
   }
   try {
     tex.layout = memory_layout_from_name(param("layout", "tiled"));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "cmodel/datapath.hpp"
 #include "cmodel/error.hpp"
 
@@ -44,8 +46,9 @@ std::vector<double> bspline_coefficients(const std::vector<double>& x, WrapMode 
 }  // namespace
 
 BsplineCoefficients prefilter_bspline(const Texture& tex, WrapMode wrap_s, WrapMode wrap_t) {
-  if (tex.format == TexelFormat::VS16X2)
-    throw InputError("kernel bspline-interp needs an 8-bit texel format (rgba8 or l8), not vs16x2");
+  if (!byte_channels(tex.format))
+    throw InputError(fmt::format("kernel bspline-interp needs an 8-bit texel format (rgba8 or l8), not {}",
+                                 texel_format_name(tex.format)));
   BsplineCoefficients out;
   // Offline prefilter per level (double precision), then quantize with a fitted scale and bias.
   double cmin = 0.0, cmax = 1.0;

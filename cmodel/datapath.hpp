@@ -33,7 +33,7 @@ inline Texel4 bilinear_lerp(const std::array<Texel4, 4>& c, uint32_t fu_, uint32
   const auto fu = static_cast<int32_t>(fu_), fv = static_cast<int32_t>(fv_);
   const std::array<int32_t, 4> w{(256 - fu) * (256 - fv), fu * (256 - fv), (256 - fu) * fv, fu * fv};
   Texel4 out{};
-  if (fmt != TexelFormat::VS16X2) {  // 8-bit channels: 8 + 16 + 2 bits fit 32
+  if (fmt != TexelFormat::VS16X2) {  // 8-bit (SRGBA8: 12-bit) channels: 12 + 16 bits fit 32
     for (size_t ch = 0; ch < 4; ++ch)
       out[ch] = (c[0][ch] * w[0] + c[1][ch] * w[1] + c[2][ch] * w[2] + c[3][ch] * w[3] + (1 << 15)) >> 16;
     return out;

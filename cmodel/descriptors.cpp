@@ -131,9 +131,10 @@ void TextureDescriptor::validate(const std::string& what) const {
                      tile_bytes()));
   if (content == TextureContent::BsplineCoefficients && (format != TexelFormat::RGBA8 || coeff_scale_q <= 0))
     fail("B-spline coefficients need rgba8 codes and a positive scale");
-  if (compressed &&
-      (format != TexelFormat::RGBA8 || content != TextureContent::Texels || !unit_filterable(block_format)))
-    fail(fmt::format("compressed {} needs rgba8 texels of an unsigned format", block_format_name(block_format)));
+  if (compressed && ((format != TexelFormat::RGBA8 && format != TexelFormat::SRGBA8) ||
+                     content != TextureContent::Texels || !unit_filterable(block_format)))
+    fail(fmt::format("compressed {} needs rgba8 or srgba8 texels of an unsigned format",
+                     block_format_name(block_format)));
   for (int l = 0; l < levels; ++l) {
     const LevelDescriptor& d = level[static_cast<size_t>(l)];
     const uint64_t min_pitch =
@@ -226,7 +227,8 @@ const char* bc_rule_meaning(const EnumNames<E, N>& names, const char* what) {
 }
 const std::vector<Codec<TD>>& texture_codecs() {
   static const std::vector<Codec<TD>> c = {
-      {{"format", 0, 0, 2, 1, 0, "texel format: 0 rgba8, 1 l8, 2 vs16x2"},
+      {{"format", 0, 0, 2, 1, 0,
+        "texel format: 0 rgba8, 1 l8, 2 vs16x2, 3 srgba8 (R, G, B decoded to linear before filtering)"},
        [](const TD& d, int) { return u(d.format); },
        [](TD& d, int, uint32_t b) { d.format = static_cast<TexelFormat>(b); }},
       {{"layout", 0, 2, 1, 1, 0, "memory layout: 0 linear rows, 1 tiled (one tile = one cache line)"},

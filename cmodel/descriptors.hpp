@@ -102,6 +102,12 @@ struct SamplerDescriptor {
   friend bool operator==(const SamplerDescriptor&, const SamplerDescriptor&) = default;
 };
 
+// Whether a filter is defined on a format: EDGE_PRESERVING's edge detector and luminance keys are
+// Lee & Jen's, on 8-bit channels (edge_filter.hpp), not on SRGBA8's linear unorm12 channels.
+constexpr bool filters_format(BaseFilter b, TexelFormat f) {
+  return !(b == BaseFilter::EdgePreserving && f == TexelFormat::SRGBA8);
+}
+
 // What a texture's words hold: its texels, or (bspline-interp) the prefiltered B-spline coefficient
 // codes, decoded by the cubic normalise stage with the scale S and bias B registers (Q.12).
 enum class TextureContent { Texels, BsplineCoefficients };

@@ -86,6 +86,11 @@ Image downsample(const Image& src, TexelFormat fmt, MipMethod method, int alpha_
 void generate_mipmaps(Texture& tex, MipMethod method, double alpha) {
   if (!(alpha >= 0.0 && alpha <= 1.0))
     throw InputError(fmt::format("MIP alpha {} is outside [0, 1]", alpha));
+  // Lee & Jen's edge weights are defined on 8-bit channels, not on SRGBA8's linear unorm12
+  // (filters_format, cmodel/descriptors.hpp).
+  if (method == MipMethod::Edge && tex.format == TexelFormat::SRGBA8)
+    throw InputError(
+        fmt::format("edge-preserving MIP-maps are not defined on {} textures", texel_format_name(tex.format)));
   const int a = static_cast<int>(std::lround(alpha * 256.0));
   tex.levels.resize(1);
   const int n = mip_level_count(tex.width(), tex.height());

@@ -307,6 +307,21 @@ int64_t truth_texel_index(WrapMode m, double floor_x, int size) {
 }
 
 // File textures have no analytic function: bilinear reconstruction of level 0 in double precision.
+// sRGB textures (srgba8, docs/srgb.md) in the truths: texels interpolated in linear light (the
+// exact EOTF of the codes) and the colour re-encoded with the exact OETF, as the unit's port carries
+// it; a pixel whose mesh has an srgba8 stage averages its samples' R, G, B in linear light too.
+double linear_light(double code, TexelFormat f) { return f == TexelFormat::SRGBA8 ? srgb::detail::eotf(code) : code; }
+std::array<double, 4> srgb_encoded(std::array<double, 4> c, bool srgb) {
+  if (srgb)
+    for (size_t i = 0; i < 3; ++i) c[i] = srgb::detail::oetf(std::clamp(c[i], 0.0, 1.0));
+  return c;
+}
+bool has_srgb_stage(const Mesh& mesh) {
+  for (const TextureStage& st : mesh.stages)
+    if (st.texture && st.texture->format == TexelFormat::SRGBA8) return true;
+  return false;
+}
+
 std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerDescriptor& cfg, double s, double t) {
   const Image& im = tex.levels.front();
   const double x = s * im.width - 0.5, y = t * im.height - 0.5;
@@ -319,12 +334,12 @@ std::array<double, 4> bilinear_level0(const Texture& tex, const SamplerDescripto
       const double w = (dx ? fx : 1 - fx) * (dy ? fy : 1 - fy);
       const int i = wrap_index(cfg.wrap_s, x0 + dx, im.width), j = wrap_index(cfg.wrap_t, y0 + dy, im.height);
       const Rgba8 c = (i < 0 || j < 0) ? cfg.border : im.at(i, j);
-      out[0] += w * c.r / 255.0;
-      out[1] += w * c.g / 255.0;
-      out[2] += w * c.b / 255.0;
+      out[0] += w * linear_light(c.r / 255.0, tex.format);
+      out[1] += w * linear_light(c.g / 255.0, tex.format);
+      out[2] += w * linear_light(c.b / 255.0, tex.format);
       out[3] += w * c.a / 255.0;
     }
-  return out;
+  return srgb_encoded(out, tex.format == TexelFormat::SRGBA8);
 }
 
 std::array<double, 4> truth_colour(const TextureStage& stage, double s, double t) {
@@ -427,15 +442,19 @@ void surface_truth_band(const Context& ctx, int y0, int y1) {
       }
       const RasterTriangle& tri = ctx.triangles[static_cast<size_t>(ti)];
       const Mesh& mesh = scene.meshes[static_cast<size_t>(tri.mesh)];
+      const bool srgb = has_srgb_stage(mesh);
       std::array<double, 4> sum{};
       for (int k = 0; k < kTruthSamples; ++k) {
         const int64_t sx = int64_t{px} * kOne + (k % kTruthSamplesPerAxis) * step + step / 2;
         const int64_t sy = int64_t{py} * kOne + (k / kTruthSamplesPerAxis) * step + step / 2;
         const auto c = display_ramp_real(truth_material(mesh, tri, tri.barycentric(sx, sy)), scene.display_shift);
-        for (size_t i = 0; i < 4; ++i) sum[i] += static_cast<double>(static_cast<float>(c[i]));
+        for (size_t i = 0; i < 4; ++i) {
+          const auto v = static_cast<double>(static_cast<float>(c[i]));
+          sum[i] += srgb && i < 3 ? srgb::detail::eotf(std::clamp(v, 0.0, 1.0)) : v;
+        }
       }
       for (double& v : sum) v /= kTruthSamples;
-      ctx.result->surface_truth.at(px, py) = to_rgba8(sum);
+      ctx.result->surface_truth.at(px, py) = to_rgba8(srgb_encoded(sum, srgb));
       const int qx = px & ~1, qy = py & ~1, m = tri.mesh;
       ctx.result->interior[at(px, py)] =
           mesh_at(qx, qy) == m && mesh_at(qx + 1, qy) == m && mesh_at(qx, qy + 1) == m && mesh_at(qx + 1, qy + 1) == m;

@@ -34,6 +34,8 @@
 //                 its material integrated over the same 8 x 8 points with barycentrics extrapolated
 //                 beyond its edges (`surface_truth`; the background where the render drew nothing);
 //                 `interior` marks the pixels whose 2x2 quad is drawn by one mesh (docs/metrics.md)
+//   sRGB stages   an srgba8 texture is interpolated in linear light in both truths, and a pixel whose
+//                 mesh has an srgba8 stage averages its surface-truth samples in linear light (docs/srgb.md)
 #pragma once
 
 #include <array>

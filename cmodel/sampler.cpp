@@ -25,6 +25,9 @@ Sampler::Sampler(const Texture& tex, SamplerDescriptor cfg) : tex_(tex), cfg_(st
   impl_->border = decode_texel(cfg_.border, tex_.format);
   impl_->scale = tex_.format == TexelFormat::VS16X2 ? 32640.0 : 255.0;
   cfg_.validate();
+  if (!filters_format(cfg_.mode.base, tex_.format))
+    throw InputError(
+        fmt::format("{} is not defined on {} textures", filter_mode_name(cfg_.mode), texel_format_name(tex_.format)));
   if (cfg_.mode.base == BaseFilter::Cubic) build_cubic();
   FastPaths::setup(*this);
 }
@@ -156,7 +159,7 @@ std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeigh
   std::array<int, 4> col, row;
   wrap_run(rd.ws, u.i0 + m0, taps, rd.img.width, col.data());
   wrap_run(rd.wt, v.i0 + m0, taps, rd.img.height, row.data());
-  if (rd.fmt != TexelFormat::VS16X2) {
+  if (byte_channels(rd.fmt)) {
     // 8-bit channels: |sum c w| <= 255 M (sum |h|)^2 < 2^31 for b <= 16, so 32 bits suffice.
     const Rgba8 border = encode_texel(rd.border, rd.fmt);
     // Two channels per 64-bit word, (R, B) and (G, A), in signed 32-bit lanes: modular arithmetic

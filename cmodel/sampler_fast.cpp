@@ -411,7 +411,7 @@ void Sampler::FastPaths::setup(Sampler& sm) {
   const Impl& im = *sm.impl_;
   const WrapMode ws = sm.cfg_.wrap_s, wt = sm.cfg_.wrap_t;
   const bool mip = sm.cfg_.mode.mip != MipMode::None;
-  const bool bytes = sm.tex_.format != TexelFormat::VS16X2;
+  const bool bytes = byte_channels(sm.tex_.format);
   sm.sample_fn_ = &sample_plain;
   sm.batch_fn_ = &batch_plain;
   sm.aniso_fn_ = &aniso_plain;

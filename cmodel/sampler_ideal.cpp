@@ -10,6 +10,20 @@
 
 namespace tfu {
 
+namespace {
+// SRGBA8 in the ideal: R, G, B filtered as exact linear values (the EOTF of the stored code) and
+// the result re-encoded with the exact OETF, as the datapath's decode and encode ROMs do in 12 and
+// 8 bits; alpha untouched.
+std::array<double, 4> srgb_encoded(std::array<double, 4> c) {
+  for (size_t ch = 0; ch < 3; ++ch) c[ch] = srgb::detail::oetf(std::clamp(c[ch], 0.0, 1.0));
+  return c;
+}
+std::array<double, 4> srgb_decoded(std::array<double, 4> c) {
+  for (size_t ch = 0; ch < 3; ++ch) c[ch] = srgb::detail::eotf(c[ch]);
+  return c;
+}
+}  // namespace
+
 // ---------------------------------------------------------------- double-precision ideal
 std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) const {
   // Non-finite coordinates as the datapath treats them (docs/sampler.md): NaN -> 0, +-Inf
@@ -36,9 +50,15 @@ std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) c
     }
   }
   const double sc = impl_->scale;
+  const bool srgb = tex_.format == TexelFormat::SRGBA8;
   const auto real_texel = [&](int level, int64_t x, int64_t y) {
-    const Texel4 c = fetch(level, static_cast<int>(std::clamp<int64_t>(x, INT32_MIN / 2, INT32_MAX / 2)),
-                           static_cast<int>(std::clamp<int64_t>(y, INT32_MIN / 2, INT32_MAX / 2)));
+    const int xi = static_cast<int>(std::clamp<int64_t>(x, INT32_MIN / 2, INT32_MAX / 2));
+    const int yi = static_cast<int>(std::clamp<int64_t>(y, INT32_MIN / 2, INT32_MAX / 2));
+    if (srgb) {  // the stored codes (the fetch's linear unorm12 is the datapath's rounding of these)
+      const Rgba8 w = encode_texel(fetch(level, xi, yi), tex_.format);
+      return srgb_decoded({w.r / 255.0, w.g / 255.0, w.b / 255.0, w.a / 255.0});
+    }
+    const Texel4 c = fetch(level, xi, yi);
     return std::array<double, 4>{c[0] / sc, c[1] / sc, c[2] / sc, c[3] / sc};
   };
   const auto level_sample = [&](int level) -> std::array<double, 4> {
@@ -114,7 +134,7 @@ std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) c
     const std::array<double, 4> b = level_sample(l1);
     for (size_t ch = 0; ch < 4; ++ch) a[ch] = (1 - blend) * a[ch] + blend * b[ch];
   }
-  return a;
+  return srgb ? srgb_encoded(a) : a;
 }
 
 // ---------------------------------------------------------------- anisotropic ideal
@@ -141,11 +161,12 @@ std::array<double, 4> Sampler::sample_ideal_aniso(double s, double t, const std:
   std::array<double, 4> sum{};
   for (int i = 1; i <= n; ++i) {
     const double f = -0.5 + static_cast<double>(i) / (n + 1);
-    const std::array<double, 4> c = sample_ideal(s + f * ds, t + f * dt, lambda);
+    std::array<double, 4> c = sample_ideal(s + f * ds, t + f * dt, lambda);
+    if (tex_.format == TexelFormat::SRGBA8) c = srgb_decoded(c);  // probes average in linear
     for (size_t ch = 0; ch < 4; ++ch) sum[ch] += c[ch];
   }
   for (double& x : sum) x /= n;
-  return sum;
+  return tex_.format == TexelFormat::SRGBA8 ? srgb_encoded(sum) : sum;
 }
 
 }  // namespace tfu

@@ -6,6 +6,9 @@
 //   VS16X2 two Strzodka virtual signed 16-bit numbers in one RGBA8 word (4 bytes/texel):
 //          channel 0 = psi(R, G), channel 1 = psi(B, A), psi(h, l) = (256 (h - 128) + l) / 32640
 //          (cmodel/signed_formats.hpp). The unit filters the 16-bit numerators, never the bytes.
+//   SRGBA8 4 x 8 bits, R, G, B sRGB-encoded, A linear (GL_SRGB8_ALPHA8), 4 bytes/texel: the unit
+//          decodes R, G, B to linear unorm12 (0..4095) before filtering and encodes the filtered
+//          linear value back to 8-bit sRGB at its output (cmodel/srgb.hpp, docs/srgb.md)
 // Every level is stored as RGBA8 words (L8 replicated) so that one fetch path serves all formats;
 // `format` says how many bytes a texel costs in memory and how a word decodes into channels.
 //
@@ -27,6 +30,7 @@
 
 #include "cmodel/enum_names.hpp"
 #include "cmodel/memory_budget.hpp"
+#include "cmodel/srgb.hpp"
 
 namespace tfu {
 
@@ -38,12 +42,17 @@ struct Rgba8 {
 };
 static_assert(sizeof(Rgba8) == 4, "a texel word is 4 bytes: R, G, B, A in address order");
 
-enum class TexelFormat { RGBA8, L8, VS16X2 };
-inline constexpr EnumNames<TexelFormat, 3> kTexelFormatNames{
-    "texel format", {{{TexelFormat::RGBA8, "rgba8"}, {TexelFormat::L8, "l8"}, {TexelFormat::VS16X2, "vs16x2"}}}};
+enum class TexelFormat { RGBA8, L8, VS16X2, SRGBA8 };
+inline constexpr EnumNames<TexelFormat, 4> kTexelFormatNames{"texel format",
+                                                             {{{TexelFormat::RGBA8, "rgba8"},
+                                                               {TexelFormat::L8, "l8"},
+                                                               {TexelFormat::VS16X2, "vs16x2"},
+                                                               {TexelFormat::SRGBA8, "srgba8"}}}};
 TexelFormat texel_format_from_name(const std::string& name);  // kTexelFormatNames
 const char* texel_format_name(TexelFormat f);
 constexpr int bytes_per_texel(TexelFormat f) { return f == TexelFormat::L8 ? 1 : 4; }
+// Formats whose datapath channels are the texel bytes themselves (0..255): the 8-bit fast paths'.
+constexpr bool byte_channels(TexelFormat f) { return f == TexelFormat::RGBA8 || f == TexelFormat::L8; }
 
 // One image level: row-major RGBA8 words, row 0 on top.
 struct Image {
@@ -60,16 +69,21 @@ struct Image {
 };
 
 // Four channels as the filter datapath holds them: RGBA8/L8 -> 0..255 each;
-// VS16X2 -> c[0], c[1] the signed 16-bit numerators, c[2] = c[3] = 0.
+// VS16X2 -> c[0], c[1] the signed 16-bit numerators, c[2] = c[3] = 0;
+// SRGBA8 -> c[0..2] linear unorm12 0..4095 (the decode ROM), c[3] the alpha byte 0..255.
 using Texel4 = std::array<int32_t, 4>;
-// Channel range of a format: [lo, hi] (0..255, or -32640..32640 for VS16X2: exactly -1..+1).
+// Channel range of a format: [lo, hi] (0..255, or -32640..32640 for VS16X2: exactly -1..+1, or
+// 0..4095 for SRGBA8's colour channels; its alpha is clamped to 0..255 by encode_texel).
 constexpr std::pair<int32_t, int32_t> channel_range(TexelFormat f) {
-  return f == TexelFormat::VS16X2 ? std::pair<int32_t, int32_t>{-32640, 32640} : std::pair<int32_t, int32_t>{0, 255};
+  if (f == TexelFormat::VS16X2) return {-32640, 32640};
+  if (f == TexelFormat::SRGBA8) return {0, srgb::kLinearMax};
+  return {0, 255};
 }
 // Strzodka psi numerator of the byte pair (h, l): 256 (h - 128) + l.
 constexpr int32_t vs16_numerator(uint8_t h, uint8_t l) { return 256 * (int32_t{h} - 128) + l; }
 constexpr Texel4 decode_texel(Rgba8 w, TexelFormat f) {
   if (f == TexelFormat::VS16X2) return {vs16_numerator(w.r, w.g), vs16_numerator(w.b, w.a), 0, 0};
+  if (f == TexelFormat::SRGBA8) return {srgb::decode(w.r), srgb::decode(w.g), srgb::decode(w.b), w.a};
   return {w.r, w.g, w.b, w.a};
 }
 // Clamps every channel to the format's range and packs the word.
@@ -80,6 +94,10 @@ constexpr Rgba8 encode_texel(const Texel4& c, TexelFormat f) {
     const int32_t v0 = cl(c[0]) + 32768, v1 = cl(c[1]) + 32768;  // offset binary: h = v >> 8
     return {static_cast<uint8_t>(v0 >> 8), static_cast<uint8_t>(v0 & 255), static_cast<uint8_t>(v1 >> 8),
             static_cast<uint8_t>(v1 & 255)};
+  }
+  if (f == TexelFormat::SRGBA8) {
+    const int32_t a = c[3] < 0 ? 0 : (c[3] > 255 ? 255 : c[3]);
+    return {srgb::encode(c[0]), srgb::encode(c[1]), srgb::encode(c[2]), static_cast<uint8_t>(a)};
   }
   return {static_cast<uint8_t>(cl(c[0])), static_cast<uint8_t>(cl(c[1])), static_cast<uint8_t>(cl(c[2])),
           static_cast<uint8_t>(cl(c[3]))};

@@ -54,10 +54,12 @@ std::optional<BlockFormat> upload_block_format(const UploadCompression& c, const
 }
 
 Texture compress_texture(const Texture& texture, BlockFormat f, const std::string& what) {
-  const BlockImage blocks =
-      encode_block_image(texture.levels, f, /*srgb=*/false, BlockEncodeOptions{kUploadEncodeQuality});
-  Texture out = texture_from_block_image(blocks, BlockDecodeRules{}, what, texture.layout, texture.tile_bytes);
+  // An srgba8 texture is encoded with the sRGB error metric and decoded by the sRGB rules (docs/srgb.md).
+  const bool srgb = texture.format == TexelFormat::SRGBA8;
+  const BlockImage blocks = encode_block_image(texture.levels, f, srgb, BlockEncodeOptions{kUploadEncodeQuality});
+  Texture out = texture_from_block_image(blocks, BlockDecodeRules{{}, srgb}, what, texture.layout, texture.tile_bytes);
   out.memory = texture.memory;  // the budget's charge for the decoded chain stays with the texture
+  if (srgb) out.format = TexelFormat::SRGBA8;
   return out;
 }
 

@@ -51,7 +51,7 @@ void FilterUnit::evaluate() {
 }
 
 bool FilterUnit::filter(const FilterReq& r, Response& out) {
-  if (r.tag.base == BaseFilter::Linear && r.tag.format != TexelFormat::VS16X2 && word_lerps_) {
+  if (r.tag.base == BaseFilter::Linear && byte_channels(r.tag.format) && word_lerps_) {
     // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::fast::*8); speed only, the plain
     // form is filter_level below (off with TFU_PLAIN=1 or --plain, cmodel/fast_paths.hpp)
     const auto& w = r.texels;

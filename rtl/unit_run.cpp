@@ -36,6 +36,10 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
     if (s) continue;
     s = 1;
     const SamplerDescriptor& smp = frame.regs.samplers[r.sampler];
+    const TexelFormat f = frame.regs.textures[r.texture].format;
+    if (!filters_format(smp.mode.base, f))
+      throw InputError(fmt::format("request {}: sampler {} ({}) is not defined on texture {} ({})", i, r.sampler,
+                                   filter_mode_name(smp.mode), r.texture, texel_format_name(f)));
     const bool wants = smp.mode.base == BaseFilter::Cubic && smp.kernel == kBsplineInterp;
     if (wants != (frame.regs.textures[r.texture].content == TextureContent::BsplineCoefficients))
       throw InputError(fmt::format(

@@ -53,7 +53,7 @@ std::string error_of(const EnumNames<E, N>& t, const std::string& input) {
 }
 
 TEST(EnumNames, EveryTableNamesEveryValueOnce) {
-  expect_table_complete(kTexelFormatNames, 3);
+  expect_table_complete(kTexelFormatNames, 4);
   expect_table_complete(kMemoryLayoutNames, 2);
   expect_table_complete(kWrapModeNames, 4);
   expect_table_complete(kMipMethodNames, 3);
@@ -83,7 +83,8 @@ TEST(EnumNames, NameFunctionsReadTheTables) {
 }
 
 TEST(EnumNames, UnknownNameErrorLines) {
-  EXPECT_EQ(error_of(kTexelFormatNames, "rgb8"), "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8 or vs16x2)");
+  EXPECT_EQ(error_of(kTexelFormatNames, "rgb8"),
+            "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8, vs16x2 or srgba8)");
   EXPECT_EQ(error_of(kMemoryLayoutNames, "morton"), "unknown memory layout 'morton' (expected linear or tiled)");
   EXPECT_EQ(error_of(kWrapModeNames, "clamp"),
             "unknown wrap mode 'clamp' (did you mean 'clamp-to-edge'? expected repeat, mirrored-repeat, clamp-to-edge or clamp-to-border)");

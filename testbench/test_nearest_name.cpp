@@ -56,9 +56,10 @@ TEST(NearestName, ErrorLinesOfNamesSuggestTheNearest) {
   EXPECT_TRUE(opens(error_of([] { (void)filter_mode_from_name("LINEAR_MIPMAP_LINAER"); }),
                     "unknown filter 'LINEAR_MIPMAP_LINAER' (did you mean 'LINEAR_MIPMAP_LINEAR'? expected"));
   EXPECT_EQ(error_of([] { (void)texel_format_from_name("rgb8"); }),
-            "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8 or vs16x2)");
+            "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8, vs16x2 or srgba8)");
   // nothing near: the line as before
-  EXPECT_EQ(error_of([] { (void)texel_format_from_name("png"); }), "unknown texel format 'png' (expected rgba8, l8 or vs16x2)");
+  EXPECT_EQ(error_of([] { (void)texel_format_from_name("png"); }),
+            "unknown texel format 'png' (expected rgba8, l8, vs16x2 or srgba8)");
 }
 
 }  // namespace

@@ -27,9 +27,9 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/median_network.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "testbench/docs_text.hpp"
 #include "testbench/iterations.hpp"
 #include "testbench/scene_trace.hpp"
-#include "testbench/docs_text.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -813,6 +813,38 @@ TEST(TfuUnit, AnisotropicEveryNWrapModeAndFamily) {
         EXPECT_DOUBLE_EQ(got.stats.value("probes_per_pixel"), static_cast<double>(probes) / static_cast<double>(tr.requests.size()));
       }
   }
+}
+
+// sRGB textures (SRGBA8, docs/srgb.md): decoded to linear unorm12 before the filter and encoded at
+// the output, in both models; every mode the format takes (edge-preserving is refused), isotropic
+// quads and anisotropic gradients, every wrap mode; both engines of the cycle model agree.
+TEST(TfuUnit, SrgbTexturesBitExactInBothEngines) {
+  const Texture tex = random_mip_texture(TexelFormat::SRGBA8, 13);
+  const SceneTrace st = scene_trace("ground_plane", 48, 32);
+  const Trace aniso = aniso_grad_trace(3, 2);
+  int k = 0;
+  for (const FilterMode& m : all_filter_modes()) {
+    if (!filters_format(m.base, TexelFormat::SRGBA8)) continue;
+    SamplerDescriptor cfg;
+    cfg.mode = m;
+    cfg.wrap_s = static_cast<WrapMode>(k % 4);
+    cfg.wrap_t = static_cast<WrapMode>((k + 1) % 4);
+    cfg.border = {200, 30, 90, 128};
+    cfg.max_aniso = m.mip == MipMode::None ? 1 : 8;
+    ++k;
+    for (const Trace* tr : {&st.trace, &aniso}) {
+      const std::string what = fmt::format("{} {}", filter_mode_name(m), trace_mode_name(tr->mode));
+      const OneTexture one = one_texture(tex, cfg, *tr, small_cache(4));
+      const UnitOutput got = run_unit(one.frame, one.trace, small_cache(4));
+      EXPECT_GE(got.pixels.size(), 64u) << what;
+      expect_golden(one.frame, one.trace, got, what);
+      EXPECT_EQ(compare_engines(one.frame, one.trace, small_cache(4)), "") << what;
+    }
+  }
+  SamplerDescriptor edge;
+  edge.mode = filter_mode_from_name("EDGE_PRESERVING");
+  const OneTexture one = one_texture(tex, edge, st.trace, UnitConfig{});
+  EXPECT_THROW(run_unit(one.frame, one.trace, UnitConfig{}), InputError);
 }
 
 // Built-in scenes (quad traces: one LOD result per quad) with maxAniso 16 and 4 rounded to powers of

@@ -23,7 +23,9 @@ void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required
                                   "text, zoneplate, lightmap, noise)");
   if (texture_required) t->required();
   static const std::map<std::string, std::string> help = {
-      {"format", "Texel format: auto (from the file), rgba8, l8, vs16x2 (bytes as two signed 16-bit channels)"},
+      {"format",
+       "Texel format: auto (from the file), rgba8, l8, vs16x2 (bytes as two signed 16-bit channels), srgba8 (sRGB "
+       "colour, docs/srgb.md)"},
       {"mipmaps", "MIP levels: auto (the file's stored levels, else box), stored, none, box, gaussian, edge"},
       {"alpha", "Edge-preserving MIP weight alpha of Lee & Jen Eq. 7 (0..1)"},
       {"layout", "Memory layout: tiled (one tile per cache line) or linear rows"},
@@ -31,7 +33,10 @@ void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required
       {"compress", "Compress the texture at load as a driver does: none (default), a block format (bc1, bc3, bc7, etc2, "
                    "astc4x4 ... astc12x12) or s3tc (ioquake3's rule: bc1a when every alpha is 255, else uncompressed; "
                    "docs/compressed.md); a DDS, KTX or .astc file is read compressed as it is. tfu sim: also an oa: level "
-                   "scene's base textures"}};
+                   "scene's base textures"},
+      {"srgb",
+       "true: the colour channels are sRGB codes, decoded to linear before filtering and the result re-encoded "
+       "(format srgba8, docs/srgb.md); false (default): filtered as stored"}};
   for (const char* key : texture_param_keys()) cmd.add_option(flag_of(key), o.values[key], help.at(key));
 }
 

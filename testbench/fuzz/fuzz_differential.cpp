@@ -4,10 +4,12 @@
 // recurrences (rtl::run_unit_recurrence), which must give the clocked run's pixels, cycles and
 // statistics. The input chooses everything:
 //   textures   1 or 2, each 1..24 texels per side, RGBA8 / L8 / VS16X2 texels, tiled or linear rows,
-//              no MIP chain, a box or an edge-preserving chain; or block-compressed (a format byte of
-//              240 and up: corpus inputs below keep their meaning): every unsigned block format
-//              (cmodel/block_formats.hpp), the input's bytes as its blocks (illegal ASTC encodings
-//              included), one level or the whole chain, sRGB and the BC interpolation rules
+//              no MIP chain, a box or an edge-preserving chain; SRGBA8 texels (a format byte of 224..239;
+//              sRGB codes decoded to linear before filtering, docs/srgb.md) with no chain or a box
+//              chain; or block-compressed (a format byte of 240 and up: corpus inputs below keep their
+//              meaning): every unsigned block format (cmodel/block_formats.hpp), the input's bytes as
+//              its blocks (illegal ASTC encodings included), one level or the whole chain, sRGB and the
+//              BC interpolation rules, and (bit 3 of the rules byte) the texels declared SRGBA8
 //   samplers   1..3 descriptors: every filter mode, wrap mode per axis, border word, LOD bias and
 //              min / max clamps (each within +-16 levels or unbounded), cubic kernel (bspline-interp
 //              included: the driver's coefficient texture), ROM samples and bits, reconstruction,
@@ -78,7 +80,9 @@ std::shared_ptr<tfu::Texture> make_compressed_texture(ByteReader& in) {
   const tfu::BlockDecodeRules r{
       {static_cast<tfu::Bc1Interpolation>(rules % 4), static_cast<tfu::Bc4Interpolation>((rules >> 2) & 1)},
       image.srgb};
-  return std::make_shared<tfu::Texture>(tfu::texture_from_block_image(image, r, "fuzz"));
+  auto tex = std::make_shared<tfu::Texture>(tfu::texture_from_block_image(image, r, "fuzz"));
+  if ((rules >> 3) & 1) tex->format = tfu::TexelFormat::SRGBA8;
+  return tex;
 }
 
 std::shared_ptr<tfu::Texture> make_texture(ByteReader& in) {
@@ -86,7 +90,7 @@ std::shared_ptr<tfu::Texture> make_texture(ByteReader& in) {
   const uint8_t format = in.byte();
   if (format >= 240) return make_compressed_texture(in);
   constexpr tfu::TexelFormat kFormats[] = {tfu::TexelFormat::RGBA8, tfu::TexelFormat::L8, tfu::TexelFormat::VS16X2};
-  tex->format = kFormats[format % 3];
+  tex->format = format >= 224 ? tfu::TexelFormat::SRGBA8 : kFormats[format % 3];
   tex->layout = in.flag() ? tfu::MemoryLayout::Linear : tfu::MemoryLayout::Tiled;
   const int w = static_cast<int>(in.in_range(1, 24)), h = static_cast<int>(in.in_range(1, 24));
   tfu::Image img(w, h);
@@ -97,7 +101,7 @@ std::shared_ptr<tfu::Texture> make_texture(ByteReader& in) {
   tex->levels.push_back(std::move(img));
   const uint8_t mips = in.byte() % 3;
   if (mips == 1) tfu::generate_mipmaps(*tex, tfu::MipMethod::Box);
-  if (mips == 2) tfu::generate_mipmaps(*tex, tfu::MipMethod::Edge, 0.5);
+  if (mips == 2 && tex->format != tfu::TexelFormat::SRGBA8) tfu::generate_mipmaps(*tex, tfu::MipMethod::Edge, 0.5);
   return tex;
 }
 
