@@ -4,6 +4,8 @@
 //    "filters": ["LINEAR_MIPMAP_LINEAR", "bilinear", "scene"],        optional; default ["scene"]
 //    "width": 512, "height": 384,                                     optional; 0: each scene's own
 //    "units": 1, "game_dir": "...",                                   optional
+//    "node": "osu018",                                                optional; the cost columns' node
+//                                                                     (rtl/cost_model.hpp, osu035 or osu018)
 //    "base": {"memory": {"latency": 200}, "sampler": {"max_aniso": 4}},  optional unit config + base-stage sampler keys
 //    "grid": {"cache.capacity_bytes": [4096, 16384], "sampler.edge_shape": ["static", "cross"]},
 //    "points": [{"cache.ways": 16, "scene": "ground_plane", "filter": "LINEAR"}]}   optional
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "cmodel/bindings.hpp"
+#include "rtl/cost_model.hpp"
 #include "rtl/unit_config.hpp"
 
 namespace tfu::sweep {
@@ -45,6 +48,7 @@ struct Spec {
   std::vector<std::string> filters;     // canonical names (filter_mode_name) or kSceneFilter
   int width = 0, height = 0, units = 1;
   std::string game_dir;
+  rtl::Node node = rtl::Node::Osu018;   // the standard-cell node of the cost columns
   rtl::UnitConfig base;
   Params base_sampler;
   std::vector<Key> keys;                // the grid's keys in spec order, then keys only explicit points set
