@@ -75,12 +75,13 @@ TEST(UnitCost, SramAccessWordsOfOtherCaches) {
   EXPECT_EQ(a.lookup_reads, 4u + 64);
   EXPECT_EQ(a.lookup_writes, 0u);
   EXPECT_EQ(a.fill_writes, 64u + 4);
-  c.line_bytes = 32;
-  c.ways = 16;  // 4096 / 32 = 128 lines, 8 sets: tag 35 - 3 = 32 bits; 16 x 33 + 16 x 4 = 592 bits = 74 words
+  c.capacity_bytes = 16384;
+  c.line_bytes = 256;
+  c.ways = 16;  // 64 lines, 4 sets: tag 32 - 2 = 30 bits; 16 x 31 + 16 x 4 LRU = 560 bits = 70 words; line 256 words
   a = rtl::sram_access_words(c, m);
-  EXPECT_EQ(a.lookup_reads, 74u + 32);
+  EXPECT_EQ(a.lookup_reads, 70u + 256);
   EXPECT_EQ(a.lookup_writes, 8u);
-  EXPECT_EQ(a.fill_writes, 32u + 5);
+  EXPECT_EQ(a.fill_writes, 256u + 4);
 }
 
 TEST(UnitCost, LanesAreDatapathsAndOneLaneCubicIsAQuarterOfTheFourLaneBlock) {
