@@ -14,9 +14,9 @@
 namespace tfu::rtl {
 
 namespace detail {
-extern const char* const kFilterGatesJson;  // generated from rtl/sv/filter_gates.json (rtl/CMakeLists.txt)
+extern const char* const kFilterGatesJson;   // generated from rtl/sv/filter_gates.json (rtl/CMakeLists.txt)
 extern const char* const kSiliconGatesJson;  // generated from rtl/sv/silicon_gates.json (rtl/CMakeLists.txt)
-}
+}  // namespace detail
 
 namespace {
 
@@ -112,7 +112,8 @@ const std::vector<NodeBlock>& node_table(Node n) {
         b.block = r.at("block").get<std::string>();
         b.area_um2 = r.at("area_um2").get<double>();
         b.fmax_mhz = r.at("fmax_reg2reg_mhz").get<double>();
-        if (!r.at("fmax_in2reg_mhz").is_null()) b.fmax_mhz = std::min(b.fmax_mhz, r.at("fmax_in2reg_mhz").get<double>());
+        if (!r.at("fmax_in2reg_mhz").is_null())
+          b.fmax_mhz = std::min(b.fmax_mhz, r.at("fmax_in2reg_mhz").get<double>());
         b.leakage_nw = r.at("leakage_nw").get<double>();
         b.flip_flops = r.at("flip_flops").get<int>();
         out[static_cast<size_t>(node)].push_back(std::move(b));
@@ -136,7 +137,12 @@ constexpr std::array<NodeTech, 2> kNodeTech{{
 // edge (pF x V^2 = pJ) when reading (!CEN & GWEN) 103.176 and writing 112.563: an access is one
 // rising and one falling edge. No macro of a 0.35 um process with published area and energy was
 // found: osu035 has no SRAM model.
-constexpr SramMacro kGf180Sram512x8{"gf180mcu_fd_ip_sram__sram512x8m8wm1", 512, 8, 209400.2768, 2 * 103.176, 2 * 112.563,
+constexpr SramMacro kGf180Sram512x8{"gf180mcu_fd_ip_sram__sram512x8m8wm1",
+                                    512,
+                                    8,
+                                    209400.2768,
+                                    2 * 103.176,
+                                    2 * 112.563,
                                     "tt_025C_1v80",
                                     "GF180MCU SRAM macro gf180mcu_fd_ip_sram__sram512x8m8wm1, liberty tt_025C_1v80 "
                                     "(google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram)"};
@@ -168,7 +174,7 @@ std::vector<std::pair<std::string, double>> datapath_instances(const std::vector
   const FilterGates g = filter_datapath_gates(modes, anisotropic);
   std::vector<std::pair<std::string, double>> out;
   for (const std::string& b : g.blocks) {
-    double count = lanes;  // one datapath per lane
+    double count = lanes;                          // one datapath per lane
     if (b == "cubic_filter") count = lanes / 4.0;  // the block is the 4-lane configuration
     if (b.rfind("aniso_", 0) == 0) count = 1;      // one anisotropic LOD unit and probe generator
     out.emplace_back(b, count);
@@ -179,7 +185,8 @@ std::vector<std::pair<std::string, double>> datapath_instances(const std::vector
 SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro& m) {
   const CacheSramBits bits = texel_cache_sram_bits(cache);
   const auto w = static_cast<uint64_t>(m.bits_per_word), ways = static_cast<uint64_t>(cache.ways);
-  const uint64_t set_lru = bits.lru / static_cast<uint64_t>(cache.sets()), line = static_cast<uint64_t>(cache.line_bytes) * 8,
+  const uint64_t set_lru = bits.lru / static_cast<uint64_t>(cache.sets()),
+                 line = static_cast<uint64_t>(cache.line_bytes) * 8,
                  tag_valid = static_cast<uint64_t>(bits.tag_bits) + 1;
   SramAccessWords a;
   a.lookup_reads = ceil_div(ways * tag_valid + set_lru, w) + ceil_div(line, w);
@@ -213,7 +220,8 @@ UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDe
   c.logic_um2 = c.datapath_um2 + c.miss_fifo_um2;
   // Per clock at fmax: leakage (nW / MHz = 1e-3 pJ) and the uniform-activity switching estimate.
   const double leakage_pj = c.logic_leakage_nw / c.fmax_mhz * 1e-3;
-  const double switching_pj = kUniformActivity * (c.logic_um2 / tech.nand2_area_um2) * tech.nand2_a_pf * tech.vdd * tech.vdd;
+  const double switching_pj =
+      kUniformActivity * (c.logic_um2 / tech.nand2_area_um2) * tech.nand2_a_pf * tech.vdd * tech.vdd;
   c.logic_pj = static_cast<double>(run.cycles) * (leakage_pj + switching_pj);
   if (const SramMacro* m = sram_macro(n)) {
     const CacheSramBits bits = texel_cache_sram_bits(config.cache);

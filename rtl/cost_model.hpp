@@ -132,10 +132,10 @@ std::vector<std::pair<std::string, double>> datapath_instances(const std::vector
 
 // What a run counted that the energy needs (all units together).
 struct RunCounts {
-  uint64_t cycles = 0;          // the slowest unit's
-  uint64_t pixels = 0;          // requests
-  uint64_t line_lookups = 0;    // cache_line_hits + cache_line_misses
-  uint64_t line_misses = 0;     // line fills
+  uint64_t cycles = 0;        // the slowest unit's
+  uint64_t pixels = 0;        // requests
+  uint64_t line_lookups = 0;  // cache_line_hits + cache_line_misses
+  uint64_t line_misses = 0;   // line fills
   uint64_t memory_bytes = 0;
 };
 
@@ -143,8 +143,8 @@ struct UnitCost {
   std::vector<std::pair<std::string, double>> instances;
   double datapath_um2 = 0, miss_fifo_um2 = 0, logic_um2 = 0;  // all units
   double fmax_mhz = 0;
-  double logic_leakage_nw = 0;                                // all units
-  double logic_pj = 0;                                        // the run's logic energy (leakage + switching)
+  double logic_leakage_nw = 0;  // all units
+  double logic_pj = 0;          // the run's logic energy (leakage + switching)
   std::optional<double> sram_um2, area_mm2, sram_pj, energy_pj_per_pixel;  // absent without an SRAM macro
 };
 UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
