@@ -1,7 +1,9 @@
 #include "rtl/cost_model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -12,8 +14,9 @@
 namespace tfu::rtl {
 
 namespace detail {
-extern const char* const kFilterGatesJson;  // generated from rtl/sv/filter_gates.json (rtl/CMakeLists.txt)
-}
+extern const char* const kFilterGatesJson;   // generated from rtl/sv/filter_gates.json (rtl/CMakeLists.txt)
+extern const char* const kSiliconGatesJson;  // generated from rtl/sv/silicon_gates.json (rtl/CMakeLists.txt)
+}  // namespace detail
 
 namespace {
 
@@ -94,6 +97,143 @@ FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers
     anisotropic = anisotropic || d.anisotropic();
   }
   return filter_datapath_gates(modes, anisotropic);
+}
+
+namespace {
+
+// rtl/sv/silicon_gates.json's osu035 and osu018 rows (parsed once).
+const std::vector<NodeBlock>& node_table(Node n) {
+  static const std::array<std::vector<NodeBlock>, 2> t = [] {
+    std::array<std::vector<NodeBlock>, 2> out;
+    const nlohmann::json j = nlohmann::json::parse(detail::kSiliconGatesJson);
+    for (const Node node : {Node::Osu035, Node::Osu018})
+      for (const auto& r : j.at(node_name(node))) {
+        NodeBlock b;
+        b.block = r.at("block").get<std::string>();
+        b.area_um2 = r.at("area_um2").get<double>();
+        b.fmax_mhz = r.at("fmax_reg2reg_mhz").get<double>();
+        if (!r.at("fmax_in2reg_mhz").is_null())
+          b.fmax_mhz = std::min(b.fmax_mhz, r.at("fmax_in2reg_mhz").get<double>());
+        b.leakage_nw = r.at("leakage_nw").get<double>();
+        b.flip_flops = r.at("flip_flops").get<int>();
+        out[static_cast<size_t>(node)].push_back(std::move(b));
+      }
+    return out;
+  }();
+  return t[static_cast<size_t>(n)];
+}
+
+// From osu035_stdcells.lib / osu018_stdcells.lib (typical corner): DFFPOSX1 `area` and
+// `cell_leakage_power`, NAND2X1 `area` and pin A `capacitance`, `nom_voltage`.
+constexpr std::array<NodeTech, 2> kNodeTech{{
+    {384, 0.112978, 96, 0.0177118, 3.3},  // osu035
+    {96, 0.160725, 24, 0.0125, 1.8},      // osu018
+}};
+
+// The osu018 SRAM model: GlobalFoundries' GF180MCU single-port macro gf180mcu_fd_ip_sram__sram512x8m8wm1
+// (github.com/google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram, its liberty file
+// ..._tt_025C_1v80.lib: typical, 1.8 V, 25 C, the osu018 library's corner): `area` 209400.2768 um^2
+// for 512 x 8 bits (a 13.5 um^2 6T bit cell; the rest is the periphery), CLK `internal_power` per
+// edge (pF x V^2 = pJ) when reading (!CEN & GWEN) 103.176 and writing 112.563: an access is one
+// rising and one falling edge. No macro of a 0.35 um process with published area and energy was
+// found: osu035 has no SRAM model.
+constexpr SramMacro kGf180Sram512x8{"gf180mcu_fd_ip_sram__sram512x8m8wm1",
+                                    512,
+                                    8,
+                                    209400.2768,
+                                    2 * 103.176,
+                                    2 * 112.563,
+                                    "tt_025C_1v80",
+                                    "GF180MCU SRAM macro gf180mcu_fd_ip_sram__sram512x8m8wm1, liberty tt_025C_1v80 "
+                                    "(google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram)"};
+
+uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+}  // namespace
+
+Node node_from_name(const std::string& name) {
+  if (name == "osu035") return Node::Osu035;
+  if (name == "osu018") return Node::Osu018;
+  throw InputError(fmt::format("unknown node '{}' (expected {})", quote_input(name, 40), kNodeNames));
+}
+
+const char* node_name(Node n) { return n == Node::Osu035 ? "osu035" : "osu018"; }
+
+const NodeBlock& node_block(Node n, const std::string& block) {
+  for (const NodeBlock& b : node_table(n))
+    if (b.block == block) return b;
+  throw std::logic_error(fmt::format("rtl/sv/silicon_gates.json has no {} block '{}'", node_name(n), block));
+}
+
+const NodeTech& node_tech(Node n) { return kNodeTech[static_cast<size_t>(n)]; }
+
+const SramMacro* sram_macro(Node n) { return n == Node::Osu018 ? &kGf180Sram512x8 : nullptr; }
+
+std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
+                                                               int lanes) {
+  const FilterGates g = filter_datapath_gates(modes, anisotropic);
+  std::vector<std::pair<std::string, double>> out;
+  for (const std::string& b : g.blocks) {
+    double count = lanes;                          // one datapath per lane
+    if (b == "cubic_filter") count = lanes / 4.0;  // the block is the 4-lane configuration
+    if (b.rfind("aniso_", 0) == 0) count = 1;      // one anisotropic LOD unit and probe generator
+    out.emplace_back(b, count);
+  }
+  return out;
+}
+
+SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro& m) {
+  const CacheSramBits bits = texel_cache_sram_bits(cache);
+  const auto w = static_cast<uint64_t>(m.bits_per_word), ways = static_cast<uint64_t>(cache.ways);
+  const uint64_t set_lru = bits.lru / static_cast<uint64_t>(cache.sets()),
+                 line = static_cast<uint64_t>(cache.line_bytes) * 8,
+                 tag_valid = static_cast<uint64_t>(bits.tag_bits) + 1;
+  SramAccessWords a;
+  a.lookup_reads = ceil_div(ways * tag_valid + set_lru, w) + ceil_div(line, w);
+  a.lookup_writes = ceil_div(set_lru, w);
+  a.fill_writes = ceil_div(line, w) + ceil_div(tag_valid, w);
+  return a;
+}
+
+UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
+                   const RunCounts& run) {
+  std::vector<FilterMode> modes;
+  bool anisotropic = false;
+  for (const SamplerDescriptor& d : samplers) {
+    modes.push_back(d.mode);
+    anisotropic = anisotropic || d.anisotropic();
+  }
+  const NodeTech& tech = node_tech(n);
+  const double u = units;
+  UnitCost c;
+  c.instances = datapath_instances(modes, anisotropic, config.filter_lanes);
+  c.fmax_mhz = std::numeric_limits<double>::infinity();
+  for (const auto& [block, count] : c.instances) {
+    const NodeBlock& b = node_block(n, block);
+    c.datapath_um2 += u * count * b.area_um2;
+    c.logic_leakage_nw += u * count * b.leakage_nw;
+    c.fmax_mhz = std::min(c.fmax_mhz, b.fmax_mhz);
+  }
+  const double fifo_bits = u * config.miss_fifo_depth * kMissFifoEntryBits;
+  c.miss_fifo_um2 = fifo_bits * tech.dff_area_um2;
+  c.logic_leakage_nw += fifo_bits * tech.dff_leakage_nw;
+  c.logic_um2 = c.datapath_um2 + c.miss_fifo_um2;
+  // Per clock at fmax: leakage (nW / MHz = 1e-3 pJ) and the uniform-activity switching estimate.
+  const double leakage_pj = c.logic_leakage_nw / c.fmax_mhz * 1e-3;
+  const double switching_pj =
+      kUniformActivity * (c.logic_um2 / tech.nand2_area_um2) * tech.nand2_a_pf * tech.vdd * tech.vdd;
+  c.logic_pj = static_cast<double>(run.cycles) * (leakage_pj + switching_pj);
+  if (const SramMacro* m = sram_macro(n)) {
+    const CacheSramBits bits = texel_cache_sram_bits(config.cache);
+    c.sram_um2 = u * static_cast<double>(bits.total()) * m->area_um2 / (m->words * m->bits_per_word);
+    c.area_mm2 = (c.logic_um2 + *c.sram_um2) * 1e-6;
+    const SramAccessWords a = sram_access_words(config.cache, *m);
+    c.sram_pj = static_cast<double>(run.line_lookups) * (static_cast<double>(a.lookup_reads) * m->read_pj +
+                                                         static_cast<double>(a.lookup_writes) * m->write_pj) +
+                static_cast<double>(run.line_misses) * static_cast<double>(a.fill_writes) * m->write_pj;
+    if (run.pixels) c.energy_pj_per_pixel = (c.logic_pj + *c.sram_pj) / static_cast<double>(run.pixels);
+  }
+  return c;
 }
 
 }  // namespace tfu::rtl

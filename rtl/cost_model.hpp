@@ -15,16 +15,34 @@
 //       CUBIC                cubic_filter     (16 taps per clock: the 4-lane configuration)
 //       EDGE_PRESERVING      edge_interp_top
 //       any *_MIPMAP_LINEAR  + level_blend    (one blend stage shared by every mode)
-//     filter_lanes is not reflected: the SystemVerilog blocks exist in one size.
+//     filter_lanes is not reflected here (unit_cost below applies the lane rule).
 // Several units have these per unit; the sweep multiplies by `units`.
+//
+// The whole unit at a real standard-cell node (unit_cost; docs/design-space.md, "The whole unit at a
+// node"), from rtl/sv/silicon_gates.json (scripts/silicon_table: each block mapped to the OSU
+// library at 101.2 MHz, area, fmax, leakage) and the per-node figures of kNodeTech:
+//   datapath instances  filter_lanes L = L datapaths: bilinear_top, edge_interp_top, level_blend x L;
+//                       cubic_filter x L/4 (the SystemVerilog block computes 16 taps per clock, the
+//                       4-lane configuration; a lane is a quarter of it, scaled linearly);
+//                       the anisotropic blocks x 1 (one LOD unit and probe generator per unit)
+//   miss FIFO           miss_fifo_depth x kMissFifoEntryBits flip-flops (DFFPOSX1)
+//   logic_um2           datapath instances' area + miss FIFO flip-flops
+//   fmax_mhz            the slowest block's fmax (register-to-register, and input-to-register where
+//                       the block has one): the slowest part sets the clock
+//   sram_um2            texel_cache_sram_bits x the node's SRAM macro area per bit (kSramMacros;
+//                       absent for a node without a cited macro)
+//   energy              logic: (leakage + uniform-activity switching) per cycle x cycles; SRAM: macro
+//                       word reads and writes per line lookup and per line fill; DRAM: not counted
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cmodel/descriptors.hpp"
 #include "rtl/texel_cache.hpp"
+#include "rtl/unit_config.hpp"
 
 namespace tfu::rtl {
 
@@ -55,5 +73,81 @@ struct FilterGates {
 FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic = false);
 // The same for a frame's samplers (their modes, and whether any is anisotropic).
 FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers);
+
+// ---- the whole unit at a real node ----
+
+enum class Node { Osu035, Osu018 };
+inline constexpr const char* kNodeNames = "osu035, osu018";
+Node node_from_name(const std::string& name);  // InputError for any other name
+const char* node_name(Node n);
+
+// One block of rtl/sv/silicon_gates.json at a node.
+struct NodeBlock {
+  std::string block;
+  double area_um2 = 0, fmax_mhz = 0, leakage_nw = 0;  // fmax: min(reg-to-reg, in-to-reg where given)
+  int flip_flops = 0;
+};
+const NodeBlock& node_block(Node n, const std::string& block);  // logic_error if the table lacks it
+
+// Per-node figures from the OSU liberty files (/usr/share/qflow/tech/osu0XX/osu0XX_stdcells.lib,
+// typical corner): DFFPOSX1 area and leakage, NAND2X1 area and A-pin capacitance, the supply.
+struct NodeTech {
+  double dff_area_um2, dff_leakage_nw, nand2_area_um2, nand2_a_pf, vdd;
+};
+const NodeTech& node_tech(Node n);
+// Uniform-activity switching estimate: every NAND2X1 equivalent's output toggles with probability
+// kUniformActivity per clock and a toggle moves half of (2 NAND2X1 A-pin loads) x Vdd^2:
+// E = kUniformActivity x nand2_a_pf x Vdd^2 per NAND2X1 equivalent per clock (cell internal power,
+// wires and the clock tree left out).
+inline constexpr double kUniformActivity = 0.1;
+
+// A published single-port SRAM macro used as the node's SRAM model: the cache's bits are stored in
+// macros of `words` x `bits_per_word`, at the macro's area per bit; a read or write moves one word.
+struct SramMacro {
+  const char* name;
+  int words, bits_per_word;
+  double area_um2, read_pj, write_pj;  // energy per access at the corner below
+  const char* corner;
+  const char* source;
+};
+const SramMacro* sram_macro(Node n);  // nullptr: no cited macro for the node
+
+// Macro words one cache access moves (whole words): a line lookup reads the set's tags, valid and
+// LRU bits and the whole line (an upper bound: the footprint needs only its texels) and writes the
+// set's LRU bits; a line fill writes the line and its tag and valid bit.
+struct SramAccessWords {
+  uint64_t lookup_reads = 0, lookup_writes = 0, fill_writes = 0;
+};
+SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro& m);
+
+// Bits of one miss-FIFO entry: the FootprintReq fields hardware stores (rtl/unit_ports.hpp):
+//   tag: id 32, texture 12, sampler 8, stage 2, base 2, format 2, fu 8, fv 8, blend 9, blends 1,
+//        is_level1 1, shape 12, probes 5, probe 4                                  = 106
+//   level 4, grid x[4] y[4] 15 bits each (120), cols 3, rows 3, used 16, cross 1, optional 12 = 159
+inline constexpr int kMissFifoEntryBits = 106 + 159;
+
+// Datapath instances the modes need with `lanes` filter lanes, in table order: (block, count).
+std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
+                                                               int lanes);
+
+// What a run counted that the energy needs (all units together).
+struct RunCounts {
+  uint64_t cycles = 0;        // the slowest unit's
+  uint64_t pixels = 0;        // requests
+  uint64_t line_lookups = 0;  // cache_line_hits + cache_line_misses
+  uint64_t line_misses = 0;   // line fills
+  uint64_t memory_bytes = 0;
+};
+
+struct UnitCost {
+  std::vector<std::pair<std::string, double>> instances;
+  double datapath_um2 = 0, miss_fifo_um2 = 0, logic_um2 = 0;  // all units
+  double fmax_mhz = 0;
+  double logic_leakage_nw = 0;  // all units
+  double logic_pj = 0;          // the run's logic energy (leakage + switching)
+  std::optional<double> sram_um2, area_mm2, sram_pj, energy_pj_per_pixel;  // absent without an SRAM macro
+};
+UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
+                   const RunCounts& run);
 
 }  // namespace tfu::rtl

@@ -83,6 +83,29 @@ TEST(CostModel, GateTableMatchesDocsGates) {
   }
 }
 
+TEST(SweepSpec, NodeKeyNamesAKnownNode) {
+  const auto parse = [](const std::string& node) {
+    return sweep::parse_spec(R"({"scenes": ["ground_plane"], "node": )" + node + R"(, "grid": {"cache.ways": [1]}})", "s.json");
+  };
+  EXPECT_EQ(parse("\"osu035\"").node, rtl::Node::Osu035);
+  EXPECT_EQ(sweep::parse_spec(R"({"scenes": ["ground_plane"], "grid": {"cache.ways": [1]}})", "s.json").node, rtl::Node::Osu018);
+  for (const char* bad : {"\"osu090\"", "35"}) {
+    try {
+      (void)parse(bad);
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("s.json: node: "), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(SweepReport, DocsListEveryResultColumn) {
+  // docs/design-space.md ("What a sweep writes") names every column of results.csv the code writes.
+  const std::string doc = read_text(fs::path(TFU_DOCS_DIR) / "design-space.md");
+  const std::string section = doc.substr(doc.find("## What a sweep writes"), doc.find("## The local runner") - doc.find("## What a sweep writes"));
+  for (const sweep::Column& c : sweep::result_columns()) EXPECT_NE(section.find("`" + c.name + "`"), std::string::npos) << c.name;
+}
+
 TEST(CostModel, FilterGatesSumTheBlocksTheModesNeed) {
   const auto ge_of = [](const std::string& block) {
     for (const rtl::GateBlock& b : rtl::filter_gate_table())
@@ -369,6 +392,7 @@ TEST(SweepInputs, APointFileMarkedCompleteIsCheckedLikeASpec) {
     if (c.type == sweep::ResultType::Number) result[c.name] = 1.5;
     if (c.type == sweep::ResultType::NumberOrInf) result[c.name] = "inf";
     if (c.type == sweep::ResultType::Bool) result[c.name] = true;
+    if (c.type == sweep::ResultType::NumberOrNull) result[c.name] = nullptr;
   }
   const nlohmann::json good = {{"complete", true}, {"point", {{"id", p.id}}}, {"result", result}};
   const auto read_with = [&](const nlohmann::json& doc) -> std::string {
@@ -482,7 +506,7 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
   const std::string header = csv[0].substr(0, csv[0].find('\n'));
   for (const char* c : {"cache.capacity_bytes", "scene", "filter", "cycles", "pixels_per_clock", "hit_rate", "bytes_per_pixel",
                         "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "psnr", "ssim", "golden_equal", "sram_bits",
-                        "filter_gates"})
+                        "filter_gates", "logic_um2", "sram_um2", "area_mm2", "fmax_mhz", "energy_pj_per_pixel"})
     EXPECT_NE(header.find(c), std::string::npos) << c;
   EXPECT_NE(csv[0].find(",ground_plane,EDGE_PRESERVING,"), std::string::npos);
   // a bigger cache never reads more memory bytes here (same requests, LRU)
@@ -491,6 +515,12 @@ TEST(SweepRun, ResultsIndependentOfWorkersAndResumable) {
   EXPECT_LE(big.at("result").at("memory_bytes").get<uint64_t>(), small.at("result").at("memory_bytes").get<uint64_t>());
   EXPECT_EQ(small.at("result").at("sram_bits").get<uint64_t>(),
             rtl::texel_cache_sram_bits(pts[0].config.cache).total());
+  // the whole unit at the default node (osu018): numbers, the area the sum of its parts, the clock a table block's
+  const nlohmann::json& sr = small.at("result");
+  EXPECT_EQ(sr.at("node"), "osu018");
+  for (const char* c : {"logic_um2", "sram_um2", "area_mm2", "fmax_mhz", "energy_pj_per_pixel"}) EXPECT_TRUE(sr.at(c).is_number()) << c;
+  EXPECT_NEAR(sr.at("area_mm2").get<double>(), (sr.at("logic_um2").get<double>() + sr.at("sram_um2").get<double>()) * 1e-6, 1e-9);
+  EXPECT_GT(sr.at("energy_pj_per_pixel").get<double>(), 0.0);
   const double ssim = small.at("result").at("ssim").get<double>();  // of the same image as psnr: below 1 when psnr is finite
   EXPECT_GT(ssim, 0.0);
   EXPECT_LT(ssim, 1.0);

@@ -12,6 +12,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/input_file.hpp"
+#include "rtl/cost_model.hpp"
 #include "sim/sweep/process.hpp"
 
 namespace tfu::sweep {
@@ -146,6 +147,20 @@ std::vector<Plot> default_plots(const Spec& spec, const std::vector<Point>& poin
   if (std::find(series.begin(), series.end(), "filter") != series.end()) area.series_note = "filter_gates";
   make(area, "plot_area.png", "Area against benefit: texel cache SRAM bits against memory bytes per pixel "
                               "(legend: the filter datapath's gate equivalents)");
+  if (rtl::sram_macro(spec.node)) {  // the whole unit's area and energy (docs/design-space.md, "The whole unit at a node")
+    PlotRequest unit;
+    unit.x = "bytes_per_pixel";
+    unit.y = "area_mm2";
+    unit.title = fmt::format("The whole unit at {}: area against memory traffic", rtl::node_name(spec.node));
+    make(unit, "plot_unit_area.png",
+         fmt::format("Unit area at {} (logic, miss FIFO, texel cache SRAM) against memory bytes per pixel", rtl::node_name(spec.node)));
+    unit.x = "psnr_surface";
+    unit.y = "energy_pj_per_pixel";
+    unit.title = fmt::format("The whole unit at {}: energy against quality", rtl::node_name(spec.node));
+    make(unit, "plot_energy_psnr.png",
+         fmt::format("Energy per pixel at {} (logic and texel cache SRAM; DRAM not counted) against PSNR against the surface truth",
+                     rtl::node_name(spec.node)));
+  }
   return plots;
 }
 

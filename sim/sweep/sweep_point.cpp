@@ -145,6 +145,27 @@ nlohmann::json result_json(const Spec&, const Point& p, const rtl::SceneSimResul
   const rtl::FilterGates gates = rtl::filter_datapath_gates(frame.regs.samplers);
   r["filter_gates"] = static_cast<double>(p.units) * gates.ge;
   r["filter_blocks"] = gates.blocks;
+  rtl::RunCounts run;
+  run.cycles = res.cycles;
+  run.pixels = res.requests;
+  run.line_misses = rtl::counter(st, rtl::UnitStat::CacheLineMisses);
+  run.line_lookups = rtl::counter(st, rtl::UnitStat::CacheLineHits) + run.line_misses;
+  run.memory_bytes = rtl::counter(st, rtl::UnitStat::MemoryBytes);
+  const rtl::UnitCost cost = rtl::unit_cost(s.node, p.config, frame.regs.samplers, p.units, run);
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  r["node"] = rtl::node_name(s.node);
+  r["logic_um2"] = cost.logic_um2;
+  r["sram_um2"] = optional(cost.sram_um2);
+  r["area_mm2"] = optional(cost.area_mm2);
+  r["fmax_mhz"] = cost.fmax_mhz;
+  r["energy_pj_per_pixel"] = optional(cost.energy_pj_per_pixel);
+  r["datapath_um2"] = cost.datapath_um2;
+  r["miss_fifo_um2"] = cost.miss_fifo_um2;
+  r["logic_pj"] = cost.logic_pj;
+  r["sram_pj"] = optional(cost.sram_pj);
+  nlohmann::json inst = nlohmann::json::array();
+  for (const auto& [block, count] : cost.instances) inst.push_back({{"block", block}, {"count", count}});
+  r["datapath_instances"] = inst;
   return r;
 }
 

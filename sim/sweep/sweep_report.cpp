@@ -46,7 +46,8 @@ std::string number_text(const nlohmann::json& v, int decimals) {
 
 int decimals_of(const std::string& column) {
   if (column == "psnr" || column == "psnr_surface" || column == "psnr_interior" || column == "latency_mean") return 4;
-  if (column == "filter_gates") return 1;
+  if (column == "filter_gates" || column == "logic_um2" || column == "sram_um2" || column == "fmax_mhz") return 1;
+  if (column == "energy_pj_per_pixel") return 2;
   return 6;
 }
 
@@ -95,6 +96,18 @@ const std::vector<Column>& result_columns() {
       {"sram_bits", "bits", "texel cache SRAM: data, tags, valid and LRU bits, all units (rtl/cost_model.hpp)", ResultType::Number},
       {"filter_gates", "GE", "filter datapath gate equivalents the frame's filters need, all units (rtl/sv/filter_gates.json)",
        ResultType::Number},
+      {"logic_um2", "um^2",
+       "logic at the spec's node: the datapath blocks the frame's filters need, x filter_lanes, and the miss FIFO's flip-flops, all "
+       "units (rtl/cost_model.hpp, rtl/sv/silicon_gates.json)",
+       ResultType::Number},
+      {"sram_um2", "um^2", "texel cache SRAM at the node's published macro's area per bit, all units (empty: no SRAM model for the node)",
+       ResultType::NumberOrNull},
+      {"area_mm2", "mm^2", "logic_um2 + sram_um2 (empty without an SRAM model)", ResultType::NumberOrNull},
+      {"fmax_mhz", "MHz", "the clock of the slowest block the frame needs at the node (the slowest part sets the clock)", ResultType::Number},
+      {"energy_pj_per_pixel", "pJ/pixel",
+       "logic (leakage + uniform-activity switching at fmax) and texel cache SRAM energy per request; DRAM not counted (empty without "
+       "an SRAM model)",
+       ResultType::NumberOrNull},
       {"point", "", "the point's id: its file DIR/points/ID.json"},
       {"error", "", "why the point could not run (empty when it ran)"},
   };
@@ -158,6 +171,9 @@ std::optional<nlohmann::json> read_point_file(const std::string& dir, const Poin
         break;
       case ResultType::Bool:
         if (!v.is_boolean()) throw bad(key, "must be true or false");
+        break;
+      case ResultType::NumberOrNull:
+        if (!number && !v.is_null()) throw bad(key, "must be a number or null");
         break;
       case ResultType::None:
         break;
@@ -237,7 +253,8 @@ std::string summary_markdown(const Spec& spec, const std::vector<Point>& points,
   if (!spec.base_sampler.empty()) md << fmt::format("; base-stage sampler keys: `{}`", json_dump(nlohmann::json(spec.base_sampler)));
   md << ".\n\nCost columns: `sram_bits` is the texel cache's data, tag, valid and LRU bits (formula in rtl/cost_model.hpp); "
         "`filter_gates` the Yosys gate equivalents of the filter datapaths the frame's filters need ("
-     << rtl::filter_gate_source() << ").\n";
+     << rtl::filter_gate_source() << "); `logic_um2`, `sram_um2`, `area_mm2`, `fmax_mhz` and `energy_pj_per_pixel` the whole unit at "
+     << rtl::node_name(spec.node) << " (docs/design-space.md, \"The whole unit at a node\").\n";
   if (!plots.empty()) {
     md << "\n## Plots\n\n";
     for (const Plot& pl : plots) md << fmt::format("![{}]({})\n\n*{}*\n\n", pl.caption, pl.file, pl.caption);

@@ -18,7 +18,7 @@ namespace tfu::sweep {
 
 // How a result column is held in a point file's "result" object (what --collect and a resumed run
 // check before reading it): None, the column is not in "result" (point, error).
-enum class ResultType { None, Number, NumberOrInf, Bool };
+enum class ResultType { None, Number, NumberOrInf, Bool, NumberOrNull };  // NumberOrNull: null (empty in the CSV) where the model has no figure
 
 struct Column {
   std::string name, unit, meaning;

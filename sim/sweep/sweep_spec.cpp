@@ -283,10 +283,10 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   s.text = text;
   s.dir = fs::path(path).parent_path().string();
   static const std::set<std::string> kSpecKeys{"scenes", "filters", "width", "height", "units", "raster", "unit_tiles", "texture_layout",
-                                               "game_dir", "base", "grid", "points"};
+                                               "game_dir", "node", "base", "grid", "points"};
   if (const auto k = first_unknown_key(j, kSpecKeys))
-    throw where(*k, "unknown key (expected scenes, filters, width, height, units, raster, unit_tiles, texture_layout, game_dir, base, "
-                    "grid, points)");
+    throw where(*k, "unknown key (expected scenes, filters, width, height, units, raster, unit_tiles, texture_layout, game_dir, node, "
+                    "base, grid, points)");
   if (!j.contains("scenes")) throw where("scenes", "missing (a list of scene names, files or oa: levels)");
   s.scenes = string_list(j["scenes"], "scenes", where);
   s.filters = {kSceneFilter};
@@ -313,6 +313,14 @@ Spec parse_spec(const std::string& text, const std::string& path) {
   if (j.contains("game_dir")) {
     if (!j["game_dir"].is_string()) throw where("game_dir", "must be a directory path");
     s.game_dir = j["game_dir"].get<std::string>();
+  }
+  if (j.contains("node")) {
+    if (!j["node"].is_string()) throw where("node", fmt::format("must be a node name ({})", rtl::kNodeNames));
+    try {
+      s.node = rtl::node_from_name(j["node"].get<std::string>());
+    } catch (const InputError& e) {
+      throw where("node", e.what());
+    }
   }
   if (j.contains("base")) parse_base(j["base"], s, where);
   if (j.contains("grid")) parse_grid(j["grid"], s, where);
@@ -424,6 +432,7 @@ std::vector<Point> expand(const Spec& s) {
     if (!(p.raster == RasterOrder{})) id["raster"] = raster_order_name(p.raster);
     if (!(p.unit_tiles == UnitTiles{})) id["unit_tiles"] = unit_tiles_name(p.unit_tiles);
     if (p.texture_layout != "own") id["texture_layout"] = p.texture_layout;
+    if (s.node != Spec{}.node) id["node"] = rtl::node_name(s.node);  // the cost columns differ; default-node ids unchanged
     p.id = hex64(fnv1a64(json_dump(id)));
     if (const auto [it, fresh] = seen_ids.emplace(p.id, p.index); !fresh)
       throw where(pr.where_key, fmt::format("point {} ({}) repeats point {}", p.index, describe(s, p), it->second));

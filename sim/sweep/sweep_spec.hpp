@@ -6,6 +6,8 @@
 //    "units": 1, "game_dir": "...",                                   optional
 //    "raster": "scanline", "unit_tiles": "round-robin:32",            optional (cmodel/raster_order.hpp)
 //    "texture_layout": "own",                                         optional: linear, tiled or own
+//    "node": "osu018",                                                optional; the cost columns' node
+//                                                                     (rtl/cost_model.hpp, osu035 or osu018)
 //    "base": {"memory": {"latency": 200}, "sampler": {"max_aniso": 4}},  optional unit config + base-stage sampler keys
 //    "grid": {"cache.capacity_bytes": [4096, 16384], "sampler.edge_shape": ["static", "cross"]},
 //    "points": [{"cache.ways": 16, "scene": "ground_plane", "filter": "LINEAR"}]}   optional
@@ -25,6 +27,7 @@
 
 #include "cmodel/bindings.hpp"
 #include "cmodel/raster_order.hpp"
+#include "rtl/cost_model.hpp"
 #include "rtl/unit_config.hpp"
 
 namespace tfu::sweep {
@@ -58,6 +61,7 @@ struct Spec {
   UnitTiles unit_tiles;
   std::string texture_layout = "own";
   std::string game_dir;
+  rtl::Node node = rtl::Node::Osu018;   // the standard-cell node of the cost columns
   rtl::UnitConfig base;
   Params base_sampler;
   std::vector<Key> keys;                // the grid's keys in spec order, then keys only explicit points set
