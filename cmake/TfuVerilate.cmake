@@ -46,7 +46,7 @@
 #   tfu_sv_model(tfu_sv_edge_tests PREFIX Vtfu_median3 TOP tfu_median3
 #                SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/tfu_median3.sv)
 #   tfu_sv_lint(NAME sv_lint_tfu_median3 TOP tfu_median3 SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/tfu_median3.sv)
-#   gtest_discover_tests(tfu_sv_edge_tests DISCOVERY_TIMEOUT 60 PROPERTIES LABELS sv TIMEOUT 300)
+#   tfu_gtest_suites(tfu_sv_edge_tests PREFIX "sv.edge." PROPERTIES LABELS sv TIMEOUT 300)
 include_guard(GLOBAL)
 
 find_package(verilator REQUIRED)  # Debian's verilator ships verilator-config.cmake (scripts/bootstrap)

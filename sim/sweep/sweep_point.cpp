@@ -110,7 +110,7 @@ RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
 }
 
 // The point's figures beside its statistics (what results.csv shows).
-nlohmann::json result_json(const Spec&, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
+nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
   const sim::Stats& st = res.stats;
   nlohmann::json r;
   r["cycles"] = res.cycles;
