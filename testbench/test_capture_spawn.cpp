@@ -13,6 +13,7 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "cmodel/bsp.hpp"
@@ -52,7 +53,7 @@ bool check_eye(const GameArchives& archives, const EngineEye& c) {
   if (archives.describe(ref) != c.level_source) return false;
   const Bsp bsp = parse_bsp(archives.read(ref), archives.describe(ref));
   const std::vector<SpawnPoint> spawns = level_spawn_points(bsp, archives.describe(ref));
-  const std::string what = c.map + ":" + std::to_string(c.spawn);
+  const std::string what = fmt::format("{}:{}", c.map, c.spawn);
   EXPECT_LT(static_cast<size_t>(c.spawn), spawns.size()) << what;
   if (static_cast<size_t>(c.spawn) >= spawns.size()) return true;
   const SpawnPoint& s = spawns[static_cast<size_t>(c.spawn)];
@@ -88,7 +89,7 @@ TEST(Capture, EngineEyeMatchesTheSpawnRule) {
     if (check_eye(archives, from_capture_json(c)))
       ++checked;
     else
-      other += " " + c.at("level_source").get<std::string>();
+      other += fmt::format(" {}", c.at("level_source").get<std::string>());
   }
   if (checked == 0) GTEST_SKIP() << archives.dir() << " does not hold the archives the captures read:" << other;
   EXPECT_EQ(checked, static_cast<int>(j.at("captures").size())) << "not in " << archives.dir() << ":" << other;
