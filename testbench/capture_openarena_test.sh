@@ -113,7 +113,7 @@ check(im.size == (160, 120) and im.mode == "RGB", f"screenshot {im.size} {im.mod
 PY
 
 # The eye the engine used against the project's spawn rule.
-TFU_CAPTURE_JSON=$cap/capture.json "$tests" --gtest_filter='Capture.*' --gtest_brief=1 >"$work/gtest.out" 2>&1 ||
+TFU_CAPTURE_JSON=$cap/capture.json "$tests" --gtest_filter='Capture.EngineEyeMatchesTheSpawnRule' --gtest_brief=1 >"$work/gtest.out" 2>&1 ||
   fail "the engine's eye differs from the spawn rule: $(grep -m1 -E 'Failure|rule|Expected' "$work/gtest.out")"
 grep -q "1 test.*PASSED\|PASSED.*1 test" "$work/gtest.out" || fail "Capture.* did not run: $(tail -1 "$work/gtest.out")"
 grep -q "SKIPPED" "$work/gtest.out" && fail "Capture.* skipped: $(grep -m1 -A1 SKIPPED "$work/gtest.out" | tail -1)"

@@ -95,5 +95,22 @@ TEST(Capture, EngineEyeMatchesTheSpawnRule) {
   if (!other.empty()) GTEST_SKIP() << dir << " lacks the archives of these captures (Debian openarena):" << other;
 }
 
+// The capture script numbers spawn points itself (it rewrites the level before the engine reads
+// it): its class list must be kSpawnClasses, in the same order.
+TEST(Capture, ScriptSpawnClassesAreTheProjects) {
+  std::ifstream f(std::filesystem::path(TFU_DOCS_DIR).parent_path() / "scripts" / "capture-openarena");
+  ASSERT_TRUE(f) << "scripts/capture-openarena missing";
+  std::string line, want = "SPAWN_CLASSES = [";
+  for (size_t i = 0; i < kSpawnClasses.size(); ++i) want += fmt::format("{}\"{}\"", i ? ", " : "", kSpawnClasses[i]);
+  want += "]";
+  bool found = false;
+  while (std::getline(f, line))
+    if (line.rfind("SPAWN_CLASSES = ", 0) == 0) {
+      EXPECT_EQ(line, want);
+      found = true;
+    }
+  EXPECT_TRUE(found) << "no SPAWN_CLASSES line in scripts/capture-openarena";
+}
+
 }  // namespace
 }  // namespace tfu::q3
