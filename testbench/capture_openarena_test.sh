@@ -133,8 +133,16 @@ $py -c "import sys; sys.exit(0 if float('$p3') >= $min_psnr else 1)" ||
   fail "softpipe frame 3 vs the screenshot: PSNR $p3 dB < $min_psnr dB"
 $py -c "import sys; sys.exit(0 if float('$p3') > float('$p2') + 3 else 1)" ||
   fail "softpipe frame 2 ($p2 dB) is as close to the screenshot as frame 3 ($p3 dB): frame numbering"
-"$mesa" "$cap/frames.trace" --frame 4 --out "$work/x.png" 2>"$work/bad.err" >/dev/null && fail "mesa-frame --frame 4 of 4 frames succeeded"
-grep -q "holds frames 0\.\.3" "$work/bad.err" || fail "mesa-frame --frame 4: $(cat "$work/bad.err")"
+mesa_bad() {  # mesa_bad EXPECTED-REGEX ARGS...: one line, exit 2, --out not written
+  local want=$1; shift
+  set +e; "$mesa" "$@" >/dev/null 2>"$work/bad.err"; local rc=$?; set -e
+  [[ $rc == 2 && $(wc -l <"$work/bad.err") == 1 ]] || fail "mesa-frame $*: exit $rc, $(wc -l <"$work/bad.err") lines"
+  grep -Eq -- "$want" "$work/bad.err" || fail "mesa-frame $*: '$(cat "$work/bad.err")' does not match '$want'"
+}
+mesa_bad "--frame 4: .* holds frames 0\.\.3" "$cap/frames.trace" --frame 4 --out "$work/x.png"
+mesa_bad "trace '.*nothing.trace': no such file" "$work/nothing.trace" --frame 0 --out "$work/x.png"
+mesa_bad "--out '.*softpipe2.png' exists \(give --force" "$cap/frames.trace" --frame 0 --out "$work/softpipe2.png"
+[[ ! -e $work/x.png ]] || fail "a refused mesa-frame wrote its --out"
 t5=$(date +%s.%N)
 times=$($py -c "print(f'capture {$t2-$t1:.1f} s, 3 Mesa replays {$t4-$t3:.1f} s, total {$t5-$t0:.1f} s')")
 echo "capture_openarena_test: aggressor:0 160x120: 4 frames; llvmpipe replay identical; softpipe $p3 dB (frame before: $p2 dB); $times"
