@@ -4,7 +4,7 @@
 // SystemVerilog block receives (texels, fractions, shape, level weight) and the result the C++
 // model gives (the golden Sampler, sample_channels), which the gate-level simulation must reproduce.
 //
-//   tfu_energy_vectors --scene NAME --filter bilinear|trilinear|cubic|edge --out FILE
+//   tfu_energy_vectors --scene NAME --filter bilinear|trilinear|cubic|edge|aniso --out FILE
 //                      [--size WxH] [--pixels N] [--run R]
 //
 // Sampling: R consecutive requests (default 64: 16 quads, in the renderer's quad order) at N / R
@@ -27,6 +27,7 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/edge_filter.hpp"
 #include "cmodel/descriptors.hpp"
@@ -42,6 +43,8 @@
 namespace {
 
 using tfu::Texel4;
+
+constexpr int kMaxAniso = 16;  // the anisotropic streams' maxAniso (the largest the LOD unit takes)
 
 // One 8-bit RGBA texel as the SV ports carry it: channel k in bits [8k+7:8k].
 uint32_t pack(const Texel4& c) {
@@ -74,10 +77,14 @@ Stream bilinear_stream(const std::string& name) {
   return {name, "bilinear_top", {{"c00", 32}, {"c10", 32}, {"c01", 32}, {"c11", 32}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}};
 }
 
-// The bilinear lerp's inputs on one level (taps as dp::bilinear_lerp orders them) and its result.
-Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out) {
+// The bilinear lerp's inputs on one level (taps as dp::bilinear_lerp orders them) and its result, at
+// (s, t) plus a probe offset (Q.16 level-0 texels, dp::probe_texel_coord; 0 for the centre).
+Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out, const tfu::ProbeOffset& off = {}) {
   const tfu::Image& img = smp.texture().levels[static_cast<size_t>(level)];
-  const tfu::dp::LevelCoord u = tfu::dp::texel_coord(s, img.width), v = tfu::dp::texel_coord(t, img.height);
+  const tfu::dp::LevelCoord u =
+      tfu::dp::probe_texel_coord(tfu::dp::texel_coord(s, img.width), tfu::dp::probe_offset_on_level(off.du_q16, level));
+  const tfu::dp::LevelCoord v =
+      tfu::dp::probe_texel_coord(tfu::dp::texel_coord(t, img.height), tfu::dp::probe_offset_on_level(off.dv_q16, level));
   const int x = static_cast<int>(u.i0), y = static_cast<int>(v.i0);
   const std::array<Texel4, 4> c{smp.fetch(level, x, y), smp.fetch(level, x + 1, y), smp.fetch(level, x, y + 1),
                                 smp.fetch(level, x + 1, y + 1)};
@@ -89,7 +96,7 @@ Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, S
 
 [[noreturn]] void usage(const std::string& what) {
   throw tfu::InputError("tfu_energy_vectors: " + what +
-                        " (usage: --scene NAME --filter bilinear|trilinear|cubic|edge --out FILE [--size WxH] [--pixels N] [--run R])");
+                        " (usage: --scene NAME --filter bilinear|trilinear|cubic|edge|aniso --out FILE [--size WxH] [--pixels N] [--run R])");
 }
 
 }  // namespace
@@ -124,8 +131,9 @@ int main(int argc, char** argv) {
                             : filter == "trilinear" ? "linear_mipmap_linear"
                             : filter == "cubic"     ? "cubic_mipmap_nearest"
                             : filter == "edge"      ? "edge_preserving_mipmap_nearest"
+                            : filter == "aniso"     ? "linear_mipmap_linear"
                                                     : nullptr;
-    if (!mode_name) usage("--filter " + filter + ": expected bilinear, trilinear, cubic or edge");
+    if (!mode_name) usage("--filter " + filter + ": expected bilinear, trilinear, cubic, edge or aniso");
 
     tfu::SceneRequest req;
     req.name = scene_name;
@@ -156,6 +164,7 @@ int main(int argc, char** argv) {
         cfg.wrap_s = stage.wrap_s;
         cfg.wrap_t = stage.wrap_t;
         cfg.border = stage.border;
+        if (filter == "aniso") cfg.max_aniso = kMaxAniso;
         slot = std::make_unique<tfu::Sampler>(*ft.texels, cfg);
       }
       return slot.get();
@@ -170,13 +179,27 @@ int main(int argc, char** argv) {
       streams.push_back({"blend", "level_blend", {{"c0", 32}, {"c1", 32}, {"f", 8}}, {{"c", 32}}, {}});
     } else if (filter == "cubic") {
       streams.push_back({"cubic", "cubic_filter", {{"texels", 512}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
+    } else if (filter == "aniso") {
+      streams.push_back({"lod", "aniso_lod",
+                         {{"dudx", 49}, {"dvdx", 49}, {"dudy", 49}, {"dvdy", 49}, {"max_aniso", 5}, {"aniso_rounding", 1},
+                          {"aniso_threshold", 3}},
+                         {{"px2", 63}, {"py2", 63}, {"major_x", 1}, {"major_du", 32}, {"major_dv", 32}, {"probes", 5},
+                          {"lambda_q8", 16}},
+                         {}});
+      streams.push_back({"probe", "aniso_probe",
+                         {{"major_du", 32}, {"major_dv", 32}, {"probes", 5}, {"index", 5}, {"level", 4}},
+                         {{"off_du_q16", 31}, {"off_dv_q16", 31}, {"off_du_q8", 23}, {"off_dv_q8", 23}, {"weight", 9}},
+                         {}});
+      streams.push_back(bilinear_stream("level0"));
+      streams.push_back(bilinear_stream("level1"));
+      streams.push_back({"blend", "level_blend", {{"c0", 32}, {"c1", 32}, {"f", 8}}, {{"c", 32}}, {}});
     } else {
       streams.push_back({"edge", "edge_interp_top", {{"texels", 384}, {"shape", 12}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
     }
 
     const size_t total = trace.requests.size();
     const size_t runs = static_cast<size_t>(std::max(1L, pixels / run));
-    long written = 0, skipped = 0, mismatches = 0;
+    long written = 0, skipped = 0, mismatches = 0, probes = 0;
     for (size_t r = 0; r < runs && written < pixels; ++r) {
       const size_t start = (r * total / runs) & ~size_t{3};
       for (size_t i = start; i < std::min(total, start + static_cast<size_t>(run)) && written < pixels; ++i) {
@@ -186,9 +209,46 @@ int main(int argc, char** argv) {
           ++skipped;
           continue;
         }
+        Texel4 got{}, want{};
+        if (filter == "aniso") {
+          // The LOD unit on the quad's derivatives, then per probe its offset and a trilinear sample.
+          const tfu::Texture& tex = smp->texture();
+          const auto d = tfu::request_derivatives(trace, i & ~size_t{3}, tex.width(), tex.height());
+          if (!d) {
+            ++skipped;
+            continue;
+          }
+          const tfu::AnisoLod a = tfu::aniso_lod(*d, smp->descriptor().aniso());
+          const auto w49 = [](int64_t x) { return static_cast<uint64_t>(x) & ((uint64_t{1} << 49) - 1); };
+          streams[0].lines.push_back(fmt::format("{:013x} {:013x} {:013x} {:013x} {:02x} 0 0 {:016x} {:016x} {:x} {:08x} {:08x} {:02x} {:04x}",
+                                                 w49(d->dudx), w49(d->dvdx), w49(d->dudy), w49(d->dvdy), kMaxAniso,
+                                                 a.px2_q32, a.py2_q32, a.major_x ? 1 : 0,
+                                                 static_cast<uint32_t>(a.major_du_q16), static_cast<uint32_t>(a.major_dv_q16),
+                                                 a.probes, static_cast<uint16_t>(a.lambda_q8)));
+          const tfu::LodInfo li = smp->lod_info(a.lambda_q8);
+          tfu::dp::AnisoAccumulator acc;
+          for (int k = 1; k <= a.probes; ++k) {
+            const tfu::ProbeOffset off = tfu::probe_offset(a, k);
+            const auto w31 = [](int64_t x) { return static_cast<uint32_t>(x) & 0x7fffffffu; };
+            const auto w23 = [](int64_t x) { return static_cast<uint32_t>(x) & 0x7fffffu; };
+            streams[1].lines.push_back(fmt::format(
+                "{:08x} {:08x} {:02x} {:02x} {:x} {:08x} {:08x} {:06x} {:06x} {:03x}", static_cast<uint32_t>(a.major_du_q16),
+                static_cast<uint32_t>(a.major_dv_q16), a.probes, k, li.level0, w31(off.du_q16), w31(off.dv_q16),
+                w23(tfu::dp::probe_offset_on_level(off.du_q16, li.level0)), w23(tfu::dp::probe_offset_on_level(off.dv_q16, li.level0)),
+                tfu::probe_rom()[static_cast<size_t>(tfu::probe_rom_address(a.probes, k))].weight));
+            const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[2], off);
+            const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[3], off);
+            const Texel4 c = tfu::dp::level_blend(c0, c1, li.blend);
+            streams[4].lines.push_back(fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(c)));
+            acc.add(c, a.probes, k);
+          }
+          got = acc.result();
+          want = smp->sample_channels(q.s, q.t, a);
+          probes += a.probes;
+        }
         const tfu::LodInfo li = smp->lod_info(lambdas[i]);
-        Texel4 got{};
-        if (filter == "bilinear") {
+        if (filter == "aniso") {
+        } else if (filter == "bilinear") {
           got = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]);
         } else if (filter == "trilinear") {
           const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]);
@@ -212,7 +272,8 @@ int main(int argc, char** argv) {
               fmt::format("{} {:03x} {:02x} {:02x} {:08x}", hex_words(words), fp.mask, fp.fu, fp.fv, pack(got)));
         }
         // The block inputs above must give the golden Sampler's result for the request.
-        if (got != smp->sample_channels(q.s, q.t, lambdas[i])) ++mismatches;
+        if (filter != "aniso") want = smp->sample_channels(q.s, q.t, lambdas[i]);
+        if (got != want) ++mismatches;
         ++written;
       }
     }
@@ -220,8 +281,8 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("{} of {} requests: the block inputs do not give the Sampler's result", mismatches, written));
     std::ofstream f(out_path);
     if (!f) throw tfu::InputError("tfu_energy_vectors: cannot write " + out_path);
-    f << fmt::format("# tfu-energy-vectors scene={} filter={} requests={} sampled={} runs={} run={} skipped={}\n", scene_name,
-                     filter, total, written, runs, run, skipped);
+    f << fmt::format("# tfu-energy-vectors scene={} filter={} requests={} sampled={} runs={} run={} skipped={} probes={}\n",
+                     scene_name, filter, total, written, runs, run, skipped, probes);
     for (const Stream& s : streams) s.write(f);
     fmt::print("{} {}: {} of {} requests in {} runs of {}\n", scene_name, filter, written, total, runs, run);
     return 0;
