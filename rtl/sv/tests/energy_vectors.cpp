@@ -20,8 +20,8 @@
 #include <exception>
 #include <fstream>
 #include <map>
-#include <stdexcept>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,8 +29,8 @@
 
 #include "cmodel/aniso.hpp"
 #include "cmodel/datapath.hpp"
-#include "cmodel/edge_filter.hpp"
 #include "cmodel/descriptors.hpp"
+#include "cmodel/edge_filter.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/frame.hpp"
 #include "cmodel/raster.hpp"
@@ -74,29 +74,35 @@ struct Stream {
 };
 
 Stream bilinear_stream(const std::string& name) {
-  return {name, "bilinear_top", {{"c00", 32}, {"c10", 32}, {"c01", 32}, {"c11", 32}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}};
+  return {name,
+          "bilinear_top",
+          {{"c00", 32}, {"c10", 32}, {"c01", 32}, {"c11", 32}, {"fu", 8}, {"fv", 8}},
+          {{"c", 32}},
+          {}};
 }
 
 // The bilinear lerp's inputs on one level (taps as dp::bilinear_lerp orders them) and its result, at
 // (s, t) plus a probe offset (Q.16 level-0 texels, dp::probe_texel_coord; 0 for the centre).
-Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out, const tfu::ProbeOffset& off = {}) {
+Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out,
+                         const tfu::ProbeOffset& off = {}) {
   const tfu::Image& img = smp.texture().levels[static_cast<size_t>(level)];
   const tfu::dp::LevelCoord u =
       tfu::dp::probe_texel_coord(tfu::dp::texel_coord(s, img.width), tfu::dp::probe_offset_on_level(off.du_q16, level));
-  const tfu::dp::LevelCoord v =
-      tfu::dp::probe_texel_coord(tfu::dp::texel_coord(t, img.height), tfu::dp::probe_offset_on_level(off.dv_q16, level));
+  const tfu::dp::LevelCoord v = tfu::dp::probe_texel_coord(tfu::dp::texel_coord(t, img.height),
+                                                           tfu::dp::probe_offset_on_level(off.dv_q16, level));
   const int x = static_cast<int>(u.i0), y = static_cast<int>(v.i0);
   const std::array<Texel4, 4> c{smp.fetch(level, x, y), smp.fetch(level, x + 1, y), smp.fetch(level, x, y + 1),
                                 smp.fetch(level, x + 1, y + 1)};
   const Texel4 r = tfu::dp::bilinear_lerp(c, u.f, v.f, tfu::TexelFormat::RGBA8);
-  out.lines.push_back(fmt::format("{:08x} {:08x} {:08x} {:08x} {:02x} {:02x} {:08x}", pack(c[0]), pack(c[1]), pack(c[2]),
-                                  pack(c[3]), u.f, v.f, pack(r)));
+  out.lines.push_back(fmt::format("{:08x} {:08x} {:08x} {:08x} {:02x} {:02x} {:08x}", pack(c[0]), pack(c[1]),
+                                  pack(c[2]), pack(c[3]), u.f, v.f, pack(r)));
   return r;
 }
 
 [[noreturn]] void usage(const std::string& what) {
   throw tfu::InputError("tfu_energy_vectors: " + what +
-                        " (usage: --scene NAME --filter bilinear|trilinear|cubic|edge|aniso --out FILE [--size WxH] [--pixels N] [--run R])");
+                        " (usage: --scene NAME --filter bilinear|trilinear|cubic|edge|aniso --out FILE [--size WxH] "
+                        "[--pixels N] [--run R])");
 }
 
 }  // namespace
@@ -110,11 +116,15 @@ int main(int argc, char** argv) {
       const std::string a = argv[i];
       if (i + 1 >= argc) usage("missing value after " + a);
       const std::string v = argv[++i];
-      if (a == "--scene") scene_name = v;
-      else if (a == "--filter") filter = v;
-      else if (a == "--out") out_path = v;
+      if (a == "--scene")
+        scene_name = v;
+      else if (a == "--filter")
+        filter = v;
+      else if (a == "--out")
+        out_path = v;
       else if (a == "--size") {
-        if (std::sscanf(v.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 8 || width > 4096 || height > 4096)
+        if (std::sscanf(v.c_str(), "%dx%d", &width, &height) != 2 || width < 8 || height < 8 || width > 4096 ||
+            height > 4096)
           usage("--size " + v + ": expected WxH in 8..4096");
       } else if (a == "--pixels") {
         pixels = std::strtol(v.c_str(), nullptr, 10);
@@ -145,7 +155,8 @@ int main(int argc, char** argv) {
     const tfu::RenderResult rr = tfu::render_scene(scene, o);
     const tfu::Trace& trace = rr.trace;
     const tfu::Frame& frame = rr.frame->frame;
-    if (trace.requests.size() < 4) throw tfu::InputError("tfu_energy_vectors: scene " + scene_name + " issues no requests");
+    if (trace.requests.size() < 4)
+      throw tfu::InputError("tfu_energy_vectors: scene " + scene_name + " issues no requests");
     const std::vector<int32_t> lambdas = tfu::trace_lambdas(trace, [&](int tex) {
       const tfu::Texture& t = *frame.textures.at(static_cast<size_t>(tex)).texels;
       return std::pair<int, int>{t.width(), t.height()};
@@ -180,13 +191,25 @@ int main(int argc, char** argv) {
     } else if (filter == "cubic") {
       streams.push_back({"cubic", "cubic_filter", {{"texels", 512}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
     } else if (filter == "aniso") {
-      streams.push_back({"lod", "aniso_lod",
-                         {{"dudx", 49}, {"dvdx", 49}, {"dudy", 49}, {"dvdy", 49}, {"max_aniso", 5}, {"aniso_rounding", 1},
+      streams.push_back({"lod",
+                         "aniso_lod",
+                         {{"dudx", 49},
+                          {"dvdx", 49},
+                          {"dudy", 49},
+                          {"dvdy", 49},
+                          {"max_aniso", 5},
+                          {"aniso_rounding", 1},
                           {"aniso_threshold", 3}},
-                         {{"px2", 63}, {"py2", 63}, {"major_x", 1}, {"major_du", 32}, {"major_dv", 32}, {"probes", 5},
+                         {{"px2", 63},
+                          {"py2", 63},
+                          {"major_x", 1},
+                          {"major_du", 32},
+                          {"major_dv", 32},
+                          {"probes", 5},
                           {"lambda_q8", 16}},
                          {}});
-      streams.push_back({"probe", "aniso_probe",
+      streams.push_back({"probe",
+                         "aniso_probe",
                          {{"major_du", 32}, {"major_dv", 32}, {"probes", 5}, {"index", 5}, {"level", 4}},
                          {{"off_du_q16", 31}, {"off_dv_q16", 31}, {"off_du_q8", 23}, {"off_dv_q8", 23}, {"weight", 9}},
                          {}});
@@ -194,7 +217,8 @@ int main(int argc, char** argv) {
       streams.push_back(bilinear_stream("level1"));
       streams.push_back({"blend", "level_blend", {{"c0", 32}, {"c1", 32}, {"f", 8}}, {{"c", 32}}, {}});
     } else {
-      streams.push_back({"edge", "edge_interp_top", {{"texels", 384}, {"shape", 12}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
+      streams.push_back(
+          {"edge", "edge_interp_top", {{"texels", 384}, {"shape", 12}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
     }
 
     const size_t total = trace.requests.size();
@@ -220,11 +244,11 @@ int main(int argc, char** argv) {
           }
           const tfu::AnisoLod a = tfu::aniso_lod(*d, smp->descriptor().aniso());
           const auto w49 = [](int64_t x) { return static_cast<uint64_t>(x) & ((uint64_t{1} << 49) - 1); };
-          streams[0].lines.push_back(fmt::format("{:013x} {:013x} {:013x} {:013x} {:02x} 0 0 {:016x} {:016x} {:x} {:08x} {:08x} {:02x} {:04x}",
-                                                 w49(d->dudx), w49(d->dvdx), w49(d->dudy), w49(d->dvdy), kMaxAniso,
-                                                 a.px2_q32, a.py2_q32, a.major_x ? 1 : 0,
-                                                 static_cast<uint32_t>(a.major_du_q16), static_cast<uint32_t>(a.major_dv_q16),
-                                                 a.probes, static_cast<uint16_t>(a.lambda_q8)));
+          streams[0].lines.push_back(
+              fmt::format("{:013x} {:013x} {:013x} {:013x} {:02x} 0 0 {:016x} {:016x} {:x} {:08x} {:08x} {:02x} {:04x}",
+                          w49(d->dudx), w49(d->dvdx), w49(d->dudy), w49(d->dvdy), kMaxAniso, a.px2_q32, a.py2_q32,
+                          a.major_x ? 1 : 0, static_cast<uint32_t>(a.major_du_q16),
+                          static_cast<uint32_t>(a.major_dv_q16), a.probes, static_cast<uint16_t>(a.lambda_q8)));
           const tfu::LodInfo li = smp->lod_info(a.lambda_q8);
           tfu::dp::AnisoAccumulator acc;
           for (int k = 1; k <= a.probes; ++k) {
@@ -232,14 +256,16 @@ int main(int argc, char** argv) {
             const auto w31 = [](int64_t x) { return static_cast<uint32_t>(x) & 0x7fffffffu; };
             const auto w23 = [](int64_t x) { return static_cast<uint32_t>(x) & 0x7fffffu; };
             streams[1].lines.push_back(fmt::format(
-                "{:08x} {:08x} {:02x} {:02x} {:x} {:08x} {:08x} {:06x} {:06x} {:03x}", static_cast<uint32_t>(a.major_du_q16),
-                static_cast<uint32_t>(a.major_dv_q16), a.probes, k, li.level0, w31(off.du_q16), w31(off.dv_q16),
-                w23(tfu::dp::probe_offset_on_level(off.du_q16, li.level0)), w23(tfu::dp::probe_offset_on_level(off.dv_q16, li.level0)),
+                "{:08x} {:08x} {:02x} {:02x} {:x} {:08x} {:08x} {:06x} {:06x} {:03x}",
+                static_cast<uint32_t>(a.major_du_q16), static_cast<uint32_t>(a.major_dv_q16), a.probes, k, li.level0,
+                w31(off.du_q16), w31(off.dv_q16), w23(tfu::dp::probe_offset_on_level(off.du_q16, li.level0)),
+                w23(tfu::dp::probe_offset_on_level(off.dv_q16, li.level0)),
                 tfu::probe_rom()[static_cast<size_t>(tfu::probe_rom_address(a.probes, k))].weight));
             const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[2], off);
             const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[3], off);
             const Texel4 c = tfu::dp::level_blend(c0, c1, li.blend);
-            streams[4].lines.push_back(fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(c)));
+            streams[4].lines.push_back(
+                fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(c)));
             acc.add(c, a.probes, k);
           }
           got = acc.result();
@@ -254,13 +280,15 @@ int main(int argc, char** argv) {
           const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]);
           const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[1]);
           got = tfu::dp::level_blend(c0, c1, li.blend);
-          streams[2].lines.push_back(fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(got)));
+          streams[2].lines.push_back(
+              fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(got)));
         } else if (filter == "cubic") {
           const tfu::Image& img = smp->texture().levels[static_cast<size_t>(li.level0)];
           const tfu::dp::LevelCoord u = tfu::dp::texel_coord(q.s, img.width), v = tfu::dp::texel_coord(q.t, img.height);
           std::vector<uint32_t> words;  // tap k = (column i0 - 1 + k % 4, row j0 - 1 + k / 4)
           for (int k = 0; k < 16; ++k)
-            words.push_back(pack(smp->fetch(li.level0, static_cast<int>(u.i0) - 1 + k % 4, static_cast<int>(v.i0) - 1 + k / 4)));
+            words.push_back(
+                pack(smp->fetch(li.level0, static_cast<int>(u.i0) - 1 + k % 4, static_cast<int>(v.i0) - 1 + k / 4)));
           got = smp->sample_channels(q.s, q.t, lambdas[i]);
           streams[0].lines.push_back(fmt::format("{} {:02x} {:02x} {:08x}", hex_words(words), u.f, v.f, pack(got)));
         } else {
@@ -278,11 +306,13 @@ int main(int argc, char** argv) {
       }
     }
     if (mismatches != 0)
-      throw std::runtime_error(fmt::format("{} of {} requests: the block inputs do not give the Sampler's result", mismatches, written));
+      throw std::runtime_error(
+          fmt::format("{} of {} requests: the block inputs do not give the Sampler's result", mismatches, written));
     std::ofstream f(out_path);
     if (!f) throw tfu::InputError("tfu_energy_vectors: cannot write " + out_path);
-    f << fmt::format("# tfu-energy-vectors scene={} filter={} requests={} sampled={} runs={} run={} skipped={} probes={}\n",
-                     scene_name, filter, total, written, runs, run, skipped, probes);
+    f << fmt::format(
+        "# tfu-energy-vectors scene={} filter={} requests={} sampled={} runs={} run={} skipped={} probes={}\n",
+        scene_name, filter, total, written, runs, run, skipped, probes);
     for (const Stream& s : streams) s.write(f);
     fmt::print("{} {}: {} of {} requests in {} runs of {}\n", scene_name, filter, written, total, runs, run);
     return 0;
