@@ -271,7 +271,10 @@ class CacheStage : public sim::Module {
     uint64_t address;
     const Rgba8* texels;
   };
-  static constexpr size_t kDecodedMemoEntries = 1024;
+  // 4096 entries (2.4 MB): the oa:aggressor frame's ASTC 6x6 textures touch about 6,000 distinct
+  // blocks a run, and 1,024 entries decoded 11,000 (docs/compressed.md, "Cycle model on a
+  // compressed real frame").
+  static constexpr size_t kDecodedMemoEntries = 4096;
   mutable std::vector<DecodedBlock> decoded_memo_;
   // decoded_block's `scratch` for the blocks held at once (a footprint's, or a quad's four
   // footprints' on one level): allocated with the memo, not cleared per footprint.
