@@ -4,9 +4,9 @@
 // in rtl/cache_stage.cpp, which take any footprint tap by tap; these take the 2 x 2 footprints of a
 // LINEAR quad whose taps are all inside the level, with the block coordinates formed once per
 // footprint by the quad path (rtl/unit_recurrence_linear_quads.cpp), and must give the same tags,
-// memory reads, decoder jobs, statistics and texels. TfuUnit.LinearQuadPathOnCompressedTextures-
-// EqualsThePlainBlocks (testbench/test_compressed_quads.cpp) compares the two paths and the clocked
-// blocks on several block formats, both cache organizations and random unit configurations.
+// memory reads, decoder jobs, statistics and texels. CompressedUnit.LinearQuadPathEqualsThePlainBlocks
+// (testbench/test_compressed_unit.cpp) compares the two paths and the clocked blocks on several
+// block formats, both cache organizations and random unit configurations.
 #include "rtl/cache_stage.hpp"
 
 #include "cmodel/block_formats.hpp"
@@ -21,7 +21,8 @@ namespace tfu::rtl {
 uint64_t CacheStage::admit_block_square(int texture, int stage, int level, const TapGrid& texels, const BlockSquare& s,
                                         uint64_t now, int& bank_cycles) {
   FootprintResult r;
-  if (cache_.config().holds == CacheHolds::Decoded) return admit_blocks(texture, stage, level, texels, now, bank_cycles, r);
+  if (cache_.config().holds == CacheHolds::Decoded)
+    return admit_blocks(texture, stage, level, texels, now, bank_cycles, r);
   r = cache_.access_block_grid(texture, level, s.blocks);
   const uint64_t in = lines_in(texture, stage, level, r, now, bank_cycles);
   const int blocks = (s.blocks.x[0] != s.blocks.x[1] ? 2 : 1) * (s.blocks.y[0] != s.blocks.y[1] ? 2 : 1);
@@ -49,7 +50,8 @@ void CacheStage::read_block_squares(int texture, int level, const std::array<Blo
         texels[q] = texels[i == 1 && b.x[1] == b.x[0] ? q - 1 : q - 2];
         continue;
       }
-      const uint64_t address = ld.address + static_cast<uint64_t>(b.y[j]) * ld.row_pitch + static_cast<uint64_t>(b.x[i]) * block_bytes;
+      const uint64_t address =
+          ld.address + static_cast<uint64_t>(b.y[j]) * ld.row_pitch + static_cast<uint64_t>(b.x[i]) * block_bytes;
       size_t m = 0;
       while (m < n && held[m].address != address) ++m;
       if (m == n) {

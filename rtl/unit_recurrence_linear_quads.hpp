@@ -26,8 +26,8 @@
 // footprint. The plain path must give the same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs
 // quads through both, and TfuUnit.LinearQuadPathEqualsThePlainBlocks compares this path with the
-// plain one; TfuUnit.LinearQuadPathOnCompressedTexturesEqualsThePlainBlocks
-// (testbench/test_compressed_quads.cpp) does so on compressed textures.
+// plain one; CompressedUnit.LinearQuadPathEqualsThePlainBlocks (testbench/test_compressed_unit.cpp)
+// does so on compressed textures.
 #pragma once
 
 #include <array>
@@ -40,8 +40,10 @@ namespace tfu::rtl::detail {
 // floor(x / d) for a texel coordinate 0 <= x < 2^14 (kMaxTextureSize) and a block side 1 <= d <= 16,
 // by multiplication: (x m) >> 18 with m = block_reciprocal(d) = ceil(2^18 / d). With m d = 2^18 + e,
 // 0 <= e < d: x m / 2^18 = x / d + x e / (d 2^18), and x e < 2^14 d <= 2^18 keeps the excess below
-// 1 / d, so the floor is x / d's (TfuUnit.BlockQuotientByMultiplicationIsExact: every x and d).
-constexpr uint32_t block_reciprocal(int d) { return ((uint32_t{1} << 18) + static_cast<uint32_t>(d) - 1) / static_cast<uint32_t>(d); }
+// 1 / d, so the floor is x / d's (CompressedUnit.BlockQuotientByMultiplicationIsExact: every x and d).
+constexpr uint32_t block_reciprocal(int d) {
+  return ((uint32_t{1} << 18) + static_cast<uint32_t>(d) - 1) / static_cast<uint32_t>(d);
+}
 constexpr int block_quotient(int x, uint32_t m) { return static_cast<int>((static_cast<uint32_t>(x) * m) >> 18); }
 
 class LinearQuadPath {
@@ -70,7 +72,8 @@ class LinearQuadPath {
     const TapGrid& grid = footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid;
     if (compressed_) [[unlikely]]
       return u_.cache_stage.admit_block_square(texture_, stage_, level, grid,
-                                               squares_[static_cast<size_t>(n)][static_cast<size_t>(k)], now, bank_cycles);
+                                               squares_[static_cast<size_t>(n)][static_cast<size_t>(k)], now,
+                                               bank_cycles);
     FootprintResult r;
     return u_.cache_stage.admit_lines(texture_, stage_, level, grid, now, bank_cycles, r);
   }
