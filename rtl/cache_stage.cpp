@@ -32,7 +32,10 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
   }
   slots_.assign(stat_slots(regs.textures.size()), SlotCounters{});
-  if (any_compressed_) decoded_memo_.resize(kDecodedMemoEntries);
+  if (any_compressed_) {
+    decoded_memo_.resize(kDecodedMemoEntries);
+    scratch_.resize(kHeldBlocks);
+  }
 }
 
 uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, size_t slot) {
@@ -238,8 +241,7 @@ void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 ou
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(cur.tag.req.texture)];
   const BlockFormatInfo& b = d.block();
   const TapGrid& g = cur.grid;
-  std::array<HeldBlock, 16> blocks;  // the footprint's distinct blocks, each decoded once
-  std::array<std::array<Rgba8, 144>, 16> scratch;  // for blocks whose memo entry another one holds
+  std::array<HeldBlock, kHeldBlocks> blocks;  // the footprint's distinct blocks, each decoded once
   size_t n = 0;
   const auto texel = [&](size_t cell) {
     const int x = g.x[cell & 3u], y = g.y[cell >> 2];
@@ -247,7 +249,7 @@ void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 ou
     size_t k = 0;
     while (k < n && blocks[k].address != address) ++k;
     if (k == n) {
-      blocks[n] = {address, decoded_block(d, address, blocks.data(), n, scratch[n].data())};
+      blocks[n] = {address, decoded_block(d, address, blocks.data(), n, scratch_[n].data())};
       ++n;
     }
     return blocks[k].texels[static_cast<size_t>((y % b.block_h) * b.block_w + x % b.block_w)];

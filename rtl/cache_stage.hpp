@@ -126,6 +126,12 @@ class CacheStage : public sim::Module {
   [[gnu::always_inline]] uint64_t admit_lines(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
                                               int& bank_cycles, FootprintResult& r) {
     r = cache_.access(texture, level, lookup);
+    return lines_in(texture, stage, level, r, now, bank_cycles);
+  }
+  // admit_lines after the tags: the counters of the lookup `r`, the bank cycles, the memory reads
+  // of its missing lines; the cycle the lines are all in.
+  [[gnu::always_inline]] uint64_t lines_in(int texture, int stage, int level, const FootprintResult& r, uint64_t now,
+                                           int& bank_cycles) {
     SlotCounters& c = slots_[stat_slot(texture, stage)];
     c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
     c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
@@ -140,6 +146,22 @@ class CacheStage : public sim::Module {
     }
     return ready;
   }
+  // The recurrences' LINEAR quad path on a block-compressed texture (software speed only,
+  // rtl/cache_stage_block_squares.cpp, which names the plain twins and the equality test): a 2 x 2
+  // footprint whose taps are all inside the level, in blocks. `blocks` is its tap grid in block
+  // coordinates (access_block_grid), `texel[t]` the index inside its block (v * block_w + u) of
+  // tap t, read_out's order: tap t reads block column t & 1, block row t >> 1.
+  struct BlockSquare {
+    TapGrid blocks;
+    std::array<uint8_t, 4> texel;
+  };
+  // admit_footprint of such a footprint (`texels`: its tap grid in texels).
+  uint64_t admit_block_square(int texture, int stage, int level, const TapGrid& texels, const BlockSquare& s,
+                              uint64_t now, int& bank_cycles);
+  // read_out_footprint of four such footprints on one level (a quad's pixels): taps[k] the four
+  // texels of footprint k in read_out's order.
+  void read_block_squares(int texture, int level, const std::array<BlockSquare, 4>& s,
+                          std::array<std::array<Rgba8, 4>, 4>& taps) const;
   // Some texture is compressed (the decoders' counters; zero elsewhere).
   bool any_compressed() const { return any_compressed_; }
   // The read-out registers of a texture's level (its address, pitch, layout and format).
@@ -249,8 +271,15 @@ class CacheStage : public sim::Module {
     uint64_t address;
     const Rgba8* texels;
   };
-  static constexpr size_t kDecodedMemoEntries = 1024;
+  // 4096 entries (2.4 MB): the oa:aggressor frame's ASTC 6x6 textures touch about 6,000 distinct
+  // blocks a run, and 1,024 entries decoded 11,000 (docs/compressed.md, "Cycle model on a
+  // compressed real frame").
+  static constexpr size_t kDecodedMemoEntries = 4096;
   mutable std::vector<DecodedBlock> decoded_memo_;
+  // decoded_block's `scratch` for the blocks held at once (a footprint's, or a quad's four
+  // footprints' on one level): allocated with the memo, not cleared per footprint.
+  static constexpr size_t kHeldBlocks = 16;
+  mutable std::vector<std::array<Rgba8, 144>> scratch_;
   const Rgba8* decoded_block(const TextureDescriptor& d, uint64_t address, const HeldBlock* held, size_t n,
                              Rgba8* scratch) const;
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)

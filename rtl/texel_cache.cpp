@@ -112,9 +112,7 @@ FootprintResult TexelCache::access_blocks(size_t l, const TapGrid& g) {
     b.x[i] = static_cast<int16_t>(g.x[i] / ll.block_w);
     b.y[i] = static_cast<int16_t>(g.y[i] / ll.block_h);
   }
-  if (cfg_.bank_mapping == BankMapping::BlockParity && b.cols == 2 && b.rows == 2 && b.used == square_cells(2, 2))
-    return access_quad(l, b);
-  return access_grid(l, b);
+  return access_in_blocks(l, b);
 }
 
 uint64_t TexelCache::line_of(int texture, int level, int x, int y) const {

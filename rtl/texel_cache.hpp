@@ -117,6 +117,13 @@ class TexelCache {
       return access_quad(l, grid);  // every LINEAR footprint
     return access_grid(l, grid);
   }
+  // access() of a footprint on a compressed level held as blocks (CacheHolds::Compressed), given
+  // in block coordinates: `blocks` is the tap grid with each column x[i] / block_w and each row
+  // y[j] / block_h (what access() forms itself; the recurrences' LINEAR quad path forms it once
+  // per footprint for the cache, the decoders and the read-out).
+  FootprintResult access_block_grid(int texture, int level, const TapGrid& blocks) {
+    return access_in_blocks(level_index(texture, level), blocks);
+  }
   // Decoded lines of a compressed level (CacheHolds::Decoded): how many blocks a fill of `line`
   // fetches (those covering the line's tile, clipped to the level), and in `texels` the tile's
   // texels inside the level (what the decoders produce).
@@ -160,6 +167,11 @@ class TexelCache {
   FootprintResult access_quad(size_t l, const TapGrid& g);
   FootprintResult access_grid(size_t l, const TapGrid& g);
   FootprintResult access_blocks(size_t l, const TapGrid& g);  // compressed lines: the grid in block coordinates
+  FootprintResult access_in_blocks(size_t l, const TapGrid& b) {  // the same, b already in blocks
+    if (cfg_.bank_mapping == BankMapping::BlockParity && b.cols == 2 && b.rows == 2 && b.used == square_cells(2, 2))
+      return access_quad(l, b);
+    return access_grid(l, b);
+  }
   struct FillTile {  // CacheHolds::Decoded, per lines_ entry of a compressed level: fill_blocks()
     int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;
   };

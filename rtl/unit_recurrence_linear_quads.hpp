@@ -2,7 +2,8 @@
 // cmodel/fast_paths.hpp; internal to rtl/unit_recurrence.cpp). A quad of four pixels whose sampler is
 // LINEAR, LINEAR_MIPMAP_NEAREST
 // or LINEAR_MIPMAP_LINEAR, isotropic (max anisotropy 1) and without clamp-to-border, on an 8-bit
-// texture, takes one or two level footprints of 2 x 2 taps per pixel through the plain blocks (the
+// texture (RGBA8, L8, or block-compressed, whose decoders give RGBA8 words), takes one or two level
+// footprints of 2 x 2 taps per pixel through the plain blocks (the
 // quad's pixels share lambda, so they share the levels and the blend weight). This path forms the
 // same footprints, looks them up and filters them with the blocks' own functions, batched per
 // quad instead of per pixel:
@@ -11,8 +12,11 @@
 //                 (AddressGen::grid_function) per pixel and level, and its pixel count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
 //   texel_cache   CacheStage::admit_lines per footprint, in the plain path's order (pixel by pixel,
-//                 level0 then level1: the tags, the LRU and the memory queue see the same
-//                 sequence), then read_square_taps<2>;
+//                 level0 then level1: the tags, the LRU, the memory queue and the decoders see
+//                 the same sequence), then read_square_taps<2>; on a compressed texture
+//                 CacheStage::admit_block_square and read_block_squares
+//                 (rtl/cache_stage_block_squares.cpp), with each footprint's block columns and
+//                 rows formed once here (the plain blocks divide per tap);
 //   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes,
 //                 per level, then the blend unit (dp::fast::level_blend8) per pixel. (The plain filter
 //                 keeps a blending pixel's level0 colour in a register until its level1 arrives;
@@ -22,7 +26,8 @@
 // footprint. The plain path must give the same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs
 // quads through both, and TfuUnit.LinearQuadPathEqualsThePlainBlocks compares this path with the
-// plain one.
+// plain one; CompressedUnit.LinearQuadPathEqualsThePlainBlocks (testbench/test_compressed_unit.cpp)
+// does so on compressed textures.
 #pragma once
 
 #include <array>
@@ -32,13 +37,30 @@
 
 namespace tfu::rtl::detail {
 
+// floor(x / d) for a texel coordinate 0 <= x < 2^14 (kMaxTextureSize) and a block side 1 <= d <= 16,
+// by multiplication: (x m) >> 18 with m = block_reciprocal(d) = ceil(2^18 / d). With m d = 2^18 + e,
+// 0 <= e < d: x m / 2^18 = x / d + x e / (d 2^18), and x e < 2^14 d <= 2^18 keeps the excess below
+// 1 / d, so the floor is x / d's (CompressedUnit.BlockQuotientByMultiplicationIsExact: every x and d).
+constexpr uint32_t block_reciprocal(int d) {
+  return ((uint32_t{1} << 18) + static_cast<uint32_t>(d) - 1) / static_cast<uint32_t>(d);
+}
+constexpr int block_quotient(int x, uint32_t m) { return static_cast<int>((static_cast<uint32_t>(x) * m) >> 18); }
+
 class LinearQuadPath {
  public:
   // `enabled` false: takes() refuses every quad (the plain path alone, for the tests).
   LinearQuadPath(const Registers& regs, Unit& u, bool enabled);
   // The quad goes this way: four pixels, an isotropic LINEAR-family sampler whose wrap modes do
-  // not clamp to the border, a texture of 8-bit texels (RGBA8, L8) not block-compressed.
+  // not clamp to the border, a texture of 8-bit texels (RGBA8, L8, block-compressed).
   bool takes(const QuadReq& q) const { return q.npix == 4 && sampler_ok_[q.req.sampler] && texture_ok_[q.req.texture]; }
+  // Its texture and sampler conditions, per descriptor.
+  static bool takes_texture(const TextureDescriptor& t) {
+    return (t.format == TexelFormat::RGBA8 || t.format == TexelFormat::L8) && t.content == TextureContent::Texels;
+  }
+  static bool takes_sampler(const SamplerDescriptor& s) {
+    return s.mode.base == BaseFilter::Linear && !s.anisotropic() && s.wrap_s != WrapMode::ClampToBorder &&
+           s.wrap_t != WrapMode::ClampToBorder;
+  }
   // address_gen: the levels of the quad's lambda (`lod`, from the LOD unit) and the four pixels'
   // grids and fractions on each; returns the level footprints per pixel (1, or 2 when blending).
   int address(const QuadReq& q, const AnisoLod& lod);
@@ -46,9 +68,14 @@ class LinearQuadPath {
   // cycle `now`; the cycle its lines are all in, and the cycles it holds the tag port in
   // `bank_cycles`.
   uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
+    const int level = n == 0 ? pick_.level0 : pick_.level1;
+    const TapGrid& grid = footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid;
+    if (compressed_) [[unlikely]]
+      return u_.cache_stage.admit_block_square(texture_, stage_, level, grid,
+                                               squares_[static_cast<size_t>(n)][static_cast<size_t>(k)], now,
+                                               bank_cycles);
     FootprintResult r;
-    return u_.cache_stage.admit_lines(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
-                              footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now, bank_cycles, r);
+    return u_.cache_stage.admit_lines(texture_, stage_, level, grid, now, bank_cycles, r);
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.
   void filter(std::array<Rgba8, 4>& out) const;
@@ -58,12 +85,17 @@ class LinearQuadPath {
   Unit& u_;
   std::vector<bool> sampler_ok_, texture_ok_;
   int texture_ = 0, stage_ = 0;
+  bool compressed_ = false;  // the quad's texture is block-compressed
   LevelPick pick_{};
   // The four pixels' footprints on level0 and level1: of each, the fields the grid function
   // writes (grid, fu, fv).
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
-  // Read-out and lerp of the four footprints on one level.
-  void lerp_level(const std::array<FootprintReq, 4>& f, int level, Rgba8* out) const;
+  // On a compressed texture, the same footprints in blocks (CacheStage::BlockSquare).
+  std::array<std::array<CacheStage::BlockSquare, 4>, 2> squares_{};
+  void form_block_squares(const TextureDescriptor& tex, const std::array<FootprintReq, 4>& f,
+                          std::array<CacheStage::BlockSquare, 4>& sq) const;
+  // Read-out and lerp of the four footprints on one level (`n`: 0 level0, 1 level1).
+  void lerp_level(int n, int level, Rgba8* out) const;
 };
 
 }  // namespace tfu::rtl::detail

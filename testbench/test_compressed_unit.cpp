@@ -3,7 +3,8 @@
 // and read back, block addresses), and the cycle model against the golden model bit for bit on
 // every request: every unsigned block format, all 12 filter modes and anisotropic probes, both
 // cache organizations (cache.holds), interleaved with an uncompressed texture, in both engines;
-// the decoder statistics.
+// the decoder statistics; the recurrences' LINEAR quad path on compressed textures against the
+// plain path and the clocked blocks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/texel_cache.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/unit_recurrence_linear_quads.hpp"
 #include "testbench/astc_reference.hpp"
 #include "testbench/iterations.hpp"
 
@@ -321,6 +323,123 @@ TEST(CompressedUnit, DecoderThroughputAndOrganizationChangeTimingNotPixels) {
   EXPECT_EQ(once.stats.counter("decoded_blocks"), again.stats.counter("decoded_blocks"));
   // A BC1 fill of a 4x4 tile is one 8-byte block; memory bytes are the blocks'.
   EXPECT_EQ(once.stats.table("decoders")->rows[0].second[1] * 8, once.stats.table("textures")->rows[0].second[4]);
+}
+
+// The LINEAR quad path's block quotient (rtl/unit_recurrence_linear_quads.hpp): floor(x / d) for
+// every texel coordinate below 2^14 and every block side up to 16 (ASTC's go to 12).
+TEST(CompressedUnit, BlockQuotientByMultiplicationIsExact) {
+  for (int d = 1; d <= 16; ++d) {
+    const uint32_t m = detail::block_reciprocal(d);
+    for (int x = 0; x < kMaxTextureSize; ++x) ASSERT_EQ(detail::block_quotient(x, m), x / d) << x << " / " << d;
+  }
+  EXPECT_NE(detail::block_quotient(1 << 18, detail::block_reciprocal(12)), (1 << 18) / 12);  // the bound matters
+}
+
+// The timing recurrences' LINEAR quad path on block-compressed textures (the blocks' 2 x 2
+// footprints formed once per footprint, rtl/cache_stage_block_squares.cpp) gives the plain
+// per-pixel path's and the clocked blocks' pixels, response cycles, cycles and every statistic
+// (decoded blocks, decoder busy and stall cycles included), and the golden model's pixels: BC1,
+// BC3, BC7, ETC2 RGBA and ASTC 4x4, 6x5 and 12x10 textures of 36 x 28 texels (partial edge blocks,
+// a full MIP chain), interleaved quad by quad with an uncompressed texture and with quads the path
+// does not take (clamp-to-border, anisotropic, NEAREST); LINEAR with every non-border wrap pair,
+// LINEAR_MIPMAP_NEAREST and LINEAR_MIPMAP_LINEAR with LOD biases; both cache organizations; random
+// unit configurations with small caches, one bank or four, both bank mappings, short FIFOs, slow
+// memory and slow decoders (stalls of every kind).
+TEST(CompressedUnit, LinearQuadPathEqualsThePlainBlocks) {
+  std::mt19937 rng(2718);
+  const int quads = test::iterations(400);
+  for (const BlockFormat f : {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::BC7, BlockFormat::ETC2A,
+                              BlockFormat::ASTC_4x4, BlockFormat::ASTC_6x5, BlockFormat::ASTC_12x10}) {
+    const int line_bytes = f == BlockFormat::BC3 || f == BlockFormat::ASTC_6x5 ? 256 : 64;
+    FrameBuilder b(line_bytes);
+    BlockImage image = random_block_image(f, 36, 28, mip_level_count(36, 28), rng);
+    image.srgb = f == BlockFormat::ASTC_4x4;
+    const BlockDecodeRules rules{{static_cast<Bc1Interpolation>(rng() % 4), static_cast<Bc4Interpolation>(rng() % 2)},
+                                 image.srgb};
+    b.add_texture(std::make_shared<const Texture>(texture_from_block_image(image, rules)), {block_format_name(f), {}});
+    Texture plain;  // RGBA8, tiled
+    plain.levels.emplace_back(32, 32);
+    for (Rgba8& t : plain.levels[0].texels)
+      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), 255};
+    generate_mipmaps(plain, MipMethod::Box);
+    b.add_texture(std::make_shared<const Texture>(std::move(plain)), {"plain", {}});
+    std::vector<SamplerDescriptor> samplers;
+    for (int ws = 0; ws < 3; ++ws)
+      for (int wt = 0; wt < 3; ++wt) {  // LINEAR with every non-border wrap pair
+        SamplerDescriptor s;
+        s.mode = filter_mode_from_name("LINEAR");
+        s.wrap_s = static_cast<WrapMode>(ws);
+        s.wrap_t = static_cast<WrapMode>(wt);
+        samplers.push_back(s);
+      }
+    for (const char* mode : {"LINEAR_MIPMAP_NEAREST", "LINEAR_MIPMAP_LINEAR", "LINEAR_MIPMAP_LINEAR"}) {
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name(mode);
+      s.wrap_s = static_cast<WrapMode>(rng() % 3);
+      s.wrap_t = static_cast<WrapMode>(rng() % 3);
+      s.lod.bias_q8 = static_cast<int32_t>(rng() % 768) - 256;
+      samplers.push_back(s);
+    }
+    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "LINEAR", "NEAREST"}) {  // not taken
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name(mode);
+      if (s.mode.mip == MipMode::Linear) s.max_aniso = 4;
+      if (s.mode.base == BaseFilter::Linear && s.mode.mip == MipMode::None) s.wrap_t = WrapMode::ClampToBorder;
+      s.border = {9, 200, 7, 255};
+      samplers.push_back(s);
+    }
+    for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+    Trace tr;
+    tr.mode = TraceMode::Quad;
+    std::uniform_real_distribution<float> uni(-1.5f, 2.5f), d(-0.06f, 0.06f);
+    int taken = 0;
+    for (int n = 0; n < quads; ++n) {
+      TraceRequest r;
+      r.texture = static_cast<uint16_t>(rng() % 4 == 0 ? 1 : 0);
+      r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+      taken += r.texture == 0 && detail::LinearQuadPath::takes_sampler(samplers[r.sampler]) ? 1 : 0;
+      const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+      for (size_t k = 0; k < 4; ++k) {
+        r.s = s0 + static_cast<float>(k & 1) * step;
+        r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+        tr.requests.push_back(r);
+      }
+    }
+    EXPECT_GT(taken, quads / 3) << block_format_name(f);  // 12/15 samplers x 3/4 of the quads: 0.6
+    bind_requests(b, tr);
+    const Frame frame = b.finish();
+    ASSERT_TRUE(frame.regs.textures[0].compressed);
+    EXPECT_TRUE(detail::LinearQuadPath::takes_texture(frame.regs.textures[0])) << block_format_name(f);
+    const GoldenUnit golden(frame);
+    for (int k = 0; k < 4; ++k) {
+      const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
+      UnitConfig c;
+      c.cache.line_bytes = line_bytes;
+      c.cache.holds = k % 2 == 0 ? CacheHolds::Compressed : CacheHolds::Decoded;
+      c.cache.ways = pick({1, 2, 4});
+      c.cache.capacity_bytes = line_bytes * c.cache.ways * pick({1, 2, 8});
+      c.cache.banks = pick({1, 4});
+      c.cache.bank_mapping = static_cast<BankMapping>(rng() % 2);
+      c.channel_depth = pick({1, 2, 4});
+      c.miss_fifo_depth = pick({1, 2, 8});
+      c.filter_lanes = pick({1, 4});
+      c.memory.latency = pick({0, 7, 100});
+      c.memory.bytes_per_cycle = pick({4, 16, 64});
+      c.decoder = {pick({1, 4}), pick({1, 2}), pick({0, 2, 5})};
+      const std::string what = fmt::format("{} config {}: {}", block_format_name(f), k, unit_config_to_json(c));
+      const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
+      const UnitOutput plain_path = run_unit_recurrence(frame, tr, c, false);
+      const UnitOutput clocked = run_unit(frame, tr, c, UnitEngine::Clocked, {});
+      EXPECT_EQ(first_mismatch(tr, golden_outputs(golden, tr, quad_path), quad_path), "") << what;
+      EXPECT_GT(quad_path.stats.counter("decoded_blocks"), 0u) << what;
+      for (const UnitOutput* other : {&plain_path, &clocked}) {
+        EXPECT_EQ(quad_path.pixels, other->pixels) << what;
+        EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
+        EXPECT_EQ(quad_path.cycles, other->cycles) << what;
+        EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
+      }
+    }
+  }
 }
 
 }  // namespace
