@@ -11,6 +11,7 @@
 
 #include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/gl_replay.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/parallel.hpp"
 #include "cmodel/q3_archives.hpp"
@@ -33,6 +34,8 @@ struct RenderCliOptions {
   std::string max_aniso, aniso_rounding, aniso_threshold;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
+  std::string gl_trace;  // an apitrace of a game's GL command stream (docs/gl-replay.md)
+  int frame = 0;         // its frame replayed
   std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
   bool ideal = false, force = false, list = false;
   int threads = 0;
@@ -65,6 +68,26 @@ void list_levels(std::ostream& os, const std::string& game_dir) {
 
 void check_size_override(const char* option, int v) {
   if (v < 0 || v > kMaxRenderSize) throw InputError(fmt::format("{} must be in 0..{} (0: the scene's), got {}", option, kMaxRenderSize, v));
+}
+
+// One frame of a GL command stream through the golden model (docs/gl-replay.md).
+void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
+  for (const char* opt : {"--scene", "--compress", "--filter", "--max-aniso", "--aniso-rounding", "--aniso-threshold", "--trace-out",
+                          "--truth-out", "--surface-truth-out", "--interior-out", "--ideal", "--width", "--height", "--game-dir", "--list"})
+    if (const CLI::Option* opt_ = cmd.get_option_no_throw(opt); opt_ != nullptr && opt_->count() > 0)
+      throw InputError(fmt::format("{} does not apply to --gl-trace (the trace carries the frame)", opt));
+  const std::string out = o.out.empty() ? fmt::format("out/render/gl-frame{}.png", o.frame) : o.out;
+  OutputFiles outputs(o.force);
+  OutputFile& image_file = outputs.add_image("--out", out);
+  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame);
+  image_file.write_image(r.image);
+  outputs.commit();
+  std::cout << out << '\n';
+  print_summary_line(fmt::format("tfu render: GL trace {} frame {} {}x{}: {} calls ({} in the frame), {} draws, {} triangles ({} culled, "
+                                 "{} clipped away, {} degenerate), {} textures, {} quads, {} pixels, {} requests",
+                                 o.gl_trace, o.frame, r.width, r.height, r.stats.calls, r.stats.frame_calls, r.stats.draws,
+                                 r.stats.triangles, r.stats.culled, r.stats.clipped_away, r.stats.degenerate, r.stats.textures,
+                                 r.stats.quads, r.stats.pixels, r.requests.requests.size()));
 }
 
 void run(const RenderCliOptions& o) {
@@ -152,6 +175,10 @@ void register_render(CLI::App& app) {
       "render", "Render a scene through the golden sampler (2x2 quads, quad-derivative LOD); optional trace and ground truth");
   cmd->add_option("--scene", o->scene, "Built-in scene name (see --list), a scene JSON file, or oa:MAP[:SPAWN] (an OpenArena level)")
       ->capture_default_str();
+  cmd->add_option("--gl-trace", o->gl_trace,
+                  "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through the golden model (docs/gl-replay.md)");
+  cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
+      ->capture_default_str();
   cmd->add_option("--game-dir", o->game_dir,
                   fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
                               q3::kDefaultOpenArenaDir));
@@ -180,7 +207,11 @@ void register_render(CLI::App& app) {
   cmd->add_option("--height", o->height, "Override the scene's output height (0: keep)");
   cmd->add_flag("--force", o->force, "Overwrite existing output files");
   cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] {
+    if (!o->gl_trace.empty()) return run_gl_trace(*o, *cmd);
+    if (cmd->count("--frame") > 0) throw InputError("--frame needs --gl-trace");
+    run(*o);
+  });
 }
 
 }  // namespace tfu::cli
