@@ -214,7 +214,9 @@ struct PendingDraw {
 
 class Replayer {
  public:
-  Replayer(const Dump& dump, int frame, const ReplayOptions& opts) : dump_(dump), builder_(opts.line_bytes) {
+  Replayer(const Dump& dump, int frame, const ReplayOptions& opts) : dump_(dump), builder_(opts.line_bytes), alpha_bits_(opts.alpha_bits) {
+    if (alpha_bits_ != -1 && alpha_bits_ != 0 && alpha_bits_ != 8)
+      throw InputError(fmt::format("alpha bits {}: expected 0 or 8 (or -1: the trace's visual)", alpha_bits_));
     out_.trace = dump.stream().trace;
     out_.frame = frame;
   }
@@ -224,6 +226,7 @@ class Replayer {
  private:
   const Dump& dump_;
   FrameBuilder builder_;
+  int alpha_bits_;
   Replay out_;
   State st_;
   std::string context_;
@@ -1001,6 +1004,7 @@ Replay Replayer::run() {
     for (const std::string& u : unsupported_) list += (list.empty() ? "" : ", ") + u;
     throw InputError(one_line(fmt::format("--gl-trace '{}': unsupported GL calls or states: {}", quote_path(out_.trace), list)));
   }
+  if (alpha_bits_ >= 0) out_.destination_alpha = alpha_bits_ > 0;
   out_.unit_frame = std::make_shared<const Frame>(builder_.finish());
   out_.stats.textures = out_.unit_frame->textures.size();
   out_.stats.samplers = out_.unit_frame->regs.samplers.size();

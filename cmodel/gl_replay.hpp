@@ -106,6 +106,9 @@ struct Replay {
 
 struct ReplayOptions {
   int line_bytes = 64;  // textures tiled for the unit's cache line
+  // The framebuffer's alpha bits: -1 as the trace's visual asks (glXChooseVisual / glXChooseFBConfig:
+  // GLX_ALPHA_SIZE), 0 (DST_ALPHA reads 1.0) or 8. glretrace draws into a visual of its own.
+  int alpha_bits = -1;
 };
 
 // Reads the trace through `apitrace dump` (gl_trace.hpp) and replays frame `frame` through the golden

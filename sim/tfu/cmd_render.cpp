@@ -36,6 +36,7 @@ struct RenderCliOptions {
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   std::string gl_trace;  // an apitrace of a game's GL command stream (docs/gl-replay.md)
   int frame = 0;         // its frame replayed
+  int alpha_bits = -1;   // the framebuffer's alpha bits (-1: as the trace's visual asks)
   std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
   bool ideal = false, force = false, list = false;
   int threads = 0;
@@ -79,7 +80,9 @@ void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
   const std::string out = o.out.empty() ? fmt::format("out/render/gl-frame{}.png", o.frame) : o.out;
   OutputFiles outputs(o.force);
   OutputFile& image_file = outputs.add_image("--out", out);
-  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame);
+  gl::ReplayOptions ro;
+  ro.alpha_bits = o.alpha_bits;
+  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, ro);
   image_file.write_image(r.image);
   outputs.commit();
   std::cout << out << '\n';
@@ -179,6 +182,10 @@ void register_render(CLI::App& app) {
                   "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through the golden model (docs/gl-replay.md)");
   cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
       ->capture_default_str();
+  cmd->add_option("--alpha-bits", o->alpha_bits,
+                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
+                  "into a visual of its own)")
+      ->capture_default_str();
   cmd->add_option("--game-dir", o->game_dir,
                   fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
                               q3::kDefaultOpenArenaDir));
@@ -209,7 +216,8 @@ void register_render(CLI::App& app) {
   cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
   cmd->callback([o, cmd] {
     if (!o->gl_trace.empty()) return run_gl_trace(*o, *cmd);
-    if (cmd->count("--frame") > 0) throw InputError("--frame needs --gl-trace");
+    for (const char* opt : {"--frame", "--alpha-bits"})
+      if (cmd->count(opt) > 0) throw InputError(fmt::format("{} needs --gl-trace", opt));
     run(*o);
   });
 }

@@ -3,6 +3,7 @@
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <iterator>
 #include <iostream>
@@ -45,6 +46,7 @@ struct SimOptions {
   std::string requests;
   std::string gl_trace;  // an apitrace of the game's GL command stream (docs/gl-replay.md)
   int frame = 0;         // its frame replayed
+  int alpha_bits = -1;   // the framebuffer's alpha bits (-1: as the trace's visual asks)
   TextureOptions tex;
   SamplerOptions smp;
   int width = 0, height = 0;  // 0: the scene's own size
@@ -257,7 +259,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
 // model, the frame composed from the unit's outputs.
 sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds, RunRecord& rec,
                         OutputFile* out_file, std::string& mismatch) {
-  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, {unit.cache.line_bytes});
+  const auto start = std::chrono::steady_clock::now();
+  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, {unit.cache.line_bytes, o.alpha_bits});
+  const double replay_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Frame& frame = *r.unit_frame;
   rec.has_scene = false;
   rec.trace = o.gl_trace;
@@ -295,8 +299,10 @@ sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<
   print_summary(fmt::format("tfu sim: {} requests (GL trace {} frame {}), golden compare: all {} equal\n", n, o.gl_trace, o.frame, n),
                 n, got.cycles, got.stats);
   const auto rate = [n](double s) { return s > 0 ? static_cast<double>(n) / s : 0.0; };
-  std::cout << fmt::format("  speed: cycle model {:.0f} requests/s ({:.2f} s), golden model {:.0f} requests/s ({:.2f} s)\n", rate(t1 - t0),
-                           t1 - t0, rate(t2 - t1), t2 - t1);
+  std::cout << fmt::format(
+      "  speed (thread CPU time): cycle model {:.0f} requests/s ({:.3f} s), golden model {:.0f} requests/s ({:.3f} s), "
+      "both {:.0f} requests/s; the replay (apitrace dump, GL state, rasterizer and golden model) took {:.2f} s wall\n",
+      rate(t1 - t0), t1 - t0, rate(t2 - t1), t2 - t1, rate(t2 - t0), replay_seconds);
   return got.stats;
 }
 
@@ -358,8 +364,8 @@ void run(SimOptions& o, CLI::App& cmd) {
       if (given(flag_of(p.key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs (the trace's texture parameters are the samplers)", flag_of(p.key)));
     for (const char* key : texture_param_keys())
       if (given(flag_of(key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs", flag_of(key)));
-  } else if (given("--frame")) {
-    throw InputError("--frame needs --gl-trace");
+  } else if (given("--frame") || given("--alpha-bits")) {
+    throw InputError(fmt::format("{} needs --gl-trace", given("--frame") ? "--frame" : "--alpha-bits"));
   } else if (!o.requests.empty()) {
     // --game-dir applies to both: a level's trace binds oa:MAP:... textures (TFU-S E16)
     for (const char* opt : {"--scene", "--width", "--height", "--units"})
@@ -587,6 +593,10 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--gl-trace", o->gl_trace,
                   "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through both models (docs/gl-replay.md)");
   cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
+      ->capture_default_str();
+  cmd->add_option("--alpha-bits", o->alpha_bits,
+                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
+                  "into a visual of its own)")
       ->capture_default_str();
   add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
