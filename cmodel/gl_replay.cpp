@@ -344,6 +344,7 @@ void Replayer::tex_parameter(const Call& c) {
   TextureObject& t = st_.textures[st_.units[static_cast<size_t>(st_.active)].bound];
   const std::string& pname = text(c, "pname");
   const std::string& param = text(c, "param");
+  const bool was_mipmapped = t.mipmapped();
   static const std::set<std::string> min_filters{"GL_NEAREST", "GL_LINEAR", "GL_NEAREST_MIPMAP_NEAREST", "GL_LINEAR_MIPMAP_NEAREST",
                                                  "GL_NEAREST_MIPMAP_LINEAR", "GL_LINEAR_MIPMAP_LINEAR"};
   static const std::set<std::string> wraps{"GL_REPEAT", "GL_CLAMP_TO_EDGE", "GL_MIRRORED_REPEAT", "GL_CLAMP_TO_BORDER"};
@@ -356,7 +357,8 @@ void Replayer::tex_parameter(const Call& c) {
     if (!(v >= 1.0)) throw InputError(fmt::format("{}: anisotropy {} below 1", where(c), v));
     t.max_aniso = v;
   } else return unsupported(fmt::format("{}({} {})", c.name, pname, param), c);
-  t.built.reset();
+  // The parameters are the sampler's; only the levels the texture holds (all, or level 0 alone) are the texture's.
+  if (t.mipmapped() != was_mipmapped) t.built.reset();
 }
 
 void Replayer::set_pointer(const Call& c, ArrayPointer& p, std::initializer_list<int> sizes,

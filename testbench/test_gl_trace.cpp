@@ -56,7 +56,7 @@ TEST(GlTrace, ParsesEveryValueKind) {
   ASSERT_TRUE(clear);
   EXPECT_EQ(clear->args[0].second.text, "GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT");
   EXPECT_EQ(parse_call_line("", "t"), std::nullopt);
-  EXPECT_EQ(parse_call_line("1 process.name = \"/usr/lib/ioquake3/ioquake3\"", "t"), std::nullopt);
+  EXPECT_EQ(parse_call_line("// process.name = \"/usr/lib/ioquake3/ioquake3\"", "t"), std::nullopt);
 }
 
 TEST(GlTrace, RefusesMalformedLinesNamingThem) {
