@@ -231,6 +231,8 @@ Dump::Dump(const std::string& trace, int frame) {
       if (auto c = parse_call_line(line, fmt::format("{}: dump line {}", where, n))) swaps.push_back(c->number);
     });
     stream_.frames = static_cast<int>(swaps.size());
+    if (swaps.empty())
+      throw InputError(fmt::format("{}: no complete frame (no glXSwapBuffers in apitrace's dump): a truncated trace, or no GLX application's", where));
     if (static_cast<size_t>(frame) >= swaps.size())
       throw InputError(fmt::format("{}: --frame {} out of range: the trace has {} frames (glXSwapBuffers), 0..{}", where, frame,
                                    swaps.size(), static_cast<int>(swaps.size()) - 1));
