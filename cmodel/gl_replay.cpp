@@ -999,6 +999,8 @@ Replay Replayer::run() {
       throw InputError(msg.find("--gl-trace") == 0 ? msg : fmt::format("--gl-trace '{}': {}", quote_path(out_.trace), msg));
     }
   }
+  out_.first_call = s.frame_begin < s.calls.size() ? s.calls[s.frame_begin].number : 0;
+  out_.last_call = s.calls.empty() ? 0 : s.calls.back().number;
   out_.stats.calls = s.calls.size();
   out_.stats.frame_calls = s.calls.size() - s.frame_begin;
   if (!unsupported_.empty()) {

@@ -93,6 +93,7 @@ struct ReplayStats {
 struct Replay {
   std::string trace;
   int frame = 0;
+  uint64_t first_call = 0, last_call = 0;  // the frame's calls (the last: its glXSwapBuffers, glretrace's snapshot name)
   int width = 0, height = 0;
   bool destination_alpha = false;  // the visual has alpha bits (else DST_ALPHA reads 1.0)
   std::shared_ptr<const Frame> unit_frame;  // descriptors and texel memory of every texture the frame samples

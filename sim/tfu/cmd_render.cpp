@@ -86,9 +86,9 @@ void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
   image_file.write_image(r.image);
   outputs.commit();
   std::cout << out << '\n';
-  print_summary_line(fmt::format("tfu render: GL trace {} frame {} {}x{}: {} calls ({} in the frame), {} draws, {} triangles ({} culled, "
+  print_summary_line(fmt::format("tfu render: GL trace {} frame {} (calls {}..{}) {}x{}: {} calls ({} in the frame), {} draws, {} triangles ({} culled, "
                                  "{} clipped away, {} degenerate), {} textures, {} quads, {} pixels, {} requests",
-                                 o.gl_trace, o.frame, r.width, r.height, r.stats.calls, r.stats.frame_calls, r.stats.draws,
+                                 o.gl_trace, o.frame, r.first_call, r.last_call, r.width, r.height, r.stats.calls, r.stats.frame_calls, r.stats.draws,
                                  r.stats.triangles, r.stats.culled, r.stats.clipped_away, r.stats.degenerate, r.stats.textures,
                                  r.stats.quads, r.stats.pixels, r.requests.requests.size()));
 }

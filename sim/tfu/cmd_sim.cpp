@@ -292,9 +292,9 @@ sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<
     return got.stats;
   }
   const size_t n = r.requests.requests.size();
-  std::cout << fmt::format("tfu sim: GL trace {} frame {} ({}x{}): {} draws, {} triangles ({} culled, {} clipped away), {} textures, "
+  std::cout << fmt::format("tfu sim: GL trace {} frame {} (calls {}..{}, {}x{}): {} draws, {} triangles ({} culled, {} clipped away), {} textures, "
                            "{} samplers\n",
-                           o.gl_trace, o.frame, r.width, r.height, r.stats.draws, r.stats.triangles, r.stats.culled,
+                           o.gl_trace, o.frame, r.first_call, r.last_call, r.width, r.height, r.stats.draws, r.stats.triangles, r.stats.culled,
                            r.stats.clipped_away, r.stats.textures, r.stats.samplers);
   print_summary(fmt::format("tfu sim: {} requests (GL trace {} frame {}), golden compare: all {} equal\n", n, o.gl_trace, o.frame, n),
                 n, got.cycles, got.stats);
