@@ -263,6 +263,7 @@ class Replayer {
   void enable(const Call& c, bool on);
   void client_state(const Call& c, bool on);
   void tex_image(const Call& c);
+  void tex_sub_image(const Call& c);
   void tex_parameter(const Call& c);
   void set_pointer(const Call& c, ArrayPointer& p, std::initializer_list<int> sizes, std::initializer_list<const char*> types);
   void draw_elements(const Call& c);
@@ -336,6 +337,29 @@ void Replayer::tex_image(const Call& c) {
     im.texels[i] = {bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], rgb ? uint8_t{255} : bytes[4 * i + 3]};
   t.levels[static_cast<size_t>(level)] = std::move(im);
   if (level == 0) t.rgb_only = rgb;
+  t.built.reset();
+}
+
+// A rectangle of a specified level replaced (GL 1.5 Sec. 3.8.2); the texture's descriptor is made anew.
+void Replayer::tex_sub_image(const Call& c) {
+  const std::string& target = text(c, "target");
+  if (target != "GL_TEXTURE_2D") return unsupported(fmt::format("glTexSubImage2D({})", target), c);
+  if (text(c, "format") != "GL_RGBA" || text(c, "type") != "GL_UNSIGNED_BYTE")
+    return unsupported(fmt::format("glTexSubImage2D format {} type {}", text(c, "format"), text(c, "type")), c);
+  const int level = int_arg(c, "level", 0, kMaxLevels - 1);
+  TextureObject& t = st_.textures[st_.units[static_cast<size_t>(st_.active)].bound];
+  if (t.levels.size() <= static_cast<size_t>(level) || t.levels[static_cast<size_t>(level)].empty())
+    throw InputError(fmt::format("{}: level {} of texture {} was never specified", where(c), level,
+                                 st_.units[static_cast<size_t>(st_.active)].bound));
+  Image& im = t.levels[static_cast<size_t>(level)];
+  const int x0 = int_arg(c, "xoffset", 0, im.width), y0 = int_arg(c, "yoffset", 0, im.height);
+  const int w = int_arg(c, "width", 0, im.width - x0), h = int_arg(c, "height", 0, im.height - y0);
+  const std::vector<uint8_t> bytes = dump_.blob(c, "pixels", uint64_t{4} * static_cast<uint64_t>(w) * static_cast<uint64_t>(h));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = 4 * (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x));
+      im.at(x0 + x, y0 + y) = {bytes[i], bytes[i + 1], bytes[i + 2], t.rgb_only ? uint8_t{255} : bytes[i + 3]};
+    }
   t.built.reset();
 }
 
@@ -725,6 +749,7 @@ void Replayer::execute(const Call& c) {
     return;
   }
   if (n == "glTexImage2D") return tex_image(c);
+  if (n == "glTexSubImage2D") return tex_sub_image(c);
   if (n == "glTexParameterf" || n == "glTexParameteri") return tex_parameter(c);
   if (n == "glTexEnvf" || n == "glTexEnvi") {
     if (text(c, "target") != "GL_TEXTURE_ENV" || text(c, "pname") != "GL_TEXTURE_ENV_MODE")

@@ -270,6 +270,13 @@ void draw_frame(bool with_unsupported) {
   std::fprintf(checks, "%d %d 0 0 255 nearest-top-left\n", 2 * 8 + 1, kSize - 1 - (2 * 8 + 6));
   std::fprintf(checks, "%d %d 255 255 255 nearest-top-right\n", 2 * 8 + 6, kSize - 1 - (2 * 8 + 6));
 
+  // glTexSubImage2D: G's top-right texel replaced by grey (128, 128, 128); the other texels stay.
+  const unsigned char grey_texel[4] = {128, 128, 128, 255};
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, grey_texel);
+  array_quad(6, 2, 0, white);
+  std::fprintf(checks, "%d %d 128 128 128 sub-image-top-right\n", 6 * 8 + 6, kSize - 1 - (2 * 8 + 6));
+  std::fprintf(checks, "%d %d 0 0 255 sub-image-top-left-kept\n", 6 * 8 + 1, kSize - 1 - (2 * 8 + 6));
+
   // Scissored clear: region (3, 2) only, to 0.2, 0.4, 0.6 (51, 102, 153).
   glEnable(GL_SCISSOR_TEST);
   glScissor(3 * 8, 2 * 8, 8, 8);
@@ -288,7 +295,7 @@ void draw_frame(bool with_unsupported) {
   if (with_unsupported) {
     glEnable(GL_FOG);
     glBindTexture(GL_TEXTURE_2D, A);
-    array_quad(6, 2, 0, white);
+    array_quad(7, 2, 0, white);
     glDisable(GL_FOG);
     glLineWidth(2);
   }
