@@ -24,12 +24,6 @@ constexpr int kTruthSamples = kTruthSamplesPerAxis * kTruthSamplesPerAxis;
 int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 // ---- Clipping (Sutherland-Hodgman in homogeneous clip space) ----
-struct ClipVertex {
-  glm::dvec4 p;
-  std::array<glm::dvec2, 2> uv;  // UV sets 0 and 1
-  glm::dvec4 colour{255.0};      // vertex colour, 0..255 per channel
-};
-using Polygon = std::vector<ClipVertex>;
 
 // Half-spaces dot(plane, p) >= 0: near, far, then the guard band.
 constexpr std::array<glm::dvec4, 6> kClipPlanes{glm::dvec4{0, 0, 1, 1},           glm::dvec4{0, 0, -1, 1},
@@ -53,6 +47,8 @@ Polygon clip_against(const Polygon& in, const glm::dvec4& plane) {
   return out;
 }
 
+}  // namespace
+
 Polygon clip_polygon(Polygon poly) {
   for (const glm::dvec4& plane : kClipPlanes) {
     if (poly.empty()) break;
@@ -62,6 +58,8 @@ Polygon clip_polygon(Polygon poly) {
   }
   return poly.size() >= 3 ? poly : Polygon{};
 }
+
+namespace {
 
 ScreenVertex to_screen(const ClipVertex& c, int width, int height) {
   const double inv_w = 1.0 / c.p.w;
@@ -102,6 +100,8 @@ Rgba8 to_rgba8(const std::array<double, 4>& c) {
   return {q(c[0]), q(c[1]), q(c[2]), q(c[3])};
 }
 
+}  // namespace
+
 // Perspective-correct (s, t) of UV set `set` at barycentrics b (Heckbert & Moreton: interpolate
 // s/w, t/w and 1/w).
 glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>& b, int set) {
@@ -118,6 +118,8 @@ glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>
   return {s_w / inv_w, t_w / inv_w};
 }
 
+namespace {
+
 // Perspective-correct vertex colour (0..255 per channel) at barycentrics b.
 glm::dvec4 interpolate_colour(const RasterTriangle& tri, const std::array<double, 3>& b) {
   double inv_w = 0;
@@ -130,12 +132,16 @@ glm::dvec4 interpolate_colour(const RasterTriangle& tri, const std::array<double
   return c_w / inv_w;
 }
 
+}  // namespace
+
 // The primary colour of a pixel: the interpolated vertex colour rounded to 8 bits per channel.
 Rgba8 primary_colour(const RasterTriangle& tri, const std::array<double, 3>& b) {
   const glm::dvec4 c = interpolate_colour(tri, b);
   const auto q = [](double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); };
   return {q(c.r), q(c.g), q(c.b), q(c.a)};
 }
+
+namespace {
 
 // The display ramp in real arithmetic (the ideal path's and the truth's).
 std::array<double, 4> display_ramp_real(std::array<double, 4> c, int shift) {

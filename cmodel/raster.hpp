@@ -91,6 +91,22 @@ struct RasterTriangle {
 // Snaps, orients and sets up a triangle; std::nullopt if its snapped area is zero.
 std::optional<RasterTriangle> setup_triangle(const std::array<ScreenVertex, 3>& v, int width, int height);
 
+// A vertex in homogeneous clip space with its attributes, and the clipper of setup: a polygon clipped
+// against near, far and the guard band (Sutherland-Hodgman, attributes interpolated linearly in clip
+// space); empty if less than a triangle remains. Also the GL replay's (gl_replay.hpp).
+struct ClipVertex {
+  glm::dvec4 p;
+  std::array<glm::dvec2, 2> uv;  // UV sets 0 and 1
+  glm::dvec4 colour{255.0};      // vertex colour, 0..255 per channel
+};
+using Polygon = std::vector<ClipVertex>;
+Polygon clip_polygon(Polygon poly);
+
+// Perspective-correct (s, t) of UV set `set` at barycentrics b, and the primary colour (the vertex
+// colour interpolated perspective-correct, rounded to 8 bits per channel).
+glm::dvec2 interpolate_st(const RasterTriangle& tri, const std::array<double, 3>& b, int set);
+Rgba8 primary_colour(const RasterTriangle& tri, const std::array<double, 3>& b);
+
 // GL camera matrices (gluLookAt, gluPerspective).
 glm::dmat4 view_matrix(const Camera& cam);
 glm::dmat4 projection_matrix(const Camera& cam, double aspect);

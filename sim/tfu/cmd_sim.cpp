@@ -3,6 +3,7 @@
 // report cycles, cache, memory, shape and latency statistics, per texture and per stage
 // (docs/cycle-model.md).
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <iterator>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/gl_replay.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/input_file.hpp"
 #include "cmodel/json_output.hpp"
@@ -42,6 +44,9 @@ constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding",
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
   std::string requests;
+  std::string gl_trace;  // an apitrace of the game's GL command stream (docs/gl-replay.md)
+  int frame = 0;         // its frame replayed
+  int alpha_bits = -1;   // the framebuffer's alpha bits (-1: as the trace's visual asks)
   TextureOptions tex;
   SamplerOptions smp;
   int width = 0, height = 0;  // 0: the scene's own size
@@ -276,6 +281,57 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   return res.stats;
 }
 
+// One frame of a GL command stream (docs/gl-replay.md): its requests through the unit and the golden
+// model, the frame composed from the unit's outputs.
+sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds, RunRecord& rec,
+                        OutputFile* out_file, std::string& mismatch) {
+  const auto start = std::chrono::steady_clock::now();
+  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, {unit.cache.line_bytes, o.alpha_bits});
+  const double replay_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Frame& frame = *r.unit_frame;
+  rec.has_scene = false;
+  rec.trace = o.gl_trace;
+  rec.width = r.width;
+  rec.height = r.height;
+  rec.textures = frame_texture_names(frame);
+  std::vector<rtl::ScreenPosition> positions;
+  if (!vcds.empty()) {
+    positions.resize(r.requests.requests.size());
+    for (const gl::FragmentQuad& q : r.quads)
+      for (size_t i = q.first_request; i < (&q == &r.quads.back() ? r.requests.requests.size() : (&q + 1)->first_request); ++i)
+        positions[i] = {static_cast<uint16_t>(q.x + ((i - q.first_request) & 1)), static_cast<uint16_t>(q.y + (((i - q.first_request) >> 1) & 1))};
+  }
+  const double t0 = rtl::thread_cpu_seconds();
+  const rtl::UnitOutput got = rtl::run_unit(
+      frame, r.requests, unit, o.unit_engine,
+      rtl::VcdOptions{vcds.empty() ? nullptr : vcds[0], o.vcd_from, o.vcd_to, o.vcd_patterns, vcds.empty() ? nullptr : &positions});
+  const double t1 = rtl::thread_cpu_seconds();
+  const GoldenUnit golden(frame);
+  const std::vector<Rgba8> want = rtl::golden_outputs(golden, r.requests, got);
+  const double t2 = rtl::thread_cpu_seconds();
+  mismatch = rtl::first_mismatch(r.requests, want, got);
+  const Image image = gl::compose_frame(r, got.pixels);
+  if (out_file) out_file->write_image(image);
+  if (!mismatch.empty()) return got.stats;
+  if (image.texels != r.image.texels) {
+    mismatch = "the frame composed from the unit's outputs differs from the golden replay's";
+    return got.stats;
+  }
+  const size_t n = r.requests.requests.size();
+  std::cout << fmt::format("tfu sim: GL trace {} frame {} (calls {}..{}, {}x{}): {} draws, {} triangles ({} culled, {} clipped away), {} textures, "
+                           "{} samplers\n",
+                           o.gl_trace, o.frame, r.first_call, r.last_call, r.width, r.height, r.stats.draws, r.stats.triangles, r.stats.culled,
+                           r.stats.clipped_away, r.stats.textures, r.stats.samplers);
+  print_summary(fmt::format("tfu sim: {} requests (GL trace {} frame {}), golden compare: all {} equal\n", n, o.gl_trace, o.frame, n),
+                n, got.cycles, got.stats);
+  const auto rate = [n](double s) { return s > 0 ? static_cast<double>(n) / s : 0.0; };
+  std::cout << fmt::format(
+      "  speed (thread CPU time): cycle model {:.0f} requests/s ({:.3f} s), golden model {:.0f} requests/s ({:.3f} s), "
+      "both {:.0f} requests/s; the replay (apitrace dump, GL state, rasterizer and golden model) took {:.2f} s wall\n",
+      rate(t1 - t0), t1 - t0, rate(t2 - t1), t2 - t1, rate(t2 - t0), replay_seconds);
+  return got.stats;
+}
+
 void run(SimOptions& o, CLI::App& cmd) {
   if (o.config_fields) {
     std::cout << rtl::unit_config_markdown();
@@ -327,7 +383,16 @@ void run(SimOptions& o, CLI::App& cmd) {
     const CLI::Option* opt = cmd.get_option_no_throw(name);
     return opt != nullptr && opt->count() > 0;
   };
-  if (!o.requests.empty()) {
+  if (!o.gl_trace.empty()) {
+    for (const char* opt : {"--scene", "--requests", "--width", "--height", "--units", "--texture", "--shape-policy", "--wrap", "--game-dir"})
+      if (given(opt)) throw InputError(fmt::format("{} does not apply to --gl-trace runs (the trace carries the frame)", opt));
+    for (const SamplerParam& p : sampler_params())
+      if (given(flag_of(p.key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs (the trace's texture parameters are the samplers)", flag_of(p.key)));
+    for (const char* key : texture_param_keys())
+      if (given(flag_of(key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs", flag_of(key)));
+  } else if (given("--frame") || given("--alpha-bits")) {
+    throw InputError(fmt::format("{} needs --gl-trace", given("--frame") ? "--frame" : "--alpha-bits"));
+  } else if (!o.requests.empty()) {
     // --game-dir applies to both: a level's trace binds oa:MAP:... textures (TFU-S E16)
     for (const char* opt : {"--scene", "--width", "--height", "--units", "--unit-tiles", "--texture-layout"})
       if (given(opt)) throw InputError(fmt::format("{} applies to scene runs, not to --requests", opt));
@@ -370,8 +435,9 @@ void run(SimOptions& o, CLI::App& cmd) {
   rec.config = &unit;
   rec.engine = o.unit_engine;
   std::string mismatch;
-  const sim::Stats stats = o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
-                                              : run_requests(o, cmd, unit, vcds, rec, mismatch);
+  const sim::Stats stats = !o.gl_trace.empty()   ? run_gl_trace(o, unit, vcds, rec, out_file, mismatch)
+                           : o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
+                                                : run_requests(o, cmd, unit, vcds, rec, mismatch);
   if (stats_file) stats_file->stream() << stats_document(stats, provenance_json(rec));
   outputs.commit();
   if (config_out_file) std::cout << "  unit configuration -> " << o.config_out << '\n';
@@ -550,6 +616,14 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--width", o->width, "Scene render width (default: the scene's own)");
   cmd->add_option("--height", o->height, "Scene render height (default: the scene's own)");
   cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (docs/traces.md)");
+  cmd->add_option("--gl-trace", o->gl_trace,
+                  "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through both models (docs/gl-replay.md)");
+  cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
+      ->capture_default_str();
+  cmd->add_option("--alpha-bits", o->alpha_bits,
+                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
+                  "into a visual of its own)")
+      ->capture_default_str();
   add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--config", o->config,
