@@ -97,14 +97,14 @@ struct EventLog {
 
 template <bool kRecord>
 UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
-                       EventLog<kRecord> log) {
+                       EventLog<kRecord> log, MemoryBinding shared) {
   using enum UnitEvent;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
   out.pixels.resize(n);
   out.response_cycle.resize(n);
-  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out);
+  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out, shared);
   detail::Unit& u = *unit;
   detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
@@ -237,9 +237,16 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
 
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
                                UnitEvents* events) {
-  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr});
+  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
   for (std::vector<int64_t>& row : *events) row.clear();
-  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events});
+  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
+}
+
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,
+                    MemoryBinding shared) {
+  if (engine == UnitEngine::Recurrence && vcd.out == nullptr)
+    return recurrences(frame, trace, ucfg, true, EventLog<false>{nullptr}, shared);
+  return run_unit(frame, trace, ucfg, vcd, ClockedOptions{}, shared);
 }
 
 }  // namespace tfu::rtl
