@@ -15,6 +15,7 @@
 #include "rtl/shared_memory.hpp"
 #include "rtl/unit_config.hpp"
 #include "rtl/unit_stats.hpp"
+#include "rtl/unit_watchdog.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -263,6 +264,17 @@ TEST(SharedMemory, SharingOneInterfaceCostsCycles) {
   const SceneSimResult shared = run(u, 2);
   EXPECT_GT(shared.cycles, alone.cycles);
   EXPECT_EQ(counter(shared.stats, UnitStat::MemoryBytes), counter(alone.stats, UnitStat::MemoryBytes));
+}
+
+// The watchdog of a unit sharing its memory allows for the other units' outstanding lines
+// (unit_watchdog.hpp): alone 2 x (16 x 4 + 100 + 16 + 64) + 10000 = 10488; each of 3 other units
+// 128 footprints x 16 lines of ceil(64 / 16) + 64 cycles (+ the L2's 20), twice.
+TEST(SharedMemory, WatchdogAllowsForTheOtherUnitsLines) {
+  UnitConfig u;
+  EXPECT_EQ(no_progress_limit(u, 1), 10488u);
+  EXPECT_EQ(no_progress_limit(u, 4), 10488u + 2u * 3 * 128 * 16 * (4 + 64));
+  u.l2.capacity_bytes = 8192;
+  EXPECT_EQ(no_progress_limit(u, 4), 10488u + 2u * 3 * 128 * 16 * (4 + 64 + 20));
 }
 
 }  // namespace
