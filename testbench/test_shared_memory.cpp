@@ -254,6 +254,16 @@ TEST(SharedMemory, DeterministicOverThreadsAndEnginesContentionAndBytes) {
   }
 }
 
+// Many units on few threads (a unit waits for a thread slot and for its turn), some without quads
+// (40 units, 24 tiles of 16x16): the same result on 1 and 3 threads.
+TEST(SharedMemory, ManyUnitsOnFewThreads) {
+  const UnitConfig u = with_l2_and_dram();
+  const SceneSimResult a = run(u, 40, UnitEngine::Recurrence, 1), b = run(u, 40, UnitEngine::Recurrence, 3);
+  EXPECT_EQ(a.cycles, b.cycles);
+  EXPECT_EQ(a.stats.counters(), b.stats.counters());
+  EXPECT_EQ(counter(a.stats, UnitStat::MemorySharedBy), 40u);
+}
+
 // Contention with the ideal memory (a max-plus system: later data never makes a unit faster): two
 // units on one 4-byte/cycle interface against each on its own.
 TEST(SharedMemory, SharingOneInterfaceCostsCycles) {
