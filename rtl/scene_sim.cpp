@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <future>
+#include <memory>
+#include <thread>
 
 #include <time.h>
 
@@ -12,6 +15,7 @@
 #include "cmodel/parallel.hpp"
 #include "rtl/engine_compare.hpp"
 #include "rtl/golden_compare.hpp"
+#include "rtl/shared_memory.hpp"
 #include "rtl/unit_stats.hpp"
 
 namespace tfu::rtl {
@@ -33,6 +37,40 @@ struct Job {
   std::string mismatch;
   double cycle_seconds = 0, golden_seconds = 0;
 };
+
+// The shared memory system's counters per unit: the L2's (added to each unit's statistics, so that
+// the scene's sums are the totals).
+void publish_shared(const SharedMemorySystem& shared, std::vector<Job>& jobs) {
+  const L2Cache* l2 = shared.l2();
+  if (l2 == nullptr) return;
+  for (Job& job : jobs) {
+    if (job.quads.empty()) continue;
+    const L2Cache::Counters& c = l2->unit_counters(job.unit);
+    sim::Stats& st = job.out.stats;
+    add(st, UnitStat::L2Requests, c.requests);
+    add(st, UnitStat::L2Hits, c.hits);
+    add(st, UnitStat::L2Misses, c.misses);
+    add(st, UnitStat::L2BankConflicts, c.bank_conflicts);
+    add(st, UnitStat::L2QueueCycles, c.queue_cycles);
+  }
+}
+
+// The shared memory system's totals: the units sharing it, the L2's per-unit table and memory
+// bytes, and the one DRAM's counters.
+void publish_shared_totals(const SharedMemorySystem& shared, sim::Stats& st) {
+  add(st, UnitStat::MemorySharedBy, static_cast<uint64_t>(shared.units()));
+  if (const L2Cache* l2 = shared.l2()) {
+    sim::Stats::Table t{{"unit", "l2_requests", "l2_hits", "l2_misses", "l2_bank_conflicts", "l2_queue_cycles"}, {}};
+    for (int k = 0; k < shared.units(); ++k) {
+      const L2Cache::Counters& c = l2->unit_counters(k);
+      t.rows.emplace_back(fmt::format("unit {}", k), std::vector<uint64_t>{static_cast<uint64_t>(k), c.requests, c.hits,
+                                                                           c.misses, c.bank_conflicts, c.queue_cycles});
+    }
+    st.set_table(stat_key(UnitStat::L2Units), std::move(t));
+    add(st, UnitStat::L2MemoryBytes, shared.memory().bytes_read());
+  }
+  if (const dram::DramModel* d = shared.memory().dram()) publish_dram_stats(st, *d);
+}
 
 }  // namespace
 
@@ -56,6 +94,14 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
     for (size_t k = 0; k < 4; ++k) job.trace.requests.push_back(render.trace.requests[q * 4 + k]);
   }
   const GoldenUnit golden(frame);
+  // One memory system for all units (the L2 and/or memory.shared), or none (each unit its own).
+  const bool sharing = u.l2.enabled() || u.memory.shared != 0;
+  if (sharing && opt.compare_engines)
+    throw InputError("--compare-engines runs each unit alone; with an L2 or memory.shared the units share one memory: "
+                     "compare whole runs with --engine recurrence and --engine clocked");
+  const int threads = opt.threads > 0 ? std::min(opt.threads, kMaxThreads) : hardware_threads();
+  std::unique_ptr<SharedMemorySystem> shared;
+  if (sharing) shared = std::make_unique<SharedMemorySystem>(u, frame.regs.textures.size(), opt.units, threads);
   const auto run_job = [&](Job& job) {
     if (job.quads.empty()) return;
     const double t0 = thread_cpu_seconds();
@@ -71,8 +117,14 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
           positions.push_back({static_cast<uint16_t>(t.x + (p & 1)), static_cast<uint16_t>(t.y + (p >> 1))});
         }
     }
-    job.out = run_unit(frame, job.trace, u, opt.engine,
-                       VcdOptions{vcd, opt.vcd_from, opt.vcd_to, opt.vcd_signals, &positions});
+    const VcdOptions vcd_options{vcd, opt.vcd_from, opt.vcd_to, opt.vcd_signals, &positions};
+    if (shared) {  // this unit's turns in the shared memory's order (finish: also in guarded_job)
+      shared->start(job.unit);
+      job.out = run_unit(frame, job.trace, u, opt.engine, vcd_options, MemoryBinding{shared.get(), job.unit});
+      shared->finish(job.unit);
+    } else {
+      job.out = run_unit(frame, job.trace, u, opt.engine, vcd_options);
+    }
     const double t1 = thread_cpu_seconds();
     // The golden model on the same requests: LOD unit and sampler (the same work the cycle model
     // does, without timing), timed separately for the cost-of-cycle-accuracy ratio.
@@ -88,16 +140,40 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   // Units are handed out to up to hardware_threads() workers (each unit on
   // one thread); results do not depend on which worker runs which unit.
   std::vector<std::exception_ptr> errors(static_cast<size_t>(opt.units));
-  std::atomic<int> next_unit{0};
-  run_workers(std::min(opt.units, hardware_threads()), [&](int) {
-    for (int unit = next_unit++; unit < opt.units; unit = next_unit++) {
-      try {
-        run_job(jobs[static_cast<size_t>(unit)]);
-      } catch (...) {
-        errors[static_cast<size_t>(unit)] = std::current_exception();
-      }
+  const auto guarded_job = [&](int unit) {
+    try {
+      run_job(jobs[static_cast<size_t>(unit)]);
+    } catch (...) {
+      errors[static_cast<size_t>(unit)] = std::current_exception();
     }
-  });
+    if (shared) shared->finish(unit);  // done (a unit without quads, or one that threw, too)
+  };
+  if (shared) {
+    // Every unit on a thread of its own (a unit waits for the others' progress at its misses); at
+    // most `threads` of them run at once (SharedMemorySystem). The threads start only once all exist.
+    std::promise<bool> all_started;
+    const std::shared_future<bool> go = all_started.get_future().share();
+    std::vector<std::thread> pool;
+    pool.reserve(static_cast<size_t>(opt.units));
+    try {
+      for (int unit = 0; unit < opt.units; ++unit)
+        pool.emplace_back([&, go, unit] {
+          if (go.get()) guarded_job(unit);
+        });
+    } catch (const std::system_error&) {
+      all_started.set_value(false);
+      for (std::thread& t : pool) t.join();
+      throw InputError(fmt::format("{} units sharing one memory need a thread each; the system refused thread {}",
+                                   opt.units, pool.size()));
+    }
+    all_started.set_value(true);
+    for (std::thread& t : pool) t.join();
+  } else {
+    std::atomic<int> next_unit{0};
+    run_workers(std::min(opt.units, threads), [&](int) {
+      for (int unit = next_unit++; unit < opt.units; unit = next_unit++) guarded_job(unit);
+    });
+  }
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 
@@ -105,6 +181,7 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   res.image = render.image;
   res.requests = render.trace.requests.size();
   std::vector<Rgba8> outputs(res.requests);
+  if (shared) publish_shared(*shared, jobs);
   for (const Job& job : jobs) {
     res.cycle_seconds += job.cycle_seconds;
     res.golden_seconds += job.golden_seconds;
@@ -124,6 +201,7 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
   st.merge(res.stats, false);
   add(st, UnitStat::Cycles, res.cycles);
   add(st, UnitStat::Units, static_cast<uint64_t>(opt.units));
+  if (shared) publish_shared_totals(*shared, st);
   derive_rates(st, res.requests, res.cycles);
   derive_group_rates(st);  // the groups' counters summed over units, cycles too (unit_stats.hpp)
   res.stats = std::move(st);

@@ -9,6 +9,12 @@
 // cache flush between them. Units run on their own threads (the simulation of each is
 // single-threaded and deterministic, so results do not depend on the thread count). Cycles = the
 // slowest unit's; every other statistic is summed over units.
+//
+// With an L2 (l2.capacity_bytes > 0) or memory.shared, the units are simulated together: each keeps
+// its texel cache, and their misses go through one memory system (rtl/shared_memory.hpp: the L2,
+// then one memory), served in one global order (by issue cycle, rotating priority within a cycle),
+// the same for any thread count and either engine. Its statistics are added: per unit (the L2's
+// counters, the l2_units table) and in total (the L2's memory bytes, the shared DRAM's counters).
 #pragma once
 
 #include <optional>
@@ -35,6 +41,8 @@ struct SceneSimOptions {
   // Also run each unit's requests through both engines with every event recorded; the first event,
   // pixel or statistic at which they differ is a mismatch (rtl/engine_compare.hpp; a debugging aid).
   bool compare_engines = false;
+  // Units simulated at once (0: hardware_threads()); results do not depend on it.
+  int threads = 0;
 };
 
 struct SceneSimResult {

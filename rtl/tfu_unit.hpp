@@ -61,6 +61,11 @@ struct ClockedOptions {
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd,
                     const ClockedOptions& clocked = {});
 
+// The same, as unit `shared.unit` of the memory system it shares with a scene's other units
+// (rtl/shared_memory.hpp): its misses go there instead of to its own memory.
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd,
+                    const ClockedOptions& clocked, MemoryBinding shared);
+
 // run_unit through the simulation kernel's generic module list (a virtual evaluate() per block and
 // cycle, forward or reverse) instead of the unit's static schedule: for the test that the schedule
 // and the evaluation order change nothing.
@@ -76,6 +81,10 @@ const char* unit_engine_name(UnitEngine e);
 UnitEngine unit_engine_from_name(const std::string& name);  // InputError naming the valid names
 // The unit by `engine`; with a waveform (vcd.out) always clocked.
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd);
+// The same, bound to a shared memory system (`shared.port` nullptr: the unit's own memory). Both
+// engines issue the same misses at the same cycles, so they give the same results here too.
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,
+                    MemoryBinding shared);
 
 // The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes

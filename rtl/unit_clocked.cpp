@@ -171,14 +171,14 @@ class EventRecorder {
 };
 
 UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
-               const ClockedOptions& clocked, Schedule schedule, UnitEvents* events = nullptr) {
+               const ClockedOptions& clocked, Schedule schedule, UnitEvents* events = nullptr, MemoryBinding shared = {}) {
   std::ostream* vcd_stream = vcd_opt.out;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
   out.pixels.resize(n);
   out.response_cycle.resize(n);
-  auto unit = std::make_unique<Unit>(frame, trace, ucfg, out);
+  auto unit = std::make_unique<Unit>(frame, trace, ucfg, out, shared);
   std::unique_ptr<sim::VcdWriter> vcd;
   if (vcd_stream) {
     vcd = std::make_unique<sim::VcdWriter>(*vcd_stream);
@@ -225,6 +225,11 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
                     const ClockedOptions& clocked) {
   return run(frame, trace, ucfg, vcd_opt, clocked, Schedule::Static);
+}
+
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, const VcdOptions& vcd_opt,
+                    const ClockedOptions& clocked, MemoryBinding shared) {
+  return run(frame, trace, ucfg, vcd_opt, clocked, Schedule::Static, nullptr, shared);
 }
 
 UnitOutput run_unit_recording(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine,

@@ -55,7 +55,7 @@ const std::vector<UnitField>& fields() {
       {"memory.bytes_per_cycle", "--bandwidth", "memory interface bandwidth, bytes per cycle", 1, 65536, {}, {},
        TFU_INT_FIELD(memory.bytes_per_cycle)},
       {"memory.dram", "--dram",
-       "what serves the misses: the ideal memory (memory.latency) or a DRAM part, each unit its own (docs/memory-system.md)",
+       "what serves the misses: the ideal memory (memory.latency) or a DRAM part, each unit its own unless memory.shared (docs/memory-system.md)",
        0, static_cast<int64_t>(dram::parts().size()), {}, dram_part_names(), TFU_INT_FIELD(memory.dram)},
       {"memory.dram_policy", "--dram-policy", "DRAM page policy: rows stay open, or every read auto-precharges", 0, 1, {},
        {"open", "close"}, TFU_INT_FIELD(memory.dram_policy)},
@@ -64,6 +64,25 @@ const std::vector<UnitField>& fields() {
        std::vector<const char*>(dram::kMappings.begin(), dram::kMappings.end()), TFU_INT_FIELD(memory.dram_mapping)},
       {"memory.unit_clock_mhz", "--unit-clock-mhz", "the unit's clock in MHz, for the DRAM's timing (DRAM parts only)", 1,
        100000, {}, {}, TFU_INT_FIELD(memory.unit_clock_mhz)},
+      {"memory.shared", "--memory-shared",
+       "private: each unit its own memory (interface and DRAM); shared: one for all units of a scene, misses served in "
+       "one order (docs/memory-system.md); an L2 implies shared",
+       0, 1, {}, {"private", "shared"}, TFU_INT_FIELD(memory.shared)},
+      {"l2.capacity_bytes", "--l2-bytes",
+       "capacity of the L2 all units of a scene share, between their texel-cache misses and memory; 0: no L2; a whole "
+       "number of sets (line_bytes x ways x banks)",
+       0, int64_t{1} << 30, {}, {}, TFU_INT_FIELD(l2.capacity_bytes)},
+      {"l2.line_bytes", "--l2-line-bytes", "bytes per L2 line (each L2 miss reads one line from memory)", 16, 4096,
+       {16, 32, 64, 128, 256, 512, 1024, 2048, 4096}, {}, TFU_INT_FIELD(l2.line_bytes)},
+      {"l2.ways", "--l2-ways", "L2 associativity", 1, 64, {}, {}, TFU_INT_FIELD(l2.ways)},
+      {"l2.banks", "--l2-banks", "L2 banks (line address mod banks), one lookup per cycle each", 1, 64, {}, {},
+       TFU_INT_FIELD(l2.banks)},
+      {"l2.hit_latency", "--l2-hit-latency", "cycles from an L2 lookup to its data on a hit", 1, 10000, {}, {},
+       TFU_INT_FIELD(l2.hit_latency)},
+      {"l2.requests_per_cycle", "--l2-requests", "requests the L2 takes per cycle from all units together", 1, 256, {}, {},
+       TFU_INT_FIELD(l2.requests_per_cycle)},
+      {"l2.replacement", "--l2-replacement", "L2 replacement: least recently used, or first filled first out", 0, 1, {},
+       {"lru", "fifo"}, TFU_INT_FIELD(l2.replacement)},
       {"channel_depth", "--channel-depth", "skid-buffer depth between blocks", 1, 64, {}, {},
        TFU_INT_FIELD(channel_depth)},
       {"miss_fifo_depth", "--miss-fifo-depth", "footprints queued behind outstanding misses (Igehy et al. 1998)", 1, 1024, {}, {},
@@ -138,6 +157,7 @@ void UnitConfig::validate() const {
   }
   cache.validate();
   memory.validate();
+  l2.validate();
 }
 
 // Reads the fields of a JSON object (nested objects are the dotted key's groups) into `c`; every

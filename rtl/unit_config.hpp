@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rtl/l2_cache.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 
@@ -17,6 +18,7 @@ namespace tfu::rtl {
 struct UnitConfig {
   TexelCacheConfig cache{};
   MemoryConfig memory{};
+  L2Config l2{};              // the L2 shared by a scene's units (off by default: rtl/l2_cache.hpp)
   int channel_depth = 2;      // skid buffers between blocks
   int miss_fifo_depth = 128;  // footprints queued in the texel cache behind outstanding misses
   int filter_lanes = 1;       // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)

@@ -36,6 +36,10 @@
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
 // (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
+// A unit sharing a memory system with other units (rtl/shared_memory.hpp) runs here too: its texel
+// cache issues its misses at nondecreasing cycles, the same as the clocked run's, and each miss's
+// answer (the cycle its data is in) is all the recurrences need from it, so the run pauses at each
+// miss until the shared system's global order reaches it, exactly as the clocked run does.
 #include <algorithm>
 #include <functional>
 #include <memory>
@@ -97,14 +101,14 @@ struct EventLog {
 
 template <bool kRecord>
 UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
-                       EventLog<kRecord> log) {
+                       EventLog<kRecord> log, MemoryBinding shared) {
   using enum UnitEvent;
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
   out.pixels.resize(n);
   out.response_cycle.resize(n);
-  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out);
+  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out, shared);
   detail::Unit& u = *unit;
   detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
@@ -237,9 +241,16 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
 
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
                                UnitEvents* events) {
-  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr});
+  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
   for (std::vector<int64_t>& row : *events) row.clear();
-  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events});
+  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
+}
+
+UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,
+                    MemoryBinding shared) {
+  if (engine == UnitEngine::Recurrence && vcd.out == nullptr)
+    return recurrences(frame, trace, ucfg, true, EventLog<false>{nullptr}, shared);
+  return run_unit(frame, trace, ucfg, vcd, ClockedOptions{}, shared);
 }
 
 }  // namespace tfu::rtl

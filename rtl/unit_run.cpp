@@ -60,18 +60,7 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   add(st, UnitStat::Pixels, n);
   add(st, UnitStat::MemoryBytes, u.mem.bytes_read());
   add(st, UnitStat::MemoryRequests, u.mem.requests());
-  if (const dram::DramModel* d = u.mem.dram()) {
-    const dram::Stats& ds = d->stats();
-    add(st, UnitStat::DramBursts, ds.bursts);
-    add(st, UnitStat::DramRowHits, ds.row_hits);
-    add(st, UnitStat::DramRowEmpty, ds.row_empty);
-    add(st, UnitStat::DramRowConflicts, ds.row_conflicts);
-    add(st, UnitStat::DramActivates, ds.activates);
-    add(st, UnitStat::DramRefreshes, ds.refreshes);
-    std::vector<uint64_t> h = ds.latency_histogram;  // trailing empty buckets dropped
-    while (!h.empty() && h.back() == 0) h.pop_back();
-    st.set_histogram(stat_key(UnitStat::DramLatency), std::move(h));
-  }
+  if (const dram::DramModel* d = u.mem.dram()) publish_dram_stats(st, *d);
   if (u.filter) {
     uint64_t busy = 0;
     for (const uint64_t b : u.filter->busy_cycles()) busy += b;
@@ -169,6 +158,19 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
 const char* unit_engine_name(UnitEngine e) { return kUnitEngineNames.name(e); }
 UnitEngine unit_engine_from_name(const std::string& name) { return kUnitEngineNames.from_name(name); }
 
+void publish_dram_stats(sim::Stats& st, const dram::DramModel& d) {
+  const dram::Stats& ds = d.stats();
+  add(st, UnitStat::DramBursts, ds.bursts);
+  add(st, UnitStat::DramRowHits, ds.row_hits);
+  add(st, UnitStat::DramRowEmpty, ds.row_empty);
+  add(st, UnitStat::DramRowConflicts, ds.row_conflicts);
+  add(st, UnitStat::DramActivates, ds.activates);
+  add(st, UnitStat::DramRefreshes, ds.refreshes);
+  std::vector<uint64_t> h = ds.latency_histogram;  // trailing empty buckets dropped
+  while (!h.empty() && h.back() == 0) h.pop_back();
+  st.set_histogram(stat_key(UnitStat::DramLatency), std::move(h));
+}
+
 void derive_group_rates(sim::Stats& st) {
   for (sim::Stats::Group& g : st.groups())
     derive_rates(g.stats, counter(g.stats, UnitStat::Pixels), counter(g.stats, UnitStat::Cycles));
@@ -192,6 +194,8 @@ void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   set(st, UnitStat::LatencyMean, requests ? static_cast<double>(lat_sum) / n : 0.0);
   set(st, UnitStat::LatencyMin, requests ? static_cast<double>(lat_min) : 0.0);
   set(st, UnitStat::LatencyMax, static_cast<double>(lat_max));
+  if (const uint64_t l2 = counter(st, UnitStat::L2Requests))
+    set(st, UnitStat::L2HitRate, static_cast<double>(counter(st, UnitStat::L2Hits)) / static_cast<double>(l2));
   if (const uint64_t bursts = counter(st, UnitStat::DramBursts)) {
     set(st, UnitStat::DramRowHitRate, static_cast<double>(counter(st, UnitStat::DramRowHits)) / static_cast<double>(bursts));
     uint64_t reads = 0, sum = 0;

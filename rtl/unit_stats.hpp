@@ -17,6 +17,10 @@
 
 namespace tfu::rtl {
 
+namespace dram {
+class DramModel;
+}
+
 enum class StatKind { Counter, Value, Histogram, Table };
 
 enum class UnitStat {
@@ -62,6 +66,15 @@ enum class UnitStat {
   DramLatency,
   DramRowHitRate,
   DramLatencyMean,
+  MemorySharedBy,
+  L2Requests,
+  L2Hits,
+  L2Misses,
+  L2BankConflicts,
+  L2QueueCycles,
+  L2MemoryBytes,
+  L2HitRate,
+  L2Units,
 };
 
 inline constexpr EnumNames<StatKind, 4> kStatKindNames{"statistic kind",
@@ -85,7 +98,7 @@ struct UnitStatField {
 };
 
 // Row i is UnitStat i (checked below), so a key is one array read.
-inline constexpr std::array<UnitStatField, 42> kUnitStatFields{{
+inline constexpr std::array<UnitStatField, 51> kUnitStatFields{{
     {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)",
      "the output cycles given to the group's requests: each request's retirement cycle minus the previous request's "
      "(the first: its retirement cycle + 1), summed over units; one unit's groups add up to its cycles"},
@@ -154,6 +167,23 @@ inline constexpr std::array<UnitStatField, 42> kUnitStatFields{{
      "DRAM reads per latency, request to last data (bucket = DRAM clocks; the last bucket: more)", nullptr},
     {UnitStat::DramRowHitRate, "dram_row_hit_rate", StatKind::Value, "dram_row_hits / dram_bursts", nullptr},
     {UnitStat::DramLatencyMean, "dram_latency_mean", StatKind::Value, "mean DRAM read latency in DRAM clocks", nullptr},
+    {UnitStat::MemorySharedBy, "memory_shared_by", StatKind::Counter,
+     "units whose misses go through one memory system (memory.shared or an L2; a scene run only): the DRAM counters "
+     "are that memory's",
+     nullptr},
+    {UnitStat::L2Requests, "l2_requests", StatKind::Counter, "L2 line requests (an L1 miss: one per L2 line it covers; L2 only)",
+     nullptr},
+    {UnitStat::L2Hits, "l2_hits", StatKind::Counter, "L2 hits (a hit on a line still being filled included)", nullptr},
+    {UnitStat::L2Misses, "l2_misses", StatKind::Counter, "L2 misses (each reads l2.line_bytes from memory)", nullptr},
+    {UnitStat::L2BankConflicts, "l2_bank_conflicts", StatKind::Counter,
+     "L2 requests whose bank was busy in the cycle they entered", nullptr},
+    {UnitStat::L2QueueCycles, "l2_queue_cycles", StatKind::Counter,
+     "cycles L2 requests waited from issue to lookup (input slots and banks), summed", nullptr},
+    {UnitStat::L2MemoryBytes, "l2_memory_bytes", StatKind::Counter,
+     "bytes the L2 read from memory: l2_misses x l2.line_bytes (memory_bytes: what the L1s read from the L2)", nullptr},
+    {UnitStat::L2HitRate, "l2_hit_rate", StatKind::Value, "l2_hits / l2_requests", nullptr},
+    {UnitStat::L2Units, "l2_units", StatKind::Table,
+     "per unit: unit, l2_requests, l2_hits, l2_misses, l2_bank_conflicts, l2_queue_cycles", nullptr},
 }};
 
 constexpr bool unit_stat_rows_in_order() {
@@ -178,6 +208,9 @@ inline uint64_t counter(const sim::Stats& st, UnitStat s) { return st.counter(st
 inline double value(const sim::Stats& st, UnitStat s) { return st.value(stat_key(s)); }
 inline void add(sim::Stats& st, UnitStat s, uint64_t n) { st.add(stat_key(s), n); }
 inline void set(sim::Stats& st, UnitStat s, double v) { st.set(stat_key(s), v); }
+
+// A DRAM's counters and latency histogram (a unit's own DRAM, or the one a scene's units share).
+void publish_dram_stats(sim::Stats& st, const dram::DramModel& d);
 
 // The table as Markdown (`tfu sim --stats-fields`; docs/cycle-model.md "Statistics").
 std::string unit_stats_markdown();

@@ -10,7 +10,10 @@
 //   lines x ceil(line_bytes / bytes_per_cycle) + latency
 // cycles, lines <= 16 (the footprint's line slots), plus at most 16 bank cycles of the tag port and
 // the pipeline's own few cycles. The watchdog allows twice that plus 10,000 cycles: it can only
-// fire on a genuine deadlock (a bug; exit code 4).
+// fire on a genuine deadlock (a bug; exit code 4). Units sharing one memory system (rtl/shared_memory.hpp)
+// may find the other units' outstanding lines ahead of the head's: up to miss_fifo_depth x 16 each,
+// each taking at most ceil(line_bytes / bytes_per_cycle) + 64 cycles (a DRAM row conflict) + the L2's
+// hit latency; twice that is added per other unit.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +22,6 @@
 
 namespace tfu::rtl {
 
-uint64_t no_progress_limit(const UnitConfig& u);
+uint64_t no_progress_limit(const UnitConfig& u, int sharing_units = 1);
 
 }  // namespace tfu::rtl

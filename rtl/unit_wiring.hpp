@@ -32,13 +32,15 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u);
 // A datapath no sampler of the frame uses is left out of the simulation (software speed only: it
 // would see no footprint).
 struct Unit {
-  Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out)
+  // `shared`: the memory system the unit shares with others (none: its own memory).
+  Unit(const Frame& frame, const Trace& trace, const UnitConfig& u, UnitOutput& out, MemoryBinding shared = {})
       : depth(static_cast<size_t>(u.channel_depth)),
         accept(trace.requests.size(), 0),
-        sim(no_progress_limit(u)),  // the watchdog, derived from the configuration (unit_watchdog.hpp)
+        // the watchdog, derived from the configuration (unit_watchdog.hpp)
+        sim(no_progress_limit(u, shared.port != nullptr ? shared.port->units() : 1)),
         roms(frame.regs.samplers),
         cache(u.cache, frame.regs.textures),
-        mem(u.memory, frame.regs.textures.size()),
+        mem(u.memory, frame.regs.textures.size(), shared),
         request_fifo(sim, trace, c_quad, accept),
         lod_unit(sim, c_quad, c_pixel, trace.mode, frame.regs),
         address_gen(sim, c_pixel, c_addr, frame.regs, roms),

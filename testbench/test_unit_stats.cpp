@@ -73,7 +73,8 @@ std::set<UnitStat> check_published(const sim::Stats& st, const std::string& what
   return seen;
 }
 
-SceneSimResult run_scene(const std::string& name, const std::string& mode, int max_aniso, int units, UnitEngine engine) {
+SceneSimResult run_scene(const std::string& name, const std::string& mode, int max_aniso, int units, UnitEngine engine,
+                         const UnitConfig& u = {}) {
   Scene scene = load_scene(name);
   scene.width = 48;
   scene.height = 32;
@@ -86,7 +87,6 @@ SceneSimResult run_scene(const std::string& name, const std::string& mode, int m
   SceneSimOptions so;
   so.units = units;
   so.engine = engine;
-  const UnitConfig u;
   SceneSimResult r = simulate_scene(scene, render, u, so);
   EXPECT_TRUE(r.mismatch.empty()) << r.mismatch;
   return r;
@@ -113,6 +113,15 @@ TEST(UnitStats, EveryPublishedKeyIsInTheTable) {
     EXPECT_EQ(counter(r.stats, UnitStat::Pixels), r.requests) << what;
     EXPECT_EQ(counter(r.stats, UnitStat::Cycles), r.cycles) << what;
     EXPECT_EQ(counter(r.stats, UnitStat::Units), static_cast<uint64_t>(c.units)) << what;
+  }
+  // Units sharing an L2 and a DRAM (the L2's statistics, the shared DRAM's).
+  {
+    UnitConfig u;
+    u.l2.capacity_bytes = 8192;
+    u.memory.dram = 1;
+    const SceneSimResult r = run_scene("ground_plane", "LINEAR_MIPMAP_LINEAR", 1, 2, UnitEngine::Recurrence, u);
+    const std::set<UnitStat> seen = check_published(r.stats, "l2");
+    all.insert(seen.begin(), seen.end());
   }
   // A block-compressed texture beside an uncompressed one (the decoder statistics), both engines.
   {

@@ -117,6 +117,34 @@ void print_row(const std::string& name, const std::string& figures) {
   for (size_t k = 1; k < lines.size(); ++k) std::cout << fmt::format("      {}\n", lines[k]);
 }
 
+// The memory system a scene's units share (memory.shared or an L2): its L2 in total and per unit,
+// and its DRAM.
+void print_shared_memory(const sim::Stats& st) {
+  const uint64_t sharers = rtl::counter(st, rtl::UnitStat::MemorySharedBy);
+  if (sharers == 0) return;
+  std::cout << fmt::format("  memory system shared by {} unit{}\n", sharers, sharers == 1 ? "" : "s");
+  if (const sim::Stats::Table* t = st.table(rtl::stat_key(rtl::UnitStat::L2Units))) {
+    std::cout << fmt::format(
+        "  L2: {} requests, {} hits (hit rate {:.4f}), {} misses, {} bank conflicts, {} queueing cycles; {} bytes read "
+        "from memory\n",
+        rtl::counter(st, rtl::UnitStat::L2Requests), rtl::counter(st, rtl::UnitStat::L2Hits),
+        rtl::value(st, rtl::UnitStat::L2HitRate), rtl::counter(st, rtl::UnitStat::L2Misses),
+        rtl::counter(st, rtl::UnitStat::L2BankConflicts), rtl::counter(st, rtl::UnitStat::L2QueueCycles),
+        rtl::counter(st, rtl::UnitStat::L2MemoryBytes));
+    std::cout << "  L2 per unit: requests, hits, misses, bank conflicts, queueing cycles\n";
+    for (const auto& [label, v] : t->rows)
+      print_row(label, fmt::format("{:>10} {:>10} {:>10} {:>10} {:>12}", v[1], v[2], v[3], v[4], v[5]));
+  }
+  if (const uint64_t bursts = rtl::counter(st, rtl::UnitStat::DramBursts))
+    std::cout << fmt::format(
+        "  DRAM: {} bursts, {} row hits (row hit rate {:.4f}), {} row empty, {} row conflicts, {} activates, {} refreshes, "
+        "mean latency {:.1f} DRAM clocks\n",
+        bursts, rtl::counter(st, rtl::UnitStat::DramRowHits), rtl::value(st, rtl::UnitStat::DramRowHitRate),
+        rtl::counter(st, rtl::UnitStat::DramRowEmpty), rtl::counter(st, rtl::UnitStat::DramRowConflicts),
+        rtl::counter(st, rtl::UnitStat::DramActivates), rtl::counter(st, rtl::UnitStat::DramRefreshes),
+        rtl::value(st, rtl::UnitStat::DramLatencyMean));
+}
+
 void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim::Stats& st) {
   const uint64_t hits = rtl::counter(st, rtl::UnitStat::CacheLineHits), misses = rtl::counter(st, rtl::UnitStat::CacheLineMisses);
   const auto dn = static_cast<double>(n);
@@ -127,6 +155,7 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
                            n ? static_cast<double>(rtl::counter(st, rtl::UnitStat::MemoryBytes)) / dn : 0.0);
   std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", rtl::counter(st, rtl::UnitStat::StallCacheMiss),
                            rtl::counter(st, rtl::UnitStat::StallBankConflict), rtl::counter(st, rtl::UnitStat::StallBackpressure));
+  print_shared_memory(st);
   if (const std::vector<uint64_t>* h = st.histogram(rtl::stat_key(rtl::UnitStat::AnisoProbes))) {
     std::string hist;
     for (size_t k = 1; k < h->size(); ++k)
