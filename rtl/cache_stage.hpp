@@ -19,9 +19,10 @@
 // Latency tolerance (Little's law; docs/memory-system.md, "Latency tolerance"): a footprint stays
 // in the miss FIFO about W = latency + ceil(line_bytes / bytes_per_cycle) + 2 cycles when the
 // memory keeps up, so a unit that takes F footprints per cycle at zero latency keeps that rate only
-// with miss_fifo_depth >= F W; a missed line holds its slot about as long, so with M line misses
-// per cycle the line buffer needs M W + kMaxFootprintLines slots. latency_tolerant_depths()
-// computes both from a zero-latency run's counts.
+// with miss_fifo_depth >= F W; a missed line holds its slot about as long, and misses come in
+// bursts at the memory's rate, so the line buffer needs the lines the memory delivers in W cycles
+// (W bytes_per_cycle / line_bytes) + kMaxFootprintLines slots. latency_tolerant_depths()
+// (rtl/unit_config.hpp) computes both.
 //
 // Ports:
 //   in  footprint  FootprintReq (texture, level, tap grid, shape, optional arms)   valid/ready

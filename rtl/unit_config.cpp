@@ -1,3 +1,4 @@
+#include "rtl/latency_tolerance.hpp"
 #include "rtl/unit_config.hpp"
 
 #include <algorithm>
@@ -207,19 +208,17 @@ std::string unit_config_to_json(const UnitConfig& c) {
   return json_dump(j, 2);
 }
 
-LatencyTolerantDepths latency_tolerant_depths(const UnitConfig& c, uint64_t footprints, uint64_t line_misses,
-                                              uint64_t cycles) {
+LatencyTolerantDepths latency_tolerant_depths(const UnitConfig& c, uint64_t footprints, uint64_t cycles) {
   if (cycles == 0) throw InputError("latency_tolerant_depths: a zero-latency run of no cycles");
   const auto line_cycles = static_cast<uint64_t>((c.cache.line_bytes + c.memory.bytes_per_cycle - 1) / c.memory.bytes_per_cycle);
   const uint64_t w = static_cast<uint64_t>(c.memory.latency) + line_cycles + 2;
-  const auto ceil_rate = [&](uint64_t items, int lo, int64_t hi) {
-    const uint64_t v = (items * w + cycles - 1) / cycles;  // w < 2^21: exact for up to 2^43 items
-    return static_cast<int>(std::clamp<uint64_t>(v, static_cast<uint64_t>(lo), static_cast<uint64_t>(hi)));
-  };
   const UnitField& fifo = *find_unit_field("miss_fifo_depth");
   const UnitField& lines = *find_unit_field("line_buffer_depth");
-  return {ceil_rate(footprints, static_cast<int>(fifo.lo), fifo.hi),
-          static_cast<int>(std::min<int64_t>(ceil_rate(line_misses, 0, lines.hi) + kMaxFootprintLines, lines.hi))};
+  const uint64_t fifo_depth = (footprints * w + cycles - 1) / cycles;  // w < 2^21: exact for up to 2^43 footprints
+  const auto line_bytes = static_cast<uint64_t>(c.cache.line_bytes);
+  const uint64_t in_flight = (w * static_cast<uint64_t>(c.memory.bytes_per_cycle) + line_bytes - 1) / line_bytes;
+  return {static_cast<int>(std::clamp<uint64_t>(fifo_depth, static_cast<uint64_t>(fifo.lo), static_cast<uint64_t>(fifo.hi))),
+          static_cast<int>(std::min<uint64_t>(in_flight + kMaxFootprintLines, static_cast<uint64_t>(lines.hi)))};
 }
 
 std::string unit_config_markdown() {

@@ -51,21 +51,4 @@ std::string unit_config_to_json(const UnitConfig& c);
 // The field table as Markdown (key, flag, valid values, default, meaning).
 std::string unit_config_markdown();
 
-// Latency tolerance by Little's law (Igehy, Eldridge & Proudfoot 1998; docs/memory-system.md,
-// "Latency tolerance"). A footprint stays in the miss FIFO, and a missed line in the line buffer,
-// about W = latency + ceil(line_bytes / bytes_per_cycle) + 2 cycles when the memory keeps up (the
-// request, the line's transfer, the cycle into the FIFO and the cycle out). To keep the rate a
-// zero-latency run reaches (F footprints and M line misses per cycle, measured), the structures
-// must hold what arrives in W cycles:
-//   miss_fifo_depth   = ceil(F W)
-//   line_buffer_depth = ceil(M W) + kMaxFootprintLines (the tag stage accepts a footprint only with
-//                       that many slots free: rtl/cache_stage.hpp)
-// Integer arithmetic: F = footprints / cycles and M = line misses / cycles of the zero-latency run,
-// so ceil(F W) = ceil(footprints W / cycles). Clamped to the fields' ranges.
-struct LatencyTolerantDepths {
-  int miss_fifo_depth, line_buffer_depth;
-};
-LatencyTolerantDepths latency_tolerant_depths(const UnitConfig& c, uint64_t footprints, uint64_t line_misses,
-                                              uint64_t cycles);
-
 }  // namespace tfu::rtl

@@ -26,6 +26,7 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/latency_tolerance.hpp"
 #include "rtl/unit_config.hpp"
 #include "rtl/unit_stats.hpp"
 #include "sim/sweep/provenance.hpp"
@@ -81,7 +82,7 @@ rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
   }
   if (!o.depths_for_latency.empty()) {
     // The miss FIFO and line buffer the configuration's latency needs (rtl::latency_tolerant_depths)
-    // at the rates of a zero-latency run: its footprints, line misses and cycles per unit.
+    // at the footprint rate of a zero-latency run: its footprints and cycles per unit.
     const std::string name = "--depths-for-latency " + quoted_path(o.depths_for_latency);
     const nlohmann::json j =
         parse_json_input(read_input_file(o.depths_for_latency, name, kMaxTextInputBytes), quote_path(o.depths_for_latency));
@@ -96,8 +97,7 @@ rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
     const uint64_t units = std::max<uint64_t>(counter("units", false), 1);
     const uint64_t cycles = counter("cycles", true);
     if (cycles == 0) throw InputError(fmt::format("{}: 0 cycles", name));
-    const rtl::LatencyTolerantDepths d = rtl::latency_tolerant_depths(
-        u, counter("cache_footprints", true) / units, counter("memory_requests", true) / units, cycles);
+    const rtl::LatencyTolerantDepths d = rtl::latency_tolerant_depths(u, counter("cache_footprints", true) / units, cycles);
     u.miss_fifo_depth = d.miss_fifo_depth;
     u.line_buffer_depth = d.line_buffer_depth;
   }
