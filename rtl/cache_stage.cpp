@@ -10,7 +10,7 @@ namespace tfu::rtl {
 
 CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
                        sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
-                       MemoryModel& m, int miss_fifo_depth, const DecoderConfig& decoder)
+                       MemoryModel& m, int miss_fifo_depth, int line_buffer_depth, const DecoderConfig& decoder)
     : Module(s, "texel_cache"),
       in_(i),
       filter_out_(filter),
@@ -20,6 +20,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
       cache_(c),
       mem_(m),
       fifo_(static_cast<size_t>(miss_fifo_depth)),
+      line_buffer_depth_(line_buffer_depth),
       decoder_(decoder) {
   for (const SamplerDescriptor& d : regs.samplers) {
     any_edge_ = any_edge_ || d.mode.base == BaseFilter::EdgePreserving;
@@ -69,6 +70,7 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
     return taps == 0 ? in : decode(in, taps, blocks, stat_slot(texture, stage));
   }
   r = cache_.access(texture, level, lookup);
+  admitted_lines_ = r.misses;
   const size_t slot = stat_slot(texture, stage);
   SlotCounters& c = slots_[slot];
   c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
@@ -95,6 +97,9 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
   in_.pop();
   int bank_cycles = 1;
   entry.ready = admit(entry.f, now, bank_cycles);
+  entry.lines = admitted_lines_;
+  ++slots_[stat_slot(entry.f.tag.req)].footprints;
+  lines_in_flight_ += admitted_lines_;
   port_free_ = now + static_cast<uint64_t>(bank_cycles);
 }
 
@@ -164,6 +169,7 @@ uint64_t CacheStage::accepted_tap_address(int k) const {
 [[gnu::always_inline]] inline void CacheStage::emit() {
   const FootprintReq& cur = fifo_.front().f;
   read_out(cur, out_of(cur).push_slot());
+  lines_in_flight_ -= fifo_.front().lines;  // its lines go from the line buffer into the cache
   fifo_.pop_front();
   sim_.progress();
 }
@@ -282,13 +288,18 @@ void CacheStage::evaluate() {
       emit();
     }
   }
-  // Input side: one tag lookup per cycle while the port is free and the FIFO has room.
+  // Input side: one tag lookup per cycle while the port is free, the FIFO has room and the line
+  // buffer has room for the most lines a footprint can miss.
   if (in_.can_pop()) {
     if (now < port_free_) {
       ++slots_[stat_slot(in_.front().tag.req)].stall_bank;
     } else if (!fifo_.full()) {
-      accept(now);
-      sim_.progress();
+      if (line_buffer_room()) {
+        accept(now);
+        sim_.progress();
+      } else {
+        ++slots_[stat_slot(in_.front().tag.req)].stall_line_buffer;
+      }
     }
   }
 }
@@ -311,10 +322,13 @@ void CacheStage::skip_cycles(uint64_t n) {
   else if (!fifo_.empty() && !out_of(fifo_.front().f).can_push())
     slots_[stat_slot(fifo_.front().f.tag.req)].stall_back += n;
   if (in_.can_pop() && now < port_free_) slots_[stat_slot(in_.front().tag.req)].stall_bank += n;
+  else if (in_.can_pop() && !fifo_.full() && !line_buffer_room())
+    slots_[stat_slot(in_.front().tag.req)].stall_line_buffer += n;
 }
 
 std::string CacheStage::state() const {
-  return fmt::format("{}, {}, {}, miss fifo {}/{}{}", in_.state(), filter_out_.state(), edge_out_.state(), fifo_.size(), fifo_.depth(),
+  return fmt::format("{}, {}, {}, miss fifo {}/{}, line buffer {}/{}{}", in_.state(), filter_out_.state(), edge_out_.state(),
+                     fifo_.size(), fifo_.depth(), lines_in_flight_, line_buffer_depth_,
                      fifo_.empty() ? std::string() : fmt::format(", head ready at {}", fifo_.front().ready));
 }
 
@@ -332,9 +346,11 @@ void CacheStage::publish(sim::Stats& st) const {
   add(st, UnitStat::CacheLineMisses, misses);
   SlotCounters sum;
   for (const SlotCounters& c : slots_) {
+    sum.footprints += c.footprints;
     sum.stall_miss += c.stall_miss;
     sum.stall_bank += c.stall_bank;
     sum.stall_back += c.stall_back;
+    sum.stall_line_buffer += c.stall_line_buffer;
     for (size_t k = 0; k < 3; ++k) sum.shapes[k] += c.shapes[k];
     sum.decoded_blocks += c.decoded_blocks;
     sum.decoder_busy += c.decoder_busy;
@@ -361,9 +377,13 @@ void CacheStage::publish_slot(sim::Stats& st, size_t slot) const {
 }
 
 void CacheStage::publish_stalls_shapes_decoders(sim::Stats& st, const SlotCounters& c) const {
+  add(st, UnitStat::CacheFootprints, c.footprints);
   add(st, UnitStat::StallCacheMiss, c.stall_miss);
   add(st, UnitStat::StallBankConflict, c.stall_bank);
   add(st, UnitStat::StallBackpressure, c.stall_back);
+  // Only where the line buffer ever stalled the tag stage (with a line buffer deep enough for the
+  // latency it never does, and the statistics stay those of a unit without the bound).
+  if (stalled_on_line_buffer()) add(st, UnitStat::StallLineBuffer, c.stall_line_buffer);
   if (any_compressed_) {
     add(st, UnitStat::DecodedBlocks, c.decoded_blocks);
     add(st, UnitStat::DecoderBusyCycles, c.decoder_busy);

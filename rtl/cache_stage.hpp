@@ -4,9 +4,25 @@
 // texture cache of Igehy, Eldridge & Proudfoot 1998): several misses are outstanding, and hits
 // behind a miss wait in order. The FIFO head leaves, with its texel words, when its lines have
 // arrived. The banks serve one footprint per cycle; a bank conflict holds the tag port for the
-// extra cycles. Simplification: a line is not evicted while a queued footprint still needs it
-// (the paper's reference counters); the texel words are read from the texel memory at their
-// addresses (the descriptor's level address, pitch and layout) when the footprint leaves.
+// extra cycles. The texel words are read from the texel memory at their addresses (the descriptor's
+// level address, pitch and layout) when the footprint leaves.
+//
+// The line buffer (the paper's reorder buffer): a missed line's data waits in one of
+// `line_buffer_depth` slots from its request until the footprint that missed it leaves the FIFO
+// head and writes it into the cache. The cache's data thus follows its tags in FIFO order, so a
+// line is never overwritten while a queued footprint still needs it (the tags run ahead of the
+// data by the FIFO). The tag stage does not know a footprint's misses before its lookup, so it
+// accepts a footprint only while kMaxFootprintLines slots are free (after this cycle's exit); the
+// footprint then holds one slot per missed line. The memory requests wait in order at the memory
+// interface (the request queue: at most line_buffer_depth lines, each holding a slot).
+//
+// Latency tolerance (Little's law; docs/memory-system.md, "Latency tolerance"): a footprint stays
+// in the miss FIFO about W = latency + ceil(line_bytes / bytes_per_cycle) + 2 cycles when the
+// memory keeps up, so a unit that takes F footprints per cycle at zero latency keeps that rate only
+// with miss_fifo_depth >= F W; a missed line holds its slot about as long, and misses come in
+// bursts at the memory's rate, so the line buffer needs the lines the memory delivers in W cycles
+// (W bytes_per_cycle / line_bytes) + kMaxFootprintLines slots. latency_tolerant_depths()
+// (rtl/unit_config.hpp) computes both.
 //
 // Ports:
 //   in  footprint  FootprintReq (texture, level, tap grid, shape, optional arms)   valid/ready
@@ -67,7 +83,7 @@ class CacheStage : public sim::Module {
  public:
   CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Channel<FilterReq>& filter,
              sim::Channel<FilterReq>& edge, const Registers& regs, const TextureMemory& memory, TexelCache& c,
-             MemoryModel& m, int miss_fifo_depth, const DecoderConfig& decoder = {});
+             MemoryModel& m, int miss_fifo_depth, int line_buffer_depth, const DecoderConfig& decoder = {});
   void evaluate() override;
   std::string state() const override;
   void publish(sim::Stats& st) const;
@@ -107,11 +123,16 @@ class CacheStage : public sim::Module {
   struct SlotCounters {
     std::array<uint64_t, kMaxLevels> level_hits{}, level_misses{};
     uint64_t memory_bytes = 0, memory_requests = 0;
-    uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0;
+    uint64_t footprints = 0;  // looked up (accepted into the miss FIFO)
+    uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, stall_line_buffer = 0;
     std::array<uint64_t, 3> shapes{};  // cross, T, L
     uint64_t decoded_blocks = 0, decoder_busy = 0, decoder_stall = 0;
   };
   const std::vector<SlotCounters>& slot_counters() const { return slots_; }
+  // The line buffer held some footprint at the tag stage (stall_line_buffer is published then only).
+  bool stalled_on_line_buffer() const {
+    return std::any_of(slots_.begin(), slots_.end(), [](const SlotCounters& c) { return c.stall_line_buffer != 0; });
+  }
   // The block without its miss FIFO and handshakes (the timing recurrences of
   // rtl/unit_recurrence.cpp drive these; evaluate() uses the same code): admit_footprint looks a
   // footprint up at cycle `now` (cache-aware arms, tags, memory reads, statistics) and returns the
@@ -132,6 +153,7 @@ class CacheStage : public sim::Module {
   // of its missing lines; the cycle the lines are all in.
   [[gnu::always_inline]] uint64_t lines_in(int texture, int stage, int level, const FootprintResult& r, uint64_t now,
                                            int& bank_cycles) {
+    admitted_lines_ = r.misses;  // the line buffer's slots this footprint takes (accept)
     SlotCounters& c = slots_[stat_slot(texture, stage)];
     c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
     c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
@@ -175,9 +197,10 @@ class CacheStage : public sim::Module {
   //   input side   a footprint pushed into the shaped channel at `pushed` is accepted (looked up)
   //                in the first cycle in which it is visible (pushed + 1, and the previous one
   //                accepted a cycle earlier), the tag port is free (the previous footprint's
-  //                accept cycle + its bank cycles) and the miss FIFO has a slot (freed by this
-  //                cycle's exit at the latest); the cycles it waits for the port count as
-  //                stall_bank_conflict;
+  //                accept cycle + its bank cycles), the miss FIFO has a slot (freed by this
+  //                cycle's exit at the latest) and the line buffer kMaxFootprintLines free slots
+  //                (the same); the cycles it waits for the port count as stall_bank_conflict, those
+  //                it then waits for the line buffer (the FIFO having room) as stall_line_buffer;
   //   output side  the miss-FIFO head leaves, pushing its texel words, in the first cycle after its
   //                accept and the previous head's exit in which its lines are in (`ready`) and its
   //                output channel has room; it counts its cycles waiting for the lines as
@@ -194,8 +217,22 @@ class CacheStage : public sim::Module {
                                           size_t slot) {
       const int64_t visible = std::max(pushed + 1, last_accept_ + 1);
       const int64_t port_free = last_accept_ + port_cycles_;
-      const int64_t t = std::max({visible, port_free, miss_fifo.freed()});
-      b_.slots_[slot].stall_bank += cycles_between(visible, std::min(t, port_free));
+      const int64_t fifo_room = std::max({visible, port_free, miss_fifo.freed()});
+      // The line buffer: the lines of the footprints still queued at `t` (they leave in order, and
+      // free their slots in the cycle they leave).
+      int64_t t = fifo_room;
+      for (;;) {
+        while (!in_flight_.empty() && in_flight_.front().exit <= t) {
+          lines_in_flight_ -= in_flight_.front().lines;
+          in_flight_.pop_front();
+        }
+        if (lines_in_flight_ + kMaxFootprintLines <= b_.line_buffer_depth_) break;
+        t = in_flight_.front().exit;
+      }
+      SlotCounters& c = b_.slots_[slot];
+      ++c.footprints;
+      c.stall_bank += cycles_between(visible, std::min(t, port_free));
+      c.stall_line_buffer += cycles_between(fifo_room, t);
       in.pop(t);
       last_accept_ = t;
       return t;
@@ -212,11 +249,21 @@ class CacheStage : public sim::Module {
       c.stall_back += cycles_between(std::max(head, ready), t);
       miss_fifo.pop(t);
       last_exit_ = t;
+      if (b_.admitted_lines_ > 0) {
+        in_flight_.push_back({t, b_.admitted_lines_});
+        lines_in_flight_ += b_.admitted_lines_;
+      }
       return t;
     }
 
    private:
     CacheStage& b_;
+    struct QueuedLines {
+      int64_t exit;  // the cycle its footprint leaves the miss FIFO
+      int lines;     // the line-buffer slots it holds until then
+    };
+    std::deque<QueuedLines> in_flight_;  // footprints that missed lines, in order
+    int lines_in_flight_ = 0;            // their slots
     int64_t last_accept_ = -1, last_exit_ = -1;  // the previous footprint's cycles (-1: none)
     int port_cycles_ = 0;                        // the cycles it held the tag port
   } timing{*this};
@@ -232,8 +279,15 @@ class CacheStage : public sim::Module {
   struct Entry {
     FootprintReq f;
     uint64_t ready;  // cycle the footprint's lines are all in the cache
+    int lines;       // line-buffer slots it holds (its missed lines)
   };
   sim::Fifo<Entry> fifo_;  // the miss FIFO
+  int line_buffer_depth_;
+  int lines_in_flight_ = 0;  // line-buffer slots held by the footprints in the miss FIFO
+  int admitted_lines_ = 0;   // the lines the last footprint looked up missed
+  // The input side may accept a footprint: the miss FIFO has an entry and the line buffer
+  // kMaxFootprintLines slots.
+  bool line_buffer_room() const { return lines_in_flight_ + kMaxFootprintLines <= line_buffer_depth_; }
   // The read-out registers of every level of every texture (decoded from the descriptors once):
   // texture t's level l is readout_[first_readout_[t] + l].
   std::vector<LevelReadout> readout_;

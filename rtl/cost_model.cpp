@@ -195,6 +195,10 @@ SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro
   return a;
 }
 
+uint64_t line_buffer_sram_bits(const UnitConfig& c) {
+  return static_cast<uint64_t>(c.line_buffer_depth) * static_cast<uint64_t>(c.cache.line_bytes) * 8;
+}
+
 UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
                    const RunCounts& run) {
   std::vector<FilterMode> modes;
@@ -225,12 +229,16 @@ UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDe
   c.logic_pj = static_cast<double>(run.cycles) * (leakage_pj + switching_pj);
   if (const SramMacro* m = sram_macro(n)) {
     const CacheSramBits bits = texel_cache_sram_bits(config.cache);
-    c.sram_um2 = u * static_cast<double>(bits.total()) * m->area_um2 / (m->words * m->bits_per_word);
+    c.sram_um2 = u * static_cast<double>(bits.total() + line_buffer_sram_bits(config)) * m->area_um2 /
+                 (m->words * m->bits_per_word);
     c.area_mm2 = (c.logic_um2 + *c.sram_um2) * 1e-6;
     const SramAccessWords a = sram_access_words(config.cache, *m);
     c.sram_pj = static_cast<double>(run.line_lookups) * (static_cast<double>(a.lookup_reads) * m->read_pj +
                                                          static_cast<double>(a.lookup_writes) * m->write_pj) +
                 static_cast<double>(run.line_misses) * static_cast<double>(a.fill_writes) * m->write_pj;
+    const double line_words = static_cast<double>(ceil_div(static_cast<uint64_t>(config.cache.line_bytes) * 8,
+                                                           static_cast<uint64_t>(m->bits_per_word)));
+    *c.sram_pj += static_cast<double>(run.line_misses) * line_words * (m->write_pj + m->read_pj);  // the line buffer
     if (run.pixels) c.energy_pj_per_pixel = (c.logic_pj + *c.sram_pj) / static_cast<double>(run.pixels);
   }
   return c;

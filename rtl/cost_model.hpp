@@ -29,10 +29,12 @@
 //   logic_um2           datapath instances' area + miss FIFO flip-flops
 //   fmax_mhz            the slowest block's fmax (register-to-register, and input-to-register where
 //                       the block has one): the slowest part sets the clock
-//   sram_um2            texel_cache_sram_bits x the node's SRAM macro area per bit (kSramMacros;
-//                       absent for a node without a cited macro)
+//   sram_um2            (texel_cache_sram_bits + line_buffer_sram_bits) x the node's SRAM macro area
+//                       per bit (kSramMacros; absent for a node without a cited macro)
 //   energy              logic: (leakage + uniform-activity switching) per cycle x cycles; SRAM: macro
-//                       word reads and writes per line lookup and per line fill; DRAM: not counted
+//                       word reads and writes per line lookup and per line fill, and per line fill
+//                       the line buffer's write (on arrival) and read (into the cache); DRAM: not
+//                       counted
 #pragma once
 
 #include <cstdint>
@@ -52,6 +54,11 @@ struct CacheSramBits {
   uint64_t total() const { return data + tag + valid + lru; }
 };
 CacheSramBits texel_cache_sram_bits(const TexelCacheConfig& c);
+// The line buffer (rtl/cache_stage.hpp: missed lines from request until their footprint leaves the
+// miss FIFO): line_buffer_depth x line_bytes x 8 data bits. Its slots are allocated in ring order,
+// so it stores no address; the count of slots a miss-FIFO entry holds (5 bits) and the ring's
+// pointers are not counted.
+uint64_t line_buffer_sram_bits(const UnitConfig& c);
 
 // One synthesized block of the table.
 struct GateBlock {

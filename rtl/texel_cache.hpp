@@ -99,6 +99,9 @@ struct FootprintResult {
   int cycles = 1;                           // bank occupancy
   std::array<uint64_t, 16> missed_lines;  // distinct line addresses fetched from memory: [0, misses)
 };
+// The most distinct lines one footprint looks up (and may miss): the line-buffer slots the texel
+// cache stage needs free before it accepts a footprint (rtl/cache_stage.hpp).
+inline constexpr int kMaxFootprintLines = static_cast<int>(std::tuple_size_v<decltype(FootprintResult::missed_lines)>);
 
 class TexelCache {
  public:

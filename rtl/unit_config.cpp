@@ -1,3 +1,4 @@
+#include "rtl/latency_tolerance.hpp"
 #include "rtl/unit_config.hpp"
 
 #include <algorithm>
@@ -85,8 +86,13 @@ const std::vector<UnitField>& fields() {
        {"lru", "fifo"}, TFU_INT_FIELD(l2.replacement)},
       {"channel_depth", "--channel-depth", "skid-buffer depth between blocks", 1, 64, {}, {},
        TFU_INT_FIELD(channel_depth)},
-      {"miss_fifo_depth", "--miss-fifo-depth", "footprints queued behind outstanding misses (Igehy et al. 1998)", 1, 1024, {}, {},
-       TFU_INT_FIELD(miss_fifo_depth)},
+      {"miss_fifo_depth", "--miss-fifo-depth",
+       "footprints queued behind outstanding misses (Igehy et al. 1998; the depth a latency needs: docs/memory-system.md)",
+       1, 65536, {}, {}, TFU_INT_FIELD(miss_fifo_depth)},
+      {"line_buffer_depth", "--line-buffer-depth",
+       "line slots holding missed lines from request until their footprint leaves the miss FIFO (Igehy et al.'s reorder "
+       "buffer); a footprint is looked up only with room for the most lines one can miss (the least value)",
+       kMaxFootprintLines, 65536, {}, {}, TFU_INT_FIELD(line_buffer_depth)},
       {"filter_lanes", "--lanes", "bilinear-equivalent multiplier lanes of the filter", 1, 4, {1, 2, 4}, {},
        TFU_INT_FIELD(filter_lanes)},
   };
@@ -220,6 +226,19 @@ std::string unit_config_to_json(const UnitConfig& c) {
     (*at)[key] = nlohmann::json::parse(f.value_text(c));
   }
   return json_dump(j, 2);
+}
+
+LatencyTolerantDepths latency_tolerant_depths(const UnitConfig& c, uint64_t footprints, uint64_t cycles) {
+  if (cycles == 0) throw InputError("latency_tolerant_depths: a zero-latency run of no cycles");
+  const auto line_cycles = static_cast<uint64_t>((c.cache.line_bytes + c.memory.bytes_per_cycle - 1) / c.memory.bytes_per_cycle);
+  const uint64_t w = static_cast<uint64_t>(c.memory.latency) + line_cycles + 2;
+  const UnitField& fifo = *find_unit_field("miss_fifo_depth");
+  const UnitField& lines = *find_unit_field("line_buffer_depth");
+  const uint64_t fifo_depth = (footprints * w + cycles - 1) / cycles;  // w < 2^21: exact for up to 2^43 footprints
+  const auto line_bytes = static_cast<uint64_t>(c.cache.line_bytes);
+  const uint64_t in_flight = (w * static_cast<uint64_t>(c.memory.bytes_per_cycle) + line_bytes - 1) / line_bytes;
+  return {static_cast<int>(std::clamp<uint64_t>(fifo_depth, static_cast<uint64_t>(fifo.lo), static_cast<uint64_t>(fifo.hi))),
+          static_cast<int>(std::min<uint64_t>(in_flight + kMaxFootprintLines, static_cast<uint64_t>(lines.hi)))};
 }
 
 std::string unit_config_markdown() {

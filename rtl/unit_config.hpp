@@ -21,6 +21,7 @@ struct UnitConfig {
   L2Config l2{};              // the L2 shared by a scene's units (off by default: rtl/l2_cache.hpp)
   int channel_depth = 2;      // skid buffers between blocks
   int miss_fifo_depth = 128;  // footprints queued in the texel cache behind outstanding misses
+  int line_buffer_depth = 64;  // missed lines held from request until their footprint leaves the miss FIFO
   int filter_lanes = 1;       // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)
   DecoderConfig decoder{};    // block decoders of compressed textures (rtl/texel_cache.hpp)
   // (Simulation options such as idle-cycle skipping are not architecture: ClockedOptions, tfu_unit.hpp.)

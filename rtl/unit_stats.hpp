@@ -33,9 +33,11 @@ enum class UnitStat {
   CacheLineMissesLevel,
   MemoryBytes,
   MemoryRequests,
+  CacheFootprints,
   StallCacheMiss,
   StallBankConflict,
   StallBackpressure,
+  StallLineBuffer,
   ShapeCross,
   ShapeT,
   ShapeL,
@@ -98,7 +100,7 @@ struct UnitStatField {
 };
 
 // Row i is UnitStat i (checked below), so a key is one array read.
-inline constexpr std::array<UnitStatField, 51> kUnitStatFields{{
+inline constexpr std::array<UnitStatField, 53> kUnitStatFields{{
     {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)",
      "the output cycles given to the group's requests: each request's retirement cycle minus the previous request's "
      "(the first: its retirement cycle + 1), summed over units; one unit's groups add up to its cycles"},
@@ -114,6 +116,8 @@ inline constexpr std::array<UnitStatField, 51> kUnitStatFields{{
     {UnitStat::MemoryBytes, "memory_bytes", StatKind::Counter, "bytes read from memory",
      "bytes read for the group's misses"},
     {UnitStat::MemoryRequests, "memory_requests", StatKind::Counter, "memory requests (one per missed line)", ""},
+    {UnitStat::CacheFootprints, "cache_footprints", StatKind::Counter,
+     "footprints the texel cache looked up (one tag lookup each; the rate the miss FIFO's depth follows)", ""},
     {UnitStat::StallCacheMiss, "stall_cache_miss", StatKind::Counter,
      "cycles the miss-FIFO head waits for memory (texel cache stage)",
      "counted for the footprint at the miss-FIFO head"},
@@ -122,6 +126,9 @@ inline constexpr std::array<UnitStatField, 51> kUnitStatFields{{
      "counted for the footprint waiting for the tag port"},
     {UnitStat::StallBackpressure, "stall_backpressure", StatKind::Counter,
      "cycles the texel cache stage waits for a full next block", "counted for the footprint at the miss-FIFO head"},
+    {UnitStat::StallLineBuffer, "stall_line_buffer", StatKind::Counter,
+     "cycles the tag stage waits for free line-buffer slots, the miss FIFO having room (present only when nonzero)",
+     "counted for the footprint waiting at the tag stage"},
     {UnitStat::ShapeCross, "shape_cross", StatKind::Counter, "edge kernels read as the full cross (edge modes)", ""},
     {UnitStat::ShapeT, "shape_T", StatKind::Counter, "edge kernels read as a T shape (edge modes)", ""},
     {UnitStat::ShapeL, "shape_L", StatKind::Counter, "edge kernels read as an L shape (edge modes)", ""},

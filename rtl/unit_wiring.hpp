@@ -46,7 +46,7 @@ struct Unit {
         address_gen(sim, c_pixel, c_addr, frame.regs, roms),
         kernel_select(sim, c_addr, c_shape, frame.regs),
         cache_stage(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth,
-                    u.decoder),
+                    u.line_buffer_depth, u.decoder),
         response(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
     if (cache_stage.records_shapes()) cache_stage.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
     bool any_edge = false, any_filter = false;

@@ -83,7 +83,7 @@ TEST(CacheConfig, UnitConfigFieldsAreRangeChecked) {
   EXPECT_EQ(err(R"({"channel_depth": 65})"), "u.json: 'channel_depth' 65 must be in 1..64");
   EXPECT_EQ(err(R"({"cache": {"ways": 2147483648}})"), "u.json: 'cache.ways' 2147483648 must be in 1..1024");
   EXPECT_EQ(err(R"({"cache": {"ways": 18446744073709551615}})"), "u.json: 'cache.ways' value 18446744073709551615 is out of range");
-  EXPECT_EQ(err(R"({"miss_fifo_depth": -9223372036854775808})"), "u.json: 'miss_fifo_depth' -9223372036854775808 must be in 1..1024");
+  EXPECT_EQ(err(R"({"miss_fifo_depth": -9223372036854775808})"), "u.json: 'miss_fifo_depth' -9223372036854775808 must be in 1..65536");
   EXPECT_EQ(err(R"({"cache": {"capacity_bytes": 1.5}})"), "u.json: 'cache.capacity_bytes' must be an integer");
   EXPECT_EQ(err(R"({"memory": {"latency": 1e400}})"), "u.json: line 1, column 28: at memory.latency: number overflow parsing '1e400'");
 }
@@ -219,6 +219,7 @@ TEST(Watchdog, ValidExtremeConfigurationsRunToTheEnd) {
       u.memory.latency = c.latency;
       u.memory.bytes_per_cycle = c.bandwidth;
       u.miss_fifo_depth = c.fifo;
+      u.line_buffer_depth = 65536;  // the largest: the 1,024-entry FIFO's misses all overlap (a smaller one serializes them)
       ASSERT_NO_THROW(u.validate());
       const std::string what = fmt::format("{} line={} cap={} lat={} bw={} fifo={}", mode, c.line_bytes, c.capacity, c.latency,
                                            c.bandwidth, c.fifo);

@@ -462,7 +462,7 @@ Texture l8_linear_checkerboard() {
 }
 
 // A random unit configuration around `base` (its line size kept): channel and miss-FIFO depths
-// down to 1, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping;
+// down to 1 (the miss FIFO up to its 65,536), the line buffer from 16 to 65,536 slots, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping;
 // so that stalls of every kind, back-pressure included, occur. `clocked`, if given, receives a
 // random idle-skip option of the clocked run (drawn either way: the same configurations follow).
 UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, ClockedOptions* clocked = nullptr) {
@@ -479,6 +479,10 @@ UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, Clocked
   c.cache.bank_mapping = rng() % 2 ? BankMapping::TexelParity : BankMapping::BlockParity;
   const bool idle_skip = rng() % 2 != 0;
   if (clocked) clocked->idle_skip = idle_skip;
+  // The line buffer from its least (one footprint's lines) to the largest, and now and then the
+  // deepest miss FIFO.
+  c.line_buffer_depth = pick({16, 17, 24, 64, 65536});
+  if (rng() % 8 == 0) c.miss_fifo_depth = 65536;
   return c;
 }
 

@@ -54,14 +54,17 @@ TEST(UnitCost, BilinearOneLaneAtOsu018ByHand) {
   const double leak_nw = 680.84 + 33920 * 0.160725;
   const double per_clock = leak_nw / 143.1 * 1e-3 + 0.1 * (3585661.0 / 24) * 0.0125 * 1.8 * 1.8;
   EXPECT_NEAR(k.logic_pj, 1000 * per_clock, 1e-6 * k.logic_pj);
-  // SRAM: 139,008 bits (the default cache) at 209,400.2768 um^2 per 4,096 bits.
+  // SRAM: 139,008 bits (the default cache) + 64 x 512 bits (the default line buffer: 64 lines of
+  // 64 bytes) = 171,776 bits at 209,400.2768 um^2 per 4,096 bits.
+  EXPECT_EQ(rtl::line_buffer_sram_bits(c), 32768u);
   ASSERT_TRUE(k.sram_um2.has_value());
-  EXPECT_NEAR(*k.sram_um2, 139008 * 209400.2768 / 4096, 1e-6);
-  EXPECT_NEAR(*k.area_mm2, (3585661.0 + 139008 * 209400.2768 / 4096) * 1e-6, 1e-12);
+  EXPECT_NEAR(*k.sram_um2, 171776 * 209400.2768 / 4096, 1e-6);
+  EXPECT_NEAR(*k.area_mm2, (3585661.0 + 171776 * 209400.2768 / 4096) * 1e-6, 1e-12);
   // A lookup reads 4 x (28 tag + 1 valid) + 8 LRU bits = 124 bits = 16 words, and 64 line words,
   // and writes 1 LRU word; a fill writes 64 line words and 4 words of tag and valid.
-  // Read 2 x 103.176 pJ, write 2 x 112.563 pJ per word (both clock edges).
-  const double sram = 500 * (80 * 206.352 + 1 * 225.126) + 20 * (68 * 225.126);
+  // Read 2 x 103.176 pJ, write 2 x 112.563 pJ per word (both clock edges). A fill also writes the
+  // line's 64 words into the line buffer and reads them out of it.
+  const double sram = 500 * (80 * 206.352 + 1 * 225.126) + 20 * (68 * 225.126) + 20 * 64 * (225.126 + 206.352);
   EXPECT_NEAR(*k.sram_pj, sram, 1e-6 * sram);
   EXPECT_NEAR(*k.energy_pj_per_pixel, (k.logic_pj + sram) / 400, 1e-9 * sram);
 }

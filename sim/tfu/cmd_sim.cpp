@@ -17,6 +17,7 @@
 #include "cmodel/gl_replay.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/input_file.hpp"
+#include "cmodel/json_input.hpp"
 #include "cmodel/json_output.hpp"
 #include "cmodel/output_files.hpp"
 #include "cmodel/q3_scene.hpp"
@@ -27,6 +28,7 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/scene_sim.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "rtl/latency_tolerance.hpp"
 #include "rtl/unit_config.hpp"
 #include "rtl/unit_stats.hpp"
 #include "sim/sweep/provenance.hpp"
@@ -58,6 +60,7 @@ struct SimOptions {
   std::string raster = "scanline", unit_tiles = "round-robin:32";  // cmodel/raster_order.hpp
   std::string texture_layout;  // scene runs: every texture's layout (empty: each texture's own)
   std::string stats, out, vcd, config_out;
+  std::string depths_for_latency;  // a zero-latency run's statistics: the Little's-law depths
   uint64_t vcd_from = 0, vcd_to = UINT64_MAX;  // cycles the waveform covers
   std::string vcd_signals;                     // comma-separated patterns (empty: every signal)
   std::vector<std::string> vcd_patterns;       // from vcd_signals
@@ -81,6 +84,27 @@ rtl::UnitConfig unit_config(const SimOptions& o, const CLI::App& cmd) {
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", f.flag, e.what()));
     }
+  }
+  if (!o.depths_for_latency.empty()) {
+    // The miss FIFO and line buffer the configuration's latency needs (rtl::latency_tolerant_depths)
+    // at the footprint rate of a zero-latency run: its footprints and cycles per unit.
+    const std::string name = "--depths-for-latency " + quoted_path(o.depths_for_latency);
+    const nlohmann::json j =
+        parse_json_input(read_input_file(o.depths_for_latency, name, kMaxTextInputBytes), quote_path(o.depths_for_latency));
+    const auto counter = [&](const char* key, bool required) -> uint64_t {
+      const nlohmann::json* c = j.is_object() && j.contains("counters") ? &j.at("counters") : nullptr;
+      if (c == nullptr || !c->is_object() || !c->contains(key) || !c->at(key).is_number_unsigned()) {
+        if (!required) return 1;
+        throw InputError(fmt::format("{}: no counter '{}' (a statistics file of tfu sim --stats)", name, key));
+      }
+      return c->at(key).get<uint64_t>();
+    };
+    const uint64_t units = std::max<uint64_t>(counter("units", false), 1);
+    const uint64_t cycles = counter("cycles", true);
+    if (cycles == 0) throw InputError(fmt::format("{}: 0 cycles", name));
+    const rtl::LatencyTolerantDepths d = rtl::latency_tolerant_depths(u, counter("cache_footprints", true) / units, cycles);
+    u.miss_fifo_depth = d.miss_fifo_depth;
+    u.line_buffer_depth = d.line_buffer_depth;
   }
   try {
     u.validate();
@@ -660,6 +684,9 @@ void register_sim(CLI::App& app) {
                   "configuration to use; the flags below override it");
   cmd->add_option("--config-out", o->config_out, "Write the effective unit configuration (every field) as JSON");
   for (const rtl::UnitField& f : rtl::unit_config_fields()) cmd->add_option(f.flag, o->unit_flags[f.key], fmt::format("{}: {}", f.key, f.meaning));
+  cmd->add_option("--depths-for-latency", o->depths_for_latency,
+                  "Set miss_fifo_depth and line_buffer_depth by the Little's-law rule for this configuration's "
+                  "memory.latency, from a zero-latency run's statistics file (docs/memory-system.md, \"Latency tolerance\")");
   cmd->add_flag("--config-fields", o->config_fields, "Print the unit configuration's fields (Markdown) and exit");
   cmd->add_flag("--stats-fields", o->stats_fields, "Print the statistics' fields (Markdown) and exit");
   cmd->add_option("--shape-policy", o->shape_policy,

@@ -17,7 +17,7 @@
 //              1..16 and its rounding
 //   unit       cache line 64 / 256 / 1024 bytes, 1..16 sets of 1..8 ways, 1 or 4 banks, both bank
 //              mappings, memory latency 0..10^6 and bandwidth 1..65536 bytes per cycle, channel
-//              depth 1..4, miss FIFO 1..16, 1 / 2 / 4 filter lanes (the same byte's high bits: what
+//              depth 1..4, miss FIFO 1..16, line buffer 15 + sets, 1 / 2 / 4 filter lanes (the same byte's high bits: what
 //              the cache holds of compressed textures, 1..4 decoders of 1..8 texels per clock,
 //              latency 0 or 3), idle skipping on or off
 //   requests   lod, grad or quad mode; each request (each quad) names a texture and a sampler;
@@ -146,6 +146,7 @@ tfu::rtl::UnitConfig make_unit(ByteReader& in, tfu::rtl::ClockedOptions& clocked
   u.memory.bytes_per_cycle = in.pick({1, 3, 16, 64, 65536});
   u.channel_depth = static_cast<int>(in.in_range(1, 4));
   u.miss_fifo_depth = static_cast<int>(in.in_range(1, 16));
+  u.line_buffer_depth = tfu::rtl::kMaxFootprintLines - 1 + sets;  // 16..31 slots (no byte of its own): it binds often
   const uint8_t lanes = in.byte();
   constexpr int kLanes[] = {1, 2, 4};
   u.filter_lanes = kLanes[lanes % 3];
