@@ -80,4 +80,4 @@ def test_descriptors_use_the_register_field_tables(cli):
     d = tex.descriptor()
     assert [f["name"] for f in tfu.descriptor_fields("texture")] == list(d)
     assert set(tfu.sampler_keys()) >= {"filter", "wrap_s", "wrap_t", "max_aniso"}
-    assert tfu.texture_keys() == ["format", "mipmaps", "alpha", "layout", "tile_bytes", "compress"]
+    assert tfu.texture_keys() == ["format", "mipmaps", "alpha", "layout", "tile_bytes", "compress", "srgb"]
