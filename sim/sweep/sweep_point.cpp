@@ -110,13 +110,14 @@ RunRecord run_record(const Spec& s, const Point& p, int width, int height) {
 }
 
 // The point's figures beside its statistics (what results.csv shows).
-nlohmann::json result_json(const Spec&, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
+nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimResult& res, const Truths& truth, const Frame& frame) {
   const sim::Stats& st = res.stats;
   nlohmann::json r;
   r["cycles"] = res.cycles;
   r["pixels"] = res.requests;
   r["pixels_per_clock"] = rtl::value(st, rtl::UnitStat::PixelsPerClock);
   r["hit_rate"] = rtl::value(st, rtl::UnitStat::CacheHitRate);
+  r["sector_hit_rate"] = rtl::value(st, rtl::UnitStat::CacheSectorHitRate);
   r["bytes_per_pixel"] = rtl::value(st, rtl::UnitStat::MemoryBytesPerPixel);
   r["memory_bytes"] = rtl::counter(st, rtl::UnitStat::MemoryBytes);
   for (const rtl::UnitStat c : {rtl::UnitStat::StallCacheMiss, rtl::UnitStat::StallBankConflict, rtl::UnitStat::StallBackpressure})
