@@ -331,7 +331,7 @@ TEST(UnitStats, ProbeHistogramOfSeveralUnitsCountsEveryPixel) {
   for (int units : {1, 3, 12}) {
     rtl::SceneSimOptions so;
     so.units = units;
-    so.tile = 16;
+    so.tiles.tile = 16;
     const rtl::SceneSimResult r = rtl::simulate_scene(s, render, rtl::UnitConfig{}, so);
     ASSERT_TRUE(r.mismatch.empty()) << r.mismatch;
     const std::vector<uint64_t>* h = r.stats.histogram("aniso_probes");
