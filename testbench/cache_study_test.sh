@@ -60,6 +60,6 @@ assert set(comp) == {"none", "bc1"}, comp
 st = json.load(open(os.path.join(work, "study", "compress", "ground_plane_bc1.json")))
 assert abs(comp["bc1"]["sector_hit_rate"] - st["values"]["cache_sector_hit_rate"]) < 1e-12
 assert comp["bc1"]["bytes_per_pixel"] < comp["none"]["bytes_per_pixel"], comp
-assert len(study["dram"]) == 4 and all(0 <= d["dram_row_hit_rate"] <= 1 for d in study["dram"]), study["dram"]
+assert len(study["dram"]) == 6 and all(0 <= d["dram_row_hit_rate"] <= 1 for d in study["dram"]), study["dram"]
 print("cache_study_test: ok")
 PY
