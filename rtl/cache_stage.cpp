@@ -75,6 +75,8 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
   SlotCounters& c = slots_[slot];
   c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
   c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+  c.sector_hits += static_cast<uint64_t>(r.sector_hits);
+  c.sector_lookups += static_cast<uint64_t>(r.sector_lookups);
   c.memory_requests += static_cast<uint64_t>(r.misses);
   bank_cycles = r.cycles > 1 ? r.cycles : 1;
   uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
@@ -344,6 +346,8 @@ void CacheStage::publish(sim::Stats& st) const {
   }
   add(st, UnitStat::CacheLineHits, hits);
   add(st, UnitStat::CacheLineMisses, misses);
+  add(st, UnitStat::CacheSectorHits, cache_.sector_hits());
+  add(st, UnitStat::CacheSectorLookups, cache_.sector_lookups());
   SlotCounters sum;
   for (const SlotCounters& c : slots_) {
     sum.footprints += c.footprints;
@@ -371,6 +375,8 @@ void CacheStage::publish_slot(sim::Stats& st, size_t slot) const {
   }
   add(st, UnitStat::CacheLineHits, hits);
   add(st, UnitStat::CacheLineMisses, misses);
+  add(st, UnitStat::CacheSectorHits, c.sector_hits);
+  add(st, UnitStat::CacheSectorLookups, c.sector_lookups);
   add(st, UnitStat::MemoryBytes, c.memory_bytes);
   add(st, UnitStat::MemoryRequests, c.memory_requests);
   publish_stalls_shapes_decoders(st, c);

@@ -122,6 +122,7 @@ class CacheStage : public sim::Module {
   // the cache's tag unit).
   struct SlotCounters {
     std::array<uint64_t, kMaxLevels> level_hits{}, level_misses{};
+    uint64_t sector_hits = 0, sector_lookups = 0;  // 32-byte sectors (rtl/texel_cache.hpp)
     uint64_t memory_bytes = 0, memory_requests = 0;
     uint64_t footprints = 0;  // looked up (accepted into the miss FIFO)
     uint64_t stall_miss = 0, stall_bank = 0, stall_back = 0, stall_line_buffer = 0;
@@ -157,6 +158,8 @@ class CacheStage : public sim::Module {
     SlotCounters& c = slots_[stat_slot(texture, stage)];
     c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
     c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
+    c.sector_hits += static_cast<uint64_t>(r.sector_hits);
+    c.sector_lookups += static_cast<uint64_t>(r.sector_lookups);
     c.memory_requests += static_cast<uint64_t>(r.misses);
     c.memory_bytes += static_cast<uint64_t>(r.misses) * static_cast<uint64_t>(cache_.config().line_bytes);
     bank_cycles = r.cycles > 1 ? r.cycles : 1;

@@ -54,7 +54,7 @@ const char* block_of(BaseFilter b) {
 CacheSramBits texel_cache_sram_bits(const TexelCacheConfig& c) {
   c.validate();
   const auto lines = static_cast<uint64_t>(c.lines()), sets = static_cast<uint64_t>(c.sets()),
-             ways = static_cast<uint64_t>(c.ways);
+             ways = static_cast<uint64_t>(c.way_count());
   const int offset_bits = ceil_log2(static_cast<uint64_t>(c.line_bytes));
   const uint64_t line_space = uint64_t{1} << (kAddressBits - offset_bits);  // distinct line addresses
   CacheSramBits b;
@@ -184,7 +184,7 @@ std::vector<std::pair<std::string, double>> datapath_instances(const std::vector
 
 SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro& m) {
   const CacheSramBits bits = texel_cache_sram_bits(cache);
-  const auto w = static_cast<uint64_t>(m.bits_per_word), ways = static_cast<uint64_t>(cache.ways);
+  const auto w = static_cast<uint64_t>(m.bits_per_word), ways = static_cast<uint64_t>(cache.way_count());
   const uint64_t set_lru = bits.lru / static_cast<uint64_t>(cache.sets()),
                  line = static_cast<uint64_t>(cache.line_bytes) * 8,
                  tag_valid = static_cast<uint64_t>(bits.tag_bits) + 1;

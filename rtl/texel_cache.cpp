@@ -11,10 +11,11 @@
 namespace tfu::rtl {
 
 void TexelCacheConfig::validate() const {
-  const auto set_bytes = static_cast<int64_t>(line_bytes) * ways;  // 64-bit: no overflow for any int fields
+  // 64-bit: no overflow for any int fields; fully associative (ways 0): one set of whole lines.
+  const auto set_bytes = static_cast<int64_t>(line_bytes) * (ways == 0 ? 1 : ways);
   if (line_bytes != 64 && line_bytes != 256 && line_bytes != 1024)
     throw InputError(fmt::format("cache line_bytes {} must be 64, 256 or 1024", line_bytes));
-  if (ways < 1) throw InputError(fmt::format("cache ways {} must be at least 1", ways));
+  if (ways < 0) throw InputError(fmt::format("cache ways {} must be at least 1, or 0 (fully associative)", ways));
   if (banks != 1 && banks != 4) throw InputError(fmt::format("cache banks {} must be 1 or 4", banks));
   if (capacity_bytes < set_bytes)
     throw InputError(fmt::format("cache capacity {} bytes is below one set ({} ways x {}-byte lines)", capacity_bytes, ways,
@@ -22,6 +23,9 @@ void TexelCacheConfig::validate() const {
   if (capacity_bytes % set_bytes != 0)
     throw InputError(fmt::format("cache capacity {} bytes is not a whole number of {}-way sets of {}-byte lines",
                                  capacity_bytes, ways, line_bytes));
+  if (ways == 0 && capacity_bytes / line_bytes > kMaxFullyAssociativeLines)
+    throw InputError(fmt::format("cache capacity {} bytes is {} lines: a fully associative cache (ways 0) holds at most {}",
+                                 capacity_bytes, capacity_bytes / line_bytes, kMaxFullyAssociativeLines));
 }
 
 LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, const std::string& what) {
@@ -54,6 +58,8 @@ LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, co
 TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor>& textures)
     : cfg_(cfg), block_runs_(fast_paths_enabled()) {
   cfg_.validate();
+  ways_per_set_ = cfg_.way_count();
+  line_log2_ = std::countr_zero(static_cast<unsigned>(cfg_.line_bytes));
   const auto sets = static_cast<uint64_t>(cfg_.sets());
   set_mask_ = (sets & (sets - 1)) == 0 ? sets - 1 : 0;  // power of two: a mask instead of a division
   if (sets == 1) set_mask_ = 0;
@@ -87,9 +93,11 @@ TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor
     }
   }
   first_level_.push_back(lines_.size());
-  ways_.resize(static_cast<size_t>(cfg_.sets()) * static_cast<size_t>(cfg_.ways));
+  ways_.resize(static_cast<size_t>(cfg_.sets()) * static_cast<size_t>(ways_per_set_));
   hits_.assign(lines_.size(), 0);
   misses_.assign(lines_.size(), 0);
+  sector_hits_.assign(lines_.size(), 0);
+  sector_lookups_.assign(lines_.size(), 0);
 }
 
 int TexelCache::fill_blocks(int texture, int level, uint64_t line, int& texels) const {
@@ -127,8 +135,8 @@ uint64_t TexelCache::line_of(int texture, int level, int x, int y) const {
 bool TexelCache::resident(int texture, int level, int x, int y) const {
   const uint64_t line = line_of(texture, level, x, y);
   const size_t set = set_of(line);
-  const Way* w = &ways_[set * static_cast<size_t>(cfg_.ways)];
-  for (int i = 0; i < cfg_.ways; ++i)
+  const Way* w = &ways_[set * static_cast<size_t>(ways_per_set_)];
+  for (int i = 0; i < ways_per_set_; ++i)
     if (w[i].tag == line) return true;
   return false;
 }
@@ -151,6 +159,16 @@ uint64_t TexelCache::level_hits(int level) const {
 uint64_t TexelCache::level_misses(int level) const {
   uint64_t n = 0;
   for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? misses_[l] : 0;
+  return n;
+}
+uint64_t TexelCache::sector_hits() const {
+  uint64_t n = 0;
+  for (uint64_t h : sector_hits_) n += h;
+  return n;
+}
+uint64_t TexelCache::sector_lookups() const {
+  uint64_t n = 0;
+  for (uint64_t k : sector_lookups_) n += k;
   return n;
 }
 
@@ -249,8 +267,21 @@ void TexelCache::cell_lines(size_t l, const TapGrid& g, LineSet& s) const {
   }
 }
 
-// Any other footprint (and every footprint under texel parity): its line set, then the lookups in
-// that order and the bank reads.
+// The sector mask of each line of s: every used tap ORs its sector into the mask of its line.
+void TexelCache::line_sectors(size_t l, const TapGrid& g, LineSet& s) const {
+  const LevelLines& ll = lines_[l];
+  for (uint32_t cells = g.used; cells != 0; cells &= cells - 1) {
+    const auto c = static_cast<size_t>(std::countr_zero(cells));
+    const int x = g.x[c & 3u], y = g.y[c >> 2];
+    const uint64_t line = ll.first + static_cast<uint64_t>(y >> ll.shift_y) * ll.stride + static_cast<uint64_t>(x >> ll.shift_x);
+    size_t k = 0;
+    while (k + 1 < s.n && s.lines[k] != line) ++k;
+    s.sectors[k] |= sector_bit(ll, x, y);
+  }
+}
+
+// Any other footprint (and every footprint under texel parity): its line set with each line's
+// sectors, then the lookups in that order and the bank reads.
 FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
@@ -258,8 +289,9 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   } else if (g.cols != 4 || g.rows != 4 || !block_runs_ || !block_run_lines(l, g, s)) {
     group_lines(l, g, s);
   }
+  line_sectors(l, g, s);
   FootprintResult r;
-  for (size_t i = 0; i < s.n; ++i) probe(s.lines[i], r);
+  for (size_t i = 0; i < s.n; ++i) probe(s.lines[i], s.sectors[i], r);
   r.cycles = std::max(std::max(1, s.nbank[0]), std::max(std::max(s.nbank[1], s.nbank[2]), s.nbank[3]));
   tally(l, r);
   return r;
@@ -270,6 +302,8 @@ void TexelCache::reset() {
   hint_.fill(0);
   std::fill(hits_.begin(), hits_.end(), 0);
   std::fill(misses_.begin(), misses_.end(), 0);
+  std::fill(sector_hits_.begin(), sector_hits_.end(), 0);
+  std::fill(sector_lookups_.begin(), sector_lookups_.end(), 0);
   tick_ = 0;
 }
 

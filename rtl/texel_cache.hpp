@@ -16,7 +16,8 @@
 //     row y >> t, t = log2 of the tile side), a linear texture line_bytes / bytes_per_texel texels
 //     of one row per line (column x >> log2(line_bytes / bytes_per_texel), row y); the line address
 //     is the level's first line + row * (row pitch / line_bytes) + column.
-//   * Sets: line address modulo the number of sets; `ways` lines per set; LRU replacement.
+//   * Sets: line address modulo the number of sets; `ways` lines per set; LRU replacement. ways = 0
+//     is the fully associative cache: one set of all the lines (a tag compare per line).
 //   * Banks, two mappings (docs/texel-cache.md):
 //       texel parity : texel (x, y) lives in bank (x & 1) + 2 (y & 1), one texel per bank and cycle;
 //                      any 2x2 bilinear footprint reads in one cycle, a 4x4 cubic one in four, the
@@ -30,9 +31,16 @@
 //     footprint needs max over banks of (distinct texels or lines in that bank) cycles.
 //   * Hits and misses are counted per texture and per level; the memory model (memory_model.hpp)
 //     supplies missing lines.
+//   * Sectors (the 32-byte sectors GPUs report hit rates in, e.g. l1tex__t_sector_hit_rate): a
+//     footprint's sector lookups are the distinct 32-byte sectors of its lines that its used taps
+//     fall in (a tap's sector: its byte offset inside its line / 32, from the level's layout: the
+//     texel's index in the line times its bytes, or the block's for compressed lines); a sector
+//     lookup is a hit when its line was a hit. The cache still fills whole lines: the sector
+//     figures weight each line lookup by the sectors the footprint reads from it.
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -53,17 +61,23 @@ enum class BankMapping { TexelParity, BlockParity };
 // Uncompressed textures are cached as before under either.
 enum class CacheHolds { Compressed, Decoded };
 
+inline constexpr int kSectorBytes = 32;
+// The fully associative cache compares every tag on a miss: bounded so that a model run stays fast.
+inline constexpr int kMaxFullyAssociativeLines = 4096;
+
 struct TexelCacheConfig {
   int line_bytes = 64;         // 64, 256 or 1024
   int capacity_bytes = 16384;  // total data capacity
-  int ways = 4;                // associativity
+  int ways = 4;                // associativity; 0: fully associative (ways = lines, one set)
   int banks = 4;               // 1 or 4
   BankMapping bank_mapping = BankMapping::BlockParity;
   CacheHolds holds = CacheHolds::Compressed;
   int lines() const { return capacity_bytes / line_bytes; }
-  int sets() const { return lines() / ways; }
+  int way_count() const { return ways == 0 ? lines() : ways; }
+  int sets() const { return lines() / way_count(); }
   // Throws InputError with one line naming the bad field (capacity below one set or not a whole
-  // number of sets; products in 64 bits).
+  // number of sets; products in 64 bits; a fully associative cache of more than
+  // kMaxFullyAssociativeLines lines).
   void validate() const;
   friend bool operator==(const TexelCacheConfig&, const TexelCacheConfig&) = default;
 };
@@ -96,6 +110,7 @@ LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, co
 
 struct FootprintResult {
   int hits = 0, misses = 0;
+  int sector_hits = 0, sector_lookups = 0;  // the lines' 32-byte sectors the taps read (see the header)
   int cycles = 1;                           // bank occupancy
   std::array<uint64_t, 16> missed_lines;  // distinct line addresses fetched from memory: [0, misses)
 };
@@ -140,11 +155,16 @@ class TexelCache {
   uint64_t texture_misses(int texture) const;
   uint64_t level_hits(int level) const;
   uint64_t level_misses(int level) const;
+  // 32-byte sectors found / looked up, over every texture and level.
+  uint64_t sector_hits() const;
+  uint64_t sector_lookups() const;
   int textures() const { return static_cast<int>(first_level_.size()) - 1; }
   void reset();
 
  private:
   TexelCacheConfig cfg_;
+  int ways_per_set_;                 // cfg_.way_count()
+  int line_log2_;                    // log2 line_bytes
   bool block_runs_;                  // the block-run fast path is on (cmodel/fast_paths.hpp), read once
   std::vector<LevelLines> lines_;    // every level of every texture
   std::vector<size_t> first_level_;  // texture t's levels: lines_[first_level_[t] ...]
@@ -166,7 +186,17 @@ class TexelCache {
   static constexpr size_t kHints = 64;
   std::array<uint32_t, kHints> hint_{};
   std::vector<uint64_t> hits_, misses_;  // per lines_ entry (texture and level)
+  std::vector<uint64_t> sector_hits_, sector_lookups_;  // per lines_ entry
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
+  // The sector of tap (x, y) inside its line of level ll, as a bit of a line's sector mask: the
+  // tap's index in the line, ((y mod 2^shift_y) << shift_x) + x mod 2^shift_x (row-major in a
+  // tile, the column in a linear row or block row), times its bytes 2^(log2 line_bytes - shift_x -
+  // shift_y) (a texel's or a block's), / 32.
+  uint32_t sector_bit(const LevelLines& ll, int x, int y) const {
+    const int index = ((y & ((1 << ll.shift_y) - 1)) << ll.shift_x) | (x & ((1 << ll.shift_x) - 1));
+    const int bytes_log2 = line_log2_ - ll.shift_x - ll.shift_y;
+    return 1u << ((index << bytes_log2) / kSectorBytes);
+  }
   FootprintResult access_quad(size_t l, const TapGrid& g);
   FootprintResult access_grid(size_t l, const TapGrid& g);
   FootprintResult access_blocks(size_t l, const TapGrid& g);  // compressed lines: the grid in block coordinates
@@ -179,12 +209,13 @@ class TexelCache {
     int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;
   };
   std::vector<FillTile> fill_;  // The lookup tail both share: one line into r's hits or misses; the level's counters.
-  void probe(uint64_t line, FootprintResult& r);
+  void probe(uint64_t line, uint32_t sectors, FootprintResult& r);
   void tally(size_t l, const FootprintResult& r);
   // The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU
   // order), and the reads per bank: distinct lines (block parity) or distinct texels (texel parity).
   struct LineSet {
     std::array<uint64_t, 16> lines;  // [0, n) written and read
+    std::array<uint32_t, 16> sectors{};  // per line, the sector mask of the taps in it (line_sectors)
     size_t n = 0;
     std::array<int, 4> nbank{};
   };
@@ -193,6 +224,7 @@ class TexelCache {
   // speed only, rtl/texel_cache_block_runs.cpp); false (nothing written) for any other grid.
   bool block_run_lines(size_t l, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t l, const TapGrid& g, LineSet& s) const;
+  void line_sectors(size_t l, const TapGrid& g, LineSet& s) const;
 };
 
 // Inline: the tag lookup and the 2x2 path run once per LINEAR pixel.
@@ -208,9 +240,9 @@ inline size_t TexelCache::set_of(uint64_t line) const {
     ways_[hint].last_use = tick_;
     return true;
   }
-  Way* w = &ways_[set_of(line) * static_cast<size_t>(cfg_.ways)];
+  Way* w = &ways_[set_of(line) * static_cast<size_t>(ways_per_set_)];
   Way* victim = w;
-  for (int i = 0; i < cfg_.ways; ++i) {
+  for (int i = 0; i < ways_per_set_; ++i) {
     if (w[i].tag == line) {
       w[i].last_use = tick_;
       hint = static_cast<uint32_t>(&w[i] - ways_.data());
@@ -224,9 +256,12 @@ inline size_t TexelCache::set_of(uint64_t line) const {
   return false;
 }
 
-[[gnu::always_inline]] inline void TexelCache::probe(uint64_t line, FootprintResult& r) {
+[[gnu::always_inline]] inline void TexelCache::probe(uint64_t line, uint32_t sectors, FootprintResult& r) {
+  const int n = std::popcount(sectors);
+  r.sector_lookups += n;
   if (lookup(line)) {
     ++r.hits;
+    r.sector_hits += n;
   } else {
     r.missed_lines[static_cast<size_t>(r.misses++)] = line;
   }
@@ -235,10 +270,12 @@ inline size_t TexelCache::set_of(uint64_t line) const {
 inline void TexelCache::tally(size_t l, const FootprintResult& r) {
   hits_[l] += static_cast<uint64_t>(r.hits);
   misses_[l] += static_cast<uint64_t>(r.misses);
+  sector_hits_[l] += static_cast<uint64_t>(r.sector_hits);
+  sector_lookups_[l] += static_cast<uint64_t>(r.sector_lookups);
 }
 
 // The bilinear 2x2 footprint under block parity: its block columns bx0, bx1 and rows by0, by1 give
-// one, two or four lines, looked up row-major. Banks: the lines in one bank share the parity of bx
+// one, two or four lines, looked up row-major, each with the sectors of its taps. Banks: the lines in one bank share the parity of bx
 // and of by, so per axis two distinct blocks of equal parity (a wrap over an odd number of blocks)
 // put two lines into every bank touched; with one bank every line is a read.
 [[gnu::always_inline]] inline FootprintResult TexelCache::access_quad(size_t l, const TapGrid& g) {
@@ -250,12 +287,19 @@ inline void TexelCache::tally(size_t l, const FootprintResult& r) {
   const auto dx = static_cast<uint64_t>(static_cast<int64_t>(bx1 - bx0));  // modulo 2^64
   const uint64_t dy = static_cast<uint64_t>(static_cast<int64_t>(by1 - by0)) * row;
   const bool two_cols = bx1 != bx0, two_rows = by1 != by0;
+  // Tap (i, j) is in line (two_cols && i) + 2 (two_rows && j) of line0, line0 + dx, line0 + dy, line0 + dy + dx.
+  std::array<uint32_t, 4> sectors{};
+  const size_t c1 = two_cols ? 1 : 0, r1 = two_rows ? 2 : 0;
+  sectors[0] = sector_bit(ll, g.x[0], g.y[0]);
+  sectors[c1] |= sector_bit(ll, g.x[1], g.y[0]);
+  sectors[r1] |= sector_bit(ll, g.x[0], g.y[1]);
+  sectors[c1 + r1] |= sector_bit(ll, g.x[1], g.y[1]);
   FootprintResult r;
-  probe(line0, r);
-  if (two_cols) probe(line0 + dx, r);
+  probe(line0, sectors[0], r);
+  if (two_cols) probe(line0 + dx, sectors[1], r);
   if (two_rows) {
-    probe(line0 + dy, r);
-    if (two_cols) probe(line0 + dy + dx, r);
+    probe(line0 + dy, sectors[2], r);
+    if (two_cols) probe(line0 + dy + dx, sectors[3], r);
   }
   if (cfg_.banks == 4) {
     r.cycles = (two_cols && !((bx0 ^ bx1) & 1) ? 2 : 1) * (two_rows && !((by0 ^ by1) & 1) ? 2 : 1);

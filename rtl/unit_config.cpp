@@ -32,7 +32,7 @@ const std::vector<UnitField>& fields() {
        64, 1024, {64, 256, 1024}, {}, TFU_INT_FIELD(cache.line_bytes)},
       {"cache.capacity_bytes", "--cache-bytes", "data capacity; a whole number of sets", 64, int64_t{1} << 30, {}, {},
        TFU_INT_FIELD(cache.capacity_bytes)},
-      {"cache.ways", "--ways", "associativity (LRU)", 1, 1024, {}, {}, TFU_INT_FIELD(cache.ways)},
+      {"cache.ways", "--ways", "associativity (LRU); 0: fully associative (one set of every line, at most 4096)", 0, 1024, {}, {}, TFU_INT_FIELD(cache.ways)},
       {"cache.banks", "--banks", "banks", 1, 4, {1, 4}, {}, TFU_INT_FIELD(cache.banks)},
       {"cache.bank_mapping", "--bank-mapping",
        "texel-parity: one texel per bank per clock; block-parity: a bank reads a whole line per clock (docs/texel-cache.md)",

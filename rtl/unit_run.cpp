@@ -183,6 +183,8 @@ void derive_rates(sim::Stats& st, size_t requests, uint64_t cycles) {
   set(st, UnitStat::ProbesPerPixel, requests ? static_cast<double>(counter(st, UnitStat::Probes)) / n : 0.0);
   const uint64_t h = counter(st, UnitStat::CacheLineHits), m = counter(st, UnitStat::CacheLineMisses);
   set(st, UnitStat::CacheHitRate, h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0);
+  const uint64_t sh = counter(st, UnitStat::CacheSectorHits), sl = counter(st, UnitStat::CacheSectorLookups);
+  set(st, UnitStat::CacheSectorHitRate, sl ? static_cast<double>(sh) / static_cast<double>(sl) : 1.0);
   uint64_t lat_sum = 0, lat_min = UINT64_MAX, lat_max = 0;
   if (const std::vector<uint64_t>* lat = st.histogram(stat_key(UnitStat::Latency)))
     for (size_t c = 0; c < lat->size(); ++c)

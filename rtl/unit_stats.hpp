@@ -31,6 +31,8 @@ enum class UnitStat {
   CacheLineMisses,
   CacheLineHitsLevel,
   CacheLineMissesLevel,
+  CacheSectorHits,
+  CacheSectorLookups,
   MemoryBytes,
   MemoryRequests,
   CacheFootprints,
@@ -47,6 +49,7 @@ enum class UnitStat {
   MemoryBytesPerPixel,
   ProbesPerPixel,
   CacheHitRate,
+  CacheSectorHitRate,
   LatencyMean,
   LatencyMin,
   LatencyMax,
@@ -100,7 +103,7 @@ struct UnitStatField {
 };
 
 // Row i is UnitStat i (checked below), so a key is one array read.
-inline constexpr std::array<UnitStatField, 53> kUnitStatFields{{
+inline constexpr std::array<UnitStatField, 56> kUnitStatFields{{
     {UnitStat::Cycles, "cycles", StatKind::Counter, "clock cycles of the run (of a scene: the slowest unit's)",
      "the output cycles given to the group's requests: each request's retirement cycle minus the previous request's "
      "(the first: its retirement cycle + 1), summed over units; one unit's groups add up to its cycles"},
@@ -113,6 +116,12 @@ inline constexpr std::array<UnitStatField, 53> kUnitStatFields{{
      "line hits on MIP level N (levels with any access)", ""},
     {UnitStat::CacheLineMissesLevel, "cache_line_misses_level", StatKind::Counter,
      "line misses on MIP level N (levels with any access)", ""},
+    {UnitStat::CacheSectorHits, "cache_sector_hits", StatKind::Counter,
+     "sector lookups whose line was a hit (tag unit)", ""},
+    {UnitStat::CacheSectorLookups, "cache_sector_lookups", StatKind::Counter,
+     "32-byte sectors looked up: per footprint, each distinct 32-byte sector of its lines that a used tap falls in "
+     "(rtl/texel_cache.hpp)",
+     ""},
     {UnitStat::MemoryBytes, "memory_bytes", StatKind::Counter, "bytes read from memory",
      "bytes read for the group's misses"},
     {UnitStat::MemoryRequests, "memory_requests", StatKind::Counter, "memory requests (one per missed line)", ""},
@@ -140,6 +149,8 @@ inline constexpr std::array<UnitStatField, 53> kUnitStatFields{{
     {UnitStat::MemoryBytesPerPixel, "memory_bytes_per_pixel", StatKind::Value, "memory_bytes / pixels", ""},
     {UnitStat::ProbesPerPixel, "probes_per_pixel", StatKind::Value, "probes / pixels", ""},
     {UnitStat::CacheHitRate, "cache_hit_rate", StatKind::Value, "line hits / (hits + misses); 1 without accesses", ""},
+    {UnitStat::CacheSectorHitRate, "cache_sector_hit_rate", StatKind::Value,
+     "sector hits / sector lookups (as GPUs' l1tex__t_sector_hit_rate); 1 without accesses", ""},
     {UnitStat::LatencyMean, "latency_mean", StatKind::Value, "mean request latency in clocks", ""},
     {UnitStat::LatencyMin, "latency_min", StatKind::Value, "least request latency in clocks", ""},
     {UnitStat::LatencyMax, "latency_max", StatKind::Value, "greatest request latency in clocks", ""},

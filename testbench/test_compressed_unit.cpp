@@ -190,6 +190,57 @@ TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
     }
 }
 
+// The 32-byte sectors of compressed lines: a tap's sector is its block's byte address mod the line
+// size / 32 (cache.holds compressed), or its texel's offset in the decoded RGBA8 tile / 32
+// (decoded); random grids of taps, lookups and hits against that reference (a fully associative
+// cache larger than the level: a line hits iff an earlier footprint read it).
+TEST(CompressedCache, SectorsOfRandomFootprints) {
+  std::mt19937 rng(17);
+  for (const BlockFormat f : {BlockFormat::BC1, BlockFormat::BC3, BlockFormat::ASTC_12x10})
+    for (const int line : {64, 256})
+      for (const CacheHolds holds : {CacheHolds::Compressed, CacheHolds::Decoded}) {
+        TextureMemory mem;
+        const Texture t = texture_from_block_image(random_block_image(f, 70, 45, 1, rng), {});
+        const std::vector<TextureDescriptor> d{place_texture(mem, t, static_cast<uint64_t>(line))};
+        TexelCacheConfig c;
+        c.line_bytes = line;
+        c.capacity_bytes = 1024 * line;
+        c.ways = 0;
+        c.holds = holds;
+        TexelCache cache(c, d);
+        const int side = line == 64 ? 4 : 8;  // the decoded tile
+        std::vector<uint64_t> seen;
+        for (int n = 0; n < tfu::test::iterations(300); ++n) {
+          TapGrid g{};
+          g.cols = 1 + static_cast<int>(rng() % 4);
+          g.rows = 1 + static_cast<int>(rng() % 4);
+          const int x0 = static_cast<int>(rng() % 67), y0 = static_cast<int>(rng() % 42);
+          for (int i = 0; i < g.cols; ++i) g.x[static_cast<size_t>(i)] = static_cast<int16_t>(x0 + i);
+          for (int j = 0; j < g.rows; ++j) g.y[static_cast<size_t>(j)] = static_cast<int16_t>(y0 + j);
+          g.used = square_cells(g.cols, g.rows);
+          std::vector<std::pair<uint64_t, int>> sectors;
+          std::vector<uint64_t> lines;
+          for (int cell = 0; cell < 16; ++cell) {
+            if (!((g.used >> cell) & 1)) continue;
+            const int x = g.x[static_cast<size_t>(cell & 3)], y = g.y[static_cast<size_t>(cell >> 2)];
+            const uint64_t l = cache.line_of(0, 0, x, y);
+            const int sector = holds == CacheHolds::Compressed
+                                   ? static_cast<int>(d[0].texel_address(0, x, y) % static_cast<uint64_t>(line) / 32)
+                                   : ((y % side) * side + x % side) * 4 / 32;
+            if (std::find(sectors.begin(), sectors.end(), std::pair{l, sector}) == sectors.end()) sectors.emplace_back(l, sector);
+            if (std::find(lines.begin(), lines.end(), l) == lines.end()) lines.push_back(l);
+          }
+          int sector_hits = 0;
+          for (const auto& [l, sector] : sectors) sector_hits += std::find(seen.begin(), seen.end(), l) != seen.end() ? 1 : 0;
+          for (const uint64_t l : lines)
+            if (std::find(seen.begin(), seen.end(), l) == seen.end()) seen.push_back(l);
+          const FootprintResult r = cache.access(0, 0, g);
+          ASSERT_EQ(r.sector_lookups, static_cast<int>(sectors.size())) << block_format_name(f) << " " << line << " " << n;
+          ASSERT_EQ(r.sector_hits, sector_hits) << block_format_name(f) << " " << line << " " << n;
+        }
+      }
+}
+
 // Random gradient requests over two textures (a compressed one and an uncompressed one,
 // interleaved) and every sampler: the 12 filter modes with random wraps, and anisotropic samplers.
 struct CompressedRun {

@@ -140,7 +140,7 @@ TEST(ErrorLines, ConfigAndSceneValuesAreCheckedAndNamed) {
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"cache\": {\"ways\": 18446744073709551615}}", "c.json"); }),
             "c.json: 'cache.ways' value 18446744073709551615 is out of range");
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"cache\": {\"ways\": 2147483647}}", "c.json"); }),
-            "c.json: 'cache.ways' 2147483647 must be in 1..1024");
+            "c.json: 'cache.ways' 2147483647 must be in 0..1024");
   // The kernel-shape policy is a sampler register now (edge_shape): a bad one names file and key.
   EXPECT_EQ(input_error([] { rtl::unit_config_from_json("{\"shape_policy\": \"static\"}", "c.json"); }),
             "c.json: unknown key 'shape_policy'");

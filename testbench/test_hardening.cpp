@@ -37,9 +37,9 @@ TEST(CacheConfig, ExtremeValuesAreRangeErrorsNotCrashes) {
     set(u);
     return input_error([&] { u.validate(); });
   };
-  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMax; }), "cache.ways: 2147483647 must be in 1..1024");
-  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = 67108864; }), "cache.ways: 67108864 must be in 1..1024");
-  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMin; }), "cache.ways: -2147483648 must be in 1..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMax; }), "cache.ways: 2147483647 must be in 0..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = 67108864; }), "cache.ways: 67108864 must be in 0..1024");
+  EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.ways = kMin; }), "cache.ways: -2147483648 must be in 0..1024");
   EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.capacity_bytes = kMax; }),
             "cache.capacity_bytes: 2147483647 must be in 64..1073741824");
   EXPECT_EQ(err([](rtl::UnitConfig& u) { u.cache.capacity_bytes = 0; }), "cache.capacity_bytes: 0 must be in 64..1073741824");
@@ -81,7 +81,7 @@ TEST(CacheConfig, UnitConfigFieldsAreRangeChecked) {
   EXPECT_EQ(err(R"({"memory": {"latency": 1000001}})"), "u.json: 'memory.latency' 1000001 must be in 0..1000000");
   EXPECT_EQ(err(R"({"memory": {"bytes_per_cycle": 0}})"), "u.json: 'memory.bytes_per_cycle' 0 must be in 1..65536");
   EXPECT_EQ(err(R"({"channel_depth": 65})"), "u.json: 'channel_depth' 65 must be in 1..64");
-  EXPECT_EQ(err(R"({"cache": {"ways": 2147483648}})"), "u.json: 'cache.ways' 2147483648 must be in 1..1024");
+  EXPECT_EQ(err(R"({"cache": {"ways": 2147483648}})"), "u.json: 'cache.ways' 2147483648 must be in 0..1024");
   EXPECT_EQ(err(R"({"cache": {"ways": 18446744073709551615}})"), "u.json: 'cache.ways' value 18446744073709551615 is out of range");
   EXPECT_EQ(err(R"({"miss_fifo_depth": -9223372036854775808})"), "u.json: 'miss_fifo_depth' -9223372036854775808 must be in 1..65536");
   EXPECT_EQ(err(R"({"cache": {"capacity_bytes": 1.5}})"), "u.json: 'cache.capacity_bytes' must be an integer");

@@ -56,7 +56,9 @@ TapGrid tap(int x, int y) { return grid({x}, {y}); }
 TEST(TexelCache, ConfigurationErrorsNameTheField) {
   EXPECT_THROW(small(6, 4096 * 9, 2).validate(), InputError);  // 144-byte lines
   EXPECT_THROW(small(4, 32, 1).validate(), InputError);     // below one 64-byte line
-  EXPECT_THROW(small(4, 4096, 0).validate(), InputError);   // zero ways
+  EXPECT_THROW(small(4, 4096, -1).validate(), InputError);  // negative ways
+  EXPECT_NO_THROW(small(4, 4096, 0).validate());            // fully associative: 64 lines in one set
+  EXPECT_THROW(small(4, 64 * (kMaxFullyAssociativeLines + 1), 0).validate(), InputError);
   EXPECT_THROW(small(4, 4096, 2, 0).validate(), InputError);  // zero banks
   EXPECT_THROW(small(4, 100, 1).validate(), InputError);    // not whole sets
   EXPECT_NO_THROW(small(8, 256 * 4, 1).validate());
@@ -183,8 +185,9 @@ TEST(TexelCache, ScanlineHitRateOfABlockedCache) {
 
 // Property: the grid lookup equals a per-tap reference model, footprint after footprint: the taps
 // (x[i], y[j]) of the used cells in row-major order, their distinct lines in order of first
-// appearance through an LRU list per set, and the bank cycles counted from distinct lines (block
-// parity) or distinct texels (texel parity). Random grids with repeated columns and rows (clamped
+// appearance through an LRU list per set, the bank cycles counted from distinct lines (block
+// parity) or distinct texels (texel parity), and the sectors: the distinct (line, byte address
+// mod line_bytes / 32) of the used taps, hits where the line hit. Random grids with repeated columns and rows (clamped
 // or wrapped runs), random used cells, full 2x2 grids (access_quad) and 4x4 grids with the edge
 // cross's cells or a random part of them (block_run_lines), two levels of two textures (one tiled,
 // one linear), both mappings, 1 or 4 banks, 64- and 256-byte lines.
@@ -221,12 +224,16 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
           if (!quad && !cross && rng() % 2 == 0) g.used = static_cast<uint16_t>(g.used & rng());
           // Reference.
           std::vector<uint64_t> lines;
+          std::vector<std::pair<uint64_t, uint64_t>> sectors;  // (line, sector)
           std::vector<std::pair<int, int>> texels;
           std::array<int, 4> nbank{};
           for (int cell = 0; cell < 16; ++cell) {
             if (!((g.used >> cell) & 1)) continue;
             const int x = g.x[static_cast<size_t>(cell & 3)], y = g.y[static_cast<size_t>(cell >> 2)];
-            const uint64_t line = tex[static_cast<size_t>(t)].texel_address(level, x, y) / static_cast<uint64_t>(cfg.line_bytes);
+            const uint64_t address = tex[static_cast<size_t>(t)].texel_address(level, x, y);
+            const uint64_t line = address / static_cast<uint64_t>(cfg.line_bytes);
+            const std::pair sector{line, address % static_cast<uint64_t>(cfg.line_bytes) / 32};
+            if (std::find(sectors.begin(), sectors.end(), sector) == sectors.end()) sectors.push_back(sector);
             if (std::find(lines.begin(), lines.end(), line) == lines.end()) {
               lines.push_back(line);
               if (mapping == BankMapping::BlockParity)
@@ -252,13 +259,72 @@ TEST(TexelCache, GridAccessEqualsAPerTapReferenceModel) {
             }
             set.push_front(line);
           }
+          int sector_hits = 0;
+          for (const auto& [line, sector] : sectors)
+            sector_hits += std::find(missed.begin(), missed.end(), line) == missed.end() ? 1 : 0;
           const FootprintResult r = c.access(t, level, g);
+          ASSERT_EQ(r.sector_lookups, static_cast<int>(sectors.size())) << n;
+          ASSERT_EQ(r.sector_hits, sector_hits) << n;
           ASSERT_EQ(r.hits, hits) << n;
           ASSERT_EQ(r.misses, static_cast<int>(missed.size())) << n;
           ASSERT_EQ(std::vector<uint64_t>(r.missed_lines.begin(), r.missed_lines.begin() + r.misses), missed) << n;
           ASSERT_EQ(r.cycles, std::max({1, nbank[0], nbank[1], nbank[2], nbank[3]})) << n;
         }
       }
+}
+
+// Sectors by hand. 64-byte tiled lines (4x4 RGBA8: sector 0 = tile rows 0-1, 1 = rows 2-3),
+// 256-byte tiled lines (8x8: a sector is one tile row of 8 texels), 64-byte linear lines of L8
+// (64 texels of a row: sector 0 = columns 0-31); a footprint's sector counts weight its lines.
+TEST(TexelCache, SectorsOfHandDerivedFootprints) {
+  TexelCache c(small(4, 4096, 2, 4, BankMapping::BlockParity), one(16, 16));
+  FootprintResult r = c.access(0, 0, grid({3, 4}, {1, 2}));  // tiles (0,0) and (1,0), rows 1 and 2 each
+  EXPECT_EQ(r.misses, 2);
+  EXPECT_EQ(r.sector_lookups, 4);
+  EXPECT_EQ(r.sector_hits, 0);
+  r = c.access(0, 0, grid({0, 1, 2, 3}, {0, 1, 2, 3}));  // cubic 4x4 in tile (0,0): both sectors, hit
+  EXPECT_EQ(r.hits, 1);
+  EXPECT_EQ(r.sector_lookups, 2);
+  EXPECT_EQ(r.sector_hits, 2);
+  r = c.access(0, 0, grid({4, 5}, {3, 4}));  // tile (1,0) row 3 (sector 1, hit), tile (1,1) row 4 (sector 0, miss)
+  EXPECT_EQ(r.hits, 1);
+  EXPECT_EQ(r.sector_lookups, 2);
+  EXPECT_EQ(r.sector_hits, 1);
+  EXPECT_EQ(c.sector_lookups(), 8u);
+  EXPECT_EQ(c.sector_hits(), 3u);
+
+  TexelCacheConfig big = small(8, 8192, 2, 4, BankMapping::TexelParity);
+  TexelCache c8(big, one(16, 16, 1, 256));
+  r = c8.access(0, 0, grid({1, 2, 3, 4}, {3, 4, 5, 6}));  // one 8x8 tile, rows 3..6: 4 sectors
+  EXPECT_EQ(r.misses, 1);
+  EXPECT_EQ(r.sector_lookups, 4);
+
+  TextureMemory mem;
+  const std::vector<TextureDescriptor> l8{placed(mem, 128, 4, 1, 64, MemoryLayout::Linear, TexelFormat::L8)};
+  TexelCache cl(small(4, 4096, 2, 4, BankMapping::BlockParity), l8);
+  r = cl.access(0, 0, grid({31, 32}, {0, 1}));  // rows 0 and 1, columns 31 | 32: sectors 0 and 1 of each line
+  EXPECT_EQ(r.misses, 2);
+  EXPECT_EQ(r.sector_lookups, 4);
+  r = cl.access(0, 0, grid({63}, {0}));
+  EXPECT_EQ(r.hits, 1);
+  EXPECT_EQ(r.sector_hits, 1);
+}
+
+// ways 0: one set of every line, LRU over all of them. Tiles (0,0), (0,1), (0,2), (0,3) of a
+// 16x16 texture are lines 4 apart: in 4 direct-mapped sets they evict each other, in the fully
+// associative cache of 4 lines all stay; a fifth line evicts the least recently used.
+TEST(TexelCache, FullyAssociativeHoldsAnyLines) {
+  TexelCache direct(small(4, 256, 1, 4, BankMapping::BlockParity), one(16, 16));
+  TexelCache full(small(4, 256, 0, 4, BankMapping::BlockParity), one(16, 16));
+  EXPECT_EQ(full.config().sets(), 1);
+  for (int pass = 0; pass < 2; ++pass)
+    for (int y = 0; y < 16; y += 4) {
+      EXPECT_EQ(direct.access(0, 0, tap(0, y)).hits, 0);
+      EXPECT_EQ(full.access(0, 0, tap(0, y)).hits, pass);
+    }
+  EXPECT_EQ(full.access(0, 0, tap(4, 0)).misses, 1);  // evicts tile (0,0), the least recently used
+  EXPECT_FALSE(full.resident(0, 0, 0, 0));
+  EXPECT_TRUE(full.resident(0, 0, 0, 4));
 }
 
 TEST(MemoryModel, BandwidthAndLatency) {

@@ -117,6 +117,7 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   r["pixels"] = res.requests;
   r["pixels_per_clock"] = rtl::value(st, rtl::UnitStat::PixelsPerClock);
   r["hit_rate"] = rtl::value(st, rtl::UnitStat::CacheHitRate);
+  r["sector_hit_rate"] = rtl::value(st, rtl::UnitStat::CacheSectorHitRate);
   r["bytes_per_pixel"] = rtl::value(st, rtl::UnitStat::MemoryBytesPerPixel);
   r["memory_bytes"] = rtl::counter(st, rtl::UnitStat::MemoryBytes);
   for (const rtl::UnitStat c : {rtl::UnitStat::StallCacheMiss, rtl::UnitStat::StallBankConflict, rtl::UnitStat::StallBackpressure})

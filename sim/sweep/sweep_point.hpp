@@ -4,7 +4,7 @@
 // supersampled ground truth, and the cost model's figures (rtl/cost_model.hpp). The result is the point's file:
 //
 //   {"complete": true, "point": {"id", "index", "scene", "filter", "keys": {KEY: value}},
-//    "result": {"cycles", "pixels", "pixels_per_clock", "hit_rate", "bytes_per_pixel", "memory_bytes",
+//    "result": {"cycles", "pixels", "pixels_per_clock", "hit_rate", "sector_hit_rate", "bytes_per_pixel", "memory_bytes",
 //               "stall_cache_miss", "stall_bank_conflict", "stall_backpressure", "latency_mean",
 //               "psnr", "ssim", "psnr_surface", "psnr_interior" (dB, or "inf"; SSIM beside the first; against the antialiased truth, the
 //               surface truth, the surface truth over the interior), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",

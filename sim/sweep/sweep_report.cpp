@@ -77,6 +77,10 @@ const std::vector<Column>& result_columns() {
        ResultType::Number},
       {"pixels_per_clock", "pixels/clock", "requests per cycle", ResultType::Number},
       {"hit_rate", "fraction", "texel cache line lookups that hit", ResultType::Number},
+      {"sector_hit_rate", "fraction",
+       "texel cache 32-byte sector lookups that hit: each distinct sector of its lines a footprint reads, a hit when its line is "
+       "(rtl/texel_cache.hpp)",
+       ResultType::Number},
       {"bytes_per_pixel", "bytes/pixel", "memory bytes read per request", ResultType::Number},
       {"memory_bytes", "bytes", "memory bytes read", ResultType::Number},
       {"stall_cache_miss", "cycles", "cycles the miss-FIFO head waited for memory (summed over units)", ResultType::Number},

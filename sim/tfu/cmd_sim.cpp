@@ -177,6 +177,11 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
                            cycles, cycles ? dn / static_cast<double>(cycles) : 0.0,
                            hits + misses ? static_cast<double>(hits) / static_cast<double>(hits + misses) : 1.0,
                            n ? static_cast<double>(rtl::counter(st, rtl::UnitStat::MemoryBytes)) / dn : 0.0);
+  const uint64_t sector_hits = rtl::counter(st, rtl::UnitStat::CacheSectorHits),
+                 sector_lookups = rtl::counter(st, rtl::UnitStat::CacheSectorLookups);
+  std::cout << fmt::format("  cache 32-byte sector hit rate {:.4f} ({} of {} sector lookups)\n",
+                           sector_lookups ? static_cast<double>(sector_hits) / static_cast<double>(sector_lookups) : 1.0,
+                           sector_hits, sector_lookups);
   std::cout << fmt::format("  stalls: cache miss {}  bank conflict {}  back-pressure {}\n", rtl::counter(st, rtl::UnitStat::StallCacheMiss),
                            rtl::counter(st, rtl::UnitStat::StallBankConflict), rtl::counter(st, rtl::UnitStat::StallBackpressure));
   print_shared_memory(st);
@@ -210,14 +215,15 @@ void print_summary(const std::string& head, size_t n, uint64_t cycles, const sim
     });
     std::cout << fmt::format(
         "  per {}: requests, pixels/clock (of the cycles given to them), probes/pixel, line hit rate, "
-        "memory bytes/pixel, memory bytes, mean latency\n",
+        "sector hit rate, memory bytes/pixel, memory bytes, mean latency\n",
         breakdown);
     for (const sim::Stats::Group* g : rows) {
       const sim::Stats& s = g->stats;
       print_row(g->label,
-                fmt::format("{:>10} {:>7.3f} {:>7.3f} {:>8.4f} {:>8.3f} {:>12} {:>8.1f}",
+                fmt::format("{:>10} {:>7.3f} {:>7.3f} {:>8.4f} {:>8.4f} {:>8.3f} {:>12} {:>8.1f}",
                             rtl::counter(s, rtl::UnitStat::Pixels), rtl::value(s, rtl::UnitStat::PixelsPerClock),
                             rtl::value(s, rtl::UnitStat::ProbesPerPixel), rtl::value(s, rtl::UnitStat::CacheHitRate),
+                            rtl::value(s, rtl::UnitStat::CacheSectorHitRate),
                             rtl::value(s, rtl::UnitStat::MemoryBytesPerPixel),
                             rtl::counter(s, rtl::UnitStat::MemoryBytes), rtl::value(s, rtl::UnitStat::LatencyMean)));
     }
