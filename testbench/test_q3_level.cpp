@@ -470,8 +470,9 @@ TEST_F(TinyGame, BaseTexturesDeclaredSrgbAreTheSceneFilesSrgba8Textures) {
     ASSERT_EQ(base.texture->levels.size(), expected.levels.size()) << i;
     for (size_t k = 0; k < expected.levels.size(); ++k)
       EXPECT_EQ(base.texture->levels[k].texels, expected.levels[k].texels) << i << " level " << k;
-    if (s.meshes[i].stages.size() == 2) {
-      EXPECT_EQ(s.meshes[i].stages[1].texture, plain.meshes[i].stages[1].texture) << i;
+    if (s.meshes[i].stages.size() == 2) {  // the light map as it was
+      EXPECT_EQ(s.meshes[i].stages[1].texture->format, TexelFormat::RGBA8) << i;
+      EXPECT_EQ(s.meshes[i].stages[1].texture->levels.at(0).texels, plain.meshes[i].stages[1].texture->levels.at(0).texels) << i;
       EXPECT_TRUE(s.meshes[i].stages[1].spec.params.empty()) << i;
     }
   }
@@ -481,11 +482,20 @@ TEST_F(TinyGame, BaseTexturesDeclaredSrgbAreTheSceneFilesSrgba8Textures) {
   EXPECT_EQ(plain.meshes[0].stages[0].texture->levels.at(1).at(0, 0).r, 128);
   EXPECT_NEAR(s.meshes[0].stages[0].texture->levels.at(1).at(0, 0).r, 187.5, 0.5);
 
+  // Spawn 0 looks at the wall quad and the patches (both windings drawn): the frame differs from
+  // the stored-code frame, and the cycle model equals the golden model on every request.
+  LevelSceneOptions both = declared;
+  both.cull = FaceCull::None;
+  const Scene view = level_scene(l, 0, 96, 54, both);
+  both.srgb_textures = false;
+  const Scene view_plain = level_scene(l, 0, 96, 54, both);
   RenderOptions ro;
   ro.trace = true;
-  const RenderResult r = render_scene(s, ro), rp = render_scene(plain, ro);
-  EXPECT_NE(r.image.texels, rp.image.texels);
-  const rtl::SceneSimResult sim = rtl::simulate_scene(s, r, rtl::UnitConfig{}, {});
+  const RenderResult r = render_scene(view, ro), rp = render_scene(view_plain, ro);
+  int64_t differ = 0;
+  for (size_t i = 0; i < r.image.texels.size(); ++i) differ += !(r.image.texels[i] == rp.image.texels[i]);
+  EXPECT_GT(differ, 100) << differ;
+  const rtl::SceneSimResult sim = rtl::simulate_scene(view, r, rtl::UnitConfig{}, {});
   EXPECT_TRUE(sim.mismatch.empty()) << sim.mismatch;
   EXPECT_EQ(sim.image.texels, r.image.texels);
 
