@@ -290,7 +290,8 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
       const std::string rest = spec.source.substr(std::string(q3::kLevelScenePrefix).size());  // MAP:KIND:...
       const size_t colon = rest.find(':');
       if (srgb && colon != std::string::npos && rest.compare(colon + 1, 8, "texture:") != 0)
-        throw InputError(fmt::format("{}: key 'srgb': a level's light maps hold linear light and cannot be declared sRGB", where));
+        throw InputError(
+            fmt::format("{}: key 'srgb': a level's light maps hold linear light and cannot be declared sRGB", where));
     }
     out.texture = level_texture(spec.source, where, game_dir);
     if (srgb) out.texture = q3::srgb_declared(out.texture);

@@ -449,8 +449,9 @@ TEST_F(TinyGame, BaseTexturesDeclaredSrgbAreTheSceneFilesSrgba8Textures) {
   EXPECT_NE(error_of([] { parse_level_scene("oa:tiny:1:srgb=yes"); }).find("unknown option 'srgb=yes'"),
             std::string::npos);
   // The longest message (a 48-character level name, a long unknown key) stays within one 300-character line.
-  EXPECT_NE(error_of([] { parse_level_scene("oa:" + std::string(48, 'm') + ":1:" + std::string(200, 'k') + "=true"); })
-                .find("srgb=false|true)"),
+  EXPECT_NE(error_of([] {
+              parse_level_scene("oa:" + std::string(48, 'm') + ":1:" + std::string(200, 'k') + "=true");
+            }).find("srgb=false|true)"),
             std::string::npos);
   const GameArchives a(dir());
   TextureCache cache(a);
@@ -472,7 +473,9 @@ TEST_F(TinyGame, BaseTexturesDeclaredSrgbAreTheSceneFilesSrgba8Textures) {
       EXPECT_EQ(base.texture->levels[k].texels, expected.levels[k].texels) << i << " level " << k;
     if (s.meshes[i].stages.size() == 2) {  // the light map as it was
       EXPECT_EQ(s.meshes[i].stages[1].texture->format, TexelFormat::RGBA8) << i;
-      EXPECT_EQ(s.meshes[i].stages[1].texture->levels.at(0).texels, plain.meshes[i].stages[1].texture->levels.at(0).texels) << i;
+      EXPECT_EQ(s.meshes[i].stages[1].texture->levels.at(0).texels,
+                plain.meshes[i].stages[1].texture->levels.at(0).texels)
+          << i;
       EXPECT_TRUE(s.meshes[i].stages[1].spec.params.empty()) << i;
     }
   }

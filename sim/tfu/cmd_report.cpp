@@ -213,11 +213,12 @@ void run(const ReportOptions& o) {
         fmt::format("sharpness (gradient energy / truth's) {:.3f} vs {:.3f}", ep.sharpness, bl.sharpness);
     claims.push_back({"Edge-preserving is sharper than bilinear under magnification (Lee & Jen Sec. 5.1)", s, sharper,
                       ep.sharpness > bl.sharpness, sharper, ep.sharpness > bl.sharpness});
-    claims.push_back({"... and therefore closer to the ground truth than bilinear (not claimed by the paper, which "
-                      "judges visually)",
-                      s, psnr_ssim_evidence(ep.psnr, bl.psnr, ep.ssim, bl.ssim), ep.psnr > bl.psnr && ep.ssim > bl.ssim,
-                      psnr_ssim_evidence(ep.psnr_surface, bl.psnr_surface, ep.ssim_surface, bl.ssim_surface),
-                      ep.psnr_surface > bl.psnr_surface && ep.ssim_surface > bl.ssim_surface});
+    claims.push_back(
+        {"... and therefore closer to the ground truth than bilinear (not claimed by the paper, which "
+         "judges visually)",
+         s, psnr_ssim_evidence(ep.psnr, bl.psnr, ep.ssim, bl.ssim), ep.psnr > bl.psnr && ep.ssim > bl.ssim,
+         psnr_ssim_evidence(ep.psnr_surface, bl.psnr_surface, ep.ssim_surface, bl.ssim_surface),
+         ep.psnr_surface > bl.psnr_surface && ep.ssim_surface > bl.ssim_surface});
     const ModeResult& cu = table[s]["CUBIC"];
     claims.push_back({"Cubic (Catmull-Rom) is better than bilinear (Hadwiger 2002 Sec. 1)", s,
                       psnr_ssim_evidence(cu.psnr, bl.psnr, cu.ssim, bl.ssim), cu.psnr > bl.psnr && cu.ssim >= bl.ssim,
@@ -237,8 +238,8 @@ void run(const ReportOptions& o) {
     const double qa = psnr_db(adapted, surface), qn = psnr_db(plain, surface);
     const double ta = ssim_luma(adapted, surface), tn = ssim_luma(plain, surface);
     const std::string what = "CUBIC_MIPMAP_LINEAR (ideal path) adapted vs level-0 footprint: ";
-    claims.push_back({"Cubic MIP-mapping with per-level kernel adaptation beats no adaptation (Hadwiger 2004 Sec. 3.2)", s,
-                      what + psnr_ssim_evidence(pa, pn, sa, sn), pa > pn && sa > sn,
+    claims.push_back({"Cubic MIP-mapping with per-level kernel adaptation beats no adaptation (Hadwiger 2004 Sec. 3.2)",
+                      s, what + psnr_ssim_evidence(pa, pn, sa, sn), pa > pn && sa > sn,
                       what + psnr_ssim_evidence(qa, qn, ta, tn), qa > qn && ta > tn});
     js["claims_extra"][s]["cubic_adaptation"] = {{"psnr_adapted", pa},         {"psnr_plain", pn},
                                                  {"ssim_adapted", sa},         {"ssim_plain", sn},
@@ -261,14 +262,15 @@ void run(const ReportOptions& o) {
     const double g1 = gradient_energy(tri_box) / g0, g3 = gradient_energy(ep_edge) / g0;
     save(tri_box, fs::path(o.out_dir) / "text_patch" / "trilinear_box_mips.png");
     save(ep_edge, fs::path(o.out_dir) / "text_patch" / "edge_preserving_edge_mips.png");
-    claims.push_back({"Edge-preserving MIP-maps (Eq. 7, alpha 0.5) beat box MIP-maps under trilinear (Lee & Jen Sec. 4)",
-                      "text_patch", psnr_ssim_evidence(p2, p1, s2, s1), p2 > p1 && s2 > s1, psnr_ssim_evidence(q2, q1, t2, t1),
-                      q2 > q1 && t2 > t1});
-    claims.push_back({"Edge-preserving filtering on edge-preserving MIP-maps is sharper than trilinear on box MIP-maps "
-                      "(Lee & Jen Fig. 8)",
-                      "text_patch",
-                      fmt::format("sharpness {:.3f} vs {:.3f}; {}", g3, g1, psnr_ssim_evidence(p3, p1, s3, s1)), g3 > g1,
-                      fmt::format("sharpness {:.3f} vs {:.3f}; {}", g3, g1, psnr_ssim_evidence(q3, q1, t3, t1)), g3 > g1});
+    claims.push_back(
+        {"Edge-preserving MIP-maps (Eq. 7, alpha 0.5) beat box MIP-maps under trilinear (Lee & Jen Sec. 4)",
+         "text_patch", psnr_ssim_evidence(p2, p1, s2, s1), p2 > p1 && s2 > s1, psnr_ssim_evidence(q2, q1, t2, t1),
+         q2 > q1 && t2 > t1});
+    claims.push_back(
+        {"Edge-preserving filtering on edge-preserving MIP-maps is sharper than trilinear on box MIP-maps "
+         "(Lee & Jen Fig. 8)",
+         "text_patch", fmt::format("sharpness {:.3f} vs {:.3f}; {}", g3, g1, psnr_ssim_evidence(p3, p1, s3, s1)),
+         g3 > g1, fmt::format("sharpness {:.3f} vs {:.3f}; {}", g3, g1, psnr_ssim_evidence(q3, q1, t3, t1)), g3 > g1});
   }
   // EXT_texture_filter_anisotropic: on surfaces seen at grazing angles, 16 probes along the
   // footprint's major axis beat one trilinear probe against the truth.
@@ -276,10 +278,12 @@ void run(const ReportOptions& o) {
     if (!has(s)) continue;
     const ModeResult& an = table[s]["LINEAR_MIPMAP_LINEAR x16"];
     const ModeResult& tr = table[s]["LINEAR_MIPMAP_LINEAR"];
-    claims.push_back({"Anisotropic filtering (16 trilinear probes) beats trilinear at grazing angles (EXT_texture_filter_anisotropic)",
-                      s, psnr_ssim_evidence(an.psnr, tr.psnr, an.ssim, tr.ssim), an.psnr > tr.psnr && an.ssim > tr.ssim,
-                      psnr_ssim_evidence(an.psnr_surface, tr.psnr_surface, an.ssim_surface, tr.ssim_surface),
-                      an.psnr_surface > tr.psnr_surface && an.ssim_surface > tr.ssim_surface});
+    claims.push_back(
+        {"Anisotropic filtering (16 trilinear probes) beats trilinear at grazing angles "
+         "(EXT_texture_filter_anisotropic)",
+         s, psnr_ssim_evidence(an.psnr, tr.psnr, an.ssim, tr.ssim), an.psnr > tr.psnr && an.ssim > tr.ssim,
+         psnr_ssim_evidence(an.psnr_surface, tr.psnr_surface, an.ssim_surface, tr.ssim_surface),
+         an.psnr_surface > tr.psnr_surface && an.ssim_surface > tr.ssim_surface});
     for (const char* base : {"CUBIC_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
       const ModeResult& a = table[s][fmt::format("{} x16", base)];
       const ModeResult& b = table[s][base];
@@ -365,8 +369,8 @@ void run(const ReportOptions& o) {
                            names.size(), report_modes().size(), secs, o.out_dir,
                            o.markdown.empty() ? "" : fmt::format(", {}", o.markdown));
   for (const Claim& c : claims)
-    std::cout << fmt::format("  [{}] {} ({}; antialiased truth: {})\n", c.confirmed_surface ? "confirmed" : "refuted", c.text,
-                             c.scene, c.confirmed ? "confirmed" : "refuted");
+    std::cout << fmt::format("  [{}] {} ({}; antialiased truth: {})\n", c.confirmed_surface ? "confirmed" : "refuted",
+                             c.text, c.scene, c.confirmed ? "confirmed" : "refuted");
 }
 
 }  // namespace
