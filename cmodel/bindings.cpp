@@ -275,10 +275,26 @@ LoadedTexture load_texture_spec(const TextureSpec& spec, const std::string& wher
   }
   LoadedTexture out;
   if (spec.source.rfind(q3::kLevelScenePrefix, 0) == 0) {  // a texture or light map of a game level
-    // A level's texture as the game uploads it: the one key is compress (a level run's --compress).
+    // A level's texture as the game uploads it: the keys are compress (a level run's --compress) and,
+    // on base textures, srgb (the level option srgb=true). Light maps stay linear (q3::LevelSceneOptions).
     for (const auto& [key, value] : spec.params)
-      if (key != "compress") throw InputError(fmt::format("{}: a level's texture takes no key but compress", where));
+      if (key != "compress" && key != "srgb")
+        throw InputError(fmt::format("{}: a level's texture takes no key but compress and srgb", where));
+    bool srgb = false;
+    if (const auto it = spec.params.find("srgb"); it != spec.params.end()) {
+      try {
+        srgb = parse_bool(it->second);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: key 'srgb': {}", where, e.what()));
+      }
+      const std::string rest = spec.source.substr(std::string(q3::kLevelScenePrefix).size());  // MAP:KIND:...
+      const size_t colon = rest.find(':');
+      if (srgb && colon != std::string::npos && rest.compare(colon + 1, 8, "texture:") != 0)
+        throw InputError(
+            fmt::format("{}: key 'srgb': a level's light maps hold linear light and cannot be declared sRGB", where));
+    }
     out.texture = level_texture(spec.source, where, game_dir);
+    if (srgb) out.texture = q3::srgb_declared(out.texture);
     if (const auto it = spec.params.find("compress"); it != spec.params.end()) {
       try {
         out.texture = upload_compressed(out.texture, upload_compression_from_name(it->second), where);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/mipmap.hpp"
 #include "cmodel/q3_camera.hpp"
 #include "cmodel/upload_compression.hpp"
 
@@ -41,6 +42,13 @@ std::shared_ptr<const Texture> shifted_lightmap(const std::shared_ptr<const Text
   return std::make_shared<const Texture>(std::move(t));
 }
 
+std::shared_ptr<const Texture> srgb_declared(const std::shared_ptr<const Texture>& texture) {
+  Texture t = *texture;
+  t.format = TexelFormat::SRGBA8;
+  generate_mipmaps(t, MipMethod::Box);  // keeps level 0, averages the others in linear light
+  return std::make_shared<const Texture>(std::move(t));
+}
+
 namespace {
 
 // KEY=VALUE of a level scene name into `o`; false for an unknown key or value.
@@ -62,6 +70,7 @@ bool set_scene_option(LevelSceneOptions& o, const std::string& key, const std::s
   if (key == "vertex") return choice("colour", "white", VertexLight::Colour, VertexLight::White, o.vertex);
   if (key == "cull") return choice("back", "none", FaceCull::Back, FaceCull::None, o.cull);
   if (key == "gamma") return choice("hardware", "none", true, false, o.hardware_gamma);
+  if (key == "srgb") return choice("false", "true", false, true, o.srgb_textures);
   if (key == "mapoverbright") return number(0, kMaxLightingShift, o.map_overbright_bits);
   if (key == "overbright") return number(0, kMaxDisplayShift, o.overbright_bits);
   return false;
@@ -72,7 +81,7 @@ bool set_scene_option(LevelSceneOptions& o, const std::string& key, const std::s
 LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& option) {
   const auto fail = [&](const std::string& what) {
     throw InputError(
-        fmt::format("{} '{}': {} (expected oa:MAP[:SPAWN][:KEY=VALUE...])", option, scene.substr(0, 80), what));
+        fmt::format("{} '{}': {} (expected oa:MAP[:SPAWN][:KEY=VALUE...])", option, scene.substr(0, 60), what));
   };
   if (!is_level_scene(scene)) fail("not a level scene");
   const std::string rest = scene.substr(std::string(kLevelScenePrefix).size());
@@ -101,8 +110,8 @@ LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& op
     if (eq == std::string::npos || !set_scene_option(spec.options, parts[k].substr(0, eq), parts[k].substr(eq + 1)))
       fail(
           fmt::format("unknown option '{}' (eye=rest|spot, light=game|double, vertex=colour|white, cull=back|none, "
-                      "mapoverbright=0..{}, overbright=0..{}, gamma=hardware|none)",
-                      parts[k].substr(0, 30), kMaxLightingShift, kMaxDisplayShift));
+                      "mapoverbright=0..{}, overbright=0..{}, gamma=hardware|none, srgb=false|true)",
+                      parts[k].substr(0, 20), kMaxLightingShift, kMaxDisplayShift));
   }
   return spec;
 }
@@ -136,6 +145,7 @@ Scene level_scene(const Level& level, int spawn, int width, int height, const Le
   std::map<std::pair<int32_t, int32_t>, size_t> mesh_of_material;  // (texture, light map) -> mesh
   std::vector<std::map<uint32_t, uint32_t>> remap;                  // per mesh: level vertex -> mesh vertex
   std::map<int32_t, std::string> compressed_as;                     // base texture -> its block format ("": none)
+  std::map<int32_t, std::shared_ptr<const Texture>> declared_srgb;  // base texture -> its srgba8 form, made once
   for (const LevelFace& f : level.faces) {
     auto [it, added] = mesh_of_material.try_emplace({f.texture, f.lightmap}, scene.meshes.size());
     if (added) {
@@ -145,9 +155,15 @@ Scene level_scene(const Level& level, int spawn, int width, int height, const Le
       TextureStage base;
       base.spec = {fmt::format("oa:{}:texture:{}", level.name, t.name), {}};
       base.texture = t.texture;
+      if (options.srgb_textures) {  // the trace binding says so too (load_texture_spec)
+        base.spec.params["srgb"] = "true";
+        auto& declared = declared_srgb[f.texture];
+        if (!declared) declared = srgb_declared(t.texture);
+        base.texture = declared;
+      }
       if (compress.rule != UploadRule::None) {  // as the game uploads it; the trace binding says so too
         base.spec.params["compress"] = compress.name();
-        base.texture = upload_compressed(t.texture, compress, base.spec.source);
+        base.texture = upload_compressed(base.texture, compress, base.spec.source);
         compressed_as[f.texture] = base.texture->compressed ? block_format_name(base.texture->compressed->image.format) : "";
       }
       base.sampler.mode = FilterMode{BaseFilter::Linear, MipMode::Linear};

@@ -32,7 +32,8 @@
 // oa:aggressor:3 or oa:aggressor:3:cull=none:light=double. Keys (defaults first): eye=rest|spot,
 // light=game|double, vertex=colour|white, cull=back|none, mapoverbright=2 (r_mapOverBrightBits,
 // 0..kMaxLightingShift), overbright=1 (r_overBrightBits, 0..2), gamma=hardware|none (none: no
-// hardware gamma ramp, or a window: Quake III then takes no overbright bits, tr.overbrightBits 0).
+// hardware gamma ramp, or a window: Quake III then takes no overbright bits, tr.overbrightBits 0),
+// srgb=false|true (true: the base textures declared sRGB, below).
 #pragma once
 
 #include <array>
@@ -63,6 +64,12 @@ struct LevelSceneOptions {
   int map_overbright_bits = 2;  // r_mapOverBrightBits (ioquake3 default)
   int overbright_bits = 1;      // r_overBrightBits (ioquake3 default)
   bool hardware_gamma = true;   // fullscreen with a gamma ramp (glConfig.deviceSupportsGamma && isFullscreen)
+  // The base textures declared sRGB (srgba8, docs/srgb.md): decoded to linear before filtering,
+  // their MIP levels averaged in linear light. Light maps and vertex colours stay linear: they hold
+  // light computed by the light compiler, which the load shift scales by powers of two and the
+  // modulate stage multiplies with the surface colour; both are products of light, meaningful only
+  // on linear values. False is the game's GL 1 renderer: every texture filtered as stored.
+  bool srgb_textures = false;
   friend bool operator==(const LevelSceneOptions&, const LevelSceneOptions&) = default;
 };
 
@@ -91,9 +98,17 @@ bool is_level_scene(const std::string& scene);  // starts with "oa:"
 LevelSceneSpec parse_level_scene(const std::string& scene, const std::string& option = "--scene");
 
 inline constexpr int kLightmapOverbright = 2;  // rgb_scale of the light-map stage under LightRule::Double
+// A level texture declared sRGB: level 0's codes as stored, format srgba8, the box MIP chain made
+// again in linear light (generate_mipmaps on srgba8), as texture_with_params does for the texture key
+// srgb. The one definition for level scenes (LevelSceneOptions::srgb_textures) and for traces that
+// name a level texture with the key srgb.
+std::shared_ptr<const Texture> srgb_declared(const std::shared_ptr<const Texture>& texture);
+
 // `compress`: the base textures as the game uploads them (cmodel/upload_compression.hpp; the base
 // stages' texture specs carry the key compress = its name); light maps stay uncompressed, as ioquake3
 // uploads them (IMGFLAG_NO_COMPRESSION). The description then ends with the textures per format.
+// With options.srgb_textures the base textures are declared sRGB first (srgb_declared; the base
+// stages' texture specs carry the key srgb = true), then compressed with the format's sRGB variant.
 Scene level_scene(const Level& level, int spawn, int width = kLevelSceneWidth, int height = kLevelSceneHeight,
                   const LevelSceneOptions& options = {}, const UploadCompression& compress = {});
 

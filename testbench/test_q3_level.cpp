@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "cmodel/bindings.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/metrics.hpp"
 #include "cmodel/pk3.hpp"
@@ -26,6 +27,7 @@
 #include "cmodel/q3_textures.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
+#include "cmodel/upload_compression.hpp"
 #include "rtl/scene_sim.hpp"
 #include "sim/sweep/provenance.hpp"
 #include "testbench/q3_test_data.hpp"
@@ -433,6 +435,99 @@ TEST_F(TinyGame, LevelSceneBaseTimesLightmap) {
   // (508, 400, 28) exceeds 255: each x 255 / 508 (integer division), the hue kept.
   EXPECT_EQ(lw.at(127, 100), (Rgba8{255, 200, 14, 255}));
   EXPECT_EQ(lw.at(127, 127), (Rgba8{255, 255, 14, 255}));
+}
+
+// Base textures declared sRGB (scene key srgb=true): each becomes exactly the texture a scene file's
+// srgba8 texture of the same image gives (texture key srgb: level 0 as stored, the MIP chain averaged
+// in linear light); light maps stay as they were; the frame goes through the cycle model bit for
+// bit; a trace's binding of a level texture with srgb loads the same texture again, and a light map
+// with srgb is refused.
+TEST_F(TinyGame, BaseTexturesDeclaredSrgbAreTheSceneFilesSrgba8Textures) {
+  EXPECT_TRUE(parse_level_scene("oa:tiny:1:srgb=true").options.srgb_textures);
+  EXPECT_FALSE(parse_level_scene("oa:tiny:1:srgb=false").options.srgb_textures);
+  EXPECT_FALSE(parse_level_scene("oa:tiny:1").options.srgb_textures);
+  EXPECT_NE(error_of([] { parse_level_scene("oa:tiny:1:srgb=yes"); }).find("unknown option 'srgb=yes'"),
+            std::string::npos);
+  // The longest message (a 48-character level name, a long unknown key) stays within one 300-character line.
+  EXPECT_NE(error_of([] {
+              parse_level_scene("oa:" + std::string(48, 'm') + ":1:" + std::string(200, 'k') + "=true");
+            }).find("srgb=false|true)"),
+            std::string::npos);
+  const GameArchives a(dir());
+  TextureCache cache(a);
+  const Level l = load_level(a, "tiny", cache);
+  LevelSceneOptions declared;
+  declared.srgb_textures = true;
+  const Scene plain = level_scene(l, 1, 96, 54), s = level_scene(l, 1, 96, 54, declared);
+  ASSERT_EQ(s.meshes.size(), 3u);  // wall, jpgwall (vertex-lit), the fallback
+  for (size_t i = 0; i < s.meshes.size(); ++i) {
+    const TextureStage& base = s.meshes[i].stages.at(0);
+    EXPECT_EQ(base.texture->format, TexelFormat::SRGBA8) << i;
+    EXPECT_EQ(base.spec.params, (Params{{"srgb", "true"}})) << i;
+    Texture stored = *plain.meshes[i].stages.at(0).texture;
+    EXPECT_EQ(stored.format, TexelFormat::RGBA8) << i;
+    stored.levels.resize(1);
+    const Texture expected = texture_with_params(stored, {{"srgb", "true"}}, "scene texture");
+    ASSERT_EQ(base.texture->levels.size(), expected.levels.size()) << i;
+    for (size_t k = 0; k < expected.levels.size(); ++k)
+      EXPECT_EQ(base.texture->levels[k].texels, expected.levels[k].texels) << i << " level " << k;
+    if (s.meshes[i].stages.size() == 2) {  // the light map as it was
+      EXPECT_EQ(s.meshes[i].stages[1].texture->format, TexelFormat::RGBA8) << i;
+      EXPECT_EQ(s.meshes[i].stages[1].texture->levels.at(0).texels,
+                plain.meshes[i].stages[1].texture->levels.at(0).texels)
+          << i;
+      EXPECT_TRUE(s.meshes[i].stages[1].spec.params.empty()) << i;
+    }
+  }
+  // The wall's level 1 averages red, green, blue and white (alpha 128): its red channel as codes is
+  // (255 + 0 + 0 + 255 + 2) / 4 = 128; in linear light 2048 of 4095, which sRGB encodes as
+  // 255 (1.055 x 0.5001^(1/2.4) - 0.055) = 187.5, so 187 or 188 (the box filter's rounding).
+  EXPECT_EQ(plain.meshes[0].stages[0].texture->levels.at(1).at(0, 0).r, 128);
+  EXPECT_NEAR(s.meshes[0].stages[0].texture->levels.at(1).at(0, 0).r, 187.5, 0.5);
+
+  // Spawn 0 looks at the wall quad and the patches (both windings drawn): the frame differs from
+  // the stored-code frame, and the cycle model equals the golden model on every request.
+  LevelSceneOptions both = declared;
+  both.cull = FaceCull::None;
+  const Scene view = level_scene(l, 0, 96, 54, both);
+  both.srgb_textures = false;
+  const Scene view_plain = level_scene(l, 0, 96, 54, both);
+  RenderOptions ro;
+  ro.trace = true;
+  const RenderResult r = render_scene(view, ro), rp = render_scene(view_plain, ro);
+  int64_t differ = 0;
+  for (size_t i = 0; i < r.image.texels.size(); ++i) differ += !(r.image.texels[i] == rp.image.texels[i]);
+  EXPECT_GT(differ, 100) << differ;
+  const rtl::SceneSimResult sim = rtl::simulate_scene(view, r, rtl::UnitConfig{}, {});
+  EXPECT_TRUE(sim.mismatch.empty()) << sim.mismatch;
+  EXPECT_EQ(sim.image.texels, r.image.texels);
+
+  // With upload compression: declared first, then encoded with the format's sRGB variant (jpgwall
+  // is opaque, so s3tc makes it BC1).
+  const Scene c = level_scene(l, 1, 96, 54, declared, upload_compression_from_name("s3tc"));
+  const TextureStage& jpg = c.meshes[1].stages.at(0);
+  ASSERT_TRUE(jpg.texture->compressed);
+  EXPECT_TRUE(jpg.texture->compressed->image.srgb);
+  EXPECT_EQ(jpg.texture->format, TexelFormat::SRGBA8);
+  EXPECT_EQ(jpg.spec.params, (Params{{"compress", "s3tc"}, {"srgb", "true"}}));
+
+  // Trace bindings.
+  const LoadedTexture again = load_texture_spec(s.meshes[0].stages[0].spec, "trace line 2", {}, dir());
+  EXPECT_EQ(again.texture->format, TexelFormat::SRGBA8);
+  ASSERT_EQ(again.texture->levels.size(), s.meshes[0].stages[0].texture->levels.size());
+  for (size_t k = 0; k < again.texture->levels.size(); ++k)
+    EXPECT_EQ(again.texture->levels[k].texels, s.meshes[0].stages[0].texture->levels[k].texels) << k;
+  TextureSpec bad = s.meshes[0].stages[0].spec;
+  bad.params["srgb"] = "maybe";
+  EXPECT_NE(error_of([&] { load_texture_spec(bad, "trace line 2", {}, dir()); }).find("trace line 2: key 'srgb': "),
+            std::string::npos);
+  TextureSpec light = s.meshes[0].stages.at(1).spec;
+  light.params = {{"srgb", "true"}};
+  EXPECT_EQ(error_of([&] { load_texture_spec(light, "trace line 2", {}, dir()); }),
+            "trace line 2: key 'srgb': a level's light maps hold linear light and cannot be declared sRGB");
+  light.params = {{"srgb", "false"}};
+  EXPECT_EQ(load_texture_spec(light, "trace line 2", {}, dir()).texture->levels.at(0).texels,
+            s.meshes[0].stages[1].texture->levels.at(0).texels);
 }
 
 // The provenance of a level scene names the archive entry of the level and of every texture a drawn
