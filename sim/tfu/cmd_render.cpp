@@ -34,9 +34,7 @@ struct RenderCliOptions {
   std::string max_aniso, aniso_rounding, aniso_threshold;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
-  std::string gl_trace;  // an apitrace of a game's GL command stream (docs/gl-replay.md)
-  int frame = 0;         // its frame replayed
-  int alpha_bits = -1;   // the framebuffer's alpha bits (-1: as the trace's visual asks)
+  GlTraceOptions gl;  // --gl-trace, --frame, --alpha-bits
   std::string compress;  // oa: scenes: the base textures compressed at upload (none, s3tc, a block format)
   std::string raster = "scanline";  // the trace's quad order (cmodel/raster_order.hpp)
   std::string texture_layout;       // empty: each texture's own
@@ -79,18 +77,18 @@ void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
                           "--truth-out", "--surface-truth-out", "--interior-out", "--ideal", "--width", "--height", "--game-dir", "--list"})
     if (const CLI::Option* opt_ = cmd.get_option_no_throw(opt); opt_ != nullptr && opt_->count() > 0)
       throw InputError(fmt::format("{} does not apply to --gl-trace (the trace carries the frame)", opt));
-  const std::string out = o.out.empty() ? fmt::format("out/render/gl-frame{}.png", o.frame) : o.out;
+  const std::string out = o.out.empty() ? fmt::format("out/render/gl-frame{}.png", o.gl.frame) : o.out;
   OutputFiles outputs(o.force);
   OutputFile& image_file = outputs.add_image("--out", out);
   gl::ReplayOptions ro;
-  ro.alpha_bits = o.alpha_bits;
-  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, ro);
+  ro.alpha_bits = o.gl.alpha_bits;
+  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, ro);
   image_file.write_image(r.image);
   outputs.commit();
   std::cout << out << '\n';
   print_summary_line(fmt::format("tfu render: GL trace {} frame {} (calls {}..{}) {}x{}: {} calls ({} in the frame), {} draws, {} triangles ({} culled, "
                                  "{} clipped away, {} degenerate), {} textures, {} quads, {} pixels, {} requests",
-                                 o.gl_trace, o.frame, r.first_call, r.last_call, r.width, r.height, r.stats.calls, r.stats.frame_calls, r.stats.draws,
+                                 o.gl.trace, o.gl.frame, r.first_call, r.last_call, r.width, r.height, r.stats.calls, r.stats.frame_calls, r.stats.draws,
                                  r.stats.triangles, r.stats.culled, r.stats.clipped_away, r.stats.degenerate, r.stats.textures,
                                  r.stats.quads, r.stats.pixels, r.requests.requests.size()));
 }
@@ -190,14 +188,7 @@ void register_render(CLI::App& app) {
       "render", "Render a scene through the golden sampler (2x2 quads, quad-derivative LOD); optional trace and ground truth");
   cmd->add_option("--scene", o->scene, "Built-in scene name (see --list), a scene JSON file, or oa:MAP[:SPAWN] (an OpenArena level)")
       ->capture_default_str();
-  cmd->add_option("--gl-trace", o->gl_trace,
-                  "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through the golden model (docs/gl-replay.md)");
-  cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
-      ->capture_default_str();
-  cmd->add_option("--alpha-bits", o->alpha_bits,
-                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
-                  "into a visual of its own)")
-      ->capture_default_str();
+  add_gl_trace_options(*cmd, o->gl, "the golden model");
   cmd->add_option("--game-dir", o->game_dir,
                   fmt::format("OpenArena data directory for oa: scenes (default: ${} or {})", q3::kOpenArenaDirEnv,
                               q3::kDefaultOpenArenaDir));
@@ -234,7 +225,7 @@ void register_render(CLI::App& app) {
   cmd->add_flag("--force", o->force, "Overwrite existing output files");
   cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
   cmd->callback([o, cmd] {
-    if (!o->gl_trace.empty()) return run_gl_trace(*o, *cmd);
+    if (!o->gl.trace.empty()) return run_gl_trace(*o, *cmd);
     for (const char* opt : {"--frame", "--alpha-bits"})
       if (cmd->count(opt) > 0) throw InputError(fmt::format("{} needs --gl-trace", opt));
     run(*o);

@@ -46,9 +46,7 @@ constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding",
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
   std::string requests;
-  std::string gl_trace;  // an apitrace of the game's GL command stream (docs/gl-replay.md)
-  int frame = 0;         // its frame replayed
-  int alpha_bits = -1;   // the framebuffer's alpha bits (-1: as the trace's visual asks)
+  GlTraceOptions gl;  // --gl-trace, --frame, --alpha-bits
   TextureOptions tex;
   SamplerOptions smp;
   int width = 0, height = 0;  // 0: the scene's own size
@@ -345,11 +343,11 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
 sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds, RunRecord& rec,
                         OutputFile* out_file, std::string& mismatch) {
   const auto start = std::chrono::steady_clock::now();
-  const gl::Replay r = gl::replay_frame(o.gl_trace, o.frame, {unit.cache.line_bytes, o.alpha_bits});
+  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, {unit.cache.line_bytes, o.gl.alpha_bits});
   const double replay_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Frame& frame = *r.unit_frame;
   rec.has_scene = false;
-  rec.trace = o.gl_trace;
+  rec.trace = o.gl.trace;
   rec.width = r.width;
   rec.height = r.height;
   rec.textures = frame_texture_names(frame);
@@ -379,9 +377,9 @@ sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<
   const size_t n = r.requests.requests.size();
   std::cout << fmt::format("tfu sim: GL trace {} frame {} (calls {}..{}, {}x{}): {} draws, {} triangles ({} culled, {} clipped away), {} textures, "
                            "{} samplers\n",
-                           o.gl_trace, o.frame, r.first_call, r.last_call, r.width, r.height, r.stats.draws, r.stats.triangles, r.stats.culled,
+                           o.gl.trace, o.gl.frame, r.first_call, r.last_call, r.width, r.height, r.stats.draws, r.stats.triangles, r.stats.culled,
                            r.stats.clipped_away, r.stats.textures, r.stats.samplers);
-  print_summary(fmt::format("tfu sim: {} requests (GL trace {} frame {}), golden compare: all {} equal\n", n, o.gl_trace, o.frame, n),
+  print_summary(fmt::format("tfu sim: {} requests (GL trace {} frame {}), golden compare: all {} equal\n", n, o.gl.trace, o.gl.frame, n),
                 n, got.cycles, got.stats);
   const auto rate = [n](double s) { return s > 0 ? static_cast<double>(n) / s : 0.0; };
   std::cout << fmt::format(
@@ -442,7 +440,7 @@ void run(SimOptions& o, CLI::App& cmd) {
     const CLI::Option* opt = cmd.get_option_no_throw(name);
     return opt != nullptr && opt->count() > 0;
   };
-  if (!o.gl_trace.empty()) {
+  if (!o.gl.trace.empty()) {
     for (const char* opt : {"--scene", "--requests", "--width", "--height", "--units", "--texture", "--shape-policy", "--wrap", "--game-dir"})
       if (given(opt)) throw InputError(fmt::format("{} does not apply to --gl-trace runs (the trace carries the frame)", opt));
     for (const SamplerParam& p : sampler_params())
@@ -494,7 +492,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   rec.config = &unit;
   rec.engine = o.unit_engine;
   std::string mismatch;
-  const sim::Stats stats = !o.gl_trace.empty()   ? run_gl_trace(o, unit, vcds, rec, out_file, mismatch)
+  const sim::Stats stats = !o.gl.trace.empty()   ? run_gl_trace(o, unit, vcds, rec, out_file, mismatch)
                            : o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
                                                 : run_requests(o, cmd, unit, vcds, rec, mismatch);
   if (stats_file) stats_file->stream() << stats_document(stats, provenance_json(rec));
@@ -675,14 +673,7 @@ void register_sim(CLI::App& app) {
   cmd->add_option("--width", o->width, "Scene render width (default: the scene's own)");
   cmd->add_option("--height", o->height, "Scene render height (default: the scene's own)");
   cmd->add_option("--requests", o->requests, "A request trace (quad, lod or grad mode) instead of a scene (docs/traces.md)");
-  cmd->add_option("--gl-trace", o->gl_trace,
-                  "An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through both models (docs/gl-replay.md)");
-  cmd->add_option("--frame", o->frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
-      ->capture_default_str();
-  cmd->add_option("--alpha-bits", o->alpha_bits,
-                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
-                  "into a visual of its own)")
-      ->capture_default_str();
+  add_gl_trace_options(*cmd, o->gl, "both models");
   add_texture_options(*cmd, o->tex, false);
   add_sampler_options(*cmd, o->smp);
   cmd->add_option("--config", o->config,

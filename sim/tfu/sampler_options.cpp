@@ -104,4 +104,16 @@ Frame frame_for_trace(const CLI::App& cmd, const TextureOptions& t, const Sample
   return frame_from_trace(trace, d, line_bytes);
 }
 
+void add_gl_trace_options(CLI::App& cmd, GlTraceOptions& o, const char* through) {
+  cmd.add_option("--gl-trace", o.trace,
+                 fmt::format("An apitrace trace of a game's OpenGL 1.x command stream: replay --frame through {} (docs/gl-replay.md)",
+                             through));
+  cmd.add_option("--frame", o.frame, "With --gl-trace: the frame replayed (0: the calls up to the first glXSwapBuffers)")
+      ->capture_default_str();
+  cmd.add_option("--alpha-bits", o.alpha_bits,
+                 "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
+                 "into a visual of its own)")
+      ->capture_default_str();
+}
+
 }  // namespace tfu::cli

@@ -26,6 +26,15 @@ struct SamplerOptions {
 };
 
 // `texture_required`: --texture is mandatory (otherwise it may come from a trace's header).
+// A game's OpenGL command stream (docs/gl-replay.md), the options tfu render and tfu sim share.
+struct GlTraceOptions {
+  std::string trace;   // an apitrace trace; empty: no GL replay
+  int frame = 0;       // its frame replayed
+  int alpha_bits = -1;  // the framebuffer's alpha bits (-1: as the trace's visual asks)
+};
+// --gl-trace, --frame, --alpha-bits; `through` says which models the replay goes through.
+void add_gl_trace_options(CLI::App& cmd, GlTraceOptions& o, const char* through);
+
 void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required = true);
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o);
 // The texture the flags describe (the keys given), or nullopt without --texture.
