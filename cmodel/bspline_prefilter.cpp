@@ -83,7 +83,7 @@ BsplineCoefficients prefilter_bspline(const Texture& tex, WrapMode wrap_s, WrapM
   out.scale_q = std::llround(std::ceil((cmax - cmin) * one));
   out.bias_q = std::llround(std::floor(255.0 * cmin * one));
   const double S = static_cast<double>(out.scale_q), B = static_cast<double>(out.bias_q);
-  const auto code = [S, B, one](double v) {
+  const auto code = [S, B](double v) {
     return static_cast<uint8_t>(std::clamp(std::floor((255.0 * v * one - B) / S + 0.5), 0.0, 255.0));
   };
   for (size_t l = 0; l < tex.levels.size(); ++l) {

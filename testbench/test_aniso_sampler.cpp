@@ -51,7 +51,7 @@ SamplerDescriptor sampler(FilterMode m, WrapMode w, int max_aniso, AnisoRounding
 
 // Derivative components (Q.16 level-0 texels) of the grid: zero, fractions of a texel, one texel,
 // powers of two and odd multiples up to far beyond the texture, the clamp; both signs.
-std::vector<int64_t> grid_values() {
+std::vector<int64_t> probe_grid_values() {
   std::vector<int64_t> v{0};
   for (const int64_t m : {int64_t{1}, int64_t{4000}, kTexel / 3, kTexel, 3 * kTexel / 2, 5 * kTexel, 37 * kTexel,
                           int64_t{1} << 31})
@@ -74,7 +74,7 @@ const std::vector<FilterMode>& mip_modes() {
 // maxAniso 1 for every derivative set of the grid (17^4 sets), and maxAniso 16 where the footprint
 // is round.
 TEST(AnisoSampler, OneProbeIsTheIsotropicModeBitForBit) {
-  const std::vector<int64_t> g = grid_values();
+  const std::vector<int64_t> g = probe_grid_values();
   std::mt19937 rng(21);
   std::uniform_real_distribution<float> coord(-1.5f, 2.5f);
   int64_t checked = 0;
