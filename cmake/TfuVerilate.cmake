@@ -64,6 +64,7 @@ if(NOT TARGET tfu_verilated)
   target_compile_definitions(tfu_verilated PUBLIC ${TFU_VERILATED_DEFS})
   # Third-party code: no project warnings, never -Werror.
   target_compile_options(tfu_verilated PRIVATE -w -faligned-new)
+  set_target_properties(tfu_verilated PROPERTIES UNITY_BUILD OFF)  # Verilator's runtime: file by file
   target_link_libraries(tfu_verilated PUBLIC Threads::Threads)
 endif()
 
