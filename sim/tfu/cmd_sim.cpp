@@ -628,16 +628,27 @@ void run_results(const ResultsOptions& o) {
         "|---|---:|---:|---:|---:|---:|---:|\n"
      << aniso_table << "\n";
   md << "### Every scene x mode (x kernel-shape policy)\n\n"
-        "| scene | mode | policy | cycles/pixel | line hit rate | sector hit rate | memory bytes/pixel | miss stall cycles | shapes cross/T/L |\n"
+        "| scene | mode | policy | cycles/pixel | line hit rate | sector hit rate | memory bytes/pixel | miss stall "
+        "cycles | shapes cross/T/L |\n"
         "|---|---|---|---:|---:|---:|---:|---:|---|\n";
   nlohmann::json js = nlohmann::json::array();
   for (const ResultRow& r : rows) {
-    md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy, r.cycles_per_pixel,
-                      r.hit_rate, r.sector_hit_rate, r.bytes_per_pixel, r.stall_miss,
+    md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy,
+                      r.cycles_per_pixel, r.hit_rate, r.sector_hit_rate, r.bytes_per_pixel, r.stall_miss,
                       r.cross + r.t + r.l ? fmt::format("{}/{}/{}", r.cross, r.t, r.l) : std::string());
-    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"line_bytes", r.line_bytes}, {"max_aniso", r.max_aniso},
-                  {"cycles_per_pixel", r.cycles_per_pixel}, {"hit_rate", r.hit_rate}, {"sector_hit_rate", r.sector_hit_rate}, {"bytes_per_pixel", r.bytes_per_pixel},
-                  {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
+    js.push_back({{"scene", r.scene},
+                  {"mode", r.mode},
+                  {"policy", r.policy},
+                  {"line_bytes", r.line_bytes},
+                  {"max_aniso", r.max_aniso},
+                  {"cycles_per_pixel", r.cycles_per_pixel},
+                  {"hit_rate", r.hit_rate},
+                  {"sector_hit_rate", r.sector_hit_rate},
+                  {"bytes_per_pixel", r.bytes_per_pixel},
+                  {"memory_bytes", r.bytes},
+                  {"stall_cache_miss", r.stall_miss},
+                  {"shape_cross", r.cross},
+                  {"shape_T", r.t},
                   {"shape_L", r.l}});
   }
   if (md_file) md_file->stream() << md.str();

@@ -29,8 +29,8 @@ struct SceneRun {
 };
 
 // Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`; one thread with `bench`).
-SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit,
-                             rtl::SceneSimOptions so, bool bench);
+SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit, rtl::SceneSimOptions so,
+                             bool bench);
 // The --bench lines of a run of `units` units by `engine`.
 void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units);
 
