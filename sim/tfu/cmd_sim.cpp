@@ -517,7 +517,7 @@ struct ResultRow {
   std::string scene, mode, policy;
   int line_bytes = 64;
   int max_aniso = 1;
-  double cycles_per_pixel = 0, hit_rate = 0, bytes_per_pixel = 0;
+  double cycles_per_pixel = 0, hit_rate = 0, sector_hit_rate = 0, bytes_per_pixel = 0;
   uint64_t requests = 0, cycles = 0, probes = 0, bytes = 0, stall_miss = 0, cross = 0, t = 0, l = 0;
 };
 
@@ -545,6 +545,9 @@ ResultRow measure(const Scene& scene, const std::string& scene_name, const rtl::
   row.cycles_per_pixel = static_cast<double>(r.cycles) / n;
   const uint64_t h = rtl::counter(r.stats, rtl::UnitStat::CacheLineHits), m = rtl::counter(r.stats, rtl::UnitStat::CacheLineMisses);
   row.hit_rate = h + m ? static_cast<double>(h) / static_cast<double>(h + m) : 1.0;
+  const uint64_t sh = rtl::counter(r.stats, rtl::UnitStat::CacheSectorHits),
+                 sl = rtl::counter(r.stats, rtl::UnitStat::CacheSectorLookups);
+  row.sector_hit_rate = sl ? static_cast<double>(sh) / static_cast<double>(sl) : 1.0;
   row.bytes = rtl::counter(r.stats, rtl::UnitStat::MemoryBytes);
   row.bytes_per_pixel = static_cast<double>(row.bytes) / n;
   row.stall_miss = rtl::counter(r.stats, rtl::UnitStat::StallCacheMiss);
@@ -625,16 +628,27 @@ void run_results(const ResultsOptions& o) {
         "|---|---:|---:|---:|---:|---:|---:|\n"
      << aniso_table << "\n";
   md << "### Every scene x mode (x kernel-shape policy)\n\n"
-        "| scene | mode | policy | cycles/pixel | line hit rate | memory bytes/pixel | miss stall cycles | shapes cross/T/L |\n"
-        "|---|---|---|---:|---:|---:|---:|---|\n";
+        "| scene | mode | policy | cycles/pixel | line hit rate | sector hit rate | memory bytes/pixel | miss stall "
+        "cycles | shapes cross/T/L |\n"
+        "|---|---|---|---:|---:|---:|---:|---:|---|\n";
   nlohmann::json js = nlohmann::json::array();
   for (const ResultRow& r : rows) {
-    md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy, r.cycles_per_pixel,
-                      r.hit_rate, r.bytes_per_pixel, r.stall_miss,
+    md << fmt::format("| {} | {} | {} | {:.3f} | {:.4f} | {:.4f} | {:.3f} | {} | {} |\n", r.scene, r.mode, r.policy,
+                      r.cycles_per_pixel, r.hit_rate, r.sector_hit_rate, r.bytes_per_pixel, r.stall_miss,
                       r.cross + r.t + r.l ? fmt::format("{}/{}/{}", r.cross, r.t, r.l) : std::string());
-    js.push_back({{"scene", r.scene}, {"mode", r.mode}, {"policy", r.policy}, {"line_bytes", r.line_bytes}, {"max_aniso", r.max_aniso},
-                  {"cycles_per_pixel", r.cycles_per_pixel}, {"hit_rate", r.hit_rate}, {"bytes_per_pixel", r.bytes_per_pixel},
-                  {"memory_bytes", r.bytes}, {"stall_cache_miss", r.stall_miss}, {"shape_cross", r.cross}, {"shape_T", r.t},
+    js.push_back({{"scene", r.scene},
+                  {"mode", r.mode},
+                  {"policy", r.policy},
+                  {"line_bytes", r.line_bytes},
+                  {"max_aniso", r.max_aniso},
+                  {"cycles_per_pixel", r.cycles_per_pixel},
+                  {"hit_rate", r.hit_rate},
+                  {"sector_hit_rate", r.sector_hit_rate},
+                  {"bytes_per_pixel", r.bytes_per_pixel},
+                  {"memory_bytes", r.bytes},
+                  {"stall_cache_miss", r.stall_miss},
+                  {"shape_cross", r.cross},
+                  {"shape_T", r.t},
                   {"shape_L", r.l}});
   }
   if (md_file) md_file->stream() << md.str();

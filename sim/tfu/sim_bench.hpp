@@ -28,9 +28,9 @@ struct SceneRun {
   std::vector<double> clocked_ratio; // their ratio of each run, sorted
 };
 
-// Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`).
-SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit,
-                             const rtl::SceneSimOptions& so, bool bench);
+// Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`; one thread with `bench`).
+SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit, rtl::SceneSimOptions so,
+                             bool bench);
 // The --bench lines of a run of `units` units by `engine`.
 void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units);
 
