@@ -35,19 +35,9 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   slots_.assign(stat_slots(regs.textures.size()), SlotCounters{});
   if (any_compressed_) {
     decoded_memo_.resize(kDecodedMemoEntries);
+    decoded_levels_.resize(readout_.size());
     scratch_.resize(kHeldBlocks);
   }
-}
-
-uint64_t CacheStage::decode(uint64_t in, int texels, int blocks, size_t slot) {
-  const uint64_t start = std::max(in, decoder_free_);
-  const auto busy = static_cast<uint64_t>((texels + decoder_.texels_per_cycle() - 1) / decoder_.texels_per_cycle());
-  decoder_free_ = start + busy;
-  SlotCounters& c = slots_[slot];
-  c.decoded_blocks += static_cast<uint64_t>(blocks);
-  c.decoder_busy += busy;
-  c.decoder_stall += start - in;
-  return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
 }
 
 uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,

@@ -56,10 +56,12 @@
 #include <algorithm>
 #include <array>
 #include <deque>
+#include <memory>
 #include <vector>
 
 #include "cmodel/descriptors.hpp"
 #include "cmodel/texture_memory.hpp"
+#include "rtl/address_gen_blocks.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 #include "rtl/timing.hpp"
@@ -173,16 +175,25 @@ class CacheStage : public sim::Module {
   }
   // The recurrences' LINEAR quad path on a block-compressed texture (software speed only,
   // rtl/cache_stage_block_squares.cpp, which names the plain twins and the equality test): a 2 x 2
-  // footprint whose taps are all inside the level, in blocks. `blocks` is its tap grid in block
-  // coordinates (access_block_grid), `texel[t]` the index inside its block (v * block_w + u) of
-  // tap t, read_out's order: tap t reads block column t & 1, block row t >> 1.
-  struct BlockSquare {
-    TapGrid blocks;
-    std::array<uint8_t, 4> texel;
-  };
-  // admit_footprint of such a footprint (`texels`: its tap grid in texels).
-  uint64_t admit_block_square(int texture, int stage, int level, const TapGrid& texels, const BlockSquare& s,
-                              uint64_t now, int& bank_cycles);
+  // footprint whose taps are all inside the level, in blocks (rtl/unit_ports.hpp, formed by the
+  // address generator: block_square, rtl/address_gen_blocks.hpp).
+  using BlockSquare = rtl::BlockSquare;  // rtl/address_gen_blocks.hpp
+  // admit_footprint of such a footprint (`texels`: its tap grid in texels): admit_blocks with the
+  // block grid given. Blocks in the cache: the tags of its blocks' lines (access_blocks forms the
+  // same block grid), then one decoder job of its four taps and of its distinct blocks, the product
+  // of its distinct block columns and rows (admit_blocks counts the distinct (column, row) pairs of
+  // its taps). Decoded on fill: admit_blocks itself (its tags take the texel grid, and only its
+  // misses do more). Inline, as admit_lines: once per footprint.
+  [[gnu::always_inline]] uint64_t admit_block_square(int texture, int stage, int level, const TapGrid& texels,
+                                                     const BlockSquare& s, uint64_t now, int& bank_cycles) {
+    FootprintResult r;
+    if (cache_.config().holds == CacheHolds::Decoded) [[unlikely]]
+      return admit_blocks(texture, stage, level, texels, now, bank_cycles, r);
+    r = cache_.access_block_grid(texture, level, s.blocks);
+    const uint64_t in = lines_in(texture, stage, level, r, now, bank_cycles);
+    const int blocks = (s.blocks.x[0] != s.blocks.x[1] ? 2 : 1) * (s.blocks.y[0] != s.blocks.y[1] ? 2 : 1);
+    return decode(in, 4, blocks, stat_slot(texture, stage));
+  }
   // read_out_footprint of four such footprints on one level (a quad's pixels): taps[k] the four
   // texels of footprint k in read_out's order.
   void read_block_squares(int texture, int level, const std::array<BlockSquare, 4>& s,
@@ -304,7 +315,16 @@ class CacheStage : public sim::Module {
   std::vector<SlotCounters> slots_;  // per statistics slot
   // One decoder job (the header's rule) of statistics slot `slot`: input in at `in`, `texels` to
   // decode; returns the cycle its texels are ready.
-  uint64_t decode(uint64_t in, int texels, int blocks, size_t slot);
+  [[gnu::always_inline]] uint64_t decode(uint64_t in, int texels, int blocks, size_t slot) {
+    const uint64_t start = std::max(in, decoder_free_);
+    const auto busy = static_cast<uint64_t>((texels + decoder_.texels_per_cycle() - 1) / decoder_.texels_per_cycle());
+    decoder_free_ = start + busy;
+    SlotCounters& c = slots_[slot];
+    c.decoded_blocks += static_cast<uint64_t>(blocks);
+    c.decoder_busy += busy;
+    c.decoder_stall += start - in;
+    return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
+  }
   // admit_lines for a compressed texture: the tags, memory reads and the decoder jobs.
   uint64_t admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now, int& bank_cycles,
                         FootprintResult& r);
@@ -333,12 +353,26 @@ class CacheStage : public sim::Module {
   // compressed real frame").
   static constexpr size_t kDecodedMemoEntries = 4096;
   mutable std::vector<DecodedBlock> decoded_memo_;
-  // decoded_block's `scratch` for the blocks held at once (a footprint's, or a quad's four
-  // footprints' on one level): allocated with the memo, not cleared per footprint.
+  // decoded_block's `scratch` for the blocks held at once (a footprint's): allocated with the memo,
+  // not cleared per footprint.
   static constexpr size_t kHeldBlocks = 16;
   mutable std::vector<std::array<Rgba8, 144>> scratch_;
   const Rgba8* decoded_block(const TextureDescriptor& d, uint64_t address, const HeldBlock* held, size_t n,
                              Rgba8* scratch) const;
+  // The same memo for read_block_squares, per texture level instead of per address: every block of
+  // the level has its place (block-major: block (bx, by) of a level `blocks_across` blocks wide at
+  // texel (by blocks_across + bx) block_w block_h, its texels row-major after it), decoded the
+  // first time a footprint reads it, from the bytes at the descriptor's block address, and kept
+  // for the run (no eviction: each block the run reads is decoded once). The storage is bytes,
+  // allocated on the level's first read and written block by block (no clearing).
+  struct DecodedLevel {
+    std::unique_ptr<unsigned char[]> texels;  // 4 bytes a texel, an Rgba8 word
+    std::vector<uint8_t> decoded;             // per block: 1 once its texels are in place
+    int blocks_across = 0;
+  };
+  mutable std::vector<DecodedLevel> decoded_levels_;  // indexed like readout_
+  DecodedLevel& decoded_level(int texture, int level) const;
+  void decode_into_level(const TextureDescriptor& d, int level, DecodedLevel& dl, int bx, int by) const;
   bool any_edge_ = false;                  // some sampler is EDGE_PRESERVING (shape statistics)
   bool record_shapes_ = false;             // some EDGE_PRESERVING sampler is cache-aware (shapes)
   bool probes_ = false;                    // waveform probes recorded (probes())

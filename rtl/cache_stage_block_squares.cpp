@@ -3,64 +3,68 @@
 // are CacheStage::admit_blocks (through TexelCache::access_blocks) and CacheStage::read_out_blocks
 // in rtl/cache_stage.cpp, which take any footprint tap by tap; these take the 2 x 2 footprints of a
 // LINEAR quad whose taps are all inside the level, with the block coordinates formed once per
-// footprint by the quad path (rtl/unit_recurrence_linear_quads.cpp), and must give the same tags,
-// memory reads, decoder jobs, statistics and texels. CompressedUnit.LinearQuadPathEqualsThePlainBlocks
+// footprint by the address generator (rtl/address_gen_blocks.hpp), and must give the same tags,
+// memory reads, decoder jobs, statistics and texels. The admission, admit_block_square, is inline
+// in rtl/cache_stage.hpp. CompressedUnit.LinearQuadPathEqualsThePlainBlocks
 // (testbench/test_compressed_unit.cpp) compares the two paths and the clocked blocks on several
 // block formats, both cache organizations and random unit configurations.
+#include <cstring>
+
 #include "rtl/cache_stage.hpp"
 
 #include "cmodel/block_formats.hpp"
 
 namespace tfu::rtl {
 
-// admit_blocks of a 2 x 2 footprint. Blocks in the cache: the tags of its blocks' lines
-// (access_blocks forms the same block grid), then one decoder job of its four taps and of its
-// distinct blocks, the product of its distinct block columns and rows (admit_blocks counts the
-// distinct (column, row) pairs of its taps). Decoded on fill: admit_blocks itself (its tags take
-// the texel grid, and only its misses do more).
-uint64_t CacheStage::admit_block_square(int texture, int stage, int level, const TapGrid& texels, const BlockSquare& s,
-                                        uint64_t now, int& bank_cycles) {
-  FootprintResult r;
-  if (cache_.config().holds == CacheHolds::Decoded)
-    return admit_blocks(texture, stage, level, texels, now, bank_cycles, r);
-  r = cache_.access_block_grid(texture, level, s.blocks);
-  const uint64_t in = lines_in(texture, stage, level, r, now, bank_cycles);
-  const int blocks = (s.blocks.x[0] != s.blocks.x[1] ? 2 : 1) * (s.blocks.y[0] != s.blocks.y[1] ? 2 : 1);
-  return decode(in, 4, blocks, stat_slot(texture, stage));
+CacheStage::DecodedLevel& CacheStage::decoded_level(int texture, int level) const {
+  DecodedLevel& dl = decoded_levels_[first_readout_[static_cast<size_t>(texture)] + static_cast<size_t>(level)];
+  if (dl.texels == nullptr) {
+    const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
+    const BlockFormatInfo& b = d.block();
+    dl.blocks_across = blocks_across(d.block_format, d.level_width(level));
+    const auto blocks = static_cast<size_t>(dl.blocks_across) *
+                        static_cast<size_t>(blocks_down(d.block_format, d.level_height(level)));
+    dl.texels.reset(new unsigned char[blocks * static_cast<size_t>(b.block_w * b.block_h) * sizeof(Rgba8)]);
+    dl.decoded.assign(blocks, 0);
+  }
+  return dl;
+}
+
+// Block (bx, by) of `level`, decoded from the bytes at its address in the descriptor (the level's
+// address, by block rows of row_pitch bytes, bx blocks of block_bytes: texel_address's rule).
+void CacheStage::decode_into_level(const TextureDescriptor& d, int level, DecodedLevel& dl, int bx, int by) const {
+  const BlockFormatInfo& b = d.block();
+  const LevelDescriptor& ld = d.level[static_cast<size_t>(level)];
+  const uint64_t address = ld.address + static_cast<uint64_t>(by) * ld.row_pitch +
+                           static_cast<uint64_t>(bx) * static_cast<uint64_t>(b.block_bytes);
+  std::array<Rgba8, 144> texels;  // up to 12 x 12
+  decode_block(d.block_format, memory_.bytes_at(address), d.decode, texels.data());
+  const size_t block = static_cast<size_t>(by) * static_cast<size_t>(dl.blocks_across) + static_cast<size_t>(bx);
+  const size_t n = static_cast<size_t>(b.block_w * b.block_h);
+  std::memcpy(dl.texels.get() + block * n * sizeof(Rgba8), texels.data(), n * sizeof(Rgba8));
+  dl.decoded[block] = 1;
 }
 
 // read_out_blocks of four 2 x 2 footprints on one level. A footprint's blocks are the 2 x 2
-// (column, row) pairs of its block grid at the descriptor's block addresses (texel_address of any
-// of their texels); each distinct block of the quad's four footprints is looked up in the memo of
-// decoded blocks once and held (decoded_block keeps every held block's texels: a block whose memo
-// entry another held block occupies decodes into scratch), and each tap reads its texel.
+// (column, row) pairs of its block grid at the descriptor's block addresses; each is decoded once
+// a run into the level's decoded blocks (decoded_level), and each tap reads its texel there.
 void CacheStage::read_block_squares(int texture, int level, const std::array<BlockSquare, 4>& s,
                                     std::array<std::array<Rgba8, 4>, 4>& taps) const {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
-  const LevelDescriptor& ld = d.level[static_cast<size_t>(level)];
-  const auto block_bytes = static_cast<uint64_t>(d.block().block_bytes);
-  std::array<HeldBlock, kHeldBlocks> held;
-  size_t n = 0;
+  DecodedLevel& dl = decoded_level(texture, level);
+  const auto block_texels = static_cast<size_t>(d.block().block_w * d.block().block_h);
   for (size_t k = 0; k < 4; ++k) {
     const TapGrid& b = s[k].blocks;
-    const Rgba8* texels[4];  // of the (column i, row j) pair i + 2 j
+    size_t first[4];  // the first texel of the block of the (column i, row j) pair i + 2 j
     for (size_t q = 0; q < 4; ++q) {
-      const size_t i = q & 1u, j = q >> 1;
-      if ((i == 1 && b.x[1] == b.x[0]) || (j == 1 && b.y[1] == b.y[0])) {  // the same block as pair q - 1 or q - 2
-        texels[q] = texels[i == 1 && b.x[1] == b.x[0] ? q - 1 : q - 2];
-        continue;
-      }
-      const uint64_t address =
-          ld.address + static_cast<uint64_t>(b.y[j]) * ld.row_pitch + static_cast<uint64_t>(b.x[i]) * block_bytes;
-      size_t m = 0;
-      while (m < n && held[m].address != address) ++m;
-      if (m == n) {
-        held[n] = {address, decoded_block(d, address, held.data(), n, scratch_[n].data())};
-        ++n;
-      }
-      texels[q] = held[m].texels;
+      const int bx = b.x[q & 1u], by = b.y[q >> 1];
+      const size_t block = static_cast<size_t>(by) * static_cast<size_t>(dl.blocks_across) + static_cast<size_t>(bx);
+      if (dl.decoded[block] == 0) [[unlikely]]
+        decode_into_level(d, level, dl, bx, by);
+      first[q] = block * block_texels;
     }
-    for (size_t t = 0; t < 4; ++t) taps[k][t] = texels[t][s[k].texel[t]];
+    for (size_t t = 0; t < 4; ++t)
+      std::memcpy(&taps[k][t], dl.texels.get() + (first[t] + s[k].texel[t]) * sizeof(Rgba8), sizeof(Rgba8));
   }
 }
 

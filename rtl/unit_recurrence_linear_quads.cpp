@@ -24,34 +24,14 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
     const int w = tex.level_width(level), h = tex.level_height(level);
     std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
     for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
-    if (tex.compressed) form_block_squares(tex, f, squares_[static_cast<size_t>(n)]);
+    if (tex.compressed)
+      for (size_t k = 0; k < 4; ++k)
+        block_square(tex, f[k].grid, squares_[static_cast<size_t>(n)][k]);
   }
   compressed_ = tex.compressed;
+  srgb_ = tex.format == TexelFormat::SRGBA8;  // takes_texture: compressed
   u_.address_gen.count_isotropic_pixels(4, stat_slot(q.req));
   return levels;
-}
-
-// The block column and row of each tap column and row (x / block_w, y / block_h by block_quotient:
-// every tap is inside the level) and each tap's texel inside its block.
-void LinearQuadPath::form_block_squares(const TextureDescriptor& tex, const std::array<FootprintReq, 4>& f,
-                                        std::array<CacheStage::BlockSquare, 4>& sq) const {
-  const BlockFormatInfo& b = tex.block();
-  const uint32_t mw = block_reciprocal(b.block_w), mh = block_reciprocal(b.block_h);
-  for (size_t k = 0; k < 4; ++k) {
-    const TapGrid& g = f[k].grid;
-    CacheStage::BlockSquare& s = sq[k];
-    s.blocks = g;
-    int in_x[2], in_y[2];
-    for (size_t i = 0; i < 2; ++i) {
-      const int bx = block_quotient(g.x[i], mw), by = block_quotient(g.y[i], mh);
-      s.blocks.x[i] = static_cast<int16_t>(bx);
-      s.blocks.y[i] = static_cast<int16_t>(by);
-      in_x[i] = g.x[i] - bx * b.block_w;
-      in_y[i] = g.y[i] - by * b.block_h;
-    }
-    for (size_t t = 0; t < 4; ++t)  // read_out's order: tap t = (column t & 1, row t >> 1)
-      s.texel[t] = static_cast<uint8_t>(in_y[t >> 1] * b.block_w + in_x[t & 1u]);
-  }
 }
 
 void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
@@ -80,7 +60,38 @@ void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
   FilterUnit::filter_linear8x4(q, out);
 }
 
+// The four footprints of one level on a compressed SRGBA8 texture: their taps as on any compressed
+// texture, each decoded to linear unorm12 (decode_texel) and lerped as FilterUnit::filter_level
+// does (dp::bilinear_lerp in the texture's format).
+std::array<Texel4, 4> LinearQuadPath::srgb_level(int n, int level) const {
+  const std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
+  std::array<std::array<Rgba8, 4>, 4> taps;
+  u_.cache_stage.read_block_squares(texture_, level, squares_[static_cast<size_t>(n)], taps);
+  std::array<Texel4, 4> c;
+  for (size_t k = 0; k < 4; ++k) {
+    const auto linear = [&](size_t t) { return decode_texel(taps[k][t], TexelFormat::SRGBA8); };
+    c[k] = dp::bilinear_lerp({linear(0), linear(1), linear(2), linear(3)}, f[k].tag.fu, f[k].tag.fv,
+                             TexelFormat::SRGBA8);
+  }
+  return c;
+}
+
+// FilterUnit::filter's plain branch for an isotropic pixel: level0's colour, blended with level1's
+// (dp::level_blend) when the pixel blends, encoded back to the stored format.
+void LinearQuadPath::filter_srgb(std::array<Rgba8, 4>& out) const {
+  std::array<Texel4, 4> c = srgb_level(0, pick_.level0);
+  if (pick_.blend != 0) {
+    const std::array<Texel4, 4> level1 = srgb_level(1, pick_.level1);
+    for (size_t k = 0; k < 4; ++k) c[k] = dp::level_blend(c[k], level1[k], pick_.blend);
+  }
+  for (size_t k = 0; k < 4; ++k) out[k] = encode_texel(c[k], TexelFormat::SRGBA8);
+}
+
 void LinearQuadPath::filter(std::array<Rgba8, 4>& out) const {
+  if (srgb_) [[unlikely]] {
+    filter_srgb(out);
+    return;
+  }
   lerp_level(0, pick_.level0, out.data());
   if (pick_.blend == 0) return;
   std::array<Rgba8, 4> level1;

@@ -2,26 +2,32 @@
 // cmodel/fast_paths.hpp; internal to rtl/unit_recurrence.cpp). A quad of four pixels whose sampler is
 // LINEAR, LINEAR_MIPMAP_NEAREST
 // or LINEAR_MIPMAP_LINEAR, isotropic (max anisotropy 1) and without clamp-to-border, on an 8-bit
-// texture (RGBA8, L8, or block-compressed, whose decoders give RGBA8 words), takes one or two level
+// texture (RGBA8, L8, or block-compressed, whose decoders give RGBA8 words, sRGB-encoded for an
+// SRGBA8 texture), takes one or two level
 // footprints of 2 x 2 taps per pixel through the plain blocks (the
 // quad's pixels share lambda, so they share the levels and the blend weight). This path forms the
 // same footprints, looks them up and filters them with the blocks' own functions, batched per
 // quad instead of per pixel:
 //   lod_unit      LodUnit::quad_lod, as the plain path (called by the recurrences);
 //   address_gen   its level selection (AddressGen::pick_levels), its per-wrap-pair grid function
-//                 (AddressGen::grid_function) per pixel and level, and its pixel count;
+//                 (AddressGen::grid_function) per pixel and level, on a compressed texture the
+//                 footprint's block coordinates (block_square, rtl/address_gen_blocks.hpp), and its pixel count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
 //   texel_cache   CacheStage::admit_lines per footprint, in the plain path's order (pixel by pixel,
 //                 level0 then level1: the tags, the LRU, the memory queue and the decoders see
 //                 the same sequence), then read_square_taps<2>; on a compressed texture
 //                 CacheStage::admit_block_square and read_block_squares
 //                 (rtl/cache_stage_block_squares.cpp), with each footprint's block columns and
-//                 rows formed once here (the plain blocks divide per tap);
+//                 rows formed once by the address generator (rtl/address_gen_blocks.hpp; the plain
+//                 blocks divide per tap in the cache stage);
 //   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes,
 //                 per level, then the blend unit (dp::fast::level_blend8) per pixel. (The plain filter
 //                 keeps a blending pixel's level0 colour in a register until its level1 arrives;
 //                 here the four level0 colours wait in lanes. No later footprint reads that
-//                 register before writing it.)
+//                 register before writing it.) On a compressed SRGBA8 texture, the plain
+//                 filter's channel datapath instead (FilterUnit::filter_level's LINEAR:
+//                 decode_texel to linear unorm12, dp::bilinear_lerp, then dp::level_blend and
+//                 encode_texel), per pixel: no 8-bit word lerps for this format (docs/srgb.md).
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by
 // footprint. The plain path must give the same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs
@@ -37,15 +43,6 @@
 
 namespace tfu::rtl::detail {
 
-// floor(x / d) for a texel coordinate 0 <= x < 2^14 (kMaxTextureSize) and a block side 1 <= d <= 16,
-// by multiplication: (x m) >> 18 with m = block_reciprocal(d) = ceil(2^18 / d). With m d = 2^18 + e,
-// 0 <= e < d: x m / 2^18 = x / d + x e / (d 2^18), and x e < 2^14 d <= 2^18 keeps the excess below
-// 1 / d, so the floor is x / d's (CompressedUnit.BlockQuotientByMultiplicationIsExact: every x and d).
-constexpr uint32_t block_reciprocal(int d) {
-  return ((uint32_t{1} << 18) + static_cast<uint32_t>(d) - 1) / static_cast<uint32_t>(d);
-}
-constexpr int block_quotient(int x, uint32_t m) { return static_cast<int>((static_cast<uint32_t>(x) * m) >> 18); }
-
 class LinearQuadPath {
  public:
   // `enabled` false: takes() refuses every quad (the plain path alone, for the tests).
@@ -55,7 +52,9 @@ class LinearQuadPath {
   bool takes(const QuadReq& q) const { return q.npix == 4 && sampler_ok_[q.req.sampler] && texture_ok_[q.req.texture]; }
   // Its texture and sampler conditions, per descriptor.
   static bool takes_texture(const TextureDescriptor& t) {
-    return (t.format == TexelFormat::RGBA8 || t.format == TexelFormat::L8) && t.content == TextureContent::Texels;
+    return (t.format == TexelFormat::RGBA8 || t.format == TexelFormat::L8 ||
+            (t.format == TexelFormat::SRGBA8 && t.compressed)) &&
+           t.content == TextureContent::Texels;
   }
   static bool takes_sampler(const SamplerDescriptor& s) {
     return s.mode.base == BaseFilter::Linear && !s.anisotropic() && s.wrap_s != WrapMode::ClampToBorder &&
@@ -86,16 +85,18 @@ class LinearQuadPath {
   std::vector<bool> sampler_ok_, texture_ok_;
   int texture_ = 0, stage_ = 0;
   bool compressed_ = false;  // the quad's texture is block-compressed
+  bool srgb_ = false;        // ... and SRGBA8: filter_srgb
   LevelPick pick_{};
   // The four pixels' footprints on level0 and level1: of each, the fields the grid function
   // writes (grid, fu, fv).
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
-  // On a compressed texture, the same footprints in blocks (CacheStage::BlockSquare).
-  std::array<std::array<CacheStage::BlockSquare, 4>, 2> squares_{};
-  void form_block_squares(const TextureDescriptor& tex, const std::array<FootprintReq, 4>& f,
-                          std::array<CacheStage::BlockSquare, 4>& sq) const;
+  // On a compressed texture, the same footprints in blocks (block_square, rtl/address_gen_blocks.hpp).
+  std::array<std::array<BlockSquare, 4>, 2> squares_{};
   // Read-out and lerp of the four footprints on one level (`n`: 0 level0, 1 level1).
   void lerp_level(int n, int level, Rgba8* out) const;
+  // filter() on a compressed SRGBA8 texture: the plain filter's channel datapath per pixel.
+  void filter_srgb(std::array<Rgba8, 4>& out) const;
+  std::array<Texel4, 4> srgb_level(int n, int level) const;
 };
 
 }  // namespace tfu::rtl::detail

@@ -376,14 +376,14 @@ TEST(CompressedUnit, DecoderThroughputAndOrganizationChangeTimingNotPixels) {
   EXPECT_EQ(once.stats.table("decoders")->rows[0].second[1] * 8, once.stats.table("textures")->rows[0].second[4]);
 }
 
-// The LINEAR quad path's block quotient (rtl/unit_recurrence_linear_quads.hpp): floor(x / d) for
+// The address generator's block quotient (rtl/address_gen_blocks.hpp): floor(x / d) for
 // every texel coordinate below 2^14 and every block side up to 16 (ASTC's go to 12).
 TEST(CompressedUnit, BlockQuotientByMultiplicationIsExact) {
   for (int d = 1; d <= 16; ++d) {
-    const uint32_t m = detail::block_reciprocal(d);
-    for (int x = 0; x < kMaxTextureSize; ++x) ASSERT_EQ(detail::block_quotient(x, m), x / d) << x << " / " << d;
+    const uint32_t m = block_reciprocal(d);
+    for (int x = 0; x < kMaxTextureSize; ++x) ASSERT_EQ(block_quotient(x, m), x / d) << x << " / " << d;
   }
-  EXPECT_NE(detail::block_quotient(1 << 18, detail::block_reciprocal(12)), (1 << 18) / 12);  // the bound matters
+  EXPECT_NE(block_quotient(1 << 18, block_reciprocal(12)), (1 << 18) / 12);  // the bound matters
 }
 
 // The timing recurrences' LINEAR quad path on block-compressed textures (the blocks' 2 x 2
@@ -407,7 +407,10 @@ TEST(CompressedUnit, LinearQuadPathEqualsThePlainBlocks) {
     image.srgb = f == BlockFormat::ASTC_4x4;
     const BlockDecodeRules rules{{static_cast<Bc1Interpolation>(rng() % 4), static_cast<Bc4Interpolation>(rng() % 2)},
                                  image.srgb};
-    b.add_texture(std::make_shared<const Texture>(texture_from_block_image(image, rules)), {block_format_name(f), {}});
+    Texture tex = texture_from_block_image(image, rules);
+    // Declared sRGB (SRGBA8: decoded to linear before filtering) on two formats, the ASTC one among them.
+    if (f == BlockFormat::ASTC_4x4 || f == BlockFormat::BC7) tex.format = TexelFormat::SRGBA8;
+    b.add_texture(std::make_shared<const Texture>(std::move(tex)), {block_format_name(f), {}});
     Texture plain;  // RGBA8, tiled
     plain.levels.emplace_back(32, 32);
     for (Rgba8& t : plain.levels[0].texels)
