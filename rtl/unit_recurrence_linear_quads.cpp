@@ -54,9 +54,8 @@ void LinearQuadPath::form_block_squares(const TextureDescriptor& tex, const std:
   }
 }
 
-void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
+void LinearQuadPath::level_taps(int n, int level, dp::fast::Quad8& q) const {
   const std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
-  dp::fast::Quad8 q;
   const auto lanes = [&](size_t k, const Rgba8* taps) {
     q.a[k] = taps[0];
     q.b[k] = taps[1];
@@ -77,15 +76,17 @@ void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
       lanes(k, taps);
     }
   }
-  FilterUnit::filter_linear8x4(q, out);
 }
 
 void LinearQuadPath::filter(std::array<Rgba8, 4>& out) const {
-  lerp_level(0, pick_.level0, out.data());
-  if (pick_.blend == 0) return;
-  std::array<Rgba8, 4> level1;
-  lerp_level(1, pick_.level1, level1.data());
-  for (size_t k = 0; k < 4; ++k) out[k] = FilterUnit::blend_linear8(out[k], level1[k], pick_.blend);
+  dp::fast::Quad8 q0, q1;
+  level_taps(0, pick_.level0, q0);
+  if (pick_.blend == 0) {
+    FilterUnit::filter_linear8x4(q0, out.data());
+    return;
+  }
+  level_taps(1, pick_.level1, q1);
+  FilterUnit::filter_blend_linear8x4(q0, q1, pick_.blend, out.data());
 }
 
 }  // namespace tfu::rtl::detail

@@ -17,10 +17,10 @@
 //                 CacheStage::admit_block_square and read_block_squares
 //                 (rtl/cache_stage_block_squares.cpp), with each footprint's block columns and
 //                 rows formed once here (the plain blocks divide per tap);
-//   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes,
-//                 per level, then the blend unit (dp::fast::level_blend8) per pixel. (The plain filter
-//                 keeps a blending pixel's level0 colour in a register until its level1 arrives;
-//                 here the four level0 colours wait in lanes. No later footprint reads that
+//   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes;
+//                 blending, FilterUnit::filter_blend_linear8x4: the Q.8 lerps of both levels, then
+//                 the blend unit per pixel. (The plain filter keeps a blending pixel's level0 Q.8
+//                 result in a register until its level1 arrives; here the four wait in lanes. No later footprint reads that
 //                 register before writing it.)
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by
 // footprint. The plain path must give the same pixels, cycles and statistics: every test that
@@ -33,6 +33,7 @@
 #include <array>
 #include <vector>
 
+#include "cmodel/datapath_fast.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl::detail {
@@ -94,8 +95,9 @@ class LinearQuadPath {
   std::array<std::array<CacheStage::BlockSquare, 4>, 2> squares_{};
   void form_block_squares(const TextureDescriptor& tex, const std::array<FootprintReq, 4>& f,
                           std::array<CacheStage::BlockSquare, 4>& sq) const;
-  // Read-out and lerp of the four footprints on one level (`n`: 0 level0, 1 level1).
-  void lerp_level(int n, int level, Rgba8* out) const;
+  // Read-out of the four footprints on one level (`n`: 0 level0, 1 level1) as the lerp unit's
+  // lanes (lane k: pixel k).
+  void level_taps(int n, int level, dp::fast::Quad8& q) const;
 };
 
 }  // namespace tfu::rtl::detail
