@@ -329,8 +329,8 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
       for (size_t ch = 0; ch < 4; ++ch)
         ASSERT_EQ(dp::level_blend_codes(channels(a), channels(b), f)[ch],
                   (channels(a)[ch] * (256 - f) + channels(b)[ch] * f + 128) >> 8);
-      // Q.8 inputs (random 16-bit channels, and the extremes)
-      const auto q16 = [&](int i) { return static_cast<uint16_t>(k == 0 ? (i == 0 ? 0xFF00 : 0) : rng() & 0xFFFF); };
+      // Q.8 inputs (random level results 0..255 x 256, and the extremes)
+      const auto q16 = [&](int i) { return static_cast<uint16_t>(k == 0 ? (i == 0 ? 0xFF00 : 0) : rng() % 65281); };
       const dp::fast::Rgba8q p{q16(0), q16(0), q16(0), q16(0)}, r{q16(1), q16(1), q16(1), q16(1)};
       const Texel4 pc{p.r, p.g, p.b, p.a}, rc{r.r, r.g, r.b, r.a};
       ASSERT_EQ(dp::fast::level_blend8q(p, r, f), encode_texel(dp::level_blend(pc, rc, f), TexelFormat::RGBA8)) << f;
