@@ -46,11 +46,50 @@ inline Texel4 bilinear_lerp(const std::array<Texel4, 4>& c, uint32_t fu_, uint32
   return out;
 }
 
-// Trilinear blend unit: c = (c0 (256 - f) + c1 f + 128) >> 8, f = the weight of level1 (Q.8).
-inline Texel4 level_blend(const Texel4& c0, const Texel4& c1, int f) {
+// Level results in Q.8 for the trilinear blend unit: a level's filtered channels with
+// kLevelFracBits fraction bits (code x 2^8 + fraction), so that *_MIPMAP_LINEAR rounds once, in the
+// blend, and not once per level and again in the blend (which left Vulkan's bounds by one code,
+// docs/sampler.md "Within the spec's bounds"). The bilinear lerp unit gives its Q.16 sum's top bits
+// (the lower 8 dropped: round_level of it is bilinear_lerp, so a level that is not blended keeps its
+// code); NEAREST, CUBIC and EDGE_PRESERVING give their codes with a zero fraction (level_q8).
+inline constexpr int kLevelFracBits = 8;
+inline Texel4 bilinear_lerp_q8(const std::array<Texel4, 4>& c, uint32_t fu_, uint32_t fv_) {
+  const auto fu = static_cast<int64_t>(fu_), fv = static_cast<int64_t>(fv_);
+  const std::array<int64_t, 4> w{(256 - fu) * (256 - fv), fu * (256 - fv), (256 - fu) * fv, fu * fv};
   Texel4 out{};
-  for (size_t ch = 0; ch < 4; ++ch) out[ch] = (c0[ch] * (256 - f) + c1[ch] * f + 128) >> 8;
+  for (size_t ch = 0; ch < 4; ++ch)  // floor: an arithmetic shift (VS16X2 channels are signed)
+    out[ch] = static_cast<int32_t>((c[0][ch] * w[0] + c[1][ch] * w[1] + c[2][ch] * w[2] + c[3][ch] * w[3]) >>
+                                   (16 - kLevelFracBits));
   return out;
+}
+inline Texel4 level_q8(const Texel4& c) {
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch) out[ch] = c[ch] * (1 << kLevelFracBits);
+  return out;
+}
+// A Q.8 level result rounded to a code, half up: (q + 2^7) >> 8 (round_level(bilinear_lerp_q8) ==
+// bilinear_lerp: floor(floor(S / 2^8) + 2^7) / 2^8) = floor((S + 2^15) / 2^16)).
+inline Texel4 round_level(const Texel4& q) {
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch) out[ch] = (q[ch] + (1 << (kLevelFracBits - 1))) >> kLevelFracBits;
+  return out;
+}
+
+// Trilinear blend unit on Q.8 level results: c = (c0 (256 - f) + c1 f + 2^15) >> 16, f = the weight
+// of level1 (Q.8), one rounding half up. 8-bit channels: c0, c1 < 2^16, the sum < 2^24; VS16X2's
+// signed 16-bit channels take 64 bits.
+inline Texel4 level_blend(const Texel4& c0_q8, const Texel4& c1_q8, int f) {
+  Texel4 out{};
+  for (size_t ch = 0; ch < 4; ++ch)
+    out[ch] = static_cast<int32_t>(
+        (int64_t{c0_q8[ch]} * (256 - f) + int64_t{c1_q8[ch]} * f + (int64_t{1} << (7 + kLevelFracBits))) >>
+        (8 + kLevelFracBits));
+  return out;
+}
+// The blend unit fed two codes (fraction zero): level_blend(level_q8(c0), level_q8(c1), f), which is
+// (c0 (256 - f) + c1 f + 128) >> 8 (what the SystemVerilog tfu_level_blend computes).
+inline Texel4 level_blend_codes(const Texel4& c0, const Texel4& c1, int f) {
+  return level_blend(level_q8(c0), level_q8(c1), f);
 }
 
 // Cubic weight stage: the 2D weights of the separable tiled-ROM filter (T x T taps, T <= 4):

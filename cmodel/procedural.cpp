@@ -1,4 +1,5 @@
 #include "cmodel/procedural.hpp"
+#include "cmodel/procedural_truth.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -156,6 +157,11 @@ Rgba8 mip_level_colour(int level) {
                                        {255, 128, 0, 255}, {128, 0, 255, 255},   {0, 128, 64, 255},    {96, 48, 0, 255}};
   constexpr int n = static_cast<int>(std::size(kColours));
   return kColours[static_cast<size_t>(((level % n) + n) % n)];
+}
+
+bool procedural_truth_is_level0_only(const std::string& source) {
+  const std::string name = "proc:mip_colours";
+  return source.rfind(name, 0) == 0 && (source.size() == name.size() || source[name.size()] == ':');
 }
 
 Procedural make_mip_colours(int size) {

@@ -143,6 +143,12 @@ Texel4 filter_linear(const LevelReader& rd, float s, float t) {
   return filter_linear_at(rd, texel_coord(s, rd.img.width), texel_coord(t, rd.img.height));
 }
 
+// The bilinear filter's Q.8 result for the blend unit (dp::bilinear_lerp_q8).
+Texel4 filter_linear_q8_at(const LevelReader& rd, LevelCoord u, LevelCoord v) {
+  const int x0 = rd.col(u.i0), x1 = rd.col(u.i0 + 1), y0 = rd.row(v.i0), y1 = rd.row(v.i0 + 1);
+  return dp::bilinear_lerp_q8({rd.at(x0, y0), rd.at(x1, y0), rd.at(x0, y1), rd.at(x1, y1)}, u.f, v.f);
+}
+
 // Accumulated sum c w per channel at weight scale M, for a compile-time tap count (2 or 4).
 template <int taps>
 std::array<int64_t, 4> filter_tiled_acc_n(const LevelReader& rd, const TileWeightRom& rom, RomRecon recon,
@@ -238,6 +244,13 @@ Texel4 Sampler::cubic_at(int level, LevelCoord u, LevelCoord v) const {
   return dp::cubic_normalize(filter_tiled_acc(rd, *impl_->rom, cfg_.cubic_recon, impl_->memo.get(), u, v), impl_->norm);
 }
 
+Texel4 Sampler::probe_level_q8(BaseFilter f, int level, float s, float t, const ProbeOffset& o, int mask_override) const {
+  if (f != BaseFilter::Linear) return dp::level_q8(probe_level_filter(f, level, s, t, o, mask_override));
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  return filter_linear_q8_at(rd, probe_coord(s, img.width, o.du_q16, level), probe_coord(t, img.height, o.dv_q16, level));
+}
+
 Texel4 Sampler::probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& o, int mask_override) const {
   const Image& img = tex_.levels[static_cast<size_t>(level)];
   const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
@@ -302,12 +315,18 @@ Texel4 Sampler::sample_level(int level, float s, float t) const {
   return sample_level_filter(cfg_.mode.base, level, s, t);
 }
 
+Texel4 Sampler::sample_level_q8(int level, float s, float t) const {
+  if (cfg_.mode.base != BaseFilter::Linear) return dp::level_q8(sample_level(level, s, t));
+  const Image& img = tex_.levels[static_cast<size_t>(level)];
+  const LevelReader rd{img, cfg_.wrap_s, cfg_.wrap_t, tex_.format, impl_->border};
+  return filter_linear_q8_at(rd, texel_coord(s, img.width), texel_coord(t, img.height));
+}
+
+// Level select, the filter on one level (a code) or on two (Q.8 results), the blend unit.
 Texel4 Sampler::sample_channels(float s, float t, int32_t lambda_q8) const {
   const LodInfo li = lod_info(lambda_q8);
-  const Texel4 c0 = sample_level(li.level0, s, t);
-  if (li.blend == 0) return c0;
-  const Texel4 c1 = sample_level(li.level1, s, t);
-  return dp::level_blend(c0, c1, li.blend);
+  if (li.blend == 0) return sample_level(li.level0, s, t);
+  return dp::level_blend(sample_level_q8(li.level0, s, t), sample_level_q8(li.level1, s, t), li.blend);
 }
 
 // The probe datapath: N probes (each its levels and their blend), the averaging unit.
@@ -318,8 +337,9 @@ Texel4 Sampler::probes_channels(float s, float t, const AnisoLod& lod, const lee
   for (int i = 1; i <= n; ++i) {
     const ProbeOffset o = probe_offset(lod, i);
     const auto mask = [&](int k) { return masks ? int{masks[2 * (i - 1) + k]} : -1; };
-    Texel4 c = probe_level_filter(cfg_.mode.base, li.level0, s, t, o, mask(0));
-    if (li.blend != 0) c = dp::level_blend(c, probe_level_filter(cfg_.mode.base, li.level1, s, t, o, mask(1)), li.blend);
+    const Texel4 c = li.blend == 0 ? probe_level_filter(cfg_.mode.base, li.level0, s, t, o, mask(0))
+                                   : dp::level_blend(probe_level_q8(cfg_.mode.base, li.level0, s, t, o, mask(0)),
+                                                     probe_level_q8(cfg_.mode.base, li.level1, s, t, o, mask(1)), li.blend);
     acc.add(c, n, i);
   }
   return acc.result();

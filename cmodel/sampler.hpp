@@ -136,10 +136,13 @@ class Sampler {
   std::unique_ptr<Impl> impl_;
   void build_cubic();
   Texel4 sample_level(int level, float s, float t) const;
+  // The level's result for the blend unit, Q.8 (dp::bilinear_lerp_q8 for LINEAR, else dp::level_q8).
+  Texel4 sample_level_q8(int level, float s, float t) const;
   Texel4 sample_level_filter(BaseFilter f, int level, float s, float t) const;
   // One probe on one level: the mode's filter at the centre's coordinate plus the probe's offset
   // (`offset`: probe_offset, Q.16 level-0 texels); mask_override as edge_footprint.
   Texel4 probe_level_filter(BaseFilter f, int level, float s, float t, const ProbeOffset& offset, int mask_override = -1) const;
+  Texel4 probe_level_q8(BaseFilter f, int level, float s, float t, const ProbeOffset& offset, int mask_override = -1) const;
   Texel4 probes_channels(float s, float t, const AnisoLod& lod, const lee_jen::TexelMask* masks) const;
   EdgeFootprint edge_footprint_at(int level, dp::LevelCoord u, dp::LevelCoord v, int mask_override) const;
   Texel4 cubic_at(int level, dp::LevelCoord u, dp::LevelCoord v) const;

@@ -88,6 +88,12 @@ template <WrapMode kWs, WrapMode kWt>
                                  std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
 }
 template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline dp::fast::Rgba8q bilinear8q_at(LevelView img, Rgba8 border, LevelCoord u, LevelCoord v) {
+  const LerpLane l = lerp_lane<kWs, kWt>(img, border, u, v);
+  return dp::fast::bilinear_lerp8q(std::bit_cast<Rgba8>(l.a), std::bit_cast<Rgba8>(l.b), std::bit_cast<Rgba8>(l.c),
+                                   std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
+}
+template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
   return bilinear8_at<kWs, kWt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height));
 }
@@ -154,22 +160,24 @@ template <WrapMode kWs, WrapMode kWt>
 }
 
 // Trilinear blend unit (dp::level_blend) and output encoding, for the 8-bit paths' texel words
-// (channels within 0..255, so encoding is the identity) and for datapath channels.
+// (channels within 0..255, so encoding is the identity), for LINEAR's Q.8 level results and for
+// datapath channels (codes).
 inline Rgba8 blend_levels(Rgba8 a, Rgba8 b, int f) { return dp::fast::level_blend8(a, b, f); }
-inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend(a, b, f); }
+inline Rgba8 blend_levels(dp::fast::Rgba8q a, dp::fast::Rgba8q b, int f) { return dp::fast::level_blend8q(a, b, f); }
+inline Texel4 blend_levels(const Texel4& a, const Texel4& b, int f) { return dp::level_blend_codes(a, b, f); }
 inline Rgba8 output_word(Rgba8 c, TexelFormat) { return c; }
 inline Rgba8 output_word(const Texel4& c, TexelFormat fmt) { return encode_texel(c, fmt); }
 // A probe's result as the averaging unit's input channels.
 inline Texel4 probe_channels(Rgba8 c) { return {c.r, c.g, c.b, c.a}; }
 inline Texel4 probe_channels(const Texel4& c) { return c; }
 
-// Level select of the LOD unit and the blend unit around a filter of one level, f(level).
-template <class F>
-[[gnu::always_inline]] inline auto filter_levels(int32_t lambda_q8, const LodParams& lod, MipMode mip, int q, F&& f) {
+// Level select of the LOD unit and the blend unit around a filter of one level: f(level) the
+// level's code, fq(level) its result for the blend unit (Q.8 for LINEAR).
+template <class F, class G>
+[[gnu::always_inline]] inline auto filter_levels(int32_t lambda_q8, const LodParams& lod, MipMode mip, int q, F&& f, G&& fq) {
   const LevelPick p = select_levels(lambda_bias_clamp(lambda_q8, lod), mip, q);
-  const auto c0 = f(p.level0);
-  if (p.blend == 0) return c0;
-  return blend_levels(c0, f(p.level1), p.blend);
+  if (p.blend == 0) return f(p.level0);
+  return blend_levels(fq(p.level0), fq(p.level1), p.blend);
 }
 
 }  // namespace
@@ -190,6 +198,14 @@ template <Sampler::FastPaths::Variant kV>
   }
 }
 
+template <Sampler::FastPaths::Variant kV>
+[[gnu::always_inline]] inline auto Sampler::FastPaths::filter_q8_at(const Sampler& sm, int l, LevelCoord u, LevelCoord v) {
+  if constexpr (kV.path == Path::Linear8)
+    return bilinear8q_at<kV.ws, kV.wt>(LevelView(sm.tex_.levels[static_cast<size_t>(l)]), sm.cfg_.border, u, v);
+  else
+    return filter_at<kV>(sm, l, u, v);
+}
+
 // The mode's filter on one level at (s, t).
 template <Sampler::FastPaths::Variant kV>
 [[gnu::always_inline]] inline auto Sampler::FastPaths::filter(const Sampler& sm, int l, float s, float t) {
@@ -204,8 +220,17 @@ Rgba8 Sampler::FastPaths::sample(const Sampler& sm, float s, float t, int32_t la
   if constexpr (!kV.mipmapped) {
     return output_word(filter<kV>(sm, 0, s, t), fmt);  // GL: no MIP-mapping -> level 0
   } else {
-    return output_word(filter_levels(lambda_q8, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
-                                     [&](int l) { return filter<kV>(sm, l, s, t); }),
+    const auto at = [&](int l) {
+      const Image& img = sm.tex_.levels[static_cast<size_t>(l)];
+      return std::pair{texel_coord(s, img.width), texel_coord(t, img.height)};
+    };
+    return output_word(filter_levels(
+                           lambda_q8, sm.cfg_.lod, sm.cfg_.mode.mip, sm.tex_.max_level(),
+                           [&](int l) { return filter<kV>(sm, l, s, t); },
+                           [&](int l) {
+                             const auto [u, v] = at(l);
+                             return filter_q8_at<kV>(sm, l, u, v);
+                           }),
                        fmt);
   }
 }
@@ -214,12 +239,13 @@ namespace {
 
 // LINEAR's N > 1 probes on the 4-lane lerp unit, all in registers: with kTwo (the levels blend)
 // each call takes two probes, lanes (probe i level0, probe i + 1 level0, probe i level1, probe
-// i + 1 level1), then the blend unit takes the two probes side by side; without, four probes on
-// level0. The averaging unit sums w_i c_i in 16-bit lanes (sum_i w_i c_i <= 256 * 255 < 2^16, and a
-// blend's p (256 - f) + q f + 128 <= 255 * 256 + 128 as well). A call's missing probes (N not a
-// multiple of its probes) repeat its first with weight 0. The same arithmetic as the plain probe
-// datapath (Sampler::sample_channels): dp::fast::bilinear_lerp8x4_lanes equals bilinear_lerp8 per lane,
-// the blend is dp::fast::level_blend8's, the probe offsets are the offset units' two's-complement forms
+// i + 1 level1) as Q.8 results (dp::fast::bilinear_lerp8x4q_lanes), then the blend unit takes the
+// two probes side by side (dp::fast::level_blend8q_pairs, 32-bit lanes); without, four probes on
+// level0 as codes. The averaging unit sums w_i c_i in 16-bit lanes (sum_i w_i c_i <= 256 * 255 <
+// 2^16). A call's missing probes (N not a multiple of its probes) repeat its first with weight 0.
+// The same arithmetic as the plain probe datapath (Sampler::sample_channels):
+// dp::fast::bilinear_lerp8x4_lanes equals bilinear_lerp8 per lane, the Q.8 lanes bilinear_lerp8q,
+// the blend is dp::fast::level_blend8q's, the probe offsets are the offset units' two's-complement forms
 // (aniso_fast.hpp: one multiply, then one add-and-shift per rounding, onto the centre's Q.8
 // coordinate formed once per pixel), and the result is AnisoAccumulator's (acc + 128) >> 8.
 // Returned as the output word: each probe is an output word of the 8-bit LINEAR path (on which
@@ -257,20 +283,31 @@ Rgba8 aniso_linear8(LevelView l0, LevelView l1, Rgba8 border, const LevelPick& p
     return dp::fast::bilinear_lerp8x4_lanes(lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c),
                                            lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv));
   };
+  const auto lerp4q = [](const LerpLane& x0, const LerpLane& x1, const LerpLane& x2, const LerpLane& x3) __attribute__((always_inline)) {
+    const auto lanes = [&](uint32_t LerpLane::*field) {
+      const auto lane = [&](const LerpLane& x) { return static_cast<int32_t>(x.*field); };
+      return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
+    };
+    return dp::fast::bilinear_lerp8x4q_lanes(lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c),
+                                            lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv));
+  };
   const auto weight = [&](int i, bool used) { return static_cast<int16_t>(used ? rom[i].weight : 0); };
   const __m128i zero = _mm_setzero_si128();
   __m128i acc = zero;  // 8 x 16-bit: (R, G, B, A) of the even and of the odd probe slots
   if constexpr (kTwo) {
-    const __m128i g = _mm_set1_epi16(static_cast<int16_t>(256 - p.blend)), f = _mm_set1_epi16(static_cast<int16_t>(p.blend));
+    const __m128i gf = _mm_set1_epi32(static_cast<int32_t>((static_cast<uint32_t>(p.blend) << 16) | static_cast<uint32_t>(256 - p.blend)));
     for (int i = 0; i < n; i += 2) {
       const bool second = i + 1 < n;
       const int j = second ? i + 1 : i;
       const ProbeOffset oi = offset(i), oj = offset(j);
-      const __m128i c = lerp4(footprint(oi, 0), footprint(oj, 0), footprint(oi, 1), footprint(oj, 1));
-      const __m128i blended = _mm_srli_epi16(
-          _mm_add_epi16(_mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(c, zero), g), _mm_mullo_epi16(_mm_unpackhi_epi8(c, zero), f)),
-                        _mm_set1_epi16(128)),
-          8);
+      const dp::fast::Lanes8q c = lerp4q(footprint(oi, 0), footprint(oj, 0), footprint(oi, 1), footprint(oj, 1));
+      // lanes (i level0, j level0, i level1, j level1): level0 and level1 side by side, then the
+      // 16-bit codes (R, G, B, A) of probe i and of probe j
+      const auto blend = [&](__m128i x) {
+        return dp::fast::level_blend8q_pairs(_mm_unpacklo_epi16(x, _mm_srli_si128(x, 8)), gf);
+      };
+      const __m128i rb = _mm_packs_epi32(blend(c.rb), zero), ga = _mm_packs_epi32(blend(c.ga), zero);
+      const __m128i blended = _mm_unpacklo_epi16(rb, ga);
       const int16_t wi = weight(i, true), wj = weight(j, second);
       acc = _mm_add_epi16(acc, _mm_mullo_epi16(blended, _mm_setr_epi16(wi, wi, wi, wi, wj, wj, wj, wj)));
     }
@@ -318,9 +355,14 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
       return filter_at<kV>(sm, level, dp::probe_texel_coord(u, dp::probe_offset_on_level(o.du_q16, level)),
                            dp::probe_texel_coord(v, dp::probe_offset_on_level(o.dv_q16, level)));
     };
-    auto c = at(p.level0, u0, v0);
-    if (p.blend != 0) c = blend_levels(c, at(p.level1, u1, v1), p.blend);
-    acc.add(probe_channels(c), n, i);
+    const auto at_q8 = [&](int level, LevelCoord u, LevelCoord v) {
+      return filter_q8_at<kV>(sm, level, dp::probe_texel_coord(u, dp::probe_offset_on_level(o.du_q16, level)),
+                              dp::probe_texel_coord(v, dp::probe_offset_on_level(o.dv_q16, level)));
+    };
+    if (p.blend == 0)
+      acc.add(probe_channels(at(p.level0, u0, v0)), n, i);
+    else
+      acc.add(probe_channels(blend_levels(at_q8(p.level0, u0, v0), at_q8(p.level1, u1, v1), p.blend)), n, i);
   }
   return encode_texel(acc.result(), sm.tex_.format);
 }
@@ -349,7 +391,6 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
     const MipMode mip = sm.cfg_.mode.mip;
     const int top = sm.tex_.max_level();
     dp::fast::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
-    std::array<Rgba8, 4> c1;
     for (; i + 4 <= n; i += 4) {
       std::array<int, 4> blend;
       int any = 0;
@@ -361,16 +402,25 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
         blend[k] = p.blend;
         any |= p.blend;
       }
-      dp::fast::bilinear_lerp8x4(q0, out + i);
-      if (any == 0) continue;
-      dp::fast::bilinear_lerp8x4(q1, c1.data());
-      for (size_t k = 0; k < 4; ++k)
-        if (blend[k] != 0) out[i + k] = dp::fast::level_blend8(out[i + k], c1[k], blend[k]);
+      if (any == 0) {
+        dp::fast::bilinear_lerp8x4(q0, out + i);
+        continue;
+      }
+      for (size_t k = 0; k < 4; ++k)  // a lane that does not blend: its level0 again, with weight 0
+        if (blend[k] == 0) {
+          q1.a[k] = q0.a[k], q1.b[k] = q0.b[k], q1.c[k] = q0.c[k], q1.d[k] = q0.d[k];
+          q1.fu[k] = q0.fu[k], q1.fv[k] = q0.fv[k];
+        }
+      dp::fast::bilinear_blend8x4(q0, q1, blend, out + i);
     }
     for (; i < n; ++i) {
       const float s = req[i].s, t = req[i].t;
-      out[i] = filter_levels(req[i].lambda_q8, lod, mip, top,
-                             [&](int l) { return bilinear8<kV.ws, kV.wt>(LevelView(levels[l]), border, s, t); });
+      out[i] = filter_levels(
+          req[i].lambda_q8, lod, mip, top, [&](int l) { return bilinear8<kV.ws, kV.wt>(LevelView(levels[l]), border, s, t); },
+          [&](int l) {
+            const LevelView img(levels[l]);
+            return bilinear8q_at<kV.ws, kV.wt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height));
+          });
     }
   }
 }

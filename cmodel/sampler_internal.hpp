@@ -52,6 +52,9 @@ struct Sampler::FastPaths {
   static auto filter_at(const Sampler& sm, int level, dp::LevelCoord u, dp::LevelCoord v);
   template <Variant kV>
   static auto filter(const Sampler& sm, int level, float s, float t);
+  // The level's result for the blend unit: Q.8 for LINEAR (dp::fast::Rgba8q), else filter_at's code.
+  template <Variant kV>
+  static auto filter_q8_at(const Sampler& sm, int level, dp::LevelCoord u, dp::LevelCoord v);
   template <Variant kV>
   static Rgba8 aniso(const Sampler& sm, float s, float t, const AnisoLod& lod);  // MIP-mapped variants, N > 1
   template <Variant kV>

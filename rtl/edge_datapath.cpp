@@ -131,7 +131,7 @@ bool EdgeMerge::merge(const EdgeDirectionOut& s, Response& out) {
     first_ = c;
     return false;
   }
-  if (tag.blends) c = dp::level_blend(first_, c, tag.blend);
+  if (tag.blends) c = dp::level_blend_codes(first_, c, tag.blend);
   if (!probes_.add(tag, c)) return false;
   out = {tag.id, encode_texel(c, tag.format)};
   return true;

@@ -13,19 +13,21 @@ FilterUnit::FilterUnit(sim::Simulator& s, sim::Channel<FilterReq>& i, sim::Chann
   busy_cycles_.assign(stat_slots(regs.textures.size()), 0);
 }
 
+// The level's result for the blend unit, Q.8: the bilinear lerp unit's dp::bilinear_lerp_q8, the
+// other filters' codes with a zero fraction (dp::level_q8).
 Texel4 FilterUnit::filter_level(const FilterReq& r, TexelFormat unpack) const {
   const auto texel = [&](int k) { return decode_texel(r.texels[static_cast<size_t>(k)], unpack); };
   switch (r.tag.base) {
-    case BaseFilter::Nearest: return texel(0);
-    case BaseFilter::Linear: return dp::bilinear_lerp({texel(0), texel(1), texel(2), texel(3)}, r.tag.fu, r.tag.fv, r.tag.format);
+    case BaseFilter::Nearest: return dp::level_q8(texel(0));
+    case BaseFilter::Linear: return dp::bilinear_lerp_q8({texel(0), texel(1), texel(2), texel(3)}, r.tag.fu, r.tag.fv);
     case BaseFilter::Cubic: {
       const TileWeightRom& rom = *roms_.rom(r.tag.req.sampler);
       std::array<int32_t, 16> w{};
       dp::tile_weights_2d(rom, regs_.samplers[r.tag.req.sampler].cubic_recon, r.tag.fu, r.tag.fv, w);
       std::array<Texel4, 16> c{};
       for (int k = 0; k < r.ntaps; ++k) c[static_cast<size_t>(k)] = texel(k);
-      return dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps),
-                                 cubic_normalize_registers(rom.spec().bits, regs_.textures[r.tag.req.texture]));
+      return dp::level_q8(dp::cubic_normalize(dp::cubic_accumulate(c.data(), w.data(), r.ntaps),
+                                              cubic_normalize_registers(rom.spec().bits, regs_.textures[r.tag.req.texture])));
     }
     case BaseFilter::EdgePreserving: break;  // its own pipeline (edge_datapath.hpp)
   }
@@ -55,17 +57,18 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
     // LINEAR on 8-bit words: the same lerp and blend units, on the words (dp::fast::*8); speed only, the plain
     // form is filter_level below (off with TFU_PLAIN=1 or --plain, cmodel/fast_paths.hpp)
     const auto& w = r.texels;
-    const Rgba8 c8 = dp::fast::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
-    if (r.tag.holds()) {
-      first8_ = c8;
+    if (r.tag.holds()) {  // level0 of a blending pixel: its Q.8 result waits in the register
+      first8q_ = dp::fast::bilinear_lerp8q(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
       return false;
     }
+    const Rgba8 p = r.tag.blends ? blend_linear8(first8q_, dp::fast::bilinear_lerp8q(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv),
+                                                 r.tag.blend)
+                                 : dp::fast::bilinear_lerp8(w[0], w[1], w[2], w[3], r.tag.fu, r.tag.fv);
     if (r.tag.probes == 1) {
-      out = {r.tag.id, r.tag.blends ? blend_linear8(first8_, c8, r.tag.blend) : c8};
+      out = {r.tag.id, p};
       return true;
     }
     // an anisotropic probe: the probe accumulator
-    const Rgba8 p = r.tag.blends ? dp::fast::level_blend8(first8_, c8, r.tag.blend) : c8;
     Texel4 c{p.r, p.g, p.b, p.a};
     if (!probes_.add(r.tag, c)) return false;
     out = {r.tag.id, encode_texel(c, r.tag.format)};
@@ -73,12 +76,12 @@ bool FilterUnit::filter(const FilterReq& r, Response& out) {
   }
   // bspline-interp reads the stored coefficient codes (RGBA8 words) instead of the texels.
   const bool coeffs = regs_.textures[r.tag.req.texture].content == TextureContent::BsplineCoefficients;
-  Texel4 c = filter_level(r, coeffs ? TexelFormat::RGBA8 : r.tag.format);
+  const Texel4 q = filter_level(r, coeffs ? TexelFormat::RGBA8 : r.tag.format);
   if (r.tag.holds()) {
-    first_ = c;
+    first_ = q;
     return false;
   }
-  if (r.tag.blends) c = dp::level_blend(first_, c, r.tag.blend);
+  Texel4 c = r.tag.blends ? dp::level_blend(first_, q, r.tag.blend) : dp::round_level(q);
   if (!probes_.add(r.tag, c)) return false;
   out = {r.tag.id, encode_texel(c, r.tag.format)};
   return true;

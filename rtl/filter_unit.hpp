@@ -1,9 +1,9 @@
 // filter: texel unpack, then the NEAREST select, the bilinear lerp unit or the cubic datapath
 // (tile-weight ROM + tile-weight multipliers, adder tree, normalise and clamp), then the trilinear
-// blend, the probe accumulator of anisotropic pixels (probe_accumulator.hpp: one response per
+// blend (on Q.8 level results: one rounding, dp::level_blend), the probe accumulator of anisotropic pixels (probe_accumulator.hpp: one response per
 // pixel, after its last probe) and the encode to the texture's word. Calls the golden arithmetic (cmodel/datapath.hpp:
-// dp::bilinear_lerp, dp::tile_weights_2d, dp::cubic_accumulate, dp::cubic_normalize, dp::level_blend;
-// on 8-bit words the fast forms of cmodel/datapath_fast.hpp, dp::fast::bilinear_lerp8 and level_blend8,
+// dp::bilinear_lerp(_q8), dp::tile_weights_2d, dp::cubic_accumulate, dp::cubic_normalize, dp::level_blend;
+// on 8-bit words the fast forms of cmodel/datapath_fast.hpp, dp::fast::bilinear_lerp8(q) and level_blend8q,
 // off with the fast-path switch, cmodel/fast_paths.hpp). Every footprint carries its own mode:
 // requests of different samplers and textures follow each other freely.
 //
@@ -48,9 +48,14 @@ class FilterUnit : public sim::Module {
   // at once (isotropic pixels), lane k the footprint of q's lane k (dp::fast::bilinear_lerp8x4,
   // equal to bilinear_lerp8 per lane): the recurrences' LINEAR quad path.
   static void filter_linear8x4(const dp::fast::Quad8& q, Rgba8* out) { dp::fast::bilinear_lerp8x4(q, out); }
-  // filter()'s blend unit on 8-bit words (a blending pixel's level0 and level1 colours).
-  static Rgba8 blend_linear8(Rgba8 level0, Rgba8 level1, int blend) {
-    return dp::fast::level_blend8(level0, level1, blend);
+  // filter()'s blend unit on 8-bit words (a blending pixel's level0 and level1 Q.8 results).
+  static Rgba8 blend_linear8(dp::fast::Rgba8q level0, dp::fast::Rgba8q level1, int blend) {
+    return dp::fast::level_blend8q(level0, level1, blend);
+  }
+  // filter_linear8x4 of the four pixels on both levels and the blend unit per pixel
+  // (dp::fast::bilinear_blend8x4; blend 0 gives level0's lerp): the recurrences' blending quads.
+  static void filter_blend_linear8x4(const dp::fast::Quad8& level0, const dp::fast::Quad8& level1, int blend, Rgba8* out) {
+    dp::fast::bilinear_blend8x4(level0, level1, {blend, blend, blend, blend}, out);
   }
   // The block's timing for the recurrence engine (rtl/timing.hpp), beside evaluate(), which it
   // restates item by item; the two change together. evaluate() keeps the head footprint in the
@@ -84,13 +89,14 @@ class FilterUnit : public sim::Module {
   int remaining_ = -1;  // clocks left on the current footprint (-1: not started)
   std::array<int, 17> extra_clocks_{};  // per tap count n: ceil(n / (4 lanes)) - 1 (the lane sequencer's decode)
   std::vector<uint64_t> busy_cycles_;   // per statistics slot
-  // The level0 result of a blending pixel (register): as channels, or as the texel word when
-  // LINEAR on an 8-bit format runs dp::fast::bilinear_lerp8 / level_blend8 on the words (the same
-  // units as dp::bilinear_lerp / level_blend + encode, bit-identical and tested; fewer instructions).
+  // The level0 result of a blending pixel (register), Q.8 (8 fraction bits, dp::kLevelFracBits):
+  // as channels, or as four 16-bit words when LINEAR on an 8-bit format runs
+  // dp::fast::bilinear_lerp8q / level_blend8q on the words (the same units as dp::bilinear_lerp_q8 /
+  // level_blend + encode, bit-identical and tested; fewer instructions).
   Texel4 first_{};
-  Rgba8 first8_{};
+  dp::fast::Rgba8q first8q_{};
   ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)
-  Texel4 filter_level(const FilterReq& r, TexelFormat unpack) const;
+  Texel4 filter_level(const FilterReq& r, TexelFormat unpack) const;  // Q.8, for the blend unit
 };
 
 }  // namespace tfu::rtl

@@ -34,9 +34,8 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   return levels;
 }
 
-void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
+void LinearQuadPath::level_taps(int n, int level, dp::fast::Quad8& q) const {
   const std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
-  dp::fast::Quad8 q;
   const auto lanes = [&](size_t k, const Rgba8* taps) {
     q.a[k] = taps[0];
     q.b[k] = taps[1];
@@ -57,12 +56,11 @@ void LinearQuadPath::lerp_level(int n, int level, Rgba8* out) const {
       lanes(k, taps);
     }
   }
-  FilterUnit::filter_linear8x4(q, out);
 }
 
 // The four footprints of one level on a compressed SRGBA8 texture: their taps as on any compressed
 // texture, each decoded to linear unorm12 (decode_texel) and lerped as FilterUnit::filter_level
-// does (dp::bilinear_lerp in the texture's format).
+// does: the lerp unit's Q.8 result for the blend unit (dp::bilinear_lerp_q8).
 std::array<Texel4, 4> LinearQuadPath::srgb_level(int n, int level) const {
   const std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
   std::array<std::array<Rgba8, 4>, 4> taps;
@@ -70,19 +68,22 @@ std::array<Texel4, 4> LinearQuadPath::srgb_level(int n, int level) const {
   std::array<Texel4, 4> c;
   for (size_t k = 0; k < 4; ++k) {
     const auto linear = [&](size_t t) { return decode_texel(taps[k][t], TexelFormat::SRGBA8); };
-    c[k] = dp::bilinear_lerp({linear(0), linear(1), linear(2), linear(3)}, f[k].tag.fu, f[k].tag.fv,
-                             TexelFormat::SRGBA8);
+    c[k] = dp::bilinear_lerp_q8({linear(0), linear(1), linear(2), linear(3)}, f[k].tag.fu, f[k].tag.fv);
   }
   return c;
 }
 
-// FilterUnit::filter's plain branch for an isotropic pixel: level0's colour, blended with level1's
-// (dp::level_blend) when the pixel blends, encoded back to the stored format.
+// FilterUnit::filter's plain branch for an isotropic pixel: level0's Q.8 result, blended with
+// level1's (dp::level_blend, one rounding) when the pixel blends, else rounded (dp::round_level),
+// encoded back to the stored format.
 void LinearQuadPath::filter_srgb(std::array<Rgba8, 4>& out) const {
-  std::array<Texel4, 4> c = srgb_level(0, pick_.level0);
+  const std::array<Texel4, 4> q0 = srgb_level(0, pick_.level0);
+  std::array<Texel4, 4> c;
   if (pick_.blend != 0) {
-    const std::array<Texel4, 4> level1 = srgb_level(1, pick_.level1);
-    for (size_t k = 0; k < 4; ++k) c[k] = dp::level_blend(c[k], level1[k], pick_.blend);
+    const std::array<Texel4, 4> q1 = srgb_level(1, pick_.level1);
+    for (size_t k = 0; k < 4; ++k) c[k] = dp::level_blend(q0[k], q1[k], pick_.blend);
+  } else {
+    for (size_t k = 0; k < 4; ++k) c[k] = dp::round_level(q0[k]);
   }
   for (size_t k = 0; k < 4; ++k) out[k] = encode_texel(c[k], TexelFormat::SRGBA8);
 }
@@ -92,11 +93,14 @@ void LinearQuadPath::filter(std::array<Rgba8, 4>& out) const {
     filter_srgb(out);
     return;
   }
-  lerp_level(0, pick_.level0, out.data());
-  if (pick_.blend == 0) return;
-  std::array<Rgba8, 4> level1;
-  lerp_level(1, pick_.level1, level1.data());
-  for (size_t k = 0; k < 4; ++k) out[k] = FilterUnit::blend_linear8(out[k], level1[k], pick_.blend);
+  dp::fast::Quad8 q0, q1;
+  level_taps(0, pick_.level0, q0);
+  if (pick_.blend == 0) {
+    FilterUnit::filter_linear8x4(q0, out.data());
+    return;
+  }
+  level_taps(1, pick_.level1, q1);
+  FilterUnit::filter_blend_linear8x4(q0, q1, pick_.blend, out.data());
 }
 
 }  // namespace tfu::rtl::detail

@@ -20,14 +20,15 @@
 //                 (rtl/cache_stage_block_squares.cpp), with each footprint's block columns and
 //                 rows formed once by the address generator (rtl/address_gen_blocks.hpp; the plain
 //                 blocks divide per tap in the cache stage);
-//   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes,
-//                 per level, then the blend unit (dp::fast::level_blend8) per pixel. (The plain filter
-//                 keeps a blending pixel's level0 colour in a register until its level1 arrives;
-//                 here the four level0 colours wait in lanes. No later footprint reads that
-//                 register before writing it.) On a compressed SRGBA8 texture, the plain
-//                 filter's channel datapath instead (FilterUnit::filter_level's LINEAR:
-//                 decode_texel to linear unorm12, dp::bilinear_lerp, then dp::level_blend and
-//                 encode_texel), per pixel: no 8-bit word lerps for this format (docs/srgb.md).
+//   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes;
+//                 blending, FilterUnit::filter_blend_linear8x4: the Q.8 lerps of both levels, then
+//                 the blend unit per pixel. (The plain filter keeps a blending pixel's level0 Q.8
+//                 result in a register until its level1 arrives; here the four wait in lanes. No
+//                 later footprint reads that register before writing it.) On a compressed SRGBA8
+//                 texture, the plain filter's channel datapath instead (FilterUnit::filter_level's
+//                 LINEAR: decode_texel to linear unorm12, dp::bilinear_lerp_q8, then dp::level_blend
+//                 or dp::round_level, and encode_texel), per pixel: no 8-bit word lerps for this
+//                 format (docs/srgb.md).
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by
 // footprint. The plain path must give the same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs
@@ -39,6 +40,7 @@
 #include <array>
 #include <vector>
 
+#include "cmodel/datapath_fast.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl::detail {
@@ -92,11 +94,12 @@ class LinearQuadPath {
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
   // On a compressed texture, the same footprints in blocks (block_square, rtl/address_gen_blocks.hpp).
   std::array<std::array<BlockSquare, 4>, 2> squares_{};
-  // Read-out and lerp of the four footprints on one level (`n`: 0 level0, 1 level1).
-  void lerp_level(int n, int level, Rgba8* out) const;
+  // Read-out of the four footprints on one level (`n`: 0 level0, 1 level1) as the lerp unit's
+  // lanes (lane k: pixel k).
+  void level_taps(int n, int level, dp::fast::Quad8& q) const;
   // filter() on a compressed SRGBA8 texture: the plain filter's channel datapath per pixel.
   void filter_srgb(std::array<Rgba8, 4>& out) const;
-  std::array<Texel4, 4> srgb_level(int n, int level) const;
+  std::array<Texel4, 4> srgb_level(int n, int level) const;  // Q.8, for the blend unit
 };
 
 }  // namespace tfu::rtl::detail

@@ -55,11 +55,6 @@ inline constexpr int kCoordinateLog2 = 30;  // |s W|, |t H| below 2^30 texels
 struct Precision {
   int sub_texel_bits = 8;  // subTexelPrecisionBits (at most 8)
   int mipmap_bits = 8;     // mipmapPrecisionBits
-  // Not a spec allowance: each level's filtered value rounded to either neighbouring code before
-  // the levels are blended, as the unit's datapath does (dp::bilinear_lerp, then dp::level_blend).
-  // Only used to name a known finding (docs/sampler.md, "Within the spec's bounds"); false for the
-  // spec's bounds.
-  bool level_results_in_codes = false;
 };
 
 // How the request gives its LOD (the three request kinds of the unit's traces).
@@ -243,13 +238,7 @@ inline Bounds filter_bounds(const Texture& tex, const SamplerDescriptor& sd, flo
   const Texel4 border = decode_texel(sd.border, tex.format);
   const auto range_of = [&](int level) {
     const detail::LevelView v{tex.levels[static_cast<size_t>(level)], tex.format, border, sd.wrap_s, sd.wrap_t};
-    detail::Range r = detail::level_range(v, sd.mode.base, s, t, p);
-    if (p.level_results_in_codes)
-      for (size_t k = 0; k < 4; ++k) {
-        r.lo[k] = (r.lo[k] >> 16) << 16;
-        r.hi[k] = ((r.hi[k] + 0xFFFF) >> 16) << 16;
-      }
-    return r;
+    return detail::level_range(v, sd.mode.base, s, t, p);
   };
   // Accumulated extremes, in codes x 2^16 x 2^mipmap_bits.
   std::array<int64_t, 4> lo, hi;

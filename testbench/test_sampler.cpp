@@ -308,13 +308,67 @@ TEST(Properties, WordLerpAndBlendEqualChannelDatapath) {
           TexelFormat::RGBA8);
       ASSERT_EQ(dp::fast::bilinear_lerp8(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
       ASSERT_EQ(dp::fast::bilinear_lerp8_words(w[0], w[1], w[2], w[3], fu, fv), want) << fu << "," << fv;
+      // the Q.8 result for the blend unit: the Q.16 sum's bits 8..23, and rounded it is the code
+      const std::array<Texel4, 4> c{channels(w[0]), channels(w[1]), channels(w[2]), channels(w[3])};
+      const Texel4 q = dp::bilinear_lerp_q8(c, fu, fv);
+      const dp::fast::Rgba8q q8 = dp::fast::bilinear_lerp8q(w[0], w[1], w[2], w[3], fu, fv);
+      ASSERT_EQ((Texel4{q8.r, q8.g, q8.b, q8.a}), q) << fu << "," << fv;
+      ASSERT_EQ(dp::round_level(q), dp::bilinear_lerp(c, fu, fv, TexelFormat::RGBA8)) << fu << "," << fv;
+      const auto fu_ = static_cast<int64_t>(fu), fv_ = static_cast<int64_t>(fv);
+      const int64_t sum = c[0][0] * (256 - fu_) * (256 - fv_) + c[1][0] * fu_ * (256 - fv_) + c[2][0] * (256 - fu_) * fv_ +
+                          c[3][0] * fu_ * fv_;
+      ASSERT_EQ(q[0], sum >> 8) << fu << "," << fv;
     }
   for (int f = 0; f <= 256; ++f)
     for (int k = 0; k < 64; ++k) {
       const Rgba8 a = k == 0 ? full : word(), b = k == 0 ? zero : word();
       ASSERT_EQ(dp::fast::level_blend8(a, b, f),
-                encode_texel(dp::level_blend(channels(a), channels(b), f), TexelFormat::RGBA8))
+                encode_texel(dp::level_blend_codes(channels(a), channels(b), f), TexelFormat::RGBA8))
           << f;
+      // codes: the blend of one rounding of codes, (c0 (256 - f) + c1 f + 128) >> 8
+      for (size_t ch = 0; ch < 4; ++ch)
+        ASSERT_EQ(dp::level_blend_codes(channels(a), channels(b), f)[ch],
+                  (channels(a)[ch] * (256 - f) + channels(b)[ch] * f + 128) >> 8);
+      // Q.8 inputs (random level results 0..255 x 256, and the extremes)
+      const auto q16 = [&](int i) { return static_cast<uint16_t>(k == 0 ? (i == 0 ? 0xFF00 : 0) : rng() % 65281); };
+      const dp::fast::Rgba8q p{q16(0), q16(0), q16(0), q16(0)}, r{q16(1), q16(1), q16(1), q16(1)};
+      const Texel4 pc{p.r, p.g, p.b, p.a}, rc{r.r, r.g, r.b, r.a};
+      ASSERT_EQ(dp::fast::level_blend8q(p, r, f), encode_texel(dp::level_blend(pc, rc, f), TexelFormat::RGBA8)) << f;
+      for (size_t ch = 0; ch < 4; ++ch)
+        ASSERT_EQ(dp::level_blend(pc, rc, f)[ch], (int64_t{pc[ch]} * (256 - f) + int64_t{rc[ch]} * f + 32768) >> 16);
+    }
+}
+
+// The 4-lane lerp-and-blend unit (batches and the recurrences' quads that blend) against the
+// scalar Q.8 units, lane by lane: every fraction pair, every blend weight 0..255 across the lanes,
+// random words and the extreme words.
+TEST(Properties, QuadLerpBlendEqualsScalarUnits) {
+  std::mt19937 rng(10);
+  const auto word = [&rng] { return random_word(rng); };
+  const Rgba8 zero{0, 0, 0, 0}, full{255, 255, 255, 255}, mixed{255, 0, 255, 0};
+  for (uint32_t fu = 0; fu < 256; ++fu)
+    for (uint32_t fv = 0; fv < 256; ++fv) {
+      dp::fast::Quad8 q0, q1;
+      q0.fu = {fu, fv, 255 - fu, fu};
+      q0.fv = {fv, fu, fv, 255 - fv};
+      q1.fu = {fv, 255 - fu, fu, 255 - fv};
+      q1.fv = {fu, fv, 255 - fv, fu};
+      for (size_t k = 0; k < 4; ++k) {
+        const uint32_t sel = (fu + fv + static_cast<uint32_t>(k)) % 8;
+        for (dp::fast::Quad8* q : {&q0, &q1}) {
+          q->a[k] = sel == 0 ? full : sel == 1 ? zero : sel == 2 ? mixed : word();
+          q->b[k] = sel == 0 ? full : sel == 1 ? full : sel == 2 ? zero : word();
+          q->c[k] = sel == 0 ? full : sel == 1 ? zero : sel == 2 ? full : word();
+          q->d[k] = sel == 0 ? full : sel == 1 ? full : sel == 2 ? mixed : word();
+        }
+      }
+      const std::array<int, 4> f{static_cast<int>(fu), static_cast<int>(fv), static_cast<int>(255 - fu), (static_cast<int>(fu + fv) * 7) & 255};
+      std::array<Rgba8, 4> out;
+      dp::fast::bilinear_blend8x4(q0, q1, f, out.data());
+      for (size_t k = 0; k < 4; ++k)
+        ASSERT_EQ(out[k], dp::fast::level_blend8q(dp::fast::bilinear_lerp8q(q0.a[k], q0.b[k], q0.c[k], q0.d[k], q0.fu[k], q0.fv[k]),
+                                                  dp::fast::bilinear_lerp8q(q1.a[k], q1.b[k], q1.c[k], q1.d[k], q1.fu[k], q1.fv[k]), f[k]))
+            << "lane " << k << " at " << q0.fu[k] << "," << q0.fv[k] << " blend " << f[k];
     }
 }
 

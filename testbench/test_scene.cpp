@@ -10,6 +10,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/raster.hpp"
+#include "cmodel/procedural_truth.hpp"
 #include "cmodel/scene.hpp"
 
 namespace tfu {
@@ -208,6 +209,12 @@ TEST(Procedural, MipColoursIsOneFlatColourPerLevel) {
   const Texture& tex = *tunnel.meshes[0].stages[0].texture;
   ASSERT_EQ(tex.levels.size(), 9u);  // 256 .. 1
   EXPECT_EQ(tex.levels[3].texels.front(), mip_level_colour(3));
+  // tfu report flags the scene: its truth is level 0's colour, not a filtered image
+  EXPECT_TRUE(procedural_truth_is_level0_only(tunnel.meshes[0].stages[0].spec.source)) << tunnel.meshes[0].stages[0].spec.source;
+  EXPECT_TRUE(procedural_truth_is_level0_only("proc:mip_colours"));
+  EXPECT_FALSE(procedural_truth_is_level0_only("proc:mip_colours_x:64"));
+  EXPECT_FALSE(procedural_truth_is_level0_only("proc:checkerboard:64"));
+  EXPECT_FALSE(procedural_truth_is_level0_only("mip_colours.png"));
 }
 
 TEST(Scene, CylinderMesh) {

@@ -12,6 +12,7 @@
 #include "cmodel/api_limits.hpp"
 #include "cmodel/datapath.hpp"
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/lod.hpp"
 #include "cmodel/sampler.hpp"
 #include "testbench/docs_text.hpp"
@@ -171,27 +172,38 @@ TEST(SpecBounds, ScaleFactorSpansMaxAxisToSqrt2TimesTheSum) {
   EXPECT_NEAR(lambda_from_gradients(g.dsdx, g.dtdx, 0, 0, 64, 64) / 256.0, std::log2(5.0), 1.0 / 256);
 }
 
-// ---- A finding: each level's result is rounded to 8 bits before the levels are blended ----
+// ---- The levels are blended before the one rounding ----
 
 // LINEAR_MIPMAP_LINEAR at delta = 1/4 (min_lod = max_lod = 1/4), alpha = 1/2 on both levels:
 // level 0 gives (10 + 11) / 2 = 10.5, level 1 (20 + 21) / 2 = 20.5, and the spec's value is
-// 3/4 10.5 + 1/4 20.5 = 13 exactly, so 13 is the only code it admits. The unit rounds each level
-// half up (11, 21) and blends (11 192 + 21 64 + 128) >> 8 = 14. Open (docs/sampler.md, "Within the
-// spec's bounds"): carrying the bilinear results' fraction into the blend would remove it.
-TEST(SpecBounds, FindingEachLevelRoundedBeforeTheBlendLeavesTheBounds) {
+// 3/4 10.5 + 1/4 20.5 = 13 exactly, so 13 is the only code it admits. The bilinear lerp unit hands
+// the blend unit Q.8 results (2688 and 5248, dp::bilinear_lerp_q8), which blends them once:
+// (2688 192 + 5248 64 + 2^15) >> 16 = 851,968 / 65,536 = 13. (Rounding each level first, half up to
+// 11 and 21, gave (11 192 + 21 64 + 128) >> 8 = 14, one code outside: docs/sampler.md.)
+TEST(SpecBounds, LevelsBlendedBeforeTheOneRoundingGiveTheExactValue) {
   const Texture tex = texture_of_levels(TexelFormat::L8, {{0, 10, 11, 0}, {20, 21}, {0}}, 4, 1);
   SamplerDescriptor sd = sampler_of(BaseFilter::Linear, MipMode::Linear);
   sd.lod.min_lod_q8 = sd.lod.max_lod_q8 = 64;
-  const Sampler sm(tex, sd);
-  const Texel4 got = decode_texel(sm.sample(0.5f, 0.5f, lambda_explicit(3.0f)), tex.format);
-  EXPECT_EQ(got[0], 14);
   const Bounds strict = spec::filter_bounds(tex, sd, 0.5f, 0.5f, explicit_lod(3.0f));
   EXPECT_EQ(strict.lo[0], 13);
   EXPECT_EQ(strict.hi[0], 13);
-  EXPECT_FALSE(strict.contains(got));
-  spec::Precision rounded;
-  rounded.level_results_in_codes = true;
-  EXPECT_TRUE(spec::filter_bounds(tex, sd, 0.5f, 0.5f, explicit_lod(3.0f), rounded).contains(got));
+  const std::array<Texel4, 4> l0{Texel4{10, 0, 0, 0}, {11, 0, 0, 0}, {10, 0, 0, 0}, {11, 0, 0, 0}};
+  const std::array<Texel4, 4> l1{Texel4{20, 0, 0, 0}, {21, 0, 0, 0}, {20, 0, 0, 0}, {21, 0, 0, 0}};
+  EXPECT_EQ(dp::bilinear_lerp_q8(l0, 128, 0)[0], 2688);
+  EXPECT_EQ(dp::bilinear_lerp_q8(l1, 128, 0)[0], 5248);
+  const bool saved = fast_paths_enabled();
+  for (const bool fast : {true, false}) {  // the fast path and the plain datapath
+    set_fast_paths(fast);
+    const Sampler sm(tex, sd);
+    const Texel4 got = decode_texel(sm.sample(0.5f, 0.5f, lambda_explicit(3.0f)), tex.format);
+    EXPECT_EQ(got[0], 13) << (fast ? "fast" : "plain");
+    EXPECT_TRUE(strict.contains(got));
+    const std::vector<SampleRequest> quad(4, SampleRequest{0.5f, 0.5f, lambda_explicit(3.0f)});
+    std::vector<Rgba8> out(4);
+    sm.sample_batch(quad.data(), quad.size(), out.data());
+    for (const Rgba8& c : out) EXPECT_EQ(c.r, 13) << (fast ? "fast batch" : "plain batch");
+  }
+  set_fast_paths(saved);
 }
 
 // ---- The golden model inside the bounds ----
@@ -211,20 +223,13 @@ TEST(SpecBounds, GoldenModelInsideOnFuzzedRequests) {
     ++cases;
     all.checked += r.checked;
     all.out_of_domain += r.out_of_domain;
-    all.level_rounding += r.level_rounding;
     all.outside += r.outside;
     if (all.first.empty()) all.first = r.first;
-    if (all.first_level_rounding.empty()) all.first_level_rounding = r.first_level_rounding;
   }
-  std::printf(
-      "spec bounds: %lld requests of %lld cases checked (%lld outside the domain); "
-      "%lld outside by the per-level rounding (first: %s)\n",
-      static_cast<long long>(all.checked), static_cast<long long>(cases), static_cast<long long>(all.out_of_domain),
-      static_cast<long long>(all.level_rounding),
-      all.first_level_rounding.empty() ? "none" : all.first_level_rounding.c_str());
+  std::printf("spec bounds: %lld requests of %lld cases checked (%lld outside the domain), %lld outside the bounds\n",
+              static_cast<long long>(all.checked), static_cast<long long>(cases),
+              static_cast<long long>(all.out_of_domain), static_cast<long long>(all.outside));
   EXPECT_EQ(all.outside, 0) << all.first;
-  // the per-level rounding is rare (the spec's value must be pinned by exact positions and delta)
-  EXPECT_LE(all.level_rounding * 10000, all.checked) << all.first_level_rounding;
 }
 
 // ---- The API limits against the datapath they come from ----

@@ -1,13 +1,17 @@
 // Pipelined bilinear filter, 8-bit RGBA (the gate-count baseline of docs/gates.md): the bilinear
 // lerp unit (GL 4.6 Sec. 8.14.2; tfu::dp::bilinear_lerp) between registers. Bit-exact with
-// dp::bilinear_lerp; one result per clock, no backpressure (en = 0 freezes every register).
+// dp::bilinear_lerp (c) and dp::bilinear_lerp_q8 (q, the Q.8 result the trilinear blend unit
+// tfu_level_blend takes); one result per clock, no backpressure (en = 0 freezes every register).
 //
 // Ports:
 //   clk, rst_n        rising-edge clock, synchronous active-low reset (clears the valid bits only)
 //   en                clock enable of all stages (stall)
 //   in_valid          a request on c00..c11, fu, fv
 //   c00, c10, c01, c11 [31:0], fu, fv [7:0]   as tfu_bilinear_lerp
-//   out_valid, c [31:0]                       result, registered
+//   out_valid, q [63:0]                       Q.8 result, registered: channel k in [16k+15:16k],
+//                                             (sum c w) >> 8 (tfu_lerp_v_sum)
+//   c [31:0]                                  q rounded per channel, (q + 128) >> 8 = (sum c w + 2^15)
+//                                             >> 16 (tfu_level_round after the output register)
 //
 // Parameter:
 //   CUT_V  1: a register inside the vertical lerp, between d = h1 - h0 (tfu_lerp_v_diff) and the
@@ -18,8 +22,9 @@
 // LATENCY consecutive edges, is on out_valid / c after edge n + LATENCY - 1):
 //   S1  input registers (texels, fractions)
 //   S2  horizontal lerps h0, h1 per channel (tfu_lerp_h, exact 16 bits) and fv
-//   S3  vertical lerp with rounding (tfu_lerp_v_round) -> output register; with CUT_V: S3 d = h1 - h0
-//       -> register (h0, d, fv), S4 product and rounding sum -> output register
+//   S3  vertical lerp to 8 fraction bits (tfu_lerp_v_diff, tfu_lerp_v_sum) -> output register q;
+//       with CUT_V: S3 d = h1 - h0 -> register (h0, d, fv), S4 product and sum -> output register q;
+//       c = round(q) after the register
 module tfu_bilinear_top #(
   parameter bit CUT_V = 1'b0
 ) (
@@ -34,6 +39,7 @@ module tfu_bilinear_top #(
   input  logic [7:0]  fu,
   input  logic [7:0]  fv,
   output logic        out_valid,
+  output logic [63:0] q,
   output logic [31:0] c
 );
   // S1
@@ -77,7 +83,7 @@ module tfu_bilinear_top #(
   end
 
   // S3 (and S4 with CUT_V)
-  logic [31:0] cv;
+  logic [63:0] qv;
   logic        v3;
   for (genvar ch = 0; ch < 4; ch++) begin : g_v
     logic [16:0] d;
@@ -93,9 +99,9 @@ module tfu_bilinear_top #(
           f_3 <= fv_2;
         end
       end
-      tfu_lerp_v_sum u_v (.a(a_3), .d(d_3), .f(f_3), .c(cv[8*ch +: 8]));
+      tfu_lerp_v_sum u_v (.a(a_3), .d(d_3), .f(f_3), .q(qv[16*ch +: 16]));
     end else begin : g_comb
-      tfu_lerp_v_sum u_v (.a(h0_2[ch]), .d(d), .f(fv_2), .c(cv[8*ch +: 8]));
+      tfu_lerp_v_sum u_v (.a(h0_2[ch]), .d(d), .f(fv_2), .q(qv[16*ch +: 16]));
     end
   end
   if (CUT_V) begin : g_v3
@@ -109,6 +115,9 @@ module tfu_bilinear_top #(
   always_ff @(posedge clk) begin
     if (!rst_n) out_valid <= 1'b0;
     else if (en) out_valid <= v3;
-    if (en) c <= cv;
+    if (en) q <= qv;
+  end
+  for (genvar ch = 0; ch < 4; ch++) begin : g_round
+    tfu_level_round u_r (.q(q[16*ch +: 16]), .c(c[8*ch +: 8]));
   end
 endmodule

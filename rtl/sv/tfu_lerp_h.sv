@@ -1,5 +1,5 @@
-// Exact 8-bit lerp of the bilinear lerp unit and the trilinear blend (GL 4.6 Sec. 8.14.2-8.14.3;
-// cmodel/datapath.hpp dp::bilinear_lerp, dp::level_blend). Combinational, no rounding.
+// Exact 8-bit lerp of the bilinear lerp unit, its horizontal lerps (GL 4.6 Sec. 8.14.2;
+// cmodel/datapath.hpp dp::bilinear_lerp). Combinational, no rounding.
 //
 // Ports:
 //   a, b [7:0]  operands (unorm8 channel codes)

@@ -23,6 +23,7 @@
 #include "cmodel/mipmap.hpp"
 #include "cmodel/montage.hpp"
 #include "cmodel/raster.hpp"
+#include "cmodel/procedural_truth.hpp"
 #include "cmodel/scene.hpp"
 #include "cmodel/scene_source.hpp"
 #include "sim/sweep/provenance.hpp"
@@ -148,6 +149,7 @@ void run(const ReportOptions& o) {
   std::ostringstream md;
   std::vector<Claim> claims;
   std::map<std::string, std::map<std::string, ModeResult>> table;
+  std::map<std::string, std::string> level0_truth;  // scene -> its texture whose truth is level 0 only
   for (const std::string& name : names) {
     const Scene scene = scene_for(name, o.quick, o.game_dir);
     RunRecord rec;
@@ -157,6 +159,8 @@ void run(const ReportOptions& o) {
     rec.height = scene.height;
     rec.filter = "every mode";
     rec.textures = scene_texture_names(scene);
+    for (const std::string& t : rec.textures)
+      if (procedural_truth_is_level0_only(t)) level0_truth[name] = t;
     js["provenance"]["scenes"][name] = provenance_json(rec)["scene"];
     js["provenance"]["scenes"][name]["width"] = scene.width;
     js["provenance"]["scenes"][name]["height"] = scene.height;
@@ -351,6 +355,16 @@ void run(const ReportOptions& o) {
   }
   for (const auto& [scene, modes] : table) {
     md << fmt::format("\n## Scene `{}`\n\nMontage: `{}/{}_montage.png`.\n\n", scene, o.out_dir, scene_label(scene));
+    if (level0_truth.count(scene) != 0)
+      md << fmt::format(
+          "**Not a quality measure.** The scene's texture `{}` has one flat colour per MIP level, a different one "
+          "on each level, so that a render's colour shows lambda; its analytic truth is level 0's colour. Every "
+          "mode without MIP-mapping reads level 0 and matches the truth; every MIP-mapped mode shows the colours "
+          "of the levels its lambda selects, whatever its filter (each level is flat, so NEAREST, LINEAR, CUBIC "
+          "and EDGE_PRESERVING give the same colours and the same rows), and its PSNR only says how much of "
+          "the image lies above level 0. The scene is for the angle dependence of lambda (docs/anisotropic.md, "
+          "\"Lambda against the angle of the major axis\").\n\n",
+          level0_truth.at(scene));
     md << "| mode | PSNR fixed (dB) | SSIM fixed | PSNR ideal (dB) | SSIM ideal | PSNR surface (dB) | SSIM surface "
           "| PSNR interior (dB) | SSIM interior | fixed vs ideal max | mean | sharpness |\n"
           "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";

@@ -2,10 +2,8 @@
 // the input (testbench/spec_bounds_case.hpp: NEAREST / LINEAR, plain and MIP-mapped, every wrap,
 // bias within maxSamplerLodBias, LOD clamps, explicit / gradient / quad LOD, coordinates from the
 // ordinary to 2^29 texels and any bit pattern), each golden-model result checked against the
-// Vulkan spec's interval (testbench/spec_bounds.hpp). A result outside it aborts with the request;
-// the unit's known per-level rounding (docs/sampler.md, "Within the spec's bounds") is counted by
-// the ctest, not aborted on. Requests outside the verifier's domain (non-finite values) still run
-// through the golden model.
+// Vulkan spec's interval (testbench/spec_bounds.hpp). A result outside it aborts with the request.
+// Requests outside the verifier's domain (non-finite values) still run through the golden model.
 #include <cstdio>
 #include <cstdlib>
 

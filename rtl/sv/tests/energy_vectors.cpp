@@ -23,6 +23,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -77,13 +78,21 @@ Stream bilinear_stream(const std::string& name) {
   return {name,
           "bilinear_top",
           {{"c00", 32}, {"c10", 32}, {"c01", 32}, {"c11", 32}, {"fu", 8}, {"fv", 8}},
-          {{"c", 32}},
+          {{"q", 64}, {"c", 32}},
           {}};
 }
 
-// The bilinear lerp's inputs on one level (taps as dp::bilinear_lerp orders them) and its result, at
-// (s, t) plus a probe offset (Q.16 level-0 texels, dp::probe_texel_coord; 0 for the centre).
-Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out,
+// Q.8 channels as one 64-bit port (channel k in bits [16k+15:16k]; tfu_bilinear_top's q).
+uint64_t pack_q8(const Texel4& q) {
+  uint64_t w = 0;
+  for (size_t ch = 0; ch < 4; ++ch) w |= uint64_t{static_cast<uint16_t>(q[ch])} << (16 * ch);
+  return w;
+}
+
+// The bilinear lerp's inputs on one level (taps as dp::bilinear_lerp orders them) and its results, at
+// (s, t) plus a probe offset (Q.16 level-0 texels, dp::probe_texel_coord; 0 for the centre): the
+// code (first) and the Q.8 result for the blend unit (second).
+std::pair<Texel4, Texel4> bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, Stream& out,
                          const tfu::ProbeOffset& off = {}) {
   const tfu::Image& img = smp.texture().levels[static_cast<size_t>(level)];
   const tfu::dp::LevelCoord u =
@@ -94,9 +103,10 @@ Texel4 bilinear_on_level(const tfu::Sampler& smp, int level, float s, float t, S
   const std::array<Texel4, 4> c{smp.fetch(level, x, y), smp.fetch(level, x + 1, y), smp.fetch(level, x, y + 1),
                                 smp.fetch(level, x + 1, y + 1)};
   const Texel4 r = tfu::dp::bilinear_lerp(c, u.f, v.f, tfu::TexelFormat::RGBA8);
-  out.lines.push_back(fmt::format("{:08x} {:08x} {:08x} {:08x} {:02x} {:02x} {:08x}", pack(c[0]), pack(c[1]),
-                                  pack(c[2]), pack(c[3]), u.f, v.f, pack(r)));
-  return r;
+  const Texel4 q = tfu::dp::bilinear_lerp_q8(c, u.f, v.f);
+  out.lines.push_back(fmt::format("{:08x} {:08x} {:08x} {:08x} {:02x} {:02x} {:016x} {:08x}", pack(c[0]), pack(c[1]),
+                                  pack(c[2]), pack(c[3]), u.f, v.f, pack_q8(q), pack(r)));
+  return {r, q};
 }
 
 [[noreturn]] void usage(const std::string& what) {
@@ -187,7 +197,7 @@ int main(int argc, char** argv) {
     } else if (filter == "trilinear") {
       streams.push_back(bilinear_stream("level0"));
       streams.push_back(bilinear_stream("level1"));
-      streams.push_back({"blend", "level_blend", {{"c0", 32}, {"c1", 32}, {"f", 8}}, {{"c", 32}}, {}});
+      streams.push_back({"blend", "level_blend", {{"c0", 64}, {"c1", 64}, {"f", 8}}, {{"c", 32}}, {}});
     } else if (filter == "cubic") {
       streams.push_back({"cubic", "cubic_filter", {{"texels", 512}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
     } else if (filter == "aniso") {
@@ -215,7 +225,7 @@ int main(int argc, char** argv) {
                          {}});
       streams.push_back(bilinear_stream("level0"));
       streams.push_back(bilinear_stream("level1"));
-      streams.push_back({"blend", "level_blend", {{"c0", 32}, {"c1", 32}, {"f", 8}}, {{"c", 32}}, {}});
+      streams.push_back({"blend", "level_blend", {{"c0", 64}, {"c1", 64}, {"f", 8}}, {{"c", 32}}, {}});
     } else {
       streams.push_back(
           {"edge", "edge_interp_top", {{"texels", 384}, {"shape", 12}, {"fu", 8}, {"fv", 8}}, {{"c", 32}}, {}});
@@ -261,11 +271,11 @@ int main(int argc, char** argv) {
                 w31(off.du_q16), w31(off.dv_q16), w23(tfu::dp::probe_offset_on_level(off.du_q16, li.level0)),
                 w23(tfu::dp::probe_offset_on_level(off.dv_q16, li.level0)),
                 tfu::probe_rom()[static_cast<size_t>(tfu::probe_rom_address(a.probes, k))].weight));
-            const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[2], off);
-            const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[3], off);
+            const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[2], off).second;
+            const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[3], off).second;
             const Texel4 c = tfu::dp::level_blend(c0, c1, li.blend);
             streams[4].lines.push_back(
-                fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(c)));
+                fmt::format("{:016x} {:016x} {:02x} {:08x}", pack_q8(c0), pack_q8(c1), li.blend, pack(c)));
             acc.add(c, a.probes, k);
           }
           got = acc.result();
@@ -278,13 +288,13 @@ int main(int argc, char** argv) {
         if (filter == "aniso") {
           // written above
         } else if (filter == "bilinear") {
-          got = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]);
+          got = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]).first;
         } else if (filter == "trilinear") {
-          const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]);
-          const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[1]);
+          const Texel4 c0 = bilinear_on_level(*smp, li.level0, q.s, q.t, streams[0]).second;
+          const Texel4 c1 = bilinear_on_level(*smp, li.level1, q.s, q.t, streams[1]).second;
           got = tfu::dp::level_blend(c0, c1, li.blend);
           streams[2].lines.push_back(
-              fmt::format("{:08x} {:08x} {:02x} {:08x}", pack(c0), pack(c1), li.blend, pack(got)));
+              fmt::format("{:016x} {:016x} {:02x} {:08x}", pack_q8(c0), pack_q8(c1), li.blend, pack(got)));
         } else if (filter == "cubic") {
           const tfu::Image& img = smp->texture().levels[static_cast<size_t>(li.level0)];
           const tfu::dp::LevelCoord u = tfu::dp::texel_coord(q.s, img.width), v = tfu::dp::texel_coord(q.t, img.height);

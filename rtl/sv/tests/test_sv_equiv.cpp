@@ -395,12 +395,25 @@ TEST(SvBilinearLerp, MatchesGoldenSampler) {
   EXPECT_EQ(bad.count, 0);
 }
 
-// ------------------------------------------------------------------ trilinear blend (exhaustive)
-TEST(SvLevelBlend, ExhaustiveOverC0C1F) {
+// ------------------------------------------------------------------ trilinear blend
+// Q.8 channels, four 16-bit fields of a 64-bit port (channel k in bits [16k+15:16k]).
+uint64_t pack_q8(const Texel4& q) {
+  uint64_t w = 0;
+  for (size_t ch = 0; ch < 4; ++ch) w |= uint64_t{static_cast<uint16_t>(q[ch])} << (16 * ch);
+  return w;
+}
+Texel4 unpack_q8(uint64_t w) {
+  Texel4 q{};
+  for (size_t ch = 0; ch < 4; ++ch) q[ch] = static_cast<int32_t>((w >> (16 * ch)) & 0xFFFF);
+  return q;
+}
+
+// Codes entering as code << 8 (NEAREST, CUBIC, EDGE_PRESERVING levels), exhaustively: 2^24 (c0, c1,
+// f) triples, the four channels taking four different (c0, c1) pairs per evaluation.
+TEST(SvLevelBlend, ExhaustiveOverCodesC0C1F) {
   VerilatedContext ctx;
   Vtfu_level_blend m{&ctx};
   Mismatches bad;
-  // 2^24 (c0, c1, f) triples: the four channels take four different (c0, c1) pairs per evaluation.
   for (uint32_t f = 0; f < 256; ++f) {
     m.f = static_cast<uint8_t>(f);
     for (uint32_t p = 0; p < 65536; p += 4) {
@@ -409,12 +422,37 @@ TEST(SvLevelBlend, ExhaustiveOverC0C1F) {
         c0[ch] = static_cast<int32_t>((p + ch) >> 8);
         c1[ch] = static_cast<int32_t>((p + ch) & 255);
       }
-      m.c0 = pack(c0);
-      m.c1 = pack(c1);
+      m.c0 = pack_q8(tfu::dp::level_q8(c0));
+      m.c1 = pack_q8(tfu::dp::level_q8(c1));
       m.eval();
-      const Texel4 got = unpack(m.c), want = tfu::dp::level_blend(c0, c1, static_cast<int>(f));
+      const Texel4 got = unpack(m.c), want = tfu::dp::level_blend_codes(c0, c1, static_cast<int>(f));
       if (got != want) bad.add(fmt::format("c0 {} c1 {} f {}: sv {} c++ {}", str(c0), str(c1), f, str(got), str(want)));
     }
+  }
+  EXPECT_EQ(bad.count, 0);
+}
+
+// Q.8 level results (the bilinear lerp unit's, 0..65280): random channels, the extremes, every f.
+TEST(SvLevelBlend, RandomQ8LevelResults) {
+  VerilatedContext ctx;
+  Vtfu_level_blend m{&ctx};
+  std::mt19937_64 rng(kSeed + 7);
+  Mismatches bad;
+  for (int i = 0; i < kRandomVectors; ++i) {
+    Texel4 c0{}, c1{};
+    for (size_t ch = 0; ch < 4; ++ch) {
+      const uint64_t r = rng();
+      const auto q8 = [](uint64_t x) { return static_cast<int32_t>(x % 65281); };
+      c0[ch] = i < 256 ? (ch & 1u ? 65280 : 0) : q8(r);
+      c1[ch] = i < 256 ? (ch & 1u ? 0 : 65280) : q8(r >> 32);
+    }
+    const int f = i & 255;
+    m.c0 = pack_q8(c0);
+    m.c1 = pack_q8(c1);
+    m.f = static_cast<uint8_t>(f);
+    m.eval();
+    const Texel4 got = unpack(m.c), want = tfu::dp::level_blend(c0, c1, f);
+    if (got != want) bad.add(fmt::format("c0 {} c1 {} f {}: sv {} c++ {}", str(c0), str(c1), f, str(got), str(want)));
   }
   EXPECT_EQ(bad.count, 0);
 }
@@ -469,6 +507,7 @@ void latency_is_exact() {
   dut.tick();  // n + kLatency - 1: result on the outputs
   EXPECT_EQ(dut.m.out_valid, 1);
   EXPECT_EQ(unpack(dut.m.c), tfu::dp::bilinear_lerp(c, 77, 200, tfu::TexelFormat::RGBA8));
+  EXPECT_EQ(unpack_q8(dut.m.q), tfu::dp::bilinear_lerp_q8(c, 77, 200));
   dut.tick();
   EXPECT_EQ(dut.m.out_valid, 0);
 }
@@ -479,7 +518,7 @@ void random_stream_with_stalls_matches_datapath() {
   std::mt19937_64 rng(kSeed + 5);
   struct Slot {
     bool valid = false;
-    Texel4 c{};
+    Texel4 c{}, q{};
   };
   std::array<Slot, Dut::kLatency> pipe{};  // reference pipeline: S1, S2, ...
   constexpr size_t kLast = Dut::kLatency - 1;
@@ -496,14 +535,15 @@ void random_stream_with_stalls_matches_datapath() {
     dut.tick();
     if (en) {
       for (size_t k = kLast; k > 0; --k) pipe[k] = pipe[k - 1];
-      pipe[0] = {valid, tfu::dp::bilinear_lerp(c, fu, fv, tfu::TexelFormat::RGBA8)};
+      pipe[0] = {valid, tfu::dp::bilinear_lerp(c, fu, fv, tfu::TexelFormat::RGBA8), tfu::dp::bilinear_lerp_q8(c, fu, fv)};
     }
     if (dut.m.out_valid != pipe[kLast].valid) {
       bad.add(fmt::format("cycle {}: out_valid {} expected {}", cyc, dut.m.out_valid, pipe[kLast].valid));
     } else if (pipe[kLast].valid) {
       ++results;
-      if (unpack(dut.m.c) != pipe[kLast].c)
-        bad.add(fmt::format("cycle {}: sv {} c++ {}", cyc, str(unpack(dut.m.c)), str(pipe[kLast].c)));
+      if (unpack(dut.m.c) != pipe[kLast].c || unpack_q8(dut.m.q) != pipe[kLast].q)
+        bad.add(fmt::format("cycle {}: sv {} q {} c++ {} q {}", cyc, str(unpack(dut.m.c)), str(unpack_q8(dut.m.q)),
+                            str(pipe[kLast].c), str(pipe[kLast].q)));
     }
   }
   EXPECT_GT(results, kRandomVectors / 2);
