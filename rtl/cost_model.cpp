@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
+#include "rtl/dram.hpp"
 
 namespace tfu::rtl {
 
@@ -133,19 +134,59 @@ constexpr std::array<NodeTech, 2> kNodeTech{{
 // The osu018 SRAM model: GlobalFoundries' GF180MCU single-port macro gf180mcu_fd_ip_sram__sram512x8m8wm1
 // (github.com/google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram, its liberty file
 // ..._tt_025C_1v80.lib: typical, 1.8 V, 25 C, the osu018 library's corner): `area` 209400.2768 um^2
-// for 512 x 8 bits (a 13.5 um^2 6T bit cell; the rest is the periphery), CLK `internal_power` per
-// edge (pF x V^2 = pJ) when reading (!CEN & GWEN) 103.176 and writing 112.563: an access is one
-// rising and one falling edge. No macro of a 0.35 um process with published area and energy was
-// found: osu035 has no SRAM model.
+// for 512 x 8 bits (its datasheet, ..._sram512x8m8wm1.rst: a 13.5 um^2 6T bit cell; the rest is the
+// periphery, built of the process's 5 V transistors), CLK `internal_power` per edge (pF x V^2 = pJ)
+// when reading (!CEN & GWEN) 103.176 and writing 112.563: an access is one rising and one falling edge.
+constexpr double kGf180MacroAreaUm2 = 209400.2768, kGf180BitCellUm2 = 13.5;
+constexpr int kGf180Words = 512, kGf180BitsPerWord = 8;
 constexpr SramMacro kGf180Sram512x8{"gf180mcu_fd_ip_sram__sram512x8m8wm1",
-                                    512,
-                                    8,
-                                    209400.2768,
+                                    kGf180Words,
+                                    kGf180BitsPerWord,
+                                    kGf180MacroAreaUm2,
                                     2 * 103.176,
                                     2 * 112.563,
                                     "tt_025C_1v80",
                                     "GF180MCU SRAM macro gf180mcu_fd_ip_sram__sram512x8m8wm1, liberty tt_025C_1v80 "
                                     "(google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram)"};
+
+// The osu035 SRAM model (no 0.35 um macro with published area and energy was found), the same
+// 512 x 8 organisation from two published sources:
+//   bit cells: OpenRAM's 6T cell of its scn4m_subm technology ("SCMOS 4m, 0.35um", lambda = 0.2 um,
+//     the MOSIS SCMOS_SUBM rules the OSU 0.35 um cells are drawn in), technology/scn4m_subm/mag_lib/
+//     cell_1rw.mag (github.com/VLSIDA/OpenRAM): abutment box 34 x 52 lambda = 6.8 x 10.4 um = 70.72 um^2;
+//   periphery: the GF180 macro's, unscaled (209400.2768 - 4096 x 13.5 = 154104.2768 um^2): its
+//     decoders, sense amplifiers and drivers are built of 5 V transistors, not smaller than 0.35 um ones;
+//   energy per access: the GF180 macro's at 3.3 V, osu035's supply (liberty ..._tt_025C_3v30.lib:
+//     CLK internal_power per edge reading 369.6, writing 408.606), unscaled for the same reason.
+// Area per bit 108.34 um^2 (OpenRAM's cell x 4096 + the periphery, over 4096 bits); an estimate
+// resting on the stated transfer of the periphery, not a characterised 0.35 um macro.
+constexpr double kOpenRamScn4mBitCellUm2 = (34 * 0.2) * (52 * 0.2);
+constexpr SramMacro kOsu035Sram512x8{
+    "OpenRAM scn4m_subm 6T cells + gf180mcu_fd_ip_sram__sram512x8m8wm1 periphery",
+    kGf180Words,
+    kGf180BitsPerWord,
+    kGf180Words * kGf180BitsPerWord * kOpenRamScn4mBitCellUm2 +
+        (kGf180MacroAreaUm2 - kGf180Words * kGf180BitsPerWord * kGf180BitCellUm2),
+    2 * 369.6,
+    2 * 408.606,
+    "tt_025C_3v30",
+    "OpenRAM scn4m_subm cell_1rw.mag (VLSIDA/OpenRAM) bit cells; GF180MCU macro gf180mcu_fd_ip_sram__sram512x8m8wm1 "
+    "periphery and liberty tt_025C_3v30 (google/globalfoundries-pdk-ip-gf180mcu_fd_ip_sram)"};
+
+// DRAM power sheets: DRAMPower's memory specifications (github.com/tukl-msd/DRAMPower, memspecs/),
+// whose currents are those of the Micron data sheets they are named after.
+const std::vector<DramPowerSheet> kDramPowerSheets = {
+    // ddr4-2400-x64: eight x8 devices; MICRON_4Gb_DDR4-2400_8bit_A.json: VDD 1.2 V, IDD0 60.75,
+    // IDD2N 38.25, IDD3N 44.0, IDD4R 184.5 mA; 1200 MHz, BL8, tRC 55, tRAS 39 clocks.
+    {"ddr4-2400-x64", 8, {{{1.2, 60.75, 38.25, 44.0, 184.5}, {0, 0, 0, 0, 0}}}, 1200, 8, 55, 39,
+     "DRAMPower memspecs/MICRON_4Gb_DDR4-2400_8bit_A.json (Micron 4Gb DDR4 x8, DDR4-2400)"},
+    // lpddr4-3200-x16: one x16 channel; MICRON_6Gb_LPDDR4-3200_32bit_A.json (a 6 Gb part: the 4 Gb
+    // preset's own currents are not in the memspecs): VDD1 1.8 V: IDD0 3.5, IDD2N 2.0, IDD3N 2.25,
+    // IDD4R 2.25 mA; VDD2 1.1 V: IDD02 45, IDD2N2 27, IDD3N2 30, IDD4R2 275 mA; 1600 MHz, BL16,
+    // tRC 97, tRAS 68 clocks.
+    {"lpddr4-3200-x16", 1, {{{1.8, 3.5, 2.0, 2.25, 2.25}, {1.1, 45.0, 27.0, 30.0, 275.0}}}, 1600, 16, 97, 68,
+     "DRAMPower memspecs/MICRON_6Gb_LPDDR4-3200_32bit_A.json (Micron 6Gb LPDDR4, LPDDR4-3200; VDD1 and VDD2)"},
+};
 
 uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
@@ -167,7 +208,29 @@ const NodeBlock& node_block(Node n, const std::string& block) {
 
 const NodeTech& node_tech(Node n) { return kNodeTech[static_cast<size_t>(n)]; }
 
-const SramMacro* sram_macro(Node n) { return n == Node::Osu018 ? &kGf180Sram512x8 : nullptr; }
+const SramMacro* sram_macro(Node n) { return n == Node::Osu018 ? &kGf180Sram512x8 : &kOsu035Sram512x8; }
+
+const std::vector<DramPowerSheet>& dram_power_sheets() { return kDramPowerSheets; }
+
+DramCommandEnergy dram_command_energy(int dram_part) {
+  const dram::Part& part = dram::parts().at(static_cast<size_t>(dram_part - 1));
+  for (const DramPowerSheet& s : kDramPowerSheets) {
+    if (part.name != s.part) continue;
+    const double ns_per_clock = 1000.0 / s.clock_mhz;
+    const double t_burst = s.burst_length / 2 * ns_per_clock, t_rc = s.tRC_ck * ns_per_clock,
+                 t_ras = s.tRAS_ck * ns_per_clock;
+    DramCommandEnergy e;
+    for (const DramSupply& v : s.supplies) {
+      e.read_burst_pj += (v.idd4r_ma - v.idd3n_ma) * v.volts * t_burst;
+      e.activate_pj += (v.idd0_ma * t_rc - v.idd3n_ma * t_ras - v.idd2n_ma * (t_rc - t_ras)) * v.volts;
+    }
+    e.read_burst_pj *= s.devices;
+    e.activate_pj *= s.devices;
+    e.burst_bytes = part.g.burst_bytes;
+    return e;
+  }
+  throw std::logic_error(fmt::format("no DRAM power sheet for part {}", part.name));
+}
 
 std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
                                                                int lanes) {
@@ -239,7 +302,13 @@ UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDe
     const double line_words = static_cast<double>(ceil_div(static_cast<uint64_t>(config.cache.line_bytes) * 8,
                                                            static_cast<uint64_t>(m->bits_per_word)));
     *c.sram_pj += static_cast<double>(run.line_misses) * line_words * (m->write_pj + m->read_pj);  // the line buffer
-    if (run.pixels) c.energy_pj_per_pixel = (c.logic_pj + *c.sram_pj) / static_cast<double>(run.pixels);
+    if (config.memory.dram > 0) {
+      const DramCommandEnergy d = dram_command_energy(config.memory.dram);
+      c.dram_pj = static_cast<double>(run.dram_bursts) * d.read_burst_pj +
+                  static_cast<double>(run.dram_activates) * d.activate_pj;
+    }
+    if (run.pixels)
+      c.energy_pj_per_pixel = (c.logic_pj + *c.sram_pj + c.dram_pj.value_or(0.0)) / static_cast<double>(run.pixels);
   }
   return c;
 }

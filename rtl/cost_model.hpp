@@ -30,13 +30,16 @@
 //   fmax_mhz            the slowest block's fmax (register-to-register, and input-to-register where
 //                       the block has one): the slowest part sets the clock
 //   sram_um2            (texel_cache_sram_bits + line_buffer_sram_bits) x the node's SRAM macro area
-//                       per bit (kSramMacros; absent for a node without a cited macro)
+//                       per bit (sram_macro: osu018 the GF180MCU 512 x 8 macro; osu035 OpenRAM's
+//                       0.35 um bit cell with that macro's periphery and 3.3 V access energy)
 //   energy              logic: (leakage + uniform-activity switching) per cycle x cycles; SRAM: macro
 //                       word reads and writes per line lookup and per line fill, and per line fill
-//                       the line buffer's write (on arrival) and read (into the cache); DRAM: not
-//                       counted
+//                       the line buffer's write (on arrival) and read (into the cache); DRAM (with a
+//                       DRAM part, memory.dram > 0): bursts x read_burst_pj + activates x activate_pj
+//                       (dram_command_energy); none with the ideal memory
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -117,7 +120,7 @@ struct SramMacro {
   const char* corner;
   const char* source;
 };
-const SramMacro* sram_macro(Node n);  // nullptr: no cited macro for the node
+const SramMacro* sram_macro(Node n);  // the node's macro (rtl/cost_model.cpp: sources); nullptr: none
 
 // Macro words one cache access moves (whole words): a line lookup reads the set's tags, valid and
 // LRU bits and the whole line (an upper bound: the footprint needs only its texels) and writes the
@@ -126,6 +129,32 @@ struct SramAccessWords {
   uint64_t lookup_reads = 0, lookup_writes = 0, fill_writes = 0;
 };
 SramAccessWords sram_access_words(const TexelCacheConfig& cache, const SramMacro& m);
+
+// DRAM energy per command by the method of Micron TN-40-07 ("Calculating Memory Power for DDR4
+// SDRAM"): from a part's IDD currents, the energy a READ burst and an ACTIVATE-PRECHARGE pair add
+// above the active / precharged standby currents, on the core supplies:
+//   read_burst_pj = devices x sum over supplies of (IDD4R - IDD3N) x V x tBurst   (tBurst = BL/2 clocks)
+//   activate_pj   = devices x sum over supplies of (IDD0 x tRC - IDD3N x tRAS - IDD2N x (tRC - tRAS)) x V
+// (mA x V x ns = pJ), with tRC and tRAS those of the IDD0 measurement loop. Not counted: the I/O and
+// termination energy (no IDD figure gives it: TN-40-07 computes it from the board's termination),
+// VPP / VDDQ currents, refresh and background (standby) power.
+struct DramSupply {
+  double volts, idd0_ma, idd2n_ma, idd3n_ma, idd4r_ma;
+};
+struct DramPowerSheet {
+  const char* part;  // dram::Part::name
+  int devices;       // devices read together for one burst
+  std::array<DramSupply, 2> supplies;  // {0, ...} for an unused second supply
+  int clock_mhz, burst_length, tRC_ck, tRAS_ck;  // the IDD loops' clock and timing
+  const char* source;
+};
+struct DramCommandEnergy {
+  double read_burst_pj = 0, activate_pj = 0;
+  int burst_bytes = 0;  // bytes one burst reads (dram::Geometry::burst_bytes)
+};
+const std::vector<DramPowerSheet>& dram_power_sheets();
+// The energies of the part memory.dram names (1-based, dram::parts()); logic_error if a part has no sheet.
+DramCommandEnergy dram_command_energy(int dram_part);
 
 // Bits of one miss-FIFO entry: the FootprintReq fields hardware stores (rtl/unit_ports.hpp):
 //   tag: id 32, texture 12, sampler 8, stage 2, base 2, format 2, fu 8, fv 8, blend 9, blends 1,
@@ -144,6 +173,7 @@ struct RunCounts {
   uint64_t line_lookups = 0;  // cache_line_hits + cache_line_misses
   uint64_t line_misses = 0;   // line fills
   uint64_t memory_bytes = 0;
+  uint64_t dram_bursts = 0, dram_activates = 0;  // memory.dram a DRAM part only
 };
 
 struct UnitCost {
@@ -153,6 +183,7 @@ struct UnitCost {
   double logic_leakage_nw = 0;  // all units
   double logic_pj = 0;          // the run's logic energy (leakage + switching)
   std::optional<double> sram_um2, area_mm2, sram_pj, energy_pj_per_pixel;  // absent without an SRAM macro
+  std::optional<double> dram_pj;  // absent with the ideal memory (memory.dram 0): no DRAM part to cost
 };
 UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
                    const RunCounts& run);

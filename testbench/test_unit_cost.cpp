@@ -1,6 +1,6 @@
 // The whole unit's cost at a real node (rtl/cost_model.hpp, unit_cost; docs/design-space.md, "The
 // whole unit at a node"): every figure derived by hand from the committed block table
-// (rtl/sv/silicon_gates.json), the OSU liberty figures and the published SRAM macro's figures.
+// (rtl/sv/silicon_gates.json), the OSU liberty figures and the published SRAM sources' figures.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +8,7 @@
 
 #include "cmodel/error.hpp"
 #include "rtl/cost_model.hpp"
+#include "rtl/dram.hpp"
 
 namespace tfu {
 namespace {
@@ -105,7 +106,7 @@ TEST(UnitCost, LanesAreDatapathsAndOneLaneCubicIsAQuarterOfTheFourLaneBlock) {
   EXPECT_DOUBLE_EQ(k.fmax_mhz, 75.2);  // edge_interp_top is the slowest
 }
 
-TEST(UnitCost, AnisotropicBlocksOncePerUnitAndOsu035HasNoSramModel) {
+TEST(UnitCost, AnisotropicBlocksOncePerUnitAtOsu035) {
   rtl::UnitConfig c;
   c.filter_lanes = 2;
   const rtl::RunCounts run{100, 10, 20, 1, 640};
@@ -115,11 +116,79 @@ TEST(UnitCost, AnisotropicBlocksOncePerUnitAndOsu035HasNoSramModel) {
   EXPECT_DOUBLE_EQ(k.datapath_um2, 2 * (1305308.0 + 285724.0) + 94448.0 + 977364.0 + 88540.0 + 1144940.0);
   EXPECT_DOUBLE_EQ(k.miss_fifo_um2, 128.0 * 265 * 384);
   EXPECT_DOUBLE_EQ(k.fmax_mhz, 47.4);  // aniso_count
-  EXPECT_EQ(rtl::sram_macro(rtl::Node::Osu035), nullptr);
-  EXPECT_FALSE(k.sram_um2.has_value());
-  EXPECT_FALSE(k.area_mm2.has_value());
-  EXPECT_FALSE(k.energy_pj_per_pixel.has_value());
   EXPECT_GT(k.logic_pj, 0.0);
+}
+
+TEST(UnitCost, Osu035SramIsOpenRamCellsWithTheGf180PeripheryAt3V3) {
+  // Bit cell: OpenRAM scn4m_subm cell_1rw, 34 x 52 lambda at 0.2 um = 6.8 x 10.4 um = 70.72 um^2.
+  // Periphery: the GF180 512 x 8 macro's 209,400.2768 um^2 less its 4,096 cells of 13.5 um^2 =
+  // 154,104.2768 um^2. Macro: 4,096 x 70.72 + 154,104.2768 = 443,773.3968 um^2 (108.34 um^2 per bit).
+  const rtl::SramMacro* m = rtl::sram_macro(rtl::Node::Osu035);
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->words, 512);
+  EXPECT_EQ(m->bits_per_word, 8);
+  EXPECT_NEAR(m->area_um2, 443773.3968, 1e-6);
+  // GF180 liberty tt_025C_3v30: CLK internal_power per edge 369.6 (read), 408.606 (write).
+  EXPECT_DOUBLE_EQ(m->read_pj, 739.2);
+  EXPECT_DOUBLE_EQ(m->write_pj, 817.212);
+  EXPECT_STREQ(m->corner, "tt_025C_3v30");
+  // The whole unit with the default cache (139,008 bits) and line buffer (32,768 bits), LINEAR at
+  // osu035: bilinear_top 1,305,308 um^2 + 128 x 265 DFFPOSX1 of 384 um^2.
+  rtl::UnitConfig c;
+  rtl::RunCounts run;
+  run.cycles = 1000;
+  run.pixels = 400;
+  run.line_lookups = 500;
+  run.line_misses = 20;
+  const rtl::UnitCost k = rtl::unit_cost(rtl::Node::Osu035, c, {sampler("LINEAR")}, 1, run);
+  const double sram_um2 = 171776 * 443773.3968 / 4096;
+  ASSERT_TRUE(k.sram_um2.has_value());
+  EXPECT_NEAR(*k.sram_um2, sram_um2, 1e-6);
+  EXPECT_NEAR(*k.area_mm2, (1305308.0 + 128.0 * 265 * 384 + sram_um2) * 1e-6, 1e-12);
+  // Words per access as in the osu018 test (80 read + 1 written per lookup, 68 written per fill, 64
+  // written and read in the line buffer per fill).
+  const double sram = 500 * (80 * 739.2 + 1 * 817.212) + 20 * (68 * 817.212) + 20 * 64 * (817.212 + 739.2);
+  EXPECT_NEAR(*k.sram_pj, sram, 1e-9 * sram);
+  EXPECT_NEAR(*k.energy_pj_per_pixel, (k.logic_pj + sram) / 400, 1e-9 * sram);
+}
+
+TEST(UnitCost, DramCommandEnergiesByTheMethodOfTn4007) {
+  // ddr4-2400-x64 (DRAMPower's MICRON_4Gb_DDR4-2400_8bit_A): 8 devices at 1.2 V, 1200 MHz.
+  // READ: (IDD4R 184.5 - IDD3N 44.0) mA x 1.2 V x 4 clocks of 0.8333 ns = 562.0 pJ a device, 4,496 pJ
+  // per 64-byte burst. ACTIVATE: (IDD0 60.75 x tRC 55 - IDD3N 44.0 x tRAS 39 - IDD2N 38.25 x 16)
+  // mA x clocks = 1,013.25 mA x clocks x 0.8333 ns x 1.2 V = 1,013.25 pJ a device, 8,106 pJ.
+  const rtl::DramCommandEnergy ddr4 = rtl::dram_command_energy(1);
+  EXPECT_NEAR(ddr4.read_burst_pj, 4496.0, 1e-9);
+  EXPECT_NEAR(ddr4.activate_pj, 8106.0, 1e-9);
+  EXPECT_EQ(ddr4.burst_bytes, 64);
+  // lpddr4-3200-x16 (MICRON_6Gb_LPDDR4-3200_32bit_A), one x16 channel, 1600 MHz (0.625 ns).
+  // READ, 8 clocks = 5 ns: VDD1 (2.25 - 2.25) x 1.8 + VDD2 (275 - 30) x 1.1 = 269.5 mW -> 1,347.5 pJ per
+  // 32 bytes. ACTIVATE: 0.625 x (1.8 x (3.5 x 97 - 2.25 x 68 - 2.0 x 29) + 1.1 x (45 x 97 - 30 x 68
+  // - 27 x 29)) = 0.625 x (231.3 + 1,696.2) = 1,204.6875 pJ.
+  const rtl::DramCommandEnergy lp4 = rtl::dram_command_energy(2);
+  EXPECT_NEAR(lp4.read_burst_pj, 1347.5, 1e-9);
+  EXPECT_NEAR(lp4.activate_pj, 1204.6875, 1e-9);
+  EXPECT_EQ(lp4.burst_bytes, 32);
+  // Every preset has a power sheet.
+  for (size_t k = 1; k <= rtl::dram::parts().size(); ++k) EXPECT_GT(rtl::dram_command_energy(static_cast<int>(k)).read_burst_pj, 0.0);
+}
+
+TEST(UnitCost, DramEnergyIsAddedPerBurstAndActivate) {
+  rtl::UnitConfig c;
+  rtl::RunCounts run;
+  run.cycles = 1000;
+  run.pixels = 400;
+  run.line_lookups = 500;
+  run.line_misses = 20;
+  run.dram_bursts = 20;
+  run.dram_activates = 3;
+  const rtl::UnitCost ideal = rtl::unit_cost(rtl::Node::Osu018, c, {sampler("LINEAR")}, 1, run);
+  EXPECT_FALSE(ideal.dram_pj.has_value());  // the ideal memory: no part to cost
+  c.memory.dram = 1;                        // ddr4-2400-x64
+  const rtl::UnitCost k = rtl::unit_cost(rtl::Node::Osu018, c, {sampler("LINEAR")}, 1, run);
+  ASSERT_TRUE(k.dram_pj.has_value());
+  EXPECT_NEAR(*k.dram_pj, 20 * 4496.0 + 3 * 8106.0, 1e-6);
+  EXPECT_NEAR(*k.energy_pj_per_pixel, *ideal.energy_pj_per_pixel + (20 * 4496.0 + 3 * 8106.0) / 400, 1e-6);
 }
 
 }  // namespace

@@ -152,6 +152,8 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   run.line_misses = rtl::counter(st, rtl::UnitStat::CacheLineMisses);
   run.line_lookups = rtl::counter(st, rtl::UnitStat::CacheLineHits) + run.line_misses;
   run.memory_bytes = rtl::counter(st, rtl::UnitStat::MemoryBytes);
+  run.dram_bursts = rtl::counter(st, rtl::UnitStat::DramBursts);
+  run.dram_activates = rtl::counter(st, rtl::UnitStat::DramActivates);
   const rtl::UnitCost cost = rtl::unit_cost(s.node, p.config, frame.regs.samplers, p.units, run);
   const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
   r["node"] = rtl::node_name(s.node);
@@ -160,10 +162,18 @@ nlohmann::json result_json(const Spec& s, const Point& p, const rtl::SceneSimRes
   r["area_mm2"] = optional(cost.area_mm2);
   r["fmax_mhz"] = cost.fmax_mhz;
   r["energy_pj_per_pixel"] = optional(cost.energy_pj_per_pixel);
+  // Its breakdown per pixel: logic, SRAM, DRAM (null with the ideal memory).
+  const auto per_pixel = [&res](const std::optional<double>& pj) {
+    return pj && res.requests ? nlohmann::json(*pj / static_cast<double>(res.requests)) : nlohmann::json();
+  };
+  r["logic_pj_per_pixel"] = per_pixel(cost.logic_pj);
+  r["sram_pj_per_pixel"] = per_pixel(cost.sram_pj);
+  r["dram_pj_per_pixel"] = per_pixel(cost.dram_pj);
   r["datapath_um2"] = cost.datapath_um2;
   r["miss_fifo_um2"] = cost.miss_fifo_um2;
   r["logic_pj"] = cost.logic_pj;
   r["sram_pj"] = optional(cost.sram_pj);
+  r["dram_pj"] = optional(cost.dram_pj);
   nlohmann::json inst = nlohmann::json::array();
   for (const auto& [block, count] : cost.instances) inst.push_back({{"block", block}, {"count", count}});
   r["datapath_instances"] = inst;

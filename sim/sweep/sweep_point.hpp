@@ -9,8 +9,9 @@
 //               "psnr", "ssim", "psnr_surface", "psnr_interior" (dB, or "inf"; SSIM beside the first; against the antialiased truth, the
 //               surface truth, the surface truth over the interior), "golden_equal", "mismatch", "sram_bits", "sram_bits_data",
 //               "sram_bits_tag", "sram_bits_valid", "sram_bits_lru", "filter_gates", "filter_blocks", "node", "logic_um2",
-//               "sram_um2", "area_mm2", "fmax_mhz", "energy_pj_per_pixel" (null where the node has no SRAM model),
-//               "datapath_um2", "miss_fifo_um2", "logic_pj", "sram_pj", "datapath_instances" (rtl/cost_model.hpp)},
+//               "sram_um2", "area_mm2", "fmax_mhz", "energy_pj_per_pixel" and its parts "logic_pj_per_pixel",
+//               "sram_pj_per_pixel", "dram_pj_per_pixel" (null with the ideal memory), "datapath_um2", "miss_fifo_um2",
+//               "logic_pj", "sram_pj", "dram_pj", "datapath_instances" (rtl/cost_model.hpp)},
 //    "provenance", "definitions", "counters", "values", "histograms", "tables"}
 // or, when the point cannot run (an input the point's configuration refuses, a deadlock):
 //   {"complete": true, "point": {...}, "error": "one line", "provenance": {...}}

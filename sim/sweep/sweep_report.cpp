@@ -47,7 +47,9 @@ std::string number_text(const nlohmann::json& v, int decimals) {
 int decimals_of(const std::string& column) {
   if (column == "psnr" || column == "psnr_surface" || column == "psnr_interior" || column == "latency_mean") return 4;
   if (column == "filter_gates" || column == "logic_um2" || column == "sram_um2" || column == "fmax_mhz") return 1;
-  if (column == "energy_pj_per_pixel") return 2;
+  if (column == "energy_pj_per_pixel" || column == "logic_pj_per_pixel" || column == "sram_pj_per_pixel" ||
+      column == "dram_pj_per_pixel")
+    return 2;
   return 6;
 }
 
@@ -104,13 +106,17 @@ const std::vector<Column>& result_columns() {
        "logic at the spec's node: the datapath blocks the frame's filters need, x filter_lanes, and the miss FIFO's flip-flops, all "
        "units (rtl/cost_model.hpp, rtl/sv/silicon_gates.json)",
        ResultType::Number},
-      {"sram_um2", "um^2", "texel cache SRAM at the node's published macro's area per bit, all units (empty: no SRAM model for the node)",
+      {"sram_um2", "um^2", "texel cache and line buffer SRAM at the node's SRAM model's area per bit (rtl::sram_macro), all units",
        ResultType::NumberOrNull},
-      {"area_mm2", "mm^2", "logic_um2 + sram_um2 (empty without an SRAM model)", ResultType::NumberOrNull},
+      {"area_mm2", "mm^2", "logic_um2 + sram_um2", ResultType::NumberOrNull},
       {"fmax_mhz", "MHz", "the clock of the slowest block the frame needs at the node (the slowest part sets the clock)", ResultType::Number},
       {"energy_pj_per_pixel", "pJ/pixel",
-       "logic (leakage + uniform-activity switching at fmax) and texel cache SRAM energy per request; DRAM not counted (empty without "
-       "an SRAM model)",
+       "logic_pj_per_pixel + sram_pj_per_pixel + dram_pj_per_pixel (DRAM 0 with the ideal memory)", ResultType::NumberOrNull},
+      {"logic_pj_per_pixel", "pJ/pixel", "logic: leakage + uniform-activity switching at fmax, per request", ResultType::NumberOrNull},
+      {"sram_pj_per_pixel", "pJ/pixel", "texel cache and line buffer SRAM word reads and writes, per request", ResultType::NumberOrNull},
+      {"dram_pj_per_pixel", "pJ/pixel",
+       "DRAM bursts and activates at the part's TN-40-07 command energies (rtl::dram_command_energy), per request; empty with the "
+       "ideal memory",
        ResultType::NumberOrNull},
       {"point", "", "the point's id: its file DIR/points/ID.json"},
       {"error", "", "why the point could not run (empty when it ran)"},
