@@ -38,7 +38,7 @@ struct CompressedInternalFormat {
   BlockFormat format;
 };
 constexpr std::array<CompressedInternalFormat, 4> kS3tcInternalFormats{{
-    {"GL_COMPRESSED_RGB_S3TC_DXT1_EXT", BlockFormat::BC1},   // base format RGB: alpha reads 1.0
+    {"GL_COMPRESSED_RGB_S3TC_DXT1_EXT", BlockFormat::BC1},    // base format RGB: alpha reads 1.0
     {"GL_COMPRESSED_RGBA_S3TC_DXT1_EXT", BlockFormat::BC1A},  // alpha < 128: code 3, transparent black
     {"GL_COMPRESSED_RGBA_S3TC_DXT3_EXT", BlockFormat::BC2},
     {"GL_COMPRESSED_RGBA_S3TC_DXT5_EXT", BlockFormat::BC3},
@@ -46,7 +46,8 @@ constexpr std::array<CompressedInternalFormat, 4> kS3tcInternalFormats{{
 
 std::optional<BlockFormat> s3tc_internal_format(const std::string& internal) {
   for (const CompressedInternalFormat& f : kS3tcInternalFormats)
-    if (internal == f.name || internal == std::to_string(block_format_info(f.format).gl_internal_format)) return f.format;
+    if (internal == f.name || internal == std::to_string(block_format_info(f.format).gl_internal_format))
+      return f.format;
   return std::nullopt;
 }
 
@@ -355,7 +356,8 @@ void Replayer::tex_image(const Call& c) {
   const std::string& type = text(c, "type");
   const std::optional<BlockFormat> s3tc = s3tc_internal_format(internal);
   const bool rgb = internal == "GL_RGB" || internal == "GL_RGB8" || internal == "3" || s3tc == BlockFormat::BC1;
-  const bool rgba = internal == "GL_RGBA" || internal == "GL_RGBA8" || internal == "4" || (s3tc && s3tc != BlockFormat::BC1);
+  const bool rgba =
+      internal == "GL_RGBA" || internal == "GL_RGBA8" || internal == "4" || (s3tc && s3tc != BlockFormat::BC1);
   if (!rgb && !rgba) return unsupported(fmt::format("glTexImage2D internalformat {}", internal), c);
   if (format != "GL_RGBA" || type != "GL_UNSIGNED_BYTE")
     return unsupported(fmt::format("glTexImage2D format {} type {}", format, type), c);
@@ -397,9 +399,10 @@ void Replayer::tex_sub_image(const Call& c) {
   // writes: every block is encoded from its own 16 texels alone.
   if (const std::optional<BlockFormat> f = t.compression[static_cast<size_t>(level)];
       f && (x0 % 4 != 0 || y0 % 4 != 0 || (w % 4 != 0 && x0 + w != im.width) || (h % 4 != 0 && y0 + h != im.height)))
-    throw InputError(fmt::format("{}: the rectangle {}x{} at ({}, {}) of level {} ({}x{}, {}) is not made of whole 4x4 blocks "
-                                 "(GL_INVALID_OPERATION)",
-                                 where(c), w, h, x0, y0, level, im.width, im.height, s3tc_name(*f)));
+    throw InputError(
+        fmt::format("{}: the rectangle {}x{} at ({}, {}) of level {} ({}x{}, {}) is not made of whole 4x4 blocks "
+                    "(GL_INVALID_OPERATION)",
+                    where(c), w, h, x0, y0, level, im.width, im.height, s3tc_name(*f)));
   const std::vector<uint8_t> bytes = dump_.blob(c, "pixels", uint64_t{4} * static_cast<uint64_t>(w) * static_cast<uint64_t>(h));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {

@@ -300,13 +300,18 @@ void draw_frame(bool with_unsupported, bool with_bad_s3tc) {
   // (100 exactly: an endpoint). Each blended (SRC_ALPHA, ONE_MINUS_SRC_ALPHA) over A's orange (200, 100, 50).
   const unsigned char white_alpha0[4] = {255, 255, 255, 0}, red_alpha100[4] = {255, 0, 0, 100},
                       white_alpha200[4] = {255, 255, 255, 200}, white_alpha100[4] = {255, 255, 255, 100};
-  const GLuint H = flat_texture(4, 4, white_alpha0, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
-  const GLuint I = flat_texture(4, 4, red_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+  const GLuint H =
+      flat_texture(4, 4, white_alpha0, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+  const GLuint I =
+      flat_texture(4, 4, red_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
   const GLuint J = flat_texture(8, 8, white_alpha200, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, false, GL_LINEAR, GL_REPEAT);
-  const GLuint K = flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT3_EXT, true, GL_NEAREST_MIPMAP_NEAREST, GL_REPEAT);
-  const GLuint L = flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, true, GL_LINEAR_MIPMAP_NEAREST, GL_CLAMP_TO_EDGE);
+  const GLuint K =
+      flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT3_EXT, true, GL_NEAREST_MIPMAP_NEAREST, GL_REPEAT);
+  const GLuint L = flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, true, GL_LINEAR_MIPMAP_NEAREST,
+                                GL_CLAMP_TO_EDGE);
   const GLuint s3tc[4] = {H, I, J, K};
-  const char* s3tc_names[4] = {"s3tc-dxt1-rgb-alpha-1", "s3tc-dxt1-rgba-transparent", "s3tc-dxt1-rgba-opaque", "s3tc-dxt3-alpha-102"};
+  const char* s3tc_names[4] = {"s3tc-dxt1-rgb-alpha-1", "s3tc-dxt1-rgba-transparent", "s3tc-dxt1-rgba-opaque",
+                               "s3tc-dxt3-alpha-102"};
   // 255 (alpha 1); (200, 100, 50) (alpha 0: the destination stays); 255 (alpha 200 -> 255);
   // (255 * 102 + {200, 100, 50} * 153) / 255 = 222, 162, 132 exactly.
   const int s3tc_expected[4][3] = {{255, 255, 255}, {200, 100, 50}, {255, 255, 255}, {222, 162, 132}};

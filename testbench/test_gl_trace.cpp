@@ -166,15 +166,19 @@ TEST_F(FakeApitrace, RefusesAbsurdSizesAndShortBlobs) {
 // offsets multiples of 4, sizes multiples of 4 or reaching the level's edge), else one line naming
 // the call; levels of different internal formats make the texture incomplete (refused by name).
 TEST_F(FakeApitrace, S3tcUploadsRefuseSubImagesOffTheBlockGridAndMixedLevels) {
-  const std::string upload = "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
-                             "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGB_S3TC_DXT1_EXT, "
-                             "width = 7, height = 8, border = 0, format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call4.bin\"))\n";
+  const std::string upload =
+      "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
+      "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGB_S3TC_DXT1_EXT, "
+      "width = 7, height = 8, border = 0, format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = "
+      "blob(\"blob_call4.bin\"))\n";
   const auto sub = [&](int x, int y, int w, int h) {
     return std::string(kFrameStart) + upload +
-           fmt::format("5 glTexSubImage2D(target = GL_TEXTURE_2D, level = 0, xoffset = {}, yoffset = {}, width = {}, height = {}, "
-                       "format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
-                       "9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
-                       x, y, w, h);
+           fmt::format(
+               "5 glTexSubImage2D(target = GL_TEXTURE_2D, level = 0, xoffset = {}, yoffset = {}, width = {}, height = "
+               "{}, "
+               "format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
+               "9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
+               x, y, w, h);
   };
   const std::string swaps = "9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n";
   const std::vector<std::pair<std::string, int>> blobs{{"blob_call4.bin", 7 * 8 * 4}, {"blob_call5.bin", 128}};
@@ -183,7 +187,8 @@ TEST_F(FakeApitrace, S3tcUploadsRefuseSubImagesOffTheBlockGridAndMixedLevels) {
     install(swaps, sub(x, y, w, h), blobs);
     EXPECT_EQ(error_of(0), "(no error)") << x << "," << y << " " << w << "x" << h;
   }
-  for (const auto& [x, y, w, h] : {std::array{2, 0, 4, 4}, std::array{0, 1, 4, 4}, std::array{0, 0, 3, 4}, std::array{4, 4, 3, 3}}) {
+  for (const auto& [x, y, w, h] :
+       {std::array{2, 0, 4, 4}, std::array{0, 1, 4, 4}, std::array{0, 0, 3, 4}, std::array{4, 4, 3, 3}}) {
     install(swaps, sub(x, y, w, h), blobs);
     const std::string e = error_of(0);
     EXPECT_NE(e.find(fmt::format("call 5 glTexSubImage2D: the rectangle {}x{} at ({}, {}) of level 0 (7x8, "
@@ -198,9 +203,11 @@ TEST_F(FakeApitrace, S3tcUploadsRefuseSubImagesOffTheBlockGridAndMixedLevels) {
   install("19 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
           std::string(kFrameStart) +
               "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
-              "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, width = 2, "
+              "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, "
+              "width = 2, "
               "height = 2, border = 0, format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call4.bin\"))\n"
-              "5 glTexImage2D(target = GL_TEXTURE_2D, level = 1, internalformat = GL_RGBA, width = 1, height = 1, border = 0, "
+              "5 glTexImage2D(target = GL_TEXTURE_2D, level = 1, internalformat = GL_RGBA, width = 1, height = 1, "
+              "border = 0, "
               "format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
               "6 glEnable(cap = GL_TEXTURE_2D)\n"
               "7 glBegin(mode = GL_TRIANGLES)\n"
@@ -211,8 +218,10 @@ TEST_F(FakeApitrace, S3tcUploadsRefuseSubImagesOffTheBlockGridAndMixedLevels) {
               "19 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
           {{"blob_call4.bin", 16}, {"blob_call5.bin", 4}});
   const std::string e = error_of(0);
-  EXPECT_NE(e.find("unsupported GL calls or states: texture 1 with levels of different internal formats (incomplete) (call 12)"),
-            std::string::npos)
+  EXPECT_NE(
+      e.find(
+          "unsupported GL calls or states: texture 1 with levels of different internal formats (incomplete) (call 12)"),
+      std::string::npos)
       << e;
 }
 
