@@ -15,10 +15,12 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "cmodel/api_limits.hpp"
+#include "cmodel/block_formats.hpp"
 #include "cmodel/error.hpp"
 #include "cmodel/gl_trace.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/raster.hpp"
+#include "cmodel/upload_compression.hpp"
 
 namespace tfu::gl {
 namespace {
@@ -27,8 +29,39 @@ constexpr uint32_t kDepthMax = (1u << 24) - 1;  // 24-bit depth buffer
 constexpr int kUnits = 2;                       // texture units executed
 
 // ---- Texture objects ----
+// The S3TC internal formats of GL_EXT_texture_compression_s3tc a glTexImage2D may ask for with
+// uncompressed data: the driver compresses the level it is given into the format's blocks (the
+// extension's "Modifications to Chapter 3": the image is stored in the compressed internal format).
+// apitrace prints the enum's name; its number is the format's gl_internal_format (block_formats.hpp).
+struct CompressedInternalFormat {
+  const char* name;
+  BlockFormat format;
+};
+constexpr std::array<CompressedInternalFormat, 4> kS3tcInternalFormats{{
+    {"GL_COMPRESSED_RGB_S3TC_DXT1_EXT", BlockFormat::BC1},    // base format RGB: alpha reads 1.0
+    {"GL_COMPRESSED_RGBA_S3TC_DXT1_EXT", BlockFormat::BC1A},  // alpha < 128: code 3, transparent black
+    {"GL_COMPRESSED_RGBA_S3TC_DXT3_EXT", BlockFormat::BC2},
+    {"GL_COMPRESSED_RGBA_S3TC_DXT5_EXT", BlockFormat::BC3},
+}};
+
+std::optional<BlockFormat> s3tc_internal_format(const std::string& internal) {
+  for (const CompressedInternalFormat& f : kS3tcInternalFormats)
+    if (internal == f.name || internal == std::to_string(block_format_info(f.format).gl_internal_format))
+      return f.format;
+  return std::nullopt;
+}
+
+const char* s3tc_name(BlockFormat f) {
+  for (const CompressedInternalFormat& c : kS3tcInternalFormats)
+    if (c.format == f) return c.name;
+  return "?";
+}
+
 struct TextureObject {
-  std::vector<Image> levels;  // by level; width 0: not specified
+  std::vector<Image> levels;  // by level; width 0: not specified. The texels as uploaded (RGBA8)
+  // By level: the S3TC format the level is stored in (compressed when the texture is built), or
+  // none (RGBA8). GL 1.5 Sec. 3.8.10: a texture whose levels differ in internal format is incomplete.
+  std::vector<std::optional<BlockFormat>> compression;
   bool rgb_only = false;      // level 0's internal format has no alpha (RGB): alpha reads 1.0
   std::string min = "GL_NEAREST_MIPMAP_LINEAR", mag = "GL_LINEAR", wrap_s = "GL_REPEAT", wrap_t = "GL_REPEAT";
   double max_aniso = 1.0;
@@ -321,8 +354,10 @@ void Replayer::tex_image(const Call& c) {
   const std::string& internal = text(c, "internalformat");
   const std::string& format = text(c, "format");
   const std::string& type = text(c, "type");
-  const bool rgb = internal == "GL_RGB" || internal == "GL_RGB8" || internal == "3";
-  const bool rgba = internal == "GL_RGBA" || internal == "GL_RGBA8" || internal == "4";
+  const std::optional<BlockFormat> s3tc = s3tc_internal_format(internal);
+  const bool rgb = internal == "GL_RGB" || internal == "GL_RGB8" || internal == "3" || s3tc == BlockFormat::BC1;
+  const bool rgba =
+      internal == "GL_RGBA" || internal == "GL_RGBA8" || internal == "4" || (s3tc && s3tc != BlockFormat::BC1);
   if (!rgb && !rgba) return unsupported(fmt::format("glTexImage2D internalformat {}", internal), c);
   if (format != "GL_RGBA" || type != "GL_UNSIGNED_BYTE")
     return unsupported(fmt::format("glTexImage2D format {} type {}", format, type), c);
@@ -331,7 +366,11 @@ void Replayer::tex_image(const Call& c) {
   const int w = int_arg(c, "width", 1, kMaxTextureSize), h = int_arg(c, "height", 1, kMaxTextureSize);
   const std::vector<uint8_t> bytes = dump_.blob(c, "pixels", uint64_t{4} * static_cast<uint64_t>(w) * static_cast<uint64_t>(h));
   TextureObject& t = st_.textures[st_.units[static_cast<size_t>(st_.active)].bound];
-  if (t.levels.size() <= static_cast<size_t>(level)) t.levels.resize(static_cast<size_t>(level) + 1);
+  if (t.levels.size() <= static_cast<size_t>(level)) {
+    t.levels.resize(static_cast<size_t>(level) + 1);
+    t.compression.resize(static_cast<size_t>(level) + 1);
+  }
+  t.compression[static_cast<size_t>(level)] = s3tc;
   Image im(w, h);
   for (size_t i = 0; i < im.texels.size(); ++i)
     im.texels[i] = {bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], rgb ? uint8_t{255} : bytes[4 * i + 3]};
@@ -354,6 +393,16 @@ void Replayer::tex_sub_image(const Call& c) {
   Image& im = t.levels[static_cast<size_t>(level)];
   const int x0 = int_arg(c, "xoffset", 0, im.width), y0 = int_arg(c, "yoffset", 0, im.height);
   const int w = int_arg(c, "width", 0, im.width - x0), h = int_arg(c, "height", 0, im.height - y0);
+  // GL_EXT_texture_compression_s3tc: a sub-image of an S3TC level must cover whole 4x4 blocks (offsets
+  // multiples of 4; width and height multiples of 4 or reaching the level's edge), else
+  // INVALID_OPERATION. On whole blocks, compressing the updated level anew gives the blocks the driver
+  // writes: every block is encoded from its own 16 texels alone.
+  if (const std::optional<BlockFormat> f = t.compression[static_cast<size_t>(level)];
+      f && (x0 % 4 != 0 || y0 % 4 != 0 || (w % 4 != 0 && x0 + w != im.width) || (h % 4 != 0 && y0 + h != im.height)))
+    throw InputError(
+        fmt::format("{}: the rectangle {}x{} at ({}, {}) of level {} ({}x{}, {}) is not made of whole 4x4 blocks "
+                    "(GL_INVALID_OPERATION)",
+                    where(c), w, h, x0, y0, level, im.width, im.height, s3tc_name(*f)));
   const std::vector<uint8_t> bytes = dump_.blob(c, "pixels", uint64_t{4} * static_cast<uint64_t>(w) * static_cast<uint64_t>(h));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -604,7 +653,16 @@ void Replayer::submit(const Call& c, const std::string& mode, const std::vector<
         }
       }
       tex->validate(fmt::format("{}: texture {}", where(c), us.bound));
-      t.built = std::move(tex);
+      // An S3TC texture: every level it uses stored in level 0's format, each compressed as the
+      // driver does at upload (upload_compression.hpp: libsquish, range fit, per level).
+      const std::optional<BlockFormat> f = t.compression[0];
+      if (!std::all_of(t.compression.begin(), t.compression.begin() + static_cast<std::ptrdiff_t>(tex->levels.size()),
+                       [&](const std::optional<BlockFormat>& g) { return g == f; })) {
+        unsupported(fmt::format("texture {} with levels of different internal formats (incomplete)", us.bound), c);
+        continue;
+      }
+      t.built = f ? std::make_shared<const Texture>(compress_texture(*tex, *f, fmt::format("gl-texture-{}", us.bound)))
+                  : std::shared_ptr<const Texture>(std::move(tex));
     }
     const auto base = [](const std::string& f) { return f.rfind("GL_NEAREST", 0) == 0 ? BaseFilter::Nearest : BaseFilter::Linear; };
     SamplerDescriptor sd;

@@ -9,9 +9,10 @@
 // rounding of S sf + D df. The expected values are written to argv[1]: "x y r g b name" per line,
 // (x, y) a screen pixel (row 0 on top).
 //
-//   gl_replay_program CHECKS_FILE [unsupported]
+//   gl_replay_program CHECKS_FILE [unsupported | bad-s3tc]
 // With "unsupported" the frame also enables fog for a draw and calls glLineWidth, which the replay
-// must refuse by name.
+// must refuse by name; with "bad-s3tc" it replaces a rectangle of an S3TC level that is not made of
+// whole 4 x 4 blocks, which the replay must refuse (one line, exit 2).
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -95,7 +96,7 @@ void immediate_quad(int rx, int ry, float r, float g, float b, float a) {
   glEnd();
 }
 
-void draw_frame(bool with_unsupported) {
+void draw_frame(bool with_unsupported, bool with_bad_s3tc) {
   const unsigned char orange[4] = {200, 100, 50, 255}, red_half[4] = {255, 0, 0, 128}, grey[4] = {128, 128, 128, 255},
                       dark[4] = {10, 20, 30, 255}, green_low[4] = {0, 255, 0, 100}, white[4] = {255, 255, 255, 255},
                       tint[4] = {128, 255, 64, 255}, blue[4] = {0, 0, 255, 255};
@@ -292,6 +293,57 @@ void draw_frame(bool with_unsupported) {
   expect(5, 2, 0, 0, 255, "untextured");
   glEnable(GL_TEXTURE_2D);
 
+  // S3TC internal formats (GL_EXT_texture_compression_s3tc) with RGBA data: the driver compresses.
+  // Flat blocks of 565-exact colours (0 or 255 per channel) decode exactly whatever the encoder; the
+  // alpha is the format's: RGB DXT1 reads 1.0, RGBA DXT1 keeps 1 bit (alpha < 128: code 3,
+  // transparent black), DXT3 4 bits (100 -> round(100 * 15 / 255) = 6 -> 6 * 17 = 102), DXT5 8 bits
+  // (100 exactly: an endpoint). Each blended (SRC_ALPHA, ONE_MINUS_SRC_ALPHA) over A's orange (200, 100, 50).
+  const unsigned char white_alpha0[4] = {255, 255, 255, 0}, red_alpha100[4] = {255, 0, 0, 100},
+                      white_alpha200[4] = {255, 255, 255, 200}, white_alpha100[4] = {255, 255, 255, 100};
+  const GLuint H =
+      flat_texture(4, 4, white_alpha0, GL_COMPRESSED_RGB_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+  const GLuint I =
+      flat_texture(4, 4, red_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, true, GL_LINEAR_MIPMAP_LINEAR, GL_REPEAT);
+  const GLuint J = flat_texture(8, 8, white_alpha200, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, false, GL_LINEAR, GL_REPEAT);
+  const GLuint K =
+      flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT3_EXT, true, GL_NEAREST_MIPMAP_NEAREST, GL_REPEAT);
+  const GLuint L = flat_texture(4, 4, white_alpha100, GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, true, GL_LINEAR_MIPMAP_NEAREST,
+                                GL_CLAMP_TO_EDGE);
+  const GLuint s3tc[4] = {H, I, J, K};
+  const char* s3tc_names[4] = {"s3tc-dxt1-rgb-alpha-1", "s3tc-dxt1-rgba-transparent", "s3tc-dxt1-rgba-opaque",
+                               "s3tc-dxt3-alpha-102"};
+  // 255 (alpha 1); (200, 100, 50) (alpha 0: the destination stays); 255 (alpha 200 -> 255);
+  // (255 * 102 + {200, 100, 50} * 153) / 255 = 222, 162, 132 exactly.
+  const int s3tc_expected[4][3] = {{255, 255, 255}, {200, 100, 50}, {255, 255, 255}, {222, 162, 132}};
+  for (int i = 0; i < 5; ++i) {
+    const int rx = i, ry = 3;
+    glBindTexture(GL_TEXTURE_2D, A);
+    array_quad(rx, ry, 0, white);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glBindTexture(GL_TEXTURE_2D, i < 4 ? s3tc[i] : L);
+    array_quad(rx, ry, 0, white);
+    glDisable(GL_BLEND);
+    if (i < 4) expect(rx, ry, s3tc_expected[i][0], s3tc_expected[i][1], s3tc_expected[i][2], s3tc_names[i]);
+  }
+  // DXT5: (255 * 100 + {200, 100, 50} * 155) / 255 = 221.57, 160.78, 130.39 -> 222, 161, 130.
+  expect(4, 3, 222, 161, 130, "s3tc-dxt5-alpha-100");
+  // glTexSubImage2D on whole blocks of an S3TC level: J's top-right 4 x 4 block black (NEAREST: texel
+  // (x, y) under pixel (x, y) of the region); the other blocks stay white.
+  glBindTexture(GL_TEXTURE_2D, J);
+  glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  std::vector<unsigned char> black_block(4 * 4 * 4, 0);
+  for (size_t i = 3; i < black_block.size(); i += 4) black_block[i] = 255;
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 4, 4, 4, 4, GL_RGBA, GL_UNSIGNED_BYTE, black_block.data());
+  array_quad(5, 3, 0, white);
+  std::fprintf(checks, "%d %d 0 0 0 s3tc-sub-image-top-right\n", 5 * 8 + 6, kSize - 1 - (3 * 8 + 6));
+  std::fprintf(checks, "%d %d 255 255 255 s3tc-sub-image-bottom-left-kept\n", 5 * 8 + 1, kSize - 1 - (3 * 8 + 1));
+  if (with_bad_s3tc) {  // a sub-image of an S3TC level off the 4 x 4 grid: GL_INVALID_OPERATION, refused
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 2, 0, 4, 4, GL_RGBA, GL_UNSIGNED_BYTE, black_block.data());
+    array_quad(6, 3, 0, white);
+  }
+
   if (with_unsupported) {
     glEnable(GL_FOG);
     glBindTexture(GL_TEXTURE_2D, A);
@@ -307,10 +359,11 @@ void draw_frame(bool with_unsupported) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: gl_replay_program CHECKS_FILE [unsupported]\n");
+    std::fprintf(stderr, "usage: gl_replay_program CHECKS_FILE [unsupported | bad-s3tc]\n");
     return 2;
   }
   const bool with_unsupported = argc > 2 && std::strcmp(argv[2], "unsupported") == 0;
+  const bool with_bad_s3tc = argc > 2 && std::strcmp(argv[2], "bad-s3tc") == 0;
   checks = std::fopen(argv[1], "w");
   if (!checks) return 2;
   Display* dpy = XOpenDisplay(nullptr);
@@ -340,7 +393,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "gl_replay_program: GL_ARB_multitexture or GL_EXT_compiled_vertex_array missing\n");
     return 2;
   }
-  draw_frame(with_unsupported);
+  draw_frame(with_unsupported, with_bad_s3tc);
   glXSwapBuffers(dpy, win);
   glXMakeCurrent(dpy, None, nullptr);
   glXDestroyContext(dpy, ctx);

@@ -4,8 +4,10 @@
 #   - `tfu sim --gl-trace` runs its frame through the cycle model and the golden model: every
 #     request equal ("all N equal"), and the frame composed from the unit's outputs;
 #   - `tfu render --gl-trace` writes the golden model's frame, whose pixels must be the ones the
-#     program derived by hand (its checks file: "x y r g b name" per line), as must the sim's frame;
-#   - the program's variant with fog and glLineWidth is refused with exit 2 and both names in one line;
+#     program derived by hand (its checks file: "x y r g b name" per line), as must the sim's frame
+#     (S3TC uploads included: compressed by the replay as a driver does);
+#   - the program's variant with fog and glLineWidth is refused with exit 2 and both names in one line,
+#     its variant with a sub-image of an S3TC level off the 4 x 4 block grid with exit 2 and the call;
 #   - a truncated trace, a frame out of range and a file that is no trace are refused with one line.
 # Skipped (77) without apitrace, xvfb-run or Debian's python3 with PIL.
 #
@@ -81,6 +83,12 @@ PY
 trace bad unsupported
 refused 'unsupported GL calls or states: .*glEnable\(GL_FOG\) \(call [0-9]+\).*glLineWidth \(call [0-9]+\)' render --gl-trace "$work/bad.trace" --out "$work/bad.png"
 [[ ! -e $work/bad.png ]] || fail "a refused replay wrote its image"
+
+# A sub-image of an S3TC level off the 4 x 4 block grid: one line naming the call, exit 2.
+trace bad-s3tc bad-s3tc
+refused 'call [0-9]+ glTexSubImage2D: the rectangle 4x4 at \(2, 0\) of level 0 \(8x8, GL_COMPRESSED_RGBA_S3TC_DXT1_EXT\) is not made of whole 4x4 blocks' \
+  render --gl-trace "$work/bad-s3tc.trace" --out "$work/bad-s3tc.png"
+[[ ! -e $work/bad-s3tc.png ]] || fail "a refused replay wrote its image"
 
 # Bad input: a truncated trace, a frame out of range, a file that is no trace.
 head -c 20000 "$work/ok.trace" >"$work/truncated.trace"

@@ -2,11 +2,14 @@
 // on dumps written by a stand-in for apitrace ($TFU_APITRACE: a shell script that prints a fixed
 // dump and writes its blobs), so that these run without apitrace; the real program's trace through
 // both models is testbench/gl_replay_test.sh.
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "cmodel/error.hpp"
@@ -157,6 +160,69 @@ TEST_F(FakeApitrace, RefusesAbsurdSizesAndShortBlobs) {
   // The dump ends before the frame does (a truncated trace).
   install("9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n", std::string(kFrameStart), {});
   EXPECT_NE(error_of(0).find("the dump ends before call 9 (the end of frame 0)"), std::string::npos) << error_of(0);
+}
+
+// S3TC internal formats: a sub-image must cover whole 4x4 blocks (GL_EXT_texture_compression_s3tc:
+// offsets multiples of 4, sizes multiples of 4 or reaching the level's edge), else one line naming
+// the call; levels of different internal formats make the texture incomplete (refused by name).
+TEST_F(FakeApitrace, S3tcUploadsRefuseSubImagesOffTheBlockGridAndMixedLevels) {
+  const std::string upload =
+      "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
+      "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGB_S3TC_DXT1_EXT, "
+      "width = 7, height = 8, border = 0, format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = "
+      "blob(\"blob_call4.bin\"))\n";
+  const auto sub = [&](int x, int y, int w, int h) {
+    return std::string(kFrameStart) + upload +
+           fmt::format(
+               "5 glTexSubImage2D(target = GL_TEXTURE_2D, level = 0, xoffset = {}, yoffset = {}, width = {}, height = "
+               "{}, "
+               "format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
+               "9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
+               x, y, w, h);
+  };
+  const std::string swaps = "9 glXSwapBuffers(dpy = 0x1, drawable = 2)\n";
+  const std::vector<std::pair<std::string, int>> blobs{{"blob_call4.bin", 7 * 8 * 4}, {"blob_call5.bin", 128}};
+  // Whole blocks: aligned 4x4, and 3 columns reaching the right edge of the 7-wide level.
+  for (const auto& [x, y, w, h] : {std::array{0, 4, 4, 4}, std::array{4, 0, 3, 4}, std::array{0, 0, 4, 8}}) {
+    install(swaps, sub(x, y, w, h), blobs);
+    EXPECT_EQ(error_of(0), "(no error)") << x << "," << y << " " << w << "x" << h;
+  }
+  for (const auto& [x, y, w, h] :
+       {std::array{2, 0, 4, 4}, std::array{0, 1, 4, 4}, std::array{0, 0, 3, 4}, std::array{4, 4, 3, 3}}) {
+    install(swaps, sub(x, y, w, h), blobs);
+    const std::string e = error_of(0);
+    EXPECT_NE(e.find(fmt::format("call 5 glTexSubImage2D: the rectangle {}x{} at ({}, {}) of level 0 (7x8, "
+                                 "GL_COMPRESSED_RGB_S3TC_DXT1_EXT) is not made of whole 4x4 blocks",
+                                 w, h, x, y)),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("x.trace"), std::string::npos) << e;
+    EXPECT_LE(e.size(), 300u) << e;
+  }
+  // Level 0 DXT5, level 1 RGBA, sampled mipmapped by a draw: incomplete, refused by name.
+  install("19 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
+          std::string(kFrameStart) +
+              "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
+              "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_COMPRESSED_RGBA_S3TC_DXT5_EXT, "
+              "width = 2, "
+              "height = 2, border = 0, format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call4.bin\"))\n"
+              "5 glTexImage2D(target = GL_TEXTURE_2D, level = 1, internalformat = GL_RGBA, width = 1, height = 1, "
+              "border = 0, "
+              "format = GL_RGBA, type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
+              "6 glEnable(cap = GL_TEXTURE_2D)\n"
+              "7 glBegin(mode = GL_TRIANGLES)\n"
+              "8 glVertex2f(x = 0, y = 0)\n"
+              "10 glVertex2f(x = 1, y = 0)\n"
+              "11 glVertex2f(x = 0, y = 1)\n"
+              "12 glEnd()\n"
+              "19 glXSwapBuffers(dpy = 0x1, drawable = 2)\n",
+          {{"blob_call4.bin", 16}, {"blob_call5.bin", 4}});
+  const std::string e = error_of(0);
+  EXPECT_NE(
+      e.find(
+          "unsupported GL calls or states: texture 1 with levels of different internal formats (incomplete) (call 12)"),
+      std::string::npos)
+      << e;
 }
 
 TEST_F(FakeApitrace, NamesAMissingApitrace) {
