@@ -215,11 +215,13 @@ struct PendingDraw {
 class Replayer {
  public:
   Replayer(const Dump& dump, int frame, const ReplayOptions& opts)
-      : dump_(dump), builder_(opts.line_bytes), alpha_bits_(opts.alpha_bits), filter_override_(opts.min_filter),
+      : dump_(dump),
+        builder_(opts.line_bytes),
+        alpha_bits_(opts.alpha_bits),
+        filter_override_(opts.min_filter),
         aniso_override_(opts.max_aniso) {
     if (alpha_bits_ != -1 && alpha_bits_ != 0 && alpha_bits_ != 8)
       throw InputError(fmt::format("alpha bits {}: expected 0 or 8 (or -1: the trace's visual)", alpha_bits_));
-    check_sampler_override();
     out_.trace = dump.stream().trace;
     out_.frame = frame;
   }
@@ -230,9 +232,9 @@ class Replayer {
   const Dump& dump_;
   FrameBuilder builder_;
   int alpha_bits_;
-  std::string filter_override_;  // ReplayOptions::min_filter
-  int aniso_override_;           // ReplayOptions::max_aniso
-  int locked_pass_ = 0;          // draws since the last glLockArraysEXT
+  std::string filter_override_;         // ReplayOptions::min_filter
+  int aniso_override_;                  // ReplayOptions::max_aniso
+  int locked_pass_ = 0;                 // draws since the last glLockArraysEXT
   std::vector<glm::dmat4> modelviews_;  // the frame's distinct modelview matrices, by first use
   Replay out_;
   State st_;
@@ -282,7 +284,6 @@ class Replayer {
     for (const auto& [name, call] : st_.unsupported_enabled) unsupported(name, c);
   }
   void submit(const Call& c, const std::string& mode, const std::vector<Vertex>& verts, const std::vector<uint32_t>& order);
-  void check_sampler_override() const;
   void override_sampler(SamplerDescriptor& sd) const;
   DrawFacts draw_facts(uint64_t triangles);
   std::vector<Vertex> fetch(const Call& c, const std::vector<uint32_t>& indices);
@@ -706,18 +707,6 @@ void Replayer::submit(const Call& c, const std::string& mode, const std::vector<
   pending_.push_back(std::move(pd));
 }
 
-// ReplayOptions' sampler override: a GL minification filter with MIP levels, an anisotropy 1..16.
-void Replayer::check_sampler_override() const {
-  static const std::set<std::string> mip_filters{"GL_NEAREST_MIPMAP_NEAREST", "GL_LINEAR_MIPMAP_NEAREST", "GL_NEAREST_MIPMAP_LINEAR",
-                                                 "GL_LINEAR_MIPMAP_LINEAR"};
-  if (!filter_override_.empty() && !mip_filters.contains(filter_override_))
-    throw InputError(fmt::format("minification filter override '{}': expected one of GL_NEAREST_MIPMAP_NEAREST, GL_LINEAR_MIPMAP_NEAREST, "
-                                 "GL_NEAREST_MIPMAP_LINEAR, GL_LINEAR_MIPMAP_LINEAR",
-                                 quote_input(filter_override_, 60)));
-  if (aniso_override_ != 0 && (aniso_override_ < 1 || aniso_override_ > 16))
-    throw InputError(fmt::format("anisotropy override {}: expected 1..16 (0: as traced)", aniso_override_));
-}
-
 // The sampler of a mipmapped texture object under the override, as ioquake3's r_textureMode sets
 // GL_TEXTURE_MIN_FILTER and GL_TEXTURE_MAG_FILTER (the same base filter) of every mipmapped image and
 // r_ext_max_anisotropy their GL_TEXTURE_MAX_ANISOTROPY_EXT.
@@ -966,7 +955,8 @@ void Replayer::execute(const Call& c) {
     v.pos = {l.list[0], l.list[1], k == 3 ? l.list[2] : 0.0, 1.0};
     v.uv = {st_.units[0].current, st_.units[1].current};
     v.colour = st_.current_colour;
-    if (immediate_.size() >= (size_t{1} << 20)) throw InputError(fmt::format("{}: more than 2^20 vertices in one glBegin", where(c)));
+    if (immediate_.size() >= (size_t{1} << 20))
+      throw InputError(fmt::format("{}: more than 2^20 vertices in one glBegin", where(c)));
     immediate_.push_back(v);
     return;
   }
@@ -1093,7 +1083,9 @@ Replay Replayer::run() {
   if (out_.width < 1 || out_.height < 1 || out_.width > kMaxRenderSize || out_.height > kMaxRenderSize)
     throw InputError(fmt::format("--gl-trace '{}': frame {} sets no viewport of 1..{} pixels", quote_path(out_.trace), out_.frame,
                                  kMaxRenderSize));
-  out_.times.dump_wall = s.dump_wall_seconds, out_.times.dump_cpu = s.dump_cpu_seconds, out_.times.parse = s.parse_cpu_seconds;
+  out_.times.dump_wall = s.dump_wall_seconds;
+  out_.times.dump_cpu = s.dump_cpu_seconds;
+  out_.times.parse = s.parse_cpu_seconds;
   const double t_state = thread_seconds();
   for (size_t i = 0; i < s.calls.size(); ++i) {
     in_frame_ = i >= s.frame_begin;
@@ -1133,6 +1125,17 @@ Replay Replayer::run() {
 }  // namespace
 
 Replay replay_frame(const std::string& trace, int frame, const ReplayOptions& opts) {
+  // The sampler override, checked before apitrace runs: a GL minification filter with MIP levels,
+  // an anisotropy 1..16 (0: as traced).
+  static const std::set<std::string> mip_filters{"GL_NEAREST_MIPMAP_NEAREST", "GL_LINEAR_MIPMAP_NEAREST",
+                                                 "GL_NEAREST_MIPMAP_LINEAR", "GL_LINEAR_MIPMAP_LINEAR"};
+  if (!opts.min_filter.empty() && !mip_filters.contains(opts.min_filter))
+    throw InputError(
+        fmt::format("--gl-min-filter '{}': expected a filter with MIP levels: GL_NEAREST_MIPMAP_NEAREST, "
+                    "GL_LINEAR_MIPMAP_NEAREST, GL_NEAREST_MIPMAP_LINEAR or GL_LINEAR_MIPMAP_LINEAR",
+                    quote_input(opts.min_filter, 60)));
+  if (opts.max_aniso < 0 || opts.max_aniso > 16)
+    throw InputError(fmt::format("--gl-max-aniso {}: expected 1..16 (0: as traced)", opts.max_aniso));
   const Dump dump(trace, frame);
   Replayer r(dump, frame, opts);
   return r.run();
@@ -1147,8 +1150,8 @@ void write_draw_table(const Replay& r, std::ostream& os) {
       if (value == v) return name;
     return std::string("?");
   };
-  os << "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,depth_near,"
-        "depth_far,orthographic,modelview,locked_pass,triangles,quads,pixels,requests\n";
+  os << "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,"
+        "depth_near,depth_far,orthographic,modelview,locked_pass,triangles,quads,pixels,requests\n";
   const auto joined = [](const auto& v, const auto& name) {
     std::string out;
     for (const auto& x : v) {
@@ -1163,11 +1166,11 @@ void write_draw_table(const Replay& r, std::ostream& os) {
     const auto env_of = [](const StageEnv& e) { return std::string(kTexEnvNames.name(e.combine.env)); };
     os << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i, d.call, d.stages.size(),
                       joined(f.gl_textures, [](uint32_t t) { return std::to_string(t); }),
-                      joined(f.min_filters, [](const std::string& m) { return m; }), joined(d.stages, env_of), d.blend ? 1 : 0,
-                      gl_name(blend_names(), d.src), gl_name(blend_names(), d.dst), d.alpha_test ? 1 : 0, d.depth_test ? 1 : 0,
-                      gl_name(compare_names(), d.depth_func), d.depth_write ? 1 : 0, f.depth_near,
-                      f.depth_far, f.orthographic ? 1 : 0, f.modelview, f.locked_pass, f.triangles, quads[i], pixels[i],
-                      4 * quads[i] * d.stages.size());
+                      joined(f.min_filters, [](const std::string& m) { return m; }), joined(d.stages, env_of),
+                      d.blend ? 1 : 0, gl_name(blend_names(), d.src), gl_name(blend_names(), d.dst),
+                      d.alpha_test ? 1 : 0, d.depth_test ? 1 : 0, gl_name(compare_names(), d.depth_func),
+                      d.depth_write ? 1 : 0, f.depth_near, f.depth_far, f.orthographic ? 1 : 0, f.modelview,
+                      f.locked_pass, f.triangles, quads[i], pixels[i], 4 * quads[i] * d.stages.size());
   }
 }
 

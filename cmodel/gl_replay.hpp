@@ -87,13 +87,13 @@ struct ClearOp {
 // What the engine's GL state says about one draw, beyond what the renderer needs: the facts a
 // script classifies the draw by (the engine's shader stage: base, light map, 2D ...; scripts/game-frames).
 struct DrawFacts {
-  std::vector<uint32_t> gl_textures;  // per stage: the GL texture object's name
+  std::vector<uint32_t> gl_textures;     // per stage: the GL texture object's name
   std::vector<std::string> min_filters;  // per stage: GL_TEXTURE_MIN_FILTER as traced
   double depth_near = 0, depth_far = 1;  // glDepthRange
-  bool orthographic = false;  // the projection's last row is (0, 0, 0, 1): glOrtho, the engine's 2D
-  uint32_t modelview = 0;     // index of the draw's modelview among the frame's distinct ones, by first use
-  int locked_pass = -1;       // draws since glLockArraysEXT before this one (0: the first), -1: arrays not locked
-  uint64_t triangles = 0;     // triangles rasterized (after clipping, culling and degenerate ones)
+  bool orthographic = false;             // the projection's last row is (0, 0, 0, 1): glOrtho, the engine's 2D
+  uint32_t modelview = 0;                // index of the draw's modelview among the frame's distinct ones, by first use
+  int locked_pass = -1;    // draws since glLockArraysEXT before this one (0: the first), -1: arrays not locked
+  uint64_t triangles = 0;  // triangles rasterized (after clipping, culling and degenerate ones)
 };
 
 struct ReplayStats {
@@ -103,13 +103,15 @@ struct ReplayStats {
   uint64_t locked_draws = 0;  // draws inside glLockArraysEXT / glUnlockArraysEXT
 };
 
-// Where the replay's time went (thread CPU seconds, but the dump: see gl::Stream).
+// Where the replay's time went (thread CPU seconds, but the dump: see gl::Stream):
+//   dump_wall, dump_cpu  apitrace dump (its own process: wall clock, CPU)
+//   parse                the dump's text parsed
+//   state                every call executed: GL state, texture uploads, draws set up (transform, clip, snap)
+//   place                the frame's textures placed in the unit's texel memory (FrameBuilder::finish)
+//   raster               quads rasterized and depth-tested, their requests made and sampled by the golden
+//                        model, the renderer's fragment operations after it
 struct ReplayTimes {
-  double dump_wall = 0, dump_cpu = 0;  // apitrace dump (its own process)
-  double parse = 0;                    // the dump's text parsed
-  double state = 0;                    // every call executed: GL state, texture uploads, draws set up (transform, clip, snap)
-  double place = 0;                    // the frame's textures placed in the unit's texel memory (FrameBuilder::finish)
-  double raster = 0;                   // quads rasterized, depth-tested, their requests made and sampled by the golden model, the renderer after it
+  double dump_wall = 0, dump_cpu = 0, parse = 0, state = 0, place = 0, raster = 0;
 };
 
 struct Replay {

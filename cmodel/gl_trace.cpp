@@ -11,8 +11,8 @@
 
 #include <fcntl.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -229,7 +229,8 @@ Dump::Dump(const std::string& trace, int frame) {
   const auto children_cpu = [] {
     rusage ru{};
     getrusage(RUSAGE_CHILDREN, &ru);
-    return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   };
   const auto run = [&](std::vector<std::string> args) {
     args.insert(args.begin(), {program, "dump", "--multiline=no", "--color=never"});

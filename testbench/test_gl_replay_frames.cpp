@@ -25,20 +25,24 @@ namespace fs = std::filesystem;
 //   draw 1  texture 2 (2x2, LINEAR, no MIP levels), a perspective projection, depth range [0, 0.3],
 //           the first draw after glLockArraysEXT
 //   draw 2  texture 1, the second draw of the locked arrays, given by glVertex3fv
-//   draw 3  texture 1 after glUnlockArraysEXT, depth range [1, 1], another modelview (glScalef by -1, -1, 1: the same coverage), by
+//   draw 3  texture 1 after glUnlockArraysEXT, depth range [1, 1], another modelview (glScalef by -1, -1, 1: the same
+//   coverage), by
 //           glTexCoord2fv and glVertex3fv
 // The perspective projection (column-major) maps z = -1 to w = 1, so x, y in [-1, 1] cover the viewport.
 constexpr const char* kDump =
     "1 glXMakeCurrent(dpy = 0x1, drawable = 2, ctx = 0x3) = True\n"
     "2 glViewport(x = 0, y = 0, width = 8, height = 8)\n"
     "3 glBindTexture(target = GL_TEXTURE_2D, texture = 1)\n"
-    "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGBA, width = 2, height = 2, border = 0, format = GL_RGBA, "
+    "4 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGBA, width = 2, height = 2, border = 0, "
+    "format = GL_RGBA, "
     "type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call4.bin\"))\n"
-    "5 glTexImage2D(target = GL_TEXTURE_2D, level = 1, internalformat = GL_RGBA, width = 1, height = 1, border = 0, format = GL_RGBA, "
+    "5 glTexImage2D(target = GL_TEXTURE_2D, level = 1, internalformat = GL_RGBA, width = 1, height = 1, border = 0, "
+    "format = GL_RGBA, "
     "type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call5.bin\"))\n"
     "6 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR_MIPMAP_NEAREST)\n"
     "7 glBindTexture(target = GL_TEXTURE_2D, texture = 2)\n"
-    "8 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGBA, width = 2, height = 2, border = 0, format = GL_RGBA, "
+    "8 glTexImage2D(target = GL_TEXTURE_2D, level = 0, internalformat = GL_RGBA, width = 2, height = 2, border = 0, "
+    "format = GL_RGBA, "
     "type = GL_UNSIGNED_BYTE, pixels = blob(\"blob_call8.bin\"))\n"
     "9 glTexParameteri(target = GL_TEXTURE_2D, pname = GL_TEXTURE_MIN_FILTER, param = GL_LINEAR)\n"
     "10 glEnable(cap = GL_TEXTURE_2D)\n"
@@ -84,18 +88,20 @@ class ReplayFrames : public ::testing::Test {
  protected:
   fs::path dir_;
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tfu-gl-replay-frames-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "-" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("tfu-gl-replay-frames-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "x.trace") << "stand-in trace\n";
     std::ofstream(dir_ / "swaps.txt") << "47 glXSwapBuffers(dpy = 0x1, drawable = 2)\n";
     std::ofstream(dir_ / "dump.txt") << kDump;
     // `dump --grep=...` prints the swaps; `dump --blobs ...` prints the dump and writes its blobs.
-    std::ofstream(dir_ / "apitrace") << "#!/bin/sh\ncase \"$*\" in\n  *--grep*) cat '" << (dir_ / "swaps.txt").string()
-                                     << "' ;;\n  *) cat '" << (dir_ / "dump.txt").string()
-                                     << "'\n     head -c 16 /dev/zero > blob_call4.bin\n     head -c 4 /dev/zero > blob_call5.bin\n"
-                                        "     head -c 16 /dev/zero > blob_call8.bin\n  ;;\nesac\n";
+    std::ofstream(dir_ / "apitrace")
+        << "#!/bin/sh\ncase \"$*\" in\n  *--grep*) cat '" << (dir_ / "swaps.txt").string() << "' ;;\n  *) cat '"
+        << (dir_ / "dump.txt").string()
+        << "'\n     head -c 16 /dev/zero > blob_call4.bin\n     head -c 4 /dev/zero > blob_call5.bin\n"
+           "     head -c 16 /dev/zero > blob_call8.bin\n  ;;\nesac\n";
     fs::permissions(dir_ / "apitrace", fs::perms::owner_all);
     setenv("TFU_APITRACE", (dir_ / "apitrace").c_str(), 1);
   }
@@ -107,7 +113,8 @@ class ReplayFrames : public ::testing::Test {
   // The sampler descriptor each draw's requests name (every request of a draw names the same one).
   static std::map<uint32_t, SamplerDescriptor> samplers_by_draw(const Replay& r) {
     std::map<uint32_t, SamplerDescriptor> out;
-    for (const FragmentQuad& q : r.quads) out[q.draw] = r.unit_frame->regs.samplers.at(r.requests.requests.at(q.first_request).sampler);
+    for (const FragmentQuad& q : r.quads)
+      out[q.draw] = r.unit_frame->regs.samplers.at(r.requests.requests.at(q.first_request).sampler);
     return out;
   }
 };
@@ -176,9 +183,11 @@ TEST_F(ReplayFrames, DrawFactsAndTheirTable) {
   write_draw_table(r, csv);
   std::istringstream lines(csv.str());
   std::string header, row0, row1, row2, row3;
-  std::getline(lines, header), std::getline(lines, row0), std::getline(lines, row1), std::getline(lines, row2), std::getline(lines, row3);
+  std::getline(lines, header), std::getline(lines, row0), std::getline(lines, row1), std::getline(lines, row2),
+      std::getline(lines, row3);
   EXPECT_EQ(header,
-            "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,depth_near,depth_far,"
+            "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,"
+            "depth_near,depth_far,"
             "orthographic,modelview,locked_pass,triangles,quads,pixels,requests");
   // Each draw: a quad as two triangles over the whole 8 x 8 viewport: 16 quads, 64 pixels, 64 requests.
   EXPECT_EQ(row0, "0,17,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,1,1,0,-1,2,16,64,64");

@@ -81,7 +81,8 @@ void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
   OutputFiles outputs(o.force);
   OutputFile& image_file = outputs.add_image("--out", out);
   OutputFile* draws_file = o.gl.draws_out.empty() ? nullptr : &outputs.add("--draws-out", o.gl.draws_out);
-  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, gl::ReplayOptions{}.line_bytes));
+  const gl::Replay r =
+      gl::replay_frame(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, gl::ReplayOptions{}.line_bytes));
   image_file.write_image(r.image);
   if (draws_file) gl::write_draw_table(r, draws_file->stream());
   outputs.commit();

@@ -387,7 +387,9 @@ sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<
       "  speed (thread CPU time): cycle model {:.0f} requests/s ({:.3f} s), golden model {:.0f} requests/s ({:.3f} s), "
       "both {:.0f} requests/s; the replay (apitrace dump, GL state, rasterizer and golden model) took {:.2f} s wall\n",
       rate(t1 - t0), t1 - t0, rate(t2 - t1), t2 - t1, rate(t2 - t0), replay_seconds);
-  if (o.bench) bench_gl_trace(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, unit.cache.line_bytes), r, unit, o.unit_engine, got.pixels);
+  if (o.bench)
+    bench_gl_trace(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, unit.cache.line_bytes), r, unit, o.unit_engine,
+                   got.pixels);
   return got.stats;
 }
 
@@ -496,7 +498,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   rec.config = &unit;
   rec.engine = o.unit_engine;
   std::string mismatch;
-  const sim::Stats stats = !o.gl.trace.empty()   ? run_gl_trace(o, unit, vcds, rec, out_file, draws_file, mismatch)
+  const sim::Stats stats = !o.gl.trace.empty()  ? run_gl_trace(o, unit, vcds, rec, out_file, draws_file, mismatch)
                            : o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
                                                 : run_requests(o, cmd, unit, vcds, rec, mismatch);
   if (stats_file) stats_file->stream() << stats_document(stats, provenance_json(rec));
