@@ -25,9 +25,8 @@ namespace fs = std::filesystem;
 //   draw 1  texture 2 (2x2, LINEAR, no MIP levels), a perspective projection, depth range [0, 0.3],
 //           the first draw after glLockArraysEXT
 //   draw 2  texture 1, the second draw of the locked arrays, given by glVertex3fv
-//   draw 3  texture 1 after glUnlockArraysEXT, depth range [1, 1], another modelview (glScalef by -1, -1, 1: the same
-//   coverage), by
-//           glTexCoord2fv and glVertex3fv
+//   draw 3  texture 1 after glUnlockArraysEXT, depth range [1, 1], another modelview (glScalef by 2:
+//           x, y and w double, the same coverage), by glTexCoord2fv and glVertex3fv
 // The perspective projection (column-major) maps z = -1 to w = 1, so x, y in [-1, 1] cover the viewport.
 constexpr const char* kDump =
     "1 glXMakeCurrent(dpy = 0x1, drawable = 2, ctx = 0x3) = True\n"
@@ -74,7 +73,7 @@ constexpr const char* kDump =
     "36 glUnlockArraysEXT()\n"
     "37 glDepthRange(zNear = 1, zFar = 1)\n"
     "38 glMatrixMode(mode = GL_MODELVIEW)\n"
-    "39 glScalef(x = -1, y = -1, z = 1)\n"
+    "39 glScalef(x = 2, y = 2, z = 2)\n"
     "40 glBegin(mode = GL_QUADS)\n"
     "41 glTexCoord2fv(v = {0.5, 0.25})\n"
     "42 glVertex3fv(v = {-1, -1, -1})\n"
@@ -189,11 +188,13 @@ TEST_F(ReplayFrames, DrawFactsAndTheirTable) {
             "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,"
             "depth_near,depth_far,"
             "orthographic,modelview,locked_pass,triangles,quads,pixels,requests");
-  // Each draw: a quad as two triangles over the whole 8 x 8 viewport: 16 quads, 64 pixels, 64 requests.
-  EXPECT_EQ(row0, "0,17,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,1,1,0,-1,2,16,64,64");
-  EXPECT_EQ(row1, "1,28,1,2,GL_LINEAR,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,0.3,0,0,0,2,16,64,64");
-  EXPECT_EQ(row2, "2,35,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,0.3,0,0,1,2,16,64,64");
-  EXPECT_EQ(row3, "3,46,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,1,1,0,1,-1,2,16,64,64");
+  // Each draw: a quad as two triangles over the whole 8 x 8 viewport, 64 pixels. Their shared edge is
+  // the screen's diagonal x + y = 8 (GL's y up), through the corners of 4 of the 16 quads, whose pixels
+  // lie on both sides (x + y = 7 and 9): each triangle shades those, 16 + 4 = 20 quads, 80 requests.
+  EXPECT_EQ(row0, "0,17,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,1,1,0,-1,2,20,64,80");
+  EXPECT_EQ(row1, "1,28,1,2,GL_LINEAR,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,0.3,0,0,0,2,20,64,80");
+  EXPECT_EQ(row2, "2,35,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,0,0.3,0,0,1,2,20,64,80");
+  EXPECT_EQ(row3, "3,46,1,1,GL_LINEAR_MIPMAP_NEAREST,modulate,0,GL_ONE,GL_ZERO,0,0,GL_LESS,1,1,1,0,1,-1,2,20,64,80");
 }
 
 }  // namespace
