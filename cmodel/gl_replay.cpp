@@ -247,7 +247,12 @@ struct PendingDraw {
 
 class Replayer {
  public:
-  Replayer(const Dump& dump, int frame, const ReplayOptions& opts) : dump_(dump), builder_(opts.line_bytes), alpha_bits_(opts.alpha_bits) {
+  Replayer(const Dump& dump, int frame, const ReplayOptions& opts)
+      : dump_(dump),
+        builder_(opts.line_bytes),
+        alpha_bits_(opts.alpha_bits),
+        filter_override_(opts.min_filter),
+        aniso_override_(opts.max_aniso) {
     if (alpha_bits_ != -1 && alpha_bits_ != 0 && alpha_bits_ != 8)
       throw InputError(fmt::format("alpha bits {}: expected 0 or 8 (or -1: the trace's visual)", alpha_bits_));
     out_.trace = dump.stream().trace;
@@ -260,6 +265,10 @@ class Replayer {
   const Dump& dump_;
   FrameBuilder builder_;
   int alpha_bits_;
+  std::string filter_override_;         // ReplayOptions::min_filter
+  int aniso_override_;                  // ReplayOptions::max_aniso
+  int locked_pass_ = 0;                 // draws since the last glLockArraysEXT
+  std::vector<glm::dmat4> modelviews_;  // the frame's distinct modelview matrices, by first use
   Replay out_;
   State st_;
   std::string context_;
@@ -308,6 +317,8 @@ class Replayer {
     for (const auto& [name, call] : st_.unsupported_enabled) unsupported(name, c);
   }
   void submit(const Call& c, const std::string& mode, const std::vector<Vertex>& verts, const std::vector<uint32_t>& order);
+  void override_sampler(SamplerDescriptor& sd) const;
+  DrawFacts draw_facts(uint64_t triangles);
   std::vector<Vertex> fetch(const Call& c, const std::vector<uint32_t>& indices);
   std::array<int, 4> pixel_rect() const;
   void rasterize(const GoldenUnit& golden);
@@ -680,6 +691,7 @@ void Replayer::submit(const Call& c, const std::string& mode, const std::vector<
     sd.wrap_t = wraps.at(t.wrap_t);
     // GL_TEXTURE_MAX_ANISOTROPY: the unit's probe limit is an integer, 1..16 (the value rounded down).
     sd.max_aniso = static_cast<int>(std::clamp(std::floor(t.max_aniso), 1.0, 16.0));
+    if (t.mipmapped()) override_sampler(sd);
     const int ti = builder_.add_texture(t.built, TextureSpec{fmt::format("gl-texture-{}", us.bound), {}});
     const int si = builder_.add_sampler(sd);
     pd.stages.push_back({builder_.bind(ti, si), si});
@@ -749,7 +761,41 @@ void Replayer::submit(const Call& c, const std::string& mode, const std::vector<
     }
   }
   out_.draws.push_back(std::move(ops));
+  out_.facts.push_back(draw_facts(pd.triangles.size()));
   pending_.push_back(std::move(pd));
+}
+
+// The sampler of a mipmapped texture object under the override, as ioquake3's r_textureMode sets
+// GL_TEXTURE_MIN_FILTER and GL_TEXTURE_MAG_FILTER (the same base filter) of every mipmapped image and
+// r_ext_max_anisotropy their GL_TEXTURE_MAX_ANISOTROPY_EXT.
+void Replayer::override_sampler(SamplerDescriptor& sd) const {
+  if (!filter_override_.empty()) {
+    sd.mode.base = filter_override_.starts_with("GL_NEAREST") ? BaseFilter::Nearest : BaseFilter::Linear;
+    sd.mode.mip = filter_override_.ends_with("MIPMAP_NEAREST") ? MipMode::Nearest : MipMode::Linear;
+  }
+  if (aniso_override_ != 0) sd.max_aniso = aniso_override_;
+}
+
+// The facts of the draw being submitted: its enabled units' texture objects, depth range,
+// projection kind, modelview and place in a locked-arrays group.
+DrawFacts Replayer::draw_facts(uint64_t triangles) {
+  DrawFacts f;
+  for (const UnitState& us : st_.units) {
+    if (!us.enabled) continue;
+    f.gl_textures.push_back(us.bound);
+    const auto it = st_.textures.find(us.bound);
+    f.min_filters.push_back(it == st_.textures.end() ? std::string() : it->second.min);
+  }
+  f.depth_near = st_.depth_near, f.depth_far = st_.depth_far;
+  const glm::dmat4& p = st_.projection.back();
+  f.orthographic = p[0][3] == 0 && p[1][3] == 0 && p[2][3] == 0 && p[3][3] == 1;  // GL column-major: row 3
+  const glm::dmat4& mv = st_.modelview.back();
+  const auto seen = std::find(modelviews_.begin(), modelviews_.end(), mv);
+  f.modelview = static_cast<uint32_t>(seen - modelviews_.begin());
+  if (seen == modelviews_.end()) modelviews_.push_back(mv);
+  f.locked_pass = st_.locked ? locked_pass_++ : -1;
+  f.triangles = triangles;
+  return f;
 }
 
 void Replayer::execute(const Call& c) {
@@ -951,6 +997,27 @@ void Replayer::execute(const Call& c) {
     immediate_.push_back(v);
     return;
   }
+  // The vector forms of the immediate-mode calls (the engine's sky box): the values as a list.
+  if (n == "glTexCoord2fv") {
+    const Value& v = c.arg("v", Value::Kind::List);
+    if (v.list.size() != 2) throw InputError(fmt::format("{}: expected 2 values", where(c)));
+    st_.units[0].current = {v.list[0], v.list[1]};
+    return;
+  }
+  if (n == "glVertex2fv" || n == "glVertex3fv") {
+    if (!in_begin_) return unsupported(fmt::format("{} outside glBegin/glEnd", n), c);
+    const Value& l = c.arg("v", Value::Kind::List);
+    const size_t k = n == "glVertex3fv" ? 3 : 2;
+    if (l.list.size() != k) throw InputError(fmt::format("{}: expected {} values", where(c), k));
+    Vertex v;
+    v.pos = {l.list[0], l.list[1], k == 3 ? l.list[2] : 0.0, 1.0};
+    v.uv = {st_.units[0].current, st_.units[1].current};
+    v.colour = st_.current_colour;
+    if (immediate_.size() >= (size_t{1} << 20))
+      throw InputError(fmt::format("{}: more than 2^20 vertices in one glBegin", where(c)));
+    immediate_.push_back(v);
+    return;
+  }
   if (n == "glBegin") {
     in_begin_ = true;
     begin_mode_ = text(c, "mode");
@@ -967,6 +1034,7 @@ void Replayer::execute(const Call& c) {
   if (n == "glLockArraysEXT") {
     st_.locked = true;
     st_.lock_first = int_arg(c, "first", 0, 1 << 26), st_.lock_count = int_arg(c, "count", 0, 1 << 26);
+    locked_pass_ = 0;
     return;
   }
   if (n == "glUnlockArraysEXT") {
@@ -1073,6 +1141,10 @@ Replay Replayer::run() {
   if (out_.width < 1 || out_.height < 1 || out_.width > kMaxRenderSize || out_.height > kMaxRenderSize)
     throw InputError(fmt::format("--gl-trace '{}': frame {} sets no viewport of 1..{} pixels", quote_path(out_.trace), out_.frame,
                                  kMaxRenderSize));
+  out_.times.dump_wall = s.dump_wall_seconds;
+  out_.times.dump_cpu = s.dump_cpu_seconds;
+  out_.times.parse = s.parse_cpu_seconds;
+  const double t_state = thread_seconds();
   for (size_t i = 0; i < s.calls.size(); ++i) {
     in_frame_ = i >= s.frame_begin;
     try {
@@ -1092,6 +1164,8 @@ Replay Replayer::run() {
     throw InputError(one_line(fmt::format("--gl-trace '{}': unsupported GL calls or states: {}", quote_path(out_.trace), list)));
   }
   if (alpha_bits_ >= 0) out_.destination_alpha = alpha_bits_ > 0;
+  const double t_place = thread_seconds();
+  out_.times.state = t_place - t_state;
   out_.unit_frame = std::make_shared<const Frame>(builder_.finish());
   out_.stats.textures = out_.unit_frame->textures.size();
   out_.stats.samplers = out_.unit_frame->regs.samplers.size();
@@ -1099,16 +1173,63 @@ Replay Replayer::run() {
   out_.requests.mode = TraceMode::Quad;
   out_.requests.source = out_.trace;
   const GoldenUnit golden(*out_.unit_frame);
+  const double t_raster = thread_seconds();
+  out_.times.place = t_raster - t_place;
   rasterize(golden);
+  out_.times.raster = thread_seconds() - t_raster;
   return std::move(out_);
 }
 
 }  // namespace
 
 Replay replay_frame(const std::string& trace, int frame, const ReplayOptions& opts) {
+  // The sampler override, checked before apitrace runs: a GL minification filter with MIP levels,
+  // an anisotropy 1..16 (0: as traced).
+  static const std::set<std::string> mip_filters{"GL_NEAREST_MIPMAP_NEAREST", "GL_LINEAR_MIPMAP_NEAREST",
+                                                 "GL_NEAREST_MIPMAP_LINEAR", "GL_LINEAR_MIPMAP_LINEAR"};
+  if (!opts.min_filter.empty() && !mip_filters.contains(opts.min_filter))
+    throw InputError(
+        fmt::format("--gl-min-filter '{}': expected a filter with MIP levels: GL_NEAREST_MIPMAP_NEAREST, "
+                    "GL_LINEAR_MIPMAP_NEAREST, GL_NEAREST_MIPMAP_LINEAR or GL_LINEAR_MIPMAP_LINEAR",
+                    quote_input(opts.min_filter, 60)));
+  if (opts.max_aniso < 0 || opts.max_aniso > 16)
+    throw InputError(fmt::format("--gl-max-aniso {}: expected 1..16 (0: as traced)", opts.max_aniso));
   const Dump dump(trace, frame);
   Replayer r(dump, frame, opts);
   return r.run();
+}
+
+void write_draw_table(const Replay& r, std::ostream& os) {
+  std::vector<uint64_t> quads(r.draws.size()), pixels(r.draws.size());
+  for (const FragmentQuad& q : r.quads) ++quads[q.draw], pixels[q.draw] += static_cast<uint64_t>(std::popcount(q.mask));
+  // Names as GL spells them (the replay's own tables, read backwards).
+  const auto gl_name = [](const auto& table, auto v) {
+    for (const auto& [name, value] : table)
+      if (value == v) return name;
+    return std::string("?");
+  };
+  os << "draw,call,stages,gl_textures,min_filters,envs,blend,src,dst,alpha_test,depth_test,depth_func,depth_write,"
+        "depth_near,depth_far,orthographic,modelview,locked_pass,triangles,quads,pixels,requests\n";
+  const auto joined = [](const auto& v, const auto& name) {
+    std::string out;
+    for (const auto& x : v) {
+      if (!out.empty()) out += ' ';
+      out += name(x);
+    }
+    return out;
+  };
+  for (size_t i = 0; i < r.draws.size(); ++i) {
+    const DrawOps& d = r.draws[i];
+    const DrawFacts& f = r.facts[i];
+    const auto env_of = [](const StageEnv& e) { return std::string(kTexEnvNames.name(e.combine.env)); };
+    os << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", i, d.call, d.stages.size(),
+                      joined(f.gl_textures, [](uint32_t t) { return std::to_string(t); }),
+                      joined(f.min_filters, [](const std::string& m) { return m; }), joined(d.stages, env_of),
+                      d.blend ? 1 : 0, gl_name(blend_names(), d.src), gl_name(blend_names(), d.dst),
+                      d.alpha_test ? 1 : 0, d.depth_test ? 1 : 0, gl_name(compare_names(), d.depth_func),
+                      d.depth_write ? 1 : 0, f.depth_near, f.depth_far, f.orthographic ? 1 : 0, f.modelview,
+                      f.locked_pass, f.triangles, quads[i], pixels[i], 4 * quads[i] * d.stages.size());
+  }
 }
 
 Image compose_frame(const Replay& r, const std::vector<Rgba8>& outputs) {

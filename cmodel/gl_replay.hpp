@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -83,11 +84,34 @@ struct ClearOp {
   uint32_t depth_value = 0;
 };
 
+// What the engine's GL state says about one draw, beyond what the renderer needs: the facts a
+// script classifies the draw by (the engine's shader stage: base, light map, 2D ...; scripts/game-frames).
+struct DrawFacts {
+  std::vector<uint32_t> gl_textures;     // per stage: the GL texture object's name
+  std::vector<std::string> min_filters;  // per stage: GL_TEXTURE_MIN_FILTER as traced
+  double depth_near = 0, depth_far = 1;  // glDepthRange
+  bool orthographic = false;             // the projection's last row is (0, 0, 0, 1): glOrtho, the engine's 2D
+  uint32_t modelview = 0;                // index of the draw's modelview among the frame's distinct ones, by first use
+  int locked_pass = -1;    // draws since glLockArraysEXT before this one (0: the first), -1: arrays not locked
+  uint64_t triangles = 0;  // triangles rasterized (after clipping, culling and degenerate ones)
+};
+
 struct ReplayStats {
   uint64_t calls = 0, frame_calls = 0;  // calls read; of them in the frame
   uint64_t draws = 0, triangles = 0, culled = 0, clipped_away = 0, degenerate = 0, rasterized = 0;
   uint64_t quads = 0, pixels = 0, textures = 0, samplers = 0;
   uint64_t locked_draws = 0;  // draws inside glLockArraysEXT / glUnlockArraysEXT
+};
+
+// Where the replay's time went (thread CPU seconds, but the dump: see gl::Stream):
+//   dump_wall, dump_cpu  apitrace dump (its own process: wall clock, CPU)
+//   parse                the dump's text parsed
+//   state                every call executed: GL state, texture uploads, draws set up (transform, clip, snap)
+//   place                the frame's textures placed in the unit's texel memory (FrameBuilder::finish)
+//   raster               quads rasterized and depth-tested, their requests made and sampled by the golden
+//                        model, the renderer's fragment operations after it
+struct ReplayTimes {
+  double dump_wall = 0, dump_cpu = 0, parse = 0, state = 0, place = 0, raster = 0;
 };
 
 struct Replay {
@@ -99,10 +123,12 @@ struct Replay {
   std::shared_ptr<const Frame> unit_frame;  // descriptors and texel memory of every texture the frame samples
   Trace requests;                           // quad mode, the unit's workload in issue order
   std::vector<DrawOps> draws;
+  std::vector<DrawFacts> facts;  // one per draw
   std::vector<ClearOp> clears;  // in order
   std::vector<FragmentQuad> quads;
   Image image;  // the frame from the golden model's outputs
   ReplayStats stats;
+  ReplayTimes times;
 };
 
 struct ReplayOptions {
@@ -110,6 +136,12 @@ struct ReplayOptions {
   // The framebuffer's alpha bits: -1 as the trace's visual asks (glXChooseVisual / glXChooseFBConfig:
   // GLX_ALPHA_SIZE), 0 (DST_ALPHA reads 1.0) or 8. glretrace draws into a visual of its own.
   int alpha_bits = -1;
+  // The sampler of every mipmapped texture object overridden, as the engine's r_textureMode and
+  // r_ext_max_anisotropy set every mipmapped image (textures without MIP levels keep theirs):
+  // `min_filter` a GL_*_MIPMAP_* minification filter (its base filter also magnifies), empty: as
+  // traced; `max_aniso` 1..16, 0: as traced.
+  std::string min_filter;
+  int max_aniso = 0;
 };
 
 // Reads the trace through `apitrace dump` (gl_trace.hpp) and replays frame `frame` through the golden
@@ -120,5 +152,9 @@ Replay replay_frame(const std::string& trace, int frame, const ReplayOptions& op
 // The frame composed from the outputs of every request (Replay::requests order): the renderer's
 // fragment operations re-run in draw order. With the golden model's outputs it is Replay::image.
 Image compose_frame(const Replay& r, const std::vector<Rgba8>& outputs);
+
+// One CSV row per draw (a header line first): the draw's call, its facts (DrawFacts), its fragment
+// state and what it costs the unit (quads, covered pixels, requests).
+void write_draw_table(const Replay& r, std::ostream& os);
 
 }  // namespace tfu::gl

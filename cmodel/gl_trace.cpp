@@ -1,6 +1,7 @@
 #include "cmodel/gl_trace.hpp"
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -9,7 +10,9 @@
 #include <string_view>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -191,6 +194,21 @@ std::optional<Call> parse_call_line(const std::string& raw, const std::string& w
   return c;
 }
 
+std::string blob_parent() {
+  if (const char* env = std::getenv("TFU_GL_BLOB_DIR"); env && *env) return env;
+  // A dump writes every blob as a file: tens of thousands of small files per frame, which cost the
+  // file system's metadata work (seconds of system time on a disk file system, a tenth of that in memory).
+  std::error_code ec;
+  if (fs::is_directory("/dev/shm", ec) && access("/dev/shm", W_OK | X_OK) == 0) return "/dev/shm";
+  return fs::temp_directory_path().string();
+}
+
+double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 std::string apitrace_program() {
   const char* env = std::getenv("TFU_APITRACE");
   return env && *env ? std::string(env) : std::string("apitrace");
@@ -203,15 +221,25 @@ Dump::Dump(const std::string& trace, int frame) {
   if (!fs::is_regular_file(trace, ec)) throw InputError(fmt::format("{}: not a readable file", where));
   if (frame < 0) throw InputError(fmt::format("--frame {} must be >= 0", frame));
   const std::string abs_trace = fs::absolute(trace).string();
-  std::string tmpl = (fs::temp_directory_path() / "tfu-gl-XXXXXX").string();
+  std::string tmpl = (fs::path(blob_parent()) / "tfu-gl-XXXXXX").string();
   if (mkdtemp(tmpl.data()) == nullptr) throw InputError(fmt::format("{}: cannot create a temporary directory", where));
   stream_.blob_dir = tmpl;
   const std::string out = stream_.blob_dir + "/dump.txt", err = stream_.blob_dir + "/dump.err";
   const std::string program = apitrace_program();
+  const auto children_cpu = [] {
+    rusage ru{};
+    getrusage(RUSAGE_CHILDREN, &ru);
+    return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+           1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  };
   const auto run = [&](std::vector<std::string> args) {
     args.insert(args.begin(), {program, "dump", "--multiline=no", "--color=never"});
     args.push_back(abs_trace);
+    const double cpu0 = children_cpu();
+    const auto wall0 = std::chrono::steady_clock::now();
     const int rc = run_program(args, stream_.blob_dir, out, err);
+    stream_.dump_wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    stream_.dump_cpu_seconds += children_cpu() - cpu0;
     if (rc == 127 || rc == 126 || rc < 0)
       throw InputError(fmt::format("{}: cannot run '{}' (apitrace 11, Debian package apitrace; or set TFU_APITRACE)", where,
                                    quote_input(program)));
@@ -219,9 +247,11 @@ Dump::Dump(const std::string& trace, int frame) {
   };
   const auto read_lines = [&](const std::function<void(const std::string&, size_t)>& each) {
     if (fs::file_size(out, ec) > kMaxDumpBytes) throw InputError(fmt::format("{}: dump larger than {} bytes", where, kMaxDumpBytes));
+    const double t0 = thread_seconds();
     std::ifstream in(out);
     std::string line;
     for (size_t n = 1; std::getline(in, line); ++n) each(line, n);
+    stream_.parse_cpu_seconds += thread_seconds() - t0;
   };
   try {
     // Pass 1: the frame boundaries (every glXSwapBuffers).

@@ -49,11 +49,21 @@ struct Stream {
   size_t frame_begin = 0;   // index in `calls` of the frame's first call
   int frames = 0;           // frames in the trace (swaps, plus a last partial frame)
   std::string blob_dir;     // the temporary directory holding the blobs (removed with the Dump)
+  // Where reading the trace went (tfu sim --gl-trace --bench): apitrace's two dumps (wall clock, and
+  // the CPU of its process: user + system), and this process's CPU parsing their text.
+  double dump_wall_seconds = 0, dump_cpu_seconds = 0, parse_cpu_seconds = 0;
 };
+
+// This thread's CPU time in seconds (CLOCK_THREAD_CPUTIME_ID).
+double thread_seconds();
 
 // Largest blob read (a 4096 x 4096 RGBA level is 64 MiB), and largest dump text accepted.
 inline constexpr uint64_t kMaxBlobBytes = uint64_t{64} << 20;
 inline constexpr uint64_t kMaxDumpBytes = uint64_t{2} << 30;
+
+// Where a dump's temporary directory is made: $TFU_GL_BLOB_DIR, else /dev/shm when writable (the
+// blobs are many small files: in memory they cost a tenth of the system time), else the temp directory.
+std::string blob_parent();
 
 // The apitrace program: $TFU_APITRACE, else `apitrace` on the PATH.
 std::string apitrace_program();

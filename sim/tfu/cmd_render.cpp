@@ -80,10 +80,11 @@ void run_gl_trace(const RenderCliOptions& o, const CLI::App& cmd) {
   const std::string out = o.out.empty() ? fmt::format("out/render/gl-frame{}.png", o.gl.frame) : o.out;
   OutputFiles outputs(o.force);
   OutputFile& image_file = outputs.add_image("--out", out);
-  gl::ReplayOptions ro;
-  ro.alpha_bits = o.gl.alpha_bits;
-  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, ro);
+  OutputFile* draws_file = o.gl.draws_out.empty() ? nullptr : &outputs.add("--draws-out", o.gl.draws_out);
+  const gl::Replay r =
+      gl::replay_frame(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, gl::ReplayOptions{}.line_bytes));
   image_file.write_image(r.image);
+  if (draws_file) gl::write_draw_table(r, draws_file->stream());
   outputs.commit();
   std::cout << out << '\n';
   print_summary_line(fmt::format("tfu render: GL trace {} frame {} (calls {}..{}) {}x{}: {} calls ({} in the frame), {} draws, {} triangles ({} culled, "
@@ -226,7 +227,7 @@ void register_render(CLI::App& app) {
   cmd->add_flag("--list", o->list, "List the built-in scenes and the OpenArena levels found, and exit");
   cmd->callback([o, cmd] {
     if (!o->gl.trace.empty()) return run_gl_trace(*o, *cmd);
-    for (const char* opt : {"--frame", "--alpha-bits"})
+    for (const char* opt : gl_trace_only_options())
       if (cmd->count(opt) > 0) throw InputError(fmt::format("{} needs --gl-trace", opt));
     run(*o);
   });

@@ -341,10 +341,11 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
 // One frame of a GL command stream (docs/gl-replay.md): its requests through the unit and the golden
 // model, the frame composed from the unit's outputs.
 sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<std::ostream*> vcds, RunRecord& rec,
-                        OutputFile* out_file, std::string& mismatch) {
+                        OutputFile* out_file, OutputFile* draws_file, std::string& mismatch) {
   const auto start = std::chrono::steady_clock::now();
-  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, {unit.cache.line_bytes, o.gl.alpha_bits});
+  const gl::Replay r = gl::replay_frame(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, unit.cache.line_bytes));
   const double replay_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (draws_file) gl::write_draw_table(r, draws_file->stream());
   const Frame& frame = *r.unit_frame;
   rec.has_scene = false;
   rec.trace = o.gl.trace;
@@ -386,6 +387,9 @@ sim::Stats run_gl_trace(SimOptions& o, const rtl::UnitConfig& unit, std::vector<
       "  speed (thread CPU time): cycle model {:.0f} requests/s ({:.3f} s), golden model {:.0f} requests/s ({:.3f} s), "
       "both {:.0f} requests/s; the replay (apitrace dump, GL state, rasterizer and golden model) took {:.2f} s wall\n",
       rate(t1 - t0), t1 - t0, rate(t2 - t1), t2 - t1, rate(t2 - t0), replay_seconds);
+  if (o.bench)
+    bench_gl_trace(o.gl.trace, o.gl.frame, gl_replay_options(o.gl, unit.cache.line_bytes), r, unit, o.unit_engine,
+                   got.pixels);
   return got.stats;
 }
 
@@ -402,6 +406,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   OutputFiles outputs(o.force);
   OutputFile* stats_file = o.stats.empty() ? nullptr : &outputs.add("--stats", o.stats);
   OutputFile* out_file = o.out.empty() ? nullptr : &outputs.add_image("--out", o.out);
+  OutputFile* draws_file = o.gl.draws_out.empty() ? nullptr : &outputs.add("--draws-out", o.gl.draws_out);
   OutputFile* config_out_file = o.config_out.empty() ? nullptr : &outputs.add("--config-out", o.config_out);
   // One waveform per unit: --vcd FILE for unit 0, FILE's name with .unitK before the extension for unit K.
   std::vector<std::string> vcd_paths;
@@ -447,8 +452,9 @@ void run(SimOptions& o, CLI::App& cmd) {
       if (given(flag_of(p.key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs (the trace's texture parameters are the samplers)", flag_of(p.key)));
     for (const char* key : texture_param_keys())
       if (given(flag_of(key))) throw InputError(fmt::format("{} does not apply to --gl-trace runs", flag_of(key)));
-  } else if (given("--frame") || given("--alpha-bits")) {
-    throw InputError(fmt::format("{} needs --gl-trace", given("--frame") ? "--frame" : "--alpha-bits"));
+  } else if (const auto gl_only = std::find_if(gl_trace_only_options().begin(), gl_trace_only_options().end(), given);
+             gl_only != gl_trace_only_options().end()) {
+    throw InputError(fmt::format("{} needs --gl-trace", *gl_only));
   } else if (!o.requests.empty()) {
     // --game-dir applies to both: a level's trace binds oa:MAP:... textures (TFU-S E16)
     for (const char* opt : {"--scene", "--width", "--height", "--units", "--unit-tiles", "--texture-layout"})
@@ -492,7 +498,7 @@ void run(SimOptions& o, CLI::App& cmd) {
   rec.config = &unit;
   rec.engine = o.unit_engine;
   std::string mismatch;
-  const sim::Stats stats = !o.gl.trace.empty()   ? run_gl_trace(o, unit, vcds, rec, out_file, mismatch)
+  const sim::Stats stats = !o.gl.trace.empty()  ? run_gl_trace(o, unit, vcds, rec, out_file, draws_file, mismatch)
                            : o.requests.empty() ? run_scene(o, cmd, unit, vcds, rec, out_file, mismatch)
                                                 : run_requests(o, cmd, unit, vcds, rec, mismatch);
   if (stats_file) stats_file->stream() << stats_document(stats, provenance_json(rec));

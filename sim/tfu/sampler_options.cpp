@@ -114,6 +114,34 @@ void add_gl_trace_options(CLI::App& cmd, GlTraceOptions& o, const char* through)
                  "With --gl-trace: the framebuffer's alpha bits, 0 or 8 (default -1: as the trace's visual asks; glretrace draws "
                  "into a visual of its own)")
       ->capture_default_str();
+  cmd.add_option(
+      "--gl-min-filter", o.min_filter,
+      "With --gl-trace: the minification filter of every mipmapped texture, as the engine's r_textureMode sets it "
+      "(GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR_MIPMAP_LINEAR, GL_NEAREST_MIPMAP_*; its base filter also magnifies); "
+      "default: as traced");
+  cmd.add_option("--gl-max-aniso", o.max_aniso,
+                 "With --gl-trace: the maximum anisotropy (1..16) of every mipmapped texture, as the engine's "
+                 "r_ext_max_anisotropy "
+                 "sets it; default 0: as traced");
+  cmd.add_option(
+      "--draws-out", o.draws_out,
+      "With --gl-trace: write one CSV row per draw of the frame (GL textures, fragment state, depth range, projection, "
+      "modelview, locked-arrays pass, triangles, quads, pixels, requests; docs/gl-replay.md)");
+}
+
+gl::ReplayOptions gl_replay_options(const GlTraceOptions& o, int line_bytes) {
+  gl::ReplayOptions ro;
+  ro.line_bytes = line_bytes;
+  ro.alpha_bits = o.alpha_bits;
+  ro.min_filter = o.min_filter;
+  ro.max_aniso = o.max_aniso;
+  return ro;
+}
+
+const std::vector<const char*>& gl_trace_only_options() {
+  static const std::vector<const char*> v{"--frame", "--alpha-bits", "--gl-min-filter", "--gl-max-aniso",
+                                          "--draws-out"};
+  return v;
 }
 
 }  // namespace tfu::cli

@@ -11,6 +11,7 @@
 
 #include "cmodel/bindings.hpp"
 #include "cmodel/frame.hpp"
+#include "cmodel/gl_replay.hpp"
 #include "cmodel/trace.hpp"
 
 namespace tfu::cli {
@@ -31,9 +32,17 @@ struct GlTraceOptions {
   std::string trace;   // an apitrace trace; empty: no GL replay
   int frame = 0;       // its frame replayed
   int alpha_bits = -1;  // the framebuffer's alpha bits (-1: as the trace's visual asks)
+  std::string min_filter;  // the mipmapped textures' filter override (empty: as traced)
+  int max_aniso = 0;       // their anisotropy override (0: as traced)
+  std::string draws_out;   // a CSV of the frame's draws (gl::write_draw_table); empty: none
 };
-// --gl-trace, --frame, --alpha-bits; `through` says which models the replay goes through.
+// --gl-trace, --frame, --alpha-bits, --gl-min-filter, --gl-max-aniso, --draws-out; `through` says
+// which models the replay goes through.
 void add_gl_trace_options(CLI::App& cmd, GlTraceOptions& o, const char* through);
+// The replay's options from the command line's, textures tiled for `line_bytes` lines.
+gl::ReplayOptions gl_replay_options(const GlTraceOptions& o, int line_bytes);
+// The options above that need --gl-trace ("--frame" ...), for the "needs --gl-trace" check.
+const std::vector<const char*>& gl_trace_only_options();
 
 void add_texture_options(CLI::App& cmd, TextureOptions& o, bool texture_required = true);
 void add_sampler_options(CLI::App& cmd, SamplerOptions& o);

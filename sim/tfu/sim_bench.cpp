@@ -8,6 +8,9 @@
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
+#include "cmodel/golden_unit.hpp"
+#include "rtl/golden_compare.hpp"
+#include "rtl/tfu_unit.hpp"
 #include "rtl/unit_stats.hpp"
 
 namespace tfu::cli {
@@ -87,6 +90,61 @@ void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units) {
                              probes, static_cast<double>(probes) / n, static_cast<double>(probes) / res.cycle_seconds / 1e6,
                              clocked);
   }
+}
+
+void bench_gl_trace(const std::string& trace, int frame, const gl::ReplayOptions& ro, const gl::Replay& first,
+                    const rtl::UnitConfig& unit, rtl::UnitEngine engine, const std::vector<Rgba8>& outputs) {
+  // The replay, part by part: each part's best over the replays (the first one included).
+  gl::ReplayTimes best = first.times;
+  double best_total =
+      first.times.dump_cpu + first.times.parse + first.times.state + first.times.place + first.times.raster;
+  for (int i = 1; i < kGlBenchReplays; ++i) {
+    const gl::Replay again = gl::replay_frame(trace, frame, ro);
+    if (again.image.texels != first.image.texels)
+      throw CheckFailed("--bench: a second replay of the frame gave another image");
+    const gl::ReplayTimes& t = again.times;
+    best.dump_wall = std::min(best.dump_wall, t.dump_wall), best.dump_cpu = std::min(best.dump_cpu, t.dump_cpu);
+    best.parse = std::min(best.parse, t.parse), best.state = std::min(best.state, t.state);
+    best.place = std::min(best.place, t.place), best.raster = std::min(best.raster, t.raster);
+    best_total = std::min(best_total, t.dump_cpu + t.parse + t.state + t.place + t.raster);
+  }
+  // The models alone on the frame's requests, alternating run by run.
+  const Frame& f = *first.unit_frame;
+  const GoldenUnit golden(f);
+  double cycle = 1e300, sampling = 1e300;
+  for (int run = 0; run < kBenchRuns; ++run) {
+    const double t0 = rtl::thread_cpu_seconds();
+    const rtl::UnitOutput got = rtl::run_unit(f, first.requests, unit, engine, rtl::VcdOptions{});
+    const double t1 = rtl::thread_cpu_seconds();
+    const std::vector<Rgba8> want = rtl::golden_outputs(golden, first.requests, got);
+    const double t2 = rtl::thread_cpu_seconds();
+    if (got.pixels != outputs || want != outputs)
+      throw CheckFailed("--bench: a model's outputs differ from the first run's");
+    cycle = std::min(cycle, t1 - t0), sampling = std::min(sampling, t2 - t1);
+  }
+  const auto n = static_cast<double>(first.requests.requests.size());
+  std::cout << fmt::format(
+      "  speed (--bench), one thread, CPU seconds (the dump: apitrace's process), best of {} replays and of {} model "
+      "runs, "
+      "{} requests, {} covered pixels, {}x{}:\n"
+      "    trace parse: apitrace dump {:.3f} s CPU ({:.3f} s wall, two dumps: the frame boundaries, the calls with "
+      "their blobs), "
+      "its text parsed {:.3f} s\n"
+      "    GL state: every call executed (state, texture levels decoded from the blobs, draws fetched, transformed, "
+      "clipped, "
+      "snapped) {:.3f} s; textures placed {:.3f} s\n"
+      "    rasterisation with sampling: quads, depth test, requests, golden LOD + sampler inline, the renderer after "
+      "it {:.3f} s; "
+      "of it the golden LOD + sampler (the same work measured alone) {:.3f} s, so rasterisation and renderer {:.3f} s "
+      "(by difference)\n"
+      "    the golden model's frame, trace to image: {:.3f} s CPU (best replay; best parts summed: {:.3f} s)\n"
+      "    cycle model ({}) alone on the requests {:.3f} s = {:.2f} M requests/s; golden LOD + sampler alone {:.3f} s "
+      "= {:.2f} M "
+      "requests/s\n",
+      kGlBenchReplays, kBenchRuns, first.requests.requests.size(), first.stats.pixels, first.width, first.height,
+      best.dump_cpu, best.dump_wall, best.parse, best.state, best.place, best.raster, sampling, best.raster - sampling,
+      best_total, best.dump_cpu + best.parse + best.state + best.place + best.raster, rtl::unit_engine_name(engine),
+      cycle, n / cycle / 1e6, sampling, n / sampling / 1e6);
 }
 
 }  // namespace tfu::cli

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "cmodel/gl_replay.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/scene_sim.hpp"
@@ -33,5 +34,12 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
                              bool bench);
 // The --bench lines of a run of `units` units by `engine`.
 void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units);
+
+// tfu sim --gl-trace --bench: the replay of one frame timed part by part (best of kGlBenchReplays
+// replays), then the cycle model and the golden model alone on its requests (best of kBenchRuns each,
+// alternating); prints what each figure includes. The models must give the outputs of the first run.
+inline constexpr int kGlBenchReplays = 3;
+void bench_gl_trace(const std::string& trace, int frame, const gl::ReplayOptions& ro, const gl::Replay& first,
+                    const rtl::UnitConfig& unit, rtl::UnitEngine engine, const std::vector<Rgba8>& outputs);
 
 }  // namespace tfu::cli
