@@ -12,7 +12,7 @@
 namespace tfu {
 namespace {
 
-std::string error_of(void (*f)()) {
+std::string refusal_of(void (*f)()) {
   try {
     f();
   } catch (const InputError& e) {
@@ -51,14 +51,14 @@ TEST(NearestName, NearByDistanceSharedWordOrPrefix) {
 
 TEST(NearestName, ErrorLinesOfNamesSuggestTheNearest) {
   const auto opens = [](const std::string& line, const std::string& start) { return line.substr(0, start.size()) == start; };
-  EXPECT_TRUE(opens(error_of([] { (void)filter_mode_from_name("trilinar"); }),
+  EXPECT_TRUE(opens(refusal_of([] { (void)filter_mode_from_name("trilinar"); }),
                     "unknown filter 'trilinar' (did you mean 'trilinear'? expected one of NEAREST, "));
-  EXPECT_TRUE(opens(error_of([] { (void)filter_mode_from_name("LINEAR_MIPMAP_LINAER"); }),
+  EXPECT_TRUE(opens(refusal_of([] { (void)filter_mode_from_name("LINEAR_MIPMAP_LINAER"); }),
                     "unknown filter 'LINEAR_MIPMAP_LINAER' (did you mean 'LINEAR_MIPMAP_LINEAR'? expected"));
-  EXPECT_EQ(error_of([] { (void)texel_format_from_name("rgb8"); }),
+  EXPECT_EQ(refusal_of([] { (void)texel_format_from_name("rgb8"); }),
             "unknown texel format 'rgb8' (did you mean 'rgba8'? expected rgba8, l8, vs16x2 or srgba8)");
   // nothing near: the line as before
-  EXPECT_EQ(error_of([] { (void)texel_format_from_name("png"); }),
+  EXPECT_EQ(refusal_of([] { (void)texel_format_from_name("png"); }),
             "unknown texel format 'png' (expected rgba8, l8, vs16x2 or srgba8)");
 }
 
