@@ -84,13 +84,16 @@ void array_quad(int rx, int ry, float z, const unsigned char colour[4], bool clo
   unlock_arrays();
 }
 
-// The same quad with glBegin / glEnd (the engine's 2D path), colour from glColor4f.
+// The same quad with glBegin / glEnd (the engine's 2D path), colour from glColor4f. Two corners
+// are given by the vector forms the engine's sky box uses (glVertex2fv, glTexCoord2fv and
+// glVertex3fv with z = 0): the same quad, so the same expected pixels.
 void immediate_quad(int rx, int ry, float r, float g, float b, float a) {
   const float x0 = static_cast<float>(rx * 8), y0 = static_cast<float>(ry * 8);
+  const float corner0[2] = {x0, y0}, st1[2] = {1, 0}, corner1[3] = {x0 + 8, y0, 0};
   glColor4f(r, g, b, a);
   glBegin(GL_QUADS);
-  glTexCoord2f(0, 0), glVertex2f(x0, y0);
-  glTexCoord2f(1, 0), glVertex2f(x0 + 8, y0);
+  glTexCoord2f(0, 0), glVertex2fv(corner0);
+  glTexCoord2fv(st1), glVertex3fv(corner1);
   glTexCoord2f(1, 1), glVertex2f(x0 + 8, y0 + 8);
   glTexCoord2f(0, 1), glVertex2f(x0, y0 + 8);
   glEnd();
