@@ -61,7 +61,8 @@ TEST(LeeJenGeometry, Eq4NeighbourhoodsMatchThePaper) {
   EXPECT_EQ(seen.size(), 12u);
   // Sec. 3: the diagonally opposite centre texel (the paper's T example: C4 takes C9, C5 takes C8).
   for (const auto& [self, opposite] : {std::pair{4, 9}, std::pair{5, 8}, std::pair{8, 5}, std::pair{9, 4}}) {
-    const auto it = std::find_if(kCentreMedians.begin(), kCentreMedians.end(), [&](const CentreMedian& c) { return c.self == self; });
+    const int texel = self;  // a lambda does not capture a structured binding in clang 14
+    const auto it = std::find_if(kCentreMedians.begin(), kCentreMedians.end(), [&](const CentreMedian& c) { return c.self == texel; });
     ASSERT_NE(it, kCentreMedians.end());
     EXPECT_EQ(it->opposite, opposite);
   }

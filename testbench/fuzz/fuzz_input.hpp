@@ -83,7 +83,7 @@ class ByteReader {
         return pick(kWords);
       }
       case 5: {
-        static const char* const kText[] = {"caf\xc3\xa9", "\xe6\xbc\xa2\xe5\xad\x97", "\xf0\x9f\x98\x80", "\xef\xbb\xbf" "bom"};
+        static const char* const kText[] = {"caf\xc3\xa9", "\xe6\xbc\xa2\xe5\xad\x97", "\xf0\x9f\x98\x80", "\xef\xbb\xbf\142om"};  // \142: 'b' (a hex escape would take it)
         return pick(kText);
       }
       default: {
