@@ -164,10 +164,17 @@ std::optional<Call> parse_call_line(const std::string& raw, const std::string& w
   c.number = std::stoull(line.substr(0, p));
   const size_t open = line.find('(', p + 1);
   if (open == std::string::npos) throw bad("expected name(arguments)");
+  // Function and argument names are C identifiers (apitrace's dump), a GL name under 64 characters:
+  // messages quote them whole.
+  constexpr size_t kMaxNameChars = 64;
+  const auto identifier = [](std::string_view id) {
+    if (id.empty() || id.size() > kMaxNameChars) return false;
+    for (const char ch : id)
+      if (!((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_')) return false;
+    return true;
+  };
   c.name = line.substr(p + 1, open - p - 1);
-  for (const char ch : c.name)
-    if (!((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_'))
-      throw bad("expected a function name");
+  if (!identifier(c.name)) throw bad("expected a function name");
   // The matching parenthesis (nesting and strings skipped).
   int depth = 0;
   bool quoted = false;
@@ -187,6 +194,7 @@ std::optional<Call> parse_call_line(const std::string& raw, const std::string& w
   for (const std::string& a : split_top_level(std::string_view(line).substr(open + 1, close - open - 1))) {
     const size_t eq = a.find(" = ");
     if (eq == std::string::npos) throw bad("expected arguments as name = value");
+    if (!identifier(std::string_view(a).substr(0, eq))) throw bad("expected an argument name");
     c.args.emplace_back(a.substr(0, eq), parse_value(trim(std::string_view(a).substr(eq + 3))));
   }
   const std::string rest = line.substr(close + 1);

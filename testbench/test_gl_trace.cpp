@@ -74,6 +74,21 @@ TEST(GlTrace, RefusesMalformedLinesNamingThem) {
       EXPECT_LE(what.size(), 300u);
     }
   }
+  // Names are identifiers of at most 64 characters: a fuzzed argument name of 300 bytes 0xff made a
+  // later message (a wrong kind of argument, which names it) longer than one line may be.
+  const std::string long_arg = "12 glTexImage2D(level = 1, pixel" + std::string(300, '\xff') + "s = blob(16))";
+  const std::string long_name = "12 gl" + std::string(300, 'a') + "(cap = GL_BLEND)";
+  for (const std::string& bad : {long_arg, long_name, std::string("12 glEnable(c-ap = GL_BLEND)"),
+                                 std::string("12 glEnable( = GL_BLEND)")}) {
+    try {
+      (void)parse_call_line(bad, "trace.trace: dump line 3");
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("trace.trace: dump line 3: ", 0), 0u) << what;
+      EXPECT_LE(what.size(), 300u);
+    }
+  }
   const auto c = parse_call_line("5 glEnable(cap = GL_BLEND)", "t");
   ASSERT_TRUE(c);
   EXPECT_THROW((void)c->number_arg("cap"), InputError);  // an enum is no number
