@@ -63,23 +63,15 @@ TEST(GlTrace, ParsesEveryValueKind) {
 }
 
 TEST(GlTrace, RefusesMalformedLinesNamingThem) {
-  for (const char* bad : {"glEnable(cap = GL_BLEND)", "12 glEnable(cap = GL_BLEND", "12 glEn able(cap = GL_BLEND)",
-                          "12 glEnable(GL_BLEND)", "12345678901234567890 glEnable(cap = GL_BLEND)", "12 glEnable"}) {
-    try {
-      (void)parse_call_line(bad, "trace.trace: dump line 3");
-      ADD_FAILURE() << "accepted: " << bad;
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind("trace.trace: dump line 3: ", 0), 0u) << what;
-      EXPECT_LE(what.size(), 300u);
-    }
-  }
   // Names are identifiers of at most 64 characters: a fuzzed argument name of 300 bytes 0xff made a
   // later message (a wrong kind of argument, which names it) longer than one line may be.
   const std::string long_arg = "12 glTexImage2D(level = 1, pixel" + std::string(300, '\xff') + "s = blob(16))";
   const std::string long_name = "12 gl" + std::string(300, 'a') + "(cap = GL_BLEND)";
-  for (const std::string& bad : {long_arg, long_name, std::string("12 glEnable(c-ap = GL_BLEND)"),
-                                 std::string("12 glEnable( = GL_BLEND)")}) {
+  for (const std::string& bad :
+       {std::string("glEnable(cap = GL_BLEND)"), std::string("12 glEnable(cap = GL_BLEND"),
+        std::string("12 glEn able(cap = GL_BLEND)"), std::string("12 glEnable(GL_BLEND)"),
+        std::string("12345678901234567890 glEnable(cap = GL_BLEND)"), std::string("12 glEnable"), long_arg, long_name,
+        std::string("12 glEnable(c-ap = GL_BLEND)"), std::string("12 glEnable( = GL_BLEND)")}) {
     try {
       (void)parse_call_line(bad, "trace.trace: dump line 3");
       ADD_FAILURE() << "accepted: " << bad;
