@@ -33,8 +33,8 @@ enum class UnitEvent {
   EdgeMedianTakesFootprint,     // edge_median pops channel edge_texels
   EdgeDirectionTakesFootprint,  // edge_direction pops channel edge_median_out
   EdgeMergeTakesFootprint,      // edge_merge pops channel edge_direction_out
-  ResponseRetiresFilterPixel,   // response pops channel response
-  ResponseRetiresEdgePixel,     // response pops channel edge_response
+  ResponseRetiresFilterPixel,   // response pops channel response (filter_pipe_N after N pipeline registers)
+  ResponseRetiresEdgePixel,     // response pops channel edge_response (edge_pipe_N after N pipeline registers)
 };
 inline constexpr size_t kUnitEventCount = 12;
 // What each event says in a report: the block, what it does, and the item it moves.

@@ -86,6 +86,8 @@ void add_probes(sim::VcdWriter& vcd, Unit& u, const std::vector<ScreenPosition>*
   channel(u.c_edge_direction_out);
   channel(u.c_resp);
   channel(u.c_edge_resp);
+  for (const auto& c : u.filter_pipe.channels()) channel(*c);
+  for (const auto& c : u.edge_pipe.channels()) channel(*c);
   vcd.add("tfu.lod_unit.busy", 1, [&u] { return uint64_t{u.lod_unit.busy()}; });
   vcd.add("tfu.address_gen.busy", 1, [&u] { return uint64_t{u.address_gen.busy()}; });
   vcd.add("tfu.texel_cache.busy", 1, [&u] { return uint64_t{u.cache_stage.busy()}; });
@@ -165,8 +167,8 @@ class EventRecorder {
             u_.c_edge_texels.pops(),
             u_.c_edge_median_out.pops(),
             u_.c_edge_direction_out.pops(),
-            u_.c_resp.pops(),
-            u_.c_edge_resp.pops()};
+            u_.filter_pipe.out().pops(),
+            u_.edge_pipe.out().pops()};
   }
 };
 

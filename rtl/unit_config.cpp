@@ -23,6 +23,16 @@ std::vector<const char*> dram_part_names() {
   return names;
 }
 
+// The depths a datapath's field allows: `own` (the model's blocks alone, when no SV top is that
+// shallow) and every depth the SV tops offer.
+template <size_t N>
+std::vector<int64_t> depths(int own, const std::array<OfferedDepth, N>& offered) {
+  std::vector<int64_t> v;
+  if (own < offered.front().clocks) v.push_back(own);
+  for (const OfferedDepth& d : offered) v.push_back(d.clocks);
+  return v;
+}
+
 #define TFU_INT_FIELD(member) \
   [](const UnitConfig& c) { return c.member; }, [](UnitConfig& c, int v) { c.member = v; }
 
@@ -95,6 +105,17 @@ const std::vector<UnitField>& fields() {
        kMaxFootprintLines, 65536, {}, {}, TFU_INT_FIELD(line_buffer_depth)},
       {"filter_lanes", "--lanes", "bilinear-equivalent multiplier lanes of the filter", 1, 4, {1, 2, 4}, {},
        TFU_INT_FIELD(filter_lanes)},
+      {"filter.edge_stages", "--edge-stages",
+       "clocks of the edge-preserving interpolator from the texel cache's register to its result: 3 "
+       "tfu_edge_interp_top (Lee & Jen), 8 tfu_edge_interp_top_l8 (101.2 MHz in OSU 0.35 um); docs/cycle-model.md, "
+       "\"Datapath depth\"",
+       kEdgeDepths.front().clocks, kEdgeDepths.back().clocks, depths(kEdgeBlockClocks, kEdgeDepths), {},
+       TFU_INT_FIELD(filter.edge_stages)},
+      {"filter.bilinear_stages", "--bilinear-stages",
+       "clocks of the filter (NEAREST, LINEAR, CUBIC) counted as the bilinear top's latency, its input register the "
+       "texel cache's: 2 the filter block alone, 3 tfu_bilinear_top, 4 tfu_bilinear_top_l4 (101.2 MHz in OSU 0.35 um)",
+       kFilterBlockDepth, kBilinearDepths.back().clocks, depths(kFilterBlockDepth, kBilinearDepths), {},
+       TFU_INT_FIELD(filter.bilinear_stages)},
   };
   return f;
 }

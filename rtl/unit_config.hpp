@@ -9,11 +9,20 @@
 #include <string>
 #include <vector>
 
+#include "rtl/datapath_depth.hpp"
 #include "rtl/l2_cache.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
 
 namespace tfu::rtl {
+
+// The filter datapaths' pipeline depths, in clocks: the latency of the SV top each stands for
+// (rtl/datapath_depth.hpp; how the model reaches it: rtl/pipeline_registers.hpp).
+struct FilterDepthConfig {
+  int edge_stages = kEdgeBlockClocks;       // 3 (tfu_edge_interp_top) or 8 (tfu_edge_interp_top_l8)
+  int bilinear_stages = kFilterBlockDepth;  // 2 (the filter block), 3 (tfu_bilinear_top) or 4 (tfu_bilinear_top_l4)
+  friend bool operator==(const FilterDepthConfig&, const FilterDepthConfig&) = default;
+};
 
 struct UnitConfig {
   TexelCacheConfig cache{};
@@ -24,6 +33,7 @@ struct UnitConfig {
   int line_buffer_depth = 64;  // missed lines held from request until their footprint leaves the miss FIFO
   int filter_lanes = 1;       // bilinear-equivalent multiplier lanes of the filter (1, 2 or 4)
   DecoderConfig decoder{};    // block decoders of compressed textures (rtl/texel_cache.hpp)
+  FilterDepthConfig filter{};  // the filter datapaths' pipeline depths
   // (Simulation options such as idle-cycle skipping are not architecture: ClockedOptions, tfu_unit.hpp.)
   void validate() const;  // every field's range, then the relations between fields; InputError naming the field
   friend bool operator==(const UnitConfig&, const UnitConfig&) = default;

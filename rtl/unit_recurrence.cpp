@@ -30,6 +30,8 @@
 //   filter         FilterUnit::Timing    in order, holding the lanes ceil(taps / 4 lanes) - 1
 //                                        cycles; the busy counter
 //   edge_median, edge_direction, edge_merge   InOrderTiming
+//   filter_pipe, edge_pipe   PipelineRegisters::Timing   the registers of a datapath deeper than
+//                                        its blocks (filter.*_stages), an InOrderTiming each
 //   response       ResponseSink::Timing  pixel ids in order, one per cycle, from either datapath
 // Each channel of the unit (rtl/unit_wiring.hpp), and the texel cache's miss FIFO, is a
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
@@ -137,10 +139,14 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   EdgeDirectionOut direction_out;
   std::array<int64_t, 4> quad_retire{};
   std::array<Rgba8, 4> quad_colour{};
-  // response: the pixel `r` pushed into `in` at `pushed` retires.
-  const auto retire = [&](const Response& r, ChannelTimes& in, int64_t pushed, UnitEvent e) {
-    u.response.retire(r, static_cast<uint64_t>(log.at(e, u.response.timing.retire_at(in, pushed))));
+  // pipeline registers -> response: the pixel pushed into `in` at `pushed` passes the datapath's
+  // pipeline registers `pipe` (none at the default depths) and retires; the cycle it does.
+  const auto retire_at = [&](PipelineRegisters<Response>& pipe, ChannelTimes& in, int64_t pushed, UnitEvent e) {
+    const int64_t passed = pipe.timing.pass(pushed, in);
+    return log.at(e, u.response.timing.retire_at(pipe.timing.last(in), passed));
   };
+  const auto retire = [&](const Response& r, PipelineRegisters<Response>& pipe, ChannelTimes& in, int64_t pushed,
+                          UnitEvent e) { u.response.retire(r, static_cast<uint64_t>(retire_at(pipe, in, pushed, e))); };
   // filter -> response: the texel words that left the cache at `exit`.
   const auto through_filter = [&](int64_t exit) {
     const bool emits = texel_words.tag.emits();
@@ -148,7 +154,7 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         FilterFinishesFootprint,
         u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response, stat_slot(texel_words.tag.req)));
     Response r;
-    if (u.filter->filter(texel_words, r)) retire(r, ch.response, done, ResponseRetiresFilterPixel);
+    if (u.filter->filter(texel_words, r)) retire(r, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
   };
   // edge_median -> edge_direction -> edge_merge -> response: the same for an edge footprint.
   const auto through_edge_stages = [&](int64_t exit) {
@@ -163,7 +169,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         log.at(EdgeMergeTakesFootprint,
                u.edge_merge->timing.move(direction, ch.edge_direction_out, emits ? &ch.edge_response : nullptr));
     Response r;
-    if (u.edge_merge->merge(direction_out, r)) retire(r, ch.edge_response, merged, ResponseRetiresEdgePixel);
+    if (u.edge_merge->merge(direction_out, r))
+      retire(r, u.edge_pipe, ch.edge_response, merged, ResponseRetiresEdgePixel);
   };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
@@ -201,7 +208,7 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
                 log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
             if (emits)
               quad_retire[static_cast<size_t>(k)] =
-                  log.at(ResponseRetiresFilterPixel, u.response.timing.retire_at(ch.response, done));
+                  retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
           }
         }
       };

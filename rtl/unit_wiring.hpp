@@ -14,6 +14,7 @@
 #include "rtl/filter_unit.hpp"
 #include "rtl/kernel_select.hpp"
 #include "rtl/lod_unit.hpp"
+#include "rtl/pipeline_registers.hpp"
 #include "rtl/request_fifo.hpp"
 #include "rtl/response.hpp"
 #include "rtl/unit_config.hpp"
@@ -47,11 +48,14 @@ struct Unit {
         kernel_select(sim, c_addr, c_shape, frame.regs),
         cache_stage(sim, c_shape, c_texels, c_edge_texels, frame.regs, frame.memory, cache, mem, u.miss_fifo_depth,
                     u.line_buffer_depth, u.decoder),
-        response(sim, c_resp, c_edge_resp, out.pixels, out.response_cycle, accept) {
+        // the clocks of each datapath beyond its blocks' (rtl/pipeline_registers.hpp)
+        filter_pipe(sim, "filter_pipe", c_resp, uses(frame, false) ? u.filter.bilinear_stages - kFilterBlockDepth : 0,
+                    depth),
+        edge_pipe(sim, "edge_pipe", c_edge_resp, uses(frame, true) ? u.filter.edge_stages - kEdgeBlockClocks : 0,
+                  depth),
+        response(sim, filter_pipe.out(), edge_pipe.out(), out.pixels, out.response_cycle, accept) {
     if (cache_stage.records_shapes()) cache_stage.shapes.assign(trace.requests.size(), ProbeShapes{});  // one allocation, before the run
-    bool any_edge = false, any_filter = false;
-    for (const SamplerDescriptor& s : frame.regs.samplers)
-      (s.mode.base == BaseFilter::EdgePreserving ? any_edge : any_filter) = true;
+    const bool any_edge = uses(frame, true), any_filter = uses(frame, false);
     for (sim::ChannelBase* c : std::initializer_list<sim::ChannelBase*>{&c_quad, &c_pixel, &c_addr, &c_shape}) sim.add_clocked(c);
     if (any_filter) {
       filter.emplace(sim, c_texels, c_resp, frame.regs, roms, u.filter_lanes);
@@ -85,6 +89,8 @@ struct Unit {
   AddressGen address_gen;
   KernelSelect kernel_select;
   CacheStage cache_stage;
+  PipelineRegisters<Response> filter_pipe;  // after filter: filter.bilinear_stages - kFilterBlockDepth registers
+  PipelineRegisters<Response> edge_pipe;    // after edge_merge: filter.edge_stages - kEdgeBlockClocks registers
   ResponseSink response;
   std::optional<FilterUnit> filter;
   std::optional<EdgeMedian> edge_median;
@@ -101,12 +107,20 @@ struct Unit {
     kernel_select.evaluate();
     cache_stage.evaluate();
     if (filter) filter->evaluate();
+    filter_pipe.evaluate();
     if (edge_median) {
       edge_median->evaluate();
       edge_direction->evaluate();
       edge_merge->evaluate();
     }
+    edge_pipe.evaluate();
     response.evaluate();
+  }
+  // Whether a sampler of the frame uses the edge datapath (`edge`) or the filter (not `edge`).
+  static bool uses(const Frame& frame, bool edge) {
+    for (const SamplerDescriptor& s : frame.regs.samplers)
+      if ((s.mode.base == BaseFilter::EdgePreserving) == edge) return true;
+    return false;
   }
 };
 

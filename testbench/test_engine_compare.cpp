@@ -104,6 +104,43 @@ TEST(EngineCompare, FirstDifferenceIsTheEarliestCycle) {
       "the engines first disagree where response retires edge pixel #1: at cycle 8 clocked, never by the recurrences");
 }
 
+// The datapaths at the SV tops' deeper pipelines (filter.edge_stages 8, filter.bilinear_stages 4):
+// both engines record the same events and agree on everything, misses included. One datapath per
+// run never stalls (the response block takes a pixel per clock from one path), so every footprint
+// leaves the texel cache when it did at the default depths and every pixel retires exactly the
+// extra clocks later.
+TEST(EngineCompare, BothEnginesAgreeOnTheDeeperDatapaths) {
+  UnitConfig deep;
+  deep.cache.capacity_bytes = 4096;  // misses and back-pressure
+  deep.memory.latency = 40;
+  deep.filter = {8, 4};
+  for (const char* mode : {"LINEAR", "LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
+    const OneTextureRun run = scene_run("ground_plane", mode, deep);
+    UnitEvents clocked, rec;
+    const UnitOutput a = run_unit_recording(run.frame, run.trace, deep, UnitEngine::Clocked, clocked);
+    const UnitOutput b = run_unit_recording(run.frame, run.trace, deep, UnitEngine::Recurrence, rec);
+    EXPECT_EQ(first_event_difference(clocked, rec), "") << mode;
+    EXPECT_EQ(clocked, rec) << mode;
+    EXPECT_EQ(a.cycles, b.cycles) << mode;
+    EXPECT_EQ(compare_engines(run.frame, run.trace, deep), "") << mode;
+    // Against the default depths: later by edge 8 - 3 or bilinear 4 - 2 clocks.
+    UnitConfig base = deep;
+    base.filter = {};
+    UnitEvents shallow;
+    const UnitOutput c = run_unit_recording(run.frame, run.trace, base, UnitEngine::Recurrence, shallow);
+    const bool edge = std::string(mode).starts_with("EDGE");
+    const int64_t extra = edge ? 5 : 2;
+    const size_t retire =
+        static_cast<size_t>(edge ? UnitEvent::ResponseRetiresEdgePixel : UnitEvent::ResponseRetiresFilterPixel);
+    const size_t emits = static_cast<size_t>(UnitEvent::CacheEmitsFootprint);
+    EXPECT_EQ(rec[emits], shallow[emits]) << mode;
+    ASSERT_EQ(rec[retire].size(), shallow[retire].size()) << mode;
+    for (size_t i = 0; i < rec[retire].size(); ++i)
+      ASSERT_EQ(rec[retire][i], shallow[retire][i] + extra) << mode << " #" << i;
+    EXPECT_EQ(a.cycles, c.cycles + static_cast<uint64_t>(extra)) << mode;
+  }
+}
+
 // Two runs whose configurations differ in one block's timing first differ at that block.
 TEST(EngineCompare, NamesTheBlockWhoseTimingDiffers) {
   UnitConfig u;

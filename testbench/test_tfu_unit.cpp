@@ -462,9 +462,10 @@ Texture l8_linear_checkerboard() {
 }
 
 // A random unit configuration around `base` (its line size kept): channel and miss-FIFO depths
-// down to 1 (the miss FIFO up to its 65,536), the line buffer from 16 to 65,536 slots, filter lanes, memory latency and bandwidth, cache size, ways, banks and bank mapping;
-// so that stalls of every kind, back-pressure included, occur. `clocked`, if given, receives a
-// random idle-skip option of the clocked run (drawn either way: the same configurations follow).
+// down to 1 (the miss FIFO up to its 65,536), the line buffer from 16 to 65,536 slots, filter lanes, memory latency and
+// bandwidth, cache size, ways, banks and bank mapping, the filter datapaths' depths; so that stalls of every kind,
+// back-pressure included, occur. `clocked`, if given, receives a random idle-skip option of the clocked run (drawn
+// either way: the same configurations follow).
 UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, ClockedOptions* clocked = nullptr) {
   UnitConfig c = base;
   const auto pick = [&rng](std::initializer_list<int> v) { return *(v.begin() + rng() % v.size()); };
@@ -483,6 +484,8 @@ UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, Clocked
   // deepest miss FIFO.
   c.line_buffer_depth = pick({16, 17, 24, 64, 65536});
   if (rng() % 8 == 0) c.miss_fifo_depth = 65536;
+  // Now and then the datapaths at the SV tops' deeper pipelines (filter.edge_stages, bilinear_stages).
+  if (rng() % 3 == 0) c.filter = {pick({3, 8}), pick({2, 3, 4})};
   return c;
 }
 

@@ -17,9 +17,9 @@
 //              1..16 and its rounding
 //   unit       cache line 64 / 256 / 1024 bytes, 1..16 sets of 1..8 ways, 1 or 4 banks, both bank
 //              mappings, memory latency 0..10^6 and bandwidth 1..65536 bytes per cycle, channel
-//              depth 1..4, miss FIFO 1..16, line buffer 15 + sets, 1 / 2 / 4 filter lanes (the same byte's high bits: what
-//              the cache holds of compressed textures, 1..4 decoders of 1..8 texels per clock,
-//              latency 0 or 3), idle skipping on or off
+//              depth 1..4, miss FIFO 1..16, line buffer 15 + sets, 1 / 2 / 4 filter lanes (the same byte's high bits:
+//              what the cache holds of compressed textures, 1..4 decoders of 1..8 texels per clock, latency 0 or 3),
+//              idle skipping on or off
 //   requests   lod, grad or quad mode; each request (each quad) names a texture and a sampler;
 //              coordinates mostly in [-2, 2], sometimes any 32-bit pattern (NaN, infinities,
 //              denormals, huge values)
@@ -29,6 +29,8 @@
 //   names      each texture's name (its spec, as a file or archive spells it), drawn last
 //              (ByteReader::name: control characters, bytes that are not UTF-8, very long, path
 //              separators and `..`, the line formats' own characters)
+//   depths     the filter datapaths' pipeline depths (filter.edge_stages 3 or 8, filter.bilinear_stages
+//              2, 3 or 4), drawn after the names (past the input's end: the defaults)
 // A configuration the models refuse (InputError) is skipped; a mismatch aborts with the details.
 // Names must reach every output intact or be refused: the statistics' JSON parses back with each
 // texture's name (a name that is not UTF-8: with U+FFFD, cmodel/json_output.hpp), and the frame's
@@ -248,7 +250,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size > 8192) return 0;
   ByteReader in(data, size);
   tfu::rtl::ClockedOptions clocked;
-  const tfu::rtl::UnitConfig unit = make_unit(in, clocked);
+  tfu::rtl::UnitConfig unit = make_unit(in, clocked);
   tfu::Frame frame;
   tfu::Trace trace;
   bool plain = false;
@@ -266,6 +268,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       tfu::FrameTexture& t = frame.textures[static_cast<size_t>(k)];
       t.name = t.spec.source = in.name();
     }
+    // The datapaths' pipeline depths after the names (past the input's end: the defaults), so that
+    // the corpus's inputs keep their meaning.
+    const uint8_t depth = in.byte();
+    unit.filter.edge_stages = depth & 1 ? 8 : 3;
+    unit.filter.bilinear_stages = 2 + (depth >> 1) % 3;
   } catch (const tfu::InputError&) {
     return 0;  // a descriptor the driver refuses (e.g. a ROM the kernel does not fit)
   }
