@@ -75,8 +75,8 @@ struct TapGrid {
 // The same footprint in blocks, on a block-compressed level (address_gen forms it beside the
 // texel grid: block_grid, rtl/address_gen_blocks.hpp; not written on other textures):
 //   blocks            the tap grid in blocks: column i is the block column x[i] / block_w, row j
-//                     the block row y[j] / block_h (x[i] < 2^14: 12 bits; -1, a border column or
-//                     row, stays -1), cols, rows and used those of the texel grid
+//                     the block row y[j] / block_h (below 2^14 / 4: at most 12 bits; -1, a border
+//                     column or row, stays -1), cols, rows and used those of the texel grid
 //   u[4] v[4] {[3:0]} the texel column x[i] mod block_w and row y[j] mod block_h inside the block
 // Tap (x[i], y[j]) is texel v[j] block_w + u[i] (row-major) of block (blocks.x[i], blocks.y[j]).
 struct TapBlocks {

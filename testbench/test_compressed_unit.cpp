@@ -452,7 +452,7 @@ TEST(CompressedUnit, AddressGenBlockCoordinatesAreTheTexelCoordinatesOverTheBloc
   // tap, 1 x 1, 2 x 2, 4 x 4, cross, anisotropic probe.
   std::array<int, 8> met{};
   int footprints = 0;
-  for (int it = 0; it < test::iterations(3000); ++it) {
+  for (int it = 0; it < test::iterations(20000); ++it) {
     PixelReq p;
     p.req.texture = static_cast<uint16_t>(rng() % regs.textures.size());
     p.req.sampler = static_cast<uint8_t>(rng() % regs.samplers.size());
