@@ -109,9 +109,7 @@ uint64_t TextureDescriptor::level_bytes(int l) const {
 uint64_t TextureDescriptor::texel_address(int l, int x, int y) const {
   const LevelDescriptor& d = level[static_cast<size_t>(l)];
   const auto bpt = static_cast<uint64_t>(bytes_per_texel(format));
-  if (compressed)
-    return d.address + static_cast<uint64_t>(y / block().block_h) * d.row_pitch +
-           static_cast<uint64_t>(x / block().block_w) * static_cast<uint64_t>(block().block_bytes);
+  if (compressed) return block_address(l, x / block().block_w, y / block().block_h);
   if (layout == MemoryLayout::Linear)
     return d.address + static_cast<uint64_t>(y) * d.row_pitch + static_cast<uint64_t>(x) * bpt;
   const int k = tile_log2, m = (1 << k) - 1;

@@ -147,8 +147,16 @@ struct TextureDescriptor {
   const BlockFormatInfo& block() const { return block_format_info(block_format); }
   // Bytes a level occupies (rows or tile rows times the pitch).
   uint64_t level_bytes(int l) const;
-  // Byte address of texel (x, y) of level l (inside the level); of its block when compressed.
+  // Byte address of texel (x, y) of level l (inside the level); of its block when compressed:
+  // block_address(l, x / block_w, y / block_h).
   uint64_t texel_address(int l, int x, int y) const;
+  // Compressed: byte address of block (bx, by) of level l (block column, block row inside the
+  // level): the level's address + by row_pitch + bx block_bytes.
+  uint64_t block_address(int l, int bx, int by) const {
+    const LevelDescriptor& d = level[static_cast<size_t>(l)];
+    return d.address + static_cast<uint64_t>(by) * d.row_pitch +
+           static_cast<uint64_t>(bx) * static_cast<uint64_t>(block().block_bytes);
+  }
   void validate(const std::string& what) const;  // throws InputError naming `what` and the field
   friend bool operator==(const TextureDescriptor&, const TextureDescriptor&) = default;
 };

@@ -4,6 +4,7 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/fixed_coord.hpp"
+#include "rtl/address_gen_blocks.hpp"
 #include "rtl/address_gen_detail.hpp"
 #include "rtl/unit_stats.hpp"
 
@@ -92,6 +93,8 @@ void AddressGen::footprint(FootprintReq& f, const PixelReq& p, int level, const 
   f.cross = false;
   const SamplerDecode& d = decoded_[p.req.sampler];
   d.grid(c, d.taps, d.first_tap, f, tex.level_width(level), tex.level_height(level), p.s, p.t, o);
+  // A compressed texture: the grid in blocks and each tap's texel in its block, for the cache stage.
+  if (tex.compressed) block_grid(tex.block(), f.grid, f.blocks);
 }
 
 void AddressGen::next_probe() {

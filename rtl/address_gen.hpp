@@ -7,9 +7,11 @@
 // Ports:
 //   in  pixel      PixelReq (descriptor indices, s, t, lambda)             valid/ready
 //   out footprint  FootprintReq: level[3:0], grid (columns x[4], rows y[4], cols, rows, used cells),
-//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], blends, is_level1
+//                  cross, tag: base[1:0], format[1:0], fu[7:0] fv[7:0], blend[8:0], blends, is_level1;
+//                  on a block-compressed texture the grid in blocks, blocks (block columns and rows,
+//                  each tap's texel in its block: block_grid, rtl/address_gen_blocks.hpp)
 //   in  registers  sampler descriptor (filter mode, wraps, LOD bias and clamps), texture descriptor
-//                  (size, level count, format), the weight ROM's tap count (CUBIC)
+//                  (size, level count, format, block format), the weight ROM's tap count (CUBIC)
 // Footprints per base filter, as a grid of wrapped columns and rows (the cache forms the taps):
 //   NEAREST          1 x 1   (floor(s W), floor(t H))
 //   LINEAR           2 x 2   columns i0, i0 + 1 and rows j0, j0 + 1

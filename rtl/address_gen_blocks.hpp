@@ -1,16 +1,20 @@
 // address_gen on a block-compressed texture: the block coordinates of a footprint (which block of
 // the level each tap column and row falls in, and each tap's texel inside its block), formed once
-// per footprint for the texel cache's tags, its decoders and its read-out. Used by the timing
-// recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), whose cache side is
-// rtl/cache_stage_block_squares.cpp; the plain blocks (both engines) still form them tap by tap in
-// the cache stage (TexelCache::access_blocks, CacheStage::admit_blocks, read_out_blocks:
-// docs/compressed.md, "Where block addresses are computed").
+// per footprint beside its texel grid (TapBlocks, rtl/unit_ports.hpp) by block_grid, the one
+// function that forms them: AddressGen::footprint calls it for every footprint of both engines'
+// plain blocks (every filter mode, the edge cross, anisotropic probes), the timing recurrences'
+// LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp) for its 2 x 2 footprints. The texel cache
+// stage takes them as formed: its tags on a level of compressed lines (TexelCache::access,
+// line_of, resident take block coordinates there), its decoder jobs' distinct blocks and its
+// read-out's block addresses (TextureDescriptor::block_address) and texels in the block
+// (CacheStage::admit_blocks, read_out_blocks; the quad path's admit_block_square,
+// read_block_squares). docs/compressed.md, "Where block addresses are computed".
 #pragma once
 
 #include <array>
 #include <cstdint>
 
-#include "cmodel/descriptors.hpp"
+#include "cmodel/block_formats.hpp"
 #include "rtl/unit_ports.hpp"
 
 namespace tfu::rtl {
@@ -24,31 +28,35 @@ constexpr uint32_t block_reciprocal(int d) {
   return ((uint32_t{1} << 18) + static_cast<uint32_t>(d) - 1) / static_cast<uint32_t>(d);
 }
 constexpr int block_quotient(int x, uint32_t m) { return static_cast<int>((static_cast<uint32_t>(x) * m) >> 18); }
+// The reciprocals of the block sides 0..16 (0 unused), a table indexed by the side: the register
+// value the descriptor's block format selects.
+inline constexpr auto kBlockReciprocals = [] {
+  std::array<uint32_t, 17> m{};
+  for (int d = 1; d <= 16; ++d) m[static_cast<size_t>(d)] = block_reciprocal(d);
+  return m;
+}();
 
-// A 2 x 2 footprint whose taps are all inside a block-compressed level, in blocks: `blocks` is its
-// tap grid with each column x[i] / block_w and each row y[j] / block_h, `texel[t]` the index inside
-// its block (v block_w + u) of tap t, read_out's order: tap t reads block column t & 1, block row
-// t >> 1.
-struct BlockSquare {
-  TapGrid blocks;
-  std::array<uint8_t, 4> texel;
-};
+// The TapBlocks of the tap grid `g` on a level of blocks `b` (its columns [0, cols) and rows
+// [0, rows) are formed; a border column or row, -1, stays -1 with texel 0). Per column: the block
+// column q = (x m_w) >> 18 and the texel column u = x - q block_w (a 12 x 4-bit product and a
+// subtraction); per row the same with block_h.
+[[gnu::always_inline]] inline void block_grid(const BlockFormatInfo& b, const TapGrid& g, TapBlocks& out) {
+  const uint32_t mw = kBlockReciprocals[static_cast<size_t>(b.block_w)];
+  const uint32_t mh = kBlockReciprocals[static_cast<size_t>(b.block_h)];
+  out.blocks = g;
+  const auto split = [](int x, uint32_t m, int side, int16_t& block, uint8_t& in_block) {
+    const int q = block_quotient(x < 0 ? 0 : x, m);
+    block = static_cast<int16_t>(x < 0 ? -1 : q);
+    in_block = static_cast<uint8_t>(x < 0 ? 0 : x - q * side);
+  };
+  for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) split(g.x[i], mw, b.block_w, out.blocks.x[i], out.u[i]);
+  for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j) split(g.y[j], mh, b.block_h, out.blocks.y[j], out.v[j]);
+}
 
-// The BlockSquare of the 2 x 2 grid `g` of texture `tex` (its taps all inside the level).
-[[gnu::always_inline]] inline void block_square(const TextureDescriptor& tex, const TapGrid& g, BlockSquare& s) {
-  const BlockFormatInfo& b = tex.block();
-  const uint32_t mw = block_reciprocal(b.block_w), mh = block_reciprocal(b.block_h);
-  s.blocks = g;
-  int in_x[2], in_y[2];
-  for (size_t i = 0; i < 2; ++i) {
-    const int bx = block_quotient(g.x[i], mw), by = block_quotient(g.y[i], mh);
-    s.blocks.x[i] = static_cast<int16_t>(bx);
-    s.blocks.y[i] = static_cast<int16_t>(by);
-    in_x[i] = g.x[i] - bx * b.block_w;
-    in_y[i] = g.y[i] - by * b.block_h;
-  }
-  for (size_t t = 0; t < 4; ++t)  // read_out's order: tap t = (column t & 1, row t >> 1)
-    s.texel[t] = static_cast<uint8_t>(in_y[t >> 1] * b.block_w + in_x[t & 1u]);
+// The texel of grid cell `cell` (4 j + i) inside its block: v[j] block_w + u[i], row-major (what
+// decode_block writes).
+inline size_t texel_in_block(const TapBlocks& t, size_t cell, int block_w) {
+  return static_cast<size_t>(t.v[cell >> 2] * block_w + t.u[cell & 3u]);
 }
 
 }  // namespace tfu::rtl

@@ -28,6 +28,7 @@ CacheStage::CacheStage(sim::Simulator& s, sim::Channel<FootprintReq>& i, sim::Ch
   }
   for (const TextureDescriptor& d : regs.textures) {
     compressed_.push_back(d.compressed ? 1 : 0);
+    block_tags_.push_back(d.compressed && c.config().holds == CacheHolds::Compressed ? 1 : 0);
     any_compressed_ = any_compressed_ || d.compressed;
     first_readout_.push_back(readout_.size());
     for (int l = 0; l < d.levels; ++l) readout_.emplace_back(memory, d, l);
@@ -44,15 +45,14 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
                                   int& bank_cycles, FootprintResult& r) {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
   const BlockFormatInfo& b = d.block();
-  if (cache_.config().holds == CacheHolds::Compressed) {
+  if (cache_.config().holds == CacheHolds::Compressed) {  // `lookup` in blocks: the tags take it as it is
     const uint64_t in = admit_lines(texture, stage, level, lookup, now, bank_cycles, r);
     // The footprint's distinct blocks (for the statistics) and its taps (the decoders' texels).
     std::array<uint32_t, 16> seen;
     int blocks = 0, taps = 0;
     for (uint32_t cells = lookup.used; cells != 0; cells &= cells - 1, ++taps) {
       const auto c = static_cast<size_t>(std::countr_zero(cells));
-      const uint32_t key = static_cast<uint32_t>(lookup.x[c & 3u] / b.block_w) << 16 |
-                           static_cast<uint32_t>(lookup.y[c >> 2] / b.block_h);
+      const uint32_t key = static_cast<uint32_t>(lookup.x[c & 3u]) << 16 | static_cast<uint32_t>(lookup.y[c >> 2]);
       int k = 0;
       while (k < blocks && seen[static_cast<size_t>(k)] != key) ++k;
       if (k == blocks) seen[static_cast<size_t>(blocks++)] = key;
@@ -96,9 +96,10 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
 }
 
 [[gnu::always_inline]] inline uint64_t CacheStage::admit(FootprintReq& cur, uint64_t now, int& bank_cycles) {
-  const TapGrid& g = cur.grid;
   const bool edge = cur.tag.base == BaseFilter::EdgePreserving;
   const int texture = cur.tag.req.texture;
+  // The grid the tags take: in blocks on a level of compressed lines (the address generator's), else in texels.
+  const TapGrid& g = block_tags_[static_cast<size_t>(texture)] ? cur.blocks.blocks : cur.grid;
   if (edge && cur.optional != 0) {  // cache-aware: take an arm whose lines are resident (tag probe)
     for (const lee_jen::Arm& arm : lee_jen::kArms) {  // the four arms of the cross (Lee & Jen Fig. 4)
       const lee_jen::TexelMask bits = arm.mask;
@@ -123,7 +124,7 @@ uint64_t CacheStage::admit_blocks(int texture, int stage, int level, const TapGr
     accepted_id_ = cur.tag.id;
     if (g.used != 0) {
       const auto cell = static_cast<size_t>(std::countr_zero(static_cast<uint32_t>(g.used)));
-      const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];
+      const int tx = g.x[cell & 3u], ty = g.y[cell >> 2];  // texels, or blocks (line_of takes either as the tags do)
       if (tx >= 0 && ty >= 0) accepted_line_ = cache_.line_of(texture, cur.level, tx, ty);
     }
     accepted_ = cur;
@@ -152,7 +153,12 @@ uint64_t CacheStage::accepted_tap_address(int k) const {
     cell = 4u * static_cast<size_t>(k / g.cols) + static_cast<size_t>(k % g.cols);
   }
   if (((g.used >> cell) & 1u) == 0) return 0;  // outside the texture: the border word
-  return regs_.textures[accepted_.tag.req.texture].texel_address(accepted_.level, g.x[cell & 3u], g.y[cell >> 2]);
+  const TextureDescriptor& d = regs_.textures[accepted_.tag.req.texture];
+  if (d.compressed) {  // its block's address, at the address generator's block coordinates
+    const TapGrid& b = accepted_.blocks.blocks;
+    return d.block_address(accepted_.level, b.x[cell & 3u], b.y[cell >> 2]);
+  }
+  return d.texel_address(accepted_.level, g.x[cell & 3u], g.y[cell >> 2]);
 }
 
 // Texel read-out: the footprint's taps in FilterReq order (row-major over the grid; the cross in
@@ -237,20 +243,19 @@ const Rgba8* CacheStage::decoded_block(const TextureDescriptor& d, uint64_t addr
 
 void CacheStage::read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(cur.tag.req.texture)];
-  const BlockFormatInfo& b = d.block();
-  const TapGrid& g = cur.grid;
+  const int block_w = d.block().block_w;
+  const TapGrid& g = cur.blocks.blocks;  // the address generator's block coordinates
   std::array<HeldBlock, kHeldBlocks> blocks;  // the footprint's distinct blocks, each decoded once
   size_t n = 0;
   const auto texel = [&](size_t cell) {
-    const int x = g.x[cell & 3u], y = g.y[cell >> 2];
-    const uint64_t address = d.texel_address(cur.level, x, y);  // its block's
+    const uint64_t address = d.block_address(cur.level, g.x[cell & 3u], g.y[cell >> 2]);
     size_t k = 0;
     while (k < n && blocks[k].address != address) ++k;
     if (k == n) {
       blocks[n] = {address, decoded_block(d, address, blocks.data(), n, scratch_[n].data())};
       ++n;
     }
-    return blocks[k].texels[static_cast<size_t>((y % b.block_h) * b.block_w + x % b.block_w)];
+    return blocks[k].texels[texel_in_block(cur.blocks, cell, block_w)];
   };
   if (cur.cross) {  // the cross in C order: the texel, the border word, or zero outside the shape
     for (size_t k = 0; k < lee_jen::kTexels; ++k) {

@@ -33,10 +33,15 @@
 // Border taps (clamp-to-border outside the texture) take the border word (zero for B-spline
 // coefficients) and no cache access.
 //
-// Block-compressed textures (TextureDescriptor::compressed): the texel words are the decoder's,
-// decode_block (cmodel/block_formats.hpp) of the blocks read from the texel memory at the
-// descriptor's block addresses (each distinct block of a footprint decoded once), never the golden
-// model's decoded levels, so that the golden compare checks addressing and decoding. The decoders
+// Block-compressed textures (TextureDescriptor::compressed): the footprint comes with its grid in
+// blocks and each tap's texel in its block (FootprintReq::blocks, formed by the address generator:
+// rtl/address_gen_blocks.hpp); the stage divides nothing. The tags of compressed lines take the
+// block grid, the decoders' jobs count its distinct (block column, block row) pairs, and the texel
+// words are the decoder's, decode_block (cmodel/block_formats.hpp) of the blocks read from the
+// texel memory at their descriptor addresses (TextureDescriptor::block_address of the block
+// coordinates; each distinct block of a footprint decoded once), the texel in the block as the
+// address generator gives it; never the golden model's decoded levels, so that the golden compare
+// checks addressing and decoding. The decoders
 // (DecoderConfig: `units` decoders of `texels_per_clock` texels per clock, `latency` clocks) sit
 // where TexelCacheConfig::holds puts them:
 //   compressed  after the cache: a footprint's texels (its used taps) are decoded once its lines
@@ -175,28 +180,27 @@ class CacheStage : public sim::Module {
   }
   // The recurrences' LINEAR quad path on a block-compressed texture (software speed only,
   // rtl/cache_stage_block_squares.cpp, which names the plain twins and the equality test): a 2 x 2
-  // footprint whose taps are all inside the level, in blocks (rtl/unit_ports.hpp, formed by the
-  // address generator: block_square, rtl/address_gen_blocks.hpp).
-  using BlockSquare = rtl::BlockSquare;  // rtl/address_gen_blocks.hpp
-  // admit_footprint of such a footprint (`texels`: its tap grid in texels): admit_blocks with the
-  // block grid given. Blocks in the cache: the tags of its blocks' lines (access_blocks forms the
-  // same block grid), then one decoder job of its four taps and of its distinct blocks, the product
-  // of its distinct block columns and rows (admit_blocks counts the distinct (column, row) pairs of
-  // its taps). Decoded on fill: admit_blocks itself (its tags take the texel grid, and only its
-  // misses do more). Inline, as admit_lines: once per footprint.
+  // footprint whose taps are all inside the level, its grid in texels (`texels`) and in blocks
+  // (`s`, formed by the address generator's block_grid, rtl/address_gen_blocks.hpp, as for every
+  // footprint). admit_footprint of such a footprint: admit_blocks with its taps known to be the
+  // four. Blocks in the cache: the tags of its blocks' lines, then one decoder job of its four taps
+  // and of its distinct blocks, the product of its distinct block columns and rows (admit_blocks
+  // counts the distinct (column, row) pairs of its taps). Decoded on fill: admit_blocks itself (its
+  // tags take the texel grid, and only its misses do more). Inline, as admit_lines: once per
+  // footprint.
   [[gnu::always_inline]] uint64_t admit_block_square(int texture, int stage, int level, const TapGrid& texels,
-                                                     const BlockSquare& s, uint64_t now, int& bank_cycles) {
+                                                     const TapBlocks& s, uint64_t now, int& bank_cycles) {
     FootprintResult r;
     if (cache_.config().holds == CacheHolds::Decoded) [[unlikely]]
       return admit_blocks(texture, stage, level, texels, now, bank_cycles, r);
-    r = cache_.access_block_grid(texture, level, s.blocks);
+    r = cache_.access(texture, level, s.blocks);
     const uint64_t in = lines_in(texture, stage, level, r, now, bank_cycles);
     const int blocks = (s.blocks.x[0] != s.blocks.x[1] ? 2 : 1) * (s.blocks.y[0] != s.blocks.y[1] ? 2 : 1);
     return decode(in, 4, blocks, stat_slot(texture, stage));
   }
   // read_out_footprint of four such footprints on one level (a quad's pixels): taps[k] the four
   // texels of footprint k in read_out's order.
-  void read_block_squares(int texture, int level, const std::array<BlockSquare, 4>& s,
+  void read_block_squares(int texture, int level, const std::array<TapBlocks, 4>& s,
                           std::array<std::array<Rgba8, 4>, 4>& taps) const;
   // Some texture is compressed (the decoders' counters; zero elsewhere).
   bool any_compressed() const { return any_compressed_; }
@@ -312,6 +316,7 @@ class CacheStage : public sim::Module {
   uint64_t decoder_free_ = 0;
   bool any_compressed_ = false;
   std::vector<uint8_t> compressed_;  // per texture descriptor
+  std::vector<uint8_t> block_tags_;  // per texture descriptor: compressed lines, tagged in blocks
   std::vector<SlotCounters> slots_;  // per statistics slot
   // One decoder job (the header's rule) of statistics slot `slot`: input in at `in`, `texels` to
   // decode; returns the cycle its texels are ready.
@@ -325,10 +330,12 @@ class CacheStage : public sim::Module {
     c.decoder_stall += start - in;
     return start + busy - 1 + static_cast<uint64_t>(decoder_.latency);
   }
-  // admit_lines for a compressed texture: the tags, memory reads and the decoder jobs.
+  // admit_lines for a compressed texture: the tags, memory reads and the decoder jobs; `lookup` is
+  // the grid the tags take (in blocks under CacheHolds::Compressed, in texels under Decoded).
   uint64_t admit_blocks(int texture, int stage, int level, const TapGrid& lookup, uint64_t now, int& bank_cycles,
                         FootprintResult& r);
-  // read_out for a compressed texture: the taps' texels decoded from the blocks in memory.
+  // read_out for a compressed texture: the taps' texels decoded from the blocks in memory, at the
+  // address generator's block coordinates (cur.blocks).
   void read_out_blocks(const FootprintReq& cur, FilterReq& f, Rgba8 outside) const;
   // The stalls and shapes are counted in slots_ on the per-cycle path; published once, after the run.
   void publish_stalls_shapes_decoders(sim::Stats& st, const SlotCounters& c) const;

@@ -1,9 +1,9 @@
 // The texel cache stage's half of the recurrences' LINEAR quad path on block-compressed textures
 // (software speed only, off with TFU_PLAIN=1 or --plain: cmodel/fast_paths.hpp). The plain twins
-// are CacheStage::admit_blocks (through TexelCache::access_blocks) and CacheStage::read_out_blocks
-// in rtl/cache_stage.cpp, which take any footprint tap by tap; these take the 2 x 2 footprints of a
-// LINEAR quad whose taps are all inside the level, with the block coordinates formed once per
-// footprint by the address generator (rtl/address_gen_blocks.hpp), and must give the same tags,
+// are CacheStage::admit_blocks and CacheStage::read_out_blocks in rtl/cache_stage.cpp, which take
+// any footprint tap by tap; these take the 2 x 2 footprints of a LINEAR quad whose taps are all
+// inside the level (both with the block coordinates the address generator forms,
+// rtl/address_gen_blocks.hpp), four footprints of a level at a time, and must give the same tags,
 // memory reads, decoder jobs, statistics and texels. The admission, admit_block_square, is inline
 // in rtl/cache_stage.hpp. CompressedUnit.LinearQuadPathEqualsThePlainBlocks
 // (testbench/test_compressed_unit.cpp) compares the two paths and the clocked blocks on several
@@ -30,13 +30,11 @@ CacheStage::DecodedLevel& CacheStage::decoded_level(int texture, int level) cons
   return dl;
 }
 
-// Block (bx, by) of `level`, decoded from the bytes at its address in the descriptor (the level's
-// address, by block rows of row_pitch bytes, bx blocks of block_bytes: texel_address's rule).
+// Block (bx, by) of `level`, decoded from the bytes at its address in the descriptor
+// (TextureDescriptor::block_address).
 void CacheStage::decode_into_level(const TextureDescriptor& d, int level, DecodedLevel& dl, int bx, int by) const {
   const BlockFormatInfo& b = d.block();
-  const LevelDescriptor& ld = d.level[static_cast<size_t>(level)];
-  const uint64_t address = ld.address + static_cast<uint64_t>(by) * ld.row_pitch +
-                           static_cast<uint64_t>(bx) * static_cast<uint64_t>(b.block_bytes);
+  const uint64_t address = d.block_address(level, bx, by);
   std::array<Rgba8, 144> texels;  // up to 12 x 12
   decode_block(d.block_format, memory_.bytes_at(address), d.decode, texels.data());
   const size_t block = static_cast<size_t>(by) * static_cast<size_t>(dl.blocks_across) + static_cast<size_t>(bx);
@@ -48,11 +46,12 @@ void CacheStage::decode_into_level(const TextureDescriptor& d, int level, Decode
 // read_out_blocks of four 2 x 2 footprints on one level. A footprint's blocks are the 2 x 2
 // (column, row) pairs of its block grid at the descriptor's block addresses; each is decoded once
 // a run into the level's decoded blocks (decoded_level), and each tap reads its texel there.
-void CacheStage::read_block_squares(int texture, int level, const std::array<BlockSquare, 4>& s,
+void CacheStage::read_block_squares(int texture, int level, const std::array<TapBlocks, 4>& s,
                                     std::array<std::array<Rgba8, 4>, 4>& taps) const {
   const TextureDescriptor& d = regs_.textures[static_cast<size_t>(texture)];
   DecodedLevel& dl = decoded_level(texture, level);
-  const auto block_texels = static_cast<size_t>(d.block().block_w * d.block().block_h);
+  const int block_w = d.block().block_w;
+  const auto block_texels = static_cast<size_t>(block_w * d.block().block_h);
   for (size_t k = 0; k < 4; ++k) {
     const TapGrid& b = s[k].blocks;
     size_t first[4];  // the first texel of the block of the (column i, row j) pair i + 2 j
@@ -63,8 +62,9 @@ void CacheStage::read_block_squares(int texture, int level, const std::array<Blo
         decode_into_level(d, level, dl, bx, by);
       first[q] = block * block_texels;
     }
-    for (size_t t = 0; t < 4; ++t)
-      std::memcpy(&taps[k][t], dl.texels.get() + (first[t] + s[k].texel[t]) * sizeof(Rgba8), sizeof(Rgba8));
+    for (size_t t = 0; t < 4; ++t)  // tap t: grid cell (t & 1) + 4 (t >> 1)
+      std::memcpy(&taps[k][t], dl.texels.get() + (first[t] + texel_in_block(s[k], (t & 1u) + 4 * (t >> 1), block_w)) * sizeof(Rgba8),
+                  sizeof(Rgba8));
   }
 }
 

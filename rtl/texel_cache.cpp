@@ -40,8 +40,6 @@ LevelLines level_lines(const TextureDescriptor& d, int level, int line_bytes, co
   if (d.compressed) {  // block rows (cmodel/texture_memory.hpp): line_bytes / block_bytes blocks per line
     ll.shift_x = std::countr_zero(static_cast<unsigned>(line_bytes / d.block().block_bytes));
     ll.shift_y = 0;
-    ll.block_w = d.block().block_w;
-    ll.block_h = d.block().block_h;
     return ll;
   }
   if (d.layout == MemoryLayout::Tiled) {
@@ -113,22 +111,8 @@ int TexelCache::fill_blocks(int texture, int level, uint64_t line, int& texels) 
   return (x1 / f.block_w - x0 / f.block_w + 1) * (y1 / f.block_h - y0 / f.block_h + 1);
 }
 
-FootprintResult TexelCache::access_blocks(size_t l, const TapGrid& g) {
-  const LevelLines& ll = lines_[l];
-  TapGrid b = g;  // the block of each column and row (an unused border column, -1, is never read)
-  for (size_t i = 0; i < 4; ++i) {
-    b.x[i] = static_cast<int16_t>(g.x[i] / ll.block_w);
-    b.y[i] = static_cast<int16_t>(g.y[i] / ll.block_h);
-  }
-  return access_in_blocks(l, b);
-}
-
 uint64_t TexelCache::line_of(int texture, int level, int x, int y) const {
   const LevelLines& ll = lines_[level_index(texture, level)];
-  if (ll.block_w != 0) {
-    x /= ll.block_w;
-    y /= ll.block_h;
-  }
   return ll.first + static_cast<uint64_t>(y >> ll.shift_y) * ll.stride + static_cast<uint64_t>(x >> ll.shift_x);
 }
 

@@ -3,8 +3,10 @@
 // Ports (per cycle, one footprint request):
 //   in  texture [11:0]  texture descriptor (its level addresses, pitches and layout locate the lines)
 //   in  level   [3:0]   MIP level
-//   in  grid    TapGrid: columns x[4] and rows y[4] (wrapped texel coordinates), cols, rows, and the
-//               used[15:0] grid cells: the footprint's taps (x[i], y[j]) that read the cache
+//   in  grid    TapGrid: columns x[4] and rows y[4] (wrapped texel coordinates; on a level of
+//               compressed lines, CacheHolds::Compressed, the address generator's block columns and
+//               block rows, TapBlocks in rtl/unit_ports.hpp), cols, rows, and the used[15:0] grid
+//               cells: the footprint's taps (x[i], y[j]) that read the cache
 //   out hits    [4:0]   distinct cache lines of the footprint found in the cache
 //   out misses  [4:0]   distinct lines missing (their addresses go to the memory model)
 //   out cycles  [4:0]   cycles the footprint occupies the banks (>= 1; bank conflicts add cycles)
@@ -95,14 +97,13 @@ struct DecoderConfig {
 };
 
 // Where the lines of one level lie: line(x, y) = first + (y >> shift_y) * stride + (x >> shift_x),
-// where for a level of compressed lines (block_w > 0) x and y are the block column x / block_w and
-// block row y / block_h (the address generator's block coordinates: a line holds 2^shift_x blocks
-// of one block row, shift_y = 0).
+// where for a level of compressed lines x and y are the block column and block row (the address
+// generator's block coordinates, rtl/address_gen_blocks.hpp: a line holds 2^shift_x blocks of one
+// block row, shift_y = 0).
 struct LevelLines {
   uint64_t first = 0;
   uint64_t stride = 0;
   int shift_x = 0, shift_y = 0;
-  int block_w = 0, block_h = 0;  // compressed lines: the block's texels; 0 otherwise
 };
 // The line grid of level `level` of a texture for lines of `line_bytes`; InputError (naming the
 // texture) when its tiles are not one line each or a linear row pitch is not whole lines.
@@ -125,30 +126,24 @@ class TexelCache {
   const TexelCacheConfig& config() const { return cfg_; }
   // Looks up every used tap of one footprint (allocating missed lines, LRU update, lines in the
   // order the taps first reach them, row-major) and reports hits, misses and the bank cycles.
-  // Taps that share a line count one access to that line.
+  // Taps that share a line count one access to that line. On a level of compressed lines
+  // (CacheHolds::Compressed) the grid is in blocks (the ports above).
   FootprintResult access(int texture, int level, const TapGrid& grid) {
     const size_t l = level_index(texture, level);
-    if (lines_[l].block_w != 0) [[unlikely]]
-      return access_blocks(l, grid);
     if (cfg_.bank_mapping == BankMapping::BlockParity && grid.cols == 2 && grid.rows == 2 &&
         grid.used == square_cells(2, 2))
       return access_quad(l, grid);  // every LINEAR footprint
     return access_grid(l, grid);
   }
-  // access() of a footprint on a compressed level held as blocks (CacheHolds::Compressed), given
-  // in block coordinates: `blocks` is the tap grid with each column x[i] / block_w and each row
-  // y[j] / block_h (what access() forms itself; the recurrences' LINEAR quad path forms it once
-  // per footprint for the cache, the decoders and the read-out).
-  FootprintResult access_block_grid(int texture, int level, const TapGrid& blocks) {
-    return access_in_blocks(level_index(texture, level), blocks);
-  }
   // Decoded lines of a compressed level (CacheHolds::Decoded): how many blocks a fill of `line`
   // fetches (those covering the line's tile, clipped to the level), and in `texels` the tile's
   // texels inside the level (what the decoders produce).
   int fill_blocks(int texture, int level, uint64_t line, int& texels) const;
-  // Memory line address of texel (x, y) of `level` of `texture`.
+  // Memory line address of texel (x, y) of `level` of `texture` (of block column x, block row y on
+  // a level of compressed lines).
   uint64_t line_of(int texture, int level, int x, int y) const;
-  // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy).
+  // Tag probe without allocation or LRU update (the kernel-shape selector's cache-aware policy),
+  // of the line of (x, y) as line_of takes it.
   bool resident(int texture, int level, int x, int y) const;
   // Lines found / fetched, by texture and by level.
   uint64_t texture_hits(int texture) const;
@@ -199,12 +194,6 @@ class TexelCache {
   }
   FootprintResult access_quad(size_t l, const TapGrid& g);
   FootprintResult access_grid(size_t l, const TapGrid& g);
-  FootprintResult access_blocks(size_t l, const TapGrid& g);  // compressed lines: the grid in block coordinates
-  FootprintResult access_in_blocks(size_t l, const TapGrid& b) {  // the same, b already in blocks
-    if (cfg_.bank_mapping == BankMapping::BlockParity && b.cols == 2 && b.rows == 2 && b.used == square_cells(2, 2))
-      return access_quad(l, b);
-    return access_grid(l, b);
-  }
   struct FillTile {  // CacheHolds::Decoded, per lines_ entry of a compressed level: fill_blocks()
     int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;
   };

@@ -72,6 +72,18 @@ struct TapGrid {
   uint16_t used;
 };
 
+// The same footprint in blocks, on a block-compressed level (address_gen forms it beside the
+// texel grid: block_grid, rtl/address_gen_blocks.hpp; not written on other textures):
+//   blocks            the tap grid in blocks: column i is the block column x[i] / block_w, row j
+//                     the block row y[j] / block_h (below 2^14 / 4: at most 12 bits; -1, a border
+//                     column or row, stays -1), cols, rows and used those of the texel grid
+//   u[4] v[4] {[3:0]} the texel column x[i] mod block_w and row y[j] mod block_h inside the block
+// Tap (x[i], y[j]) is texel v[j] block_w + u[i] (row-major) of block (blocks.x[i], blocks.y[j]).
+struct TapBlocks {
+  TapGrid blocks;
+  std::array<uint8_t, 4> u, v;
+};
+
 // Grid cells of a full cols x rows square (LINEAR, CUBIC, NEAREST): kSquareCells[cols][rows].
 inline constexpr auto kSquareCells = [] {
   std::array<std::array<uint16_t, 5>, 5> t{};
@@ -139,12 +151,15 @@ using ProbeShapes = std::array<lee_jen::TexelMask, 2 * kMaxAniso>;
 // address_gen -> kernel_select -> texel_cache: one level footprint per cycle.
 //   tag, level[3:0], grid (its `used` cells: those inside the texture; the edge shape narrows
 //   them at the cache), cross (the edge cross: 12 taps in C order, else cols x rows row-major),
-//   optional[11:0] (cache-aware: arms to add when their lines are resident)
+//   optional[11:0] (cache-aware: arms to add when their lines are resident), and on a
+//   block-compressed texture blocks (the grid in blocks and each tap's texel in its block: what
+//   the cache stage's tags, decoders and read-out take on such a texture)
 struct FootprintReq {
   LevelTag tag;
   int level = 0;
   bool cross = false;
   TapGrid grid;
+  TapBlocks blocks;
   lee_jen::TexelMask optional = 0;
   int ntaps() const { return cross ? lee_jen::kTexels : grid.cols * grid.rows; }
 };

@@ -25,8 +25,7 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
     std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
     for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
     if (tex.compressed)
-      for (size_t k = 0; k < 4; ++k)
-        block_square(tex, f[k].grid, squares_[static_cast<size_t>(n)][k]);
+      for (size_t k = 0; k < 4; ++k) block_grid(tex.block(), f[k].grid, squares_[static_cast<size_t>(n)][k]);
   }
   compressed_ = tex.compressed;
   srgb_ = tex.format == TexelFormat::SRGBA8;  // takes_texture: compressed

@@ -11,15 +11,15 @@
 //   lod_unit      LodUnit::quad_lod, as the plain path (called by the recurrences);
 //   address_gen   its level selection (AddressGen::pick_levels), its per-wrap-pair grid function
 //                 (AddressGen::grid_function) per pixel and level, on a compressed texture the
-//                 footprint's block coordinates (block_square, rtl/address_gen_blocks.hpp), and its pixel count;
+//                 footprint's block coordinates (block_grid, rtl/address_gen_blocks.hpp, as
+//                 AddressGen::footprint forms them), and its pixel count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
 //   texel_cache   CacheStage::admit_lines per footprint, in the plain path's order (pixel by pixel,
 //                 level0 then level1: the tags, the LRU, the memory queue and the decoders see
 //                 the same sequence), then read_square_taps<2>; on a compressed texture
 //                 CacheStage::admit_block_square and read_block_squares
-//                 (rtl/cache_stage_block_squares.cpp), with each footprint's block columns and
-//                 rows formed once by the address generator (rtl/address_gen_blocks.hpp; the plain
-//                 blocks divide per tap in the cache stage);
+//                 (rtl/cache_stage_block_squares.cpp), which take those block coordinates as the
+//                 plain blocks do;
 //   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes;
 //                 blending, FilterUnit::filter_blend_linear8x4: the Q.8 lerps of both levels, then
 //                 the blend unit per pixel. (The plain filter keeps a blending pixel's level0 Q.8
@@ -92,8 +92,8 @@ class LinearQuadPath {
   // The four pixels' footprints on level0 and level1: of each, the fields the grid function
   // writes (grid, fu, fv).
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
-  // On a compressed texture, the same footprints in blocks (block_square, rtl/address_gen_blocks.hpp).
-  std::array<std::array<BlockSquare, 4>, 2> squares_{};
+  // On a compressed texture, the same footprints in blocks (block_grid, rtl/address_gen_blocks.hpp).
+  std::array<std::array<TapBlocks, 4>, 2> squares_{};
   // Read-out of the four footprints on one level (`n`: 0 level0, 1 level1) as the lerp unit's
   // lanes (lane k: pixel k).
   void level_taps(int n, int level, dp::fast::Quad8& q) const;

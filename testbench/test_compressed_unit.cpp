@@ -18,6 +18,8 @@
 #include "cmodel/frame.hpp"
 #include "cmodel/golden_unit.hpp"
 #include "cmodel/mipmap.hpp"
+#include "rtl/address_gen.hpp"
+#include "rtl/address_gen_blocks.hpp"
 #include "rtl/engine_compare.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/texel_cache.hpp"
@@ -152,7 +154,8 @@ TEST(CompressedTexture, DescriptorFieldsRoundTrip) {
 }
 
 // A compressed level's lines (cache.holds compressed) are its block bytes over the line size, for
-// every texel, format and line size; decoded lines tile the level in squares of line_bytes / 4
+// every block (the tags take block coordinates: texel (x, y) is in block (x / block_w, y /
+// block_h)), format and line size; decoded lines tile the level in squares of line_bytes / 4
 // texels, above every memory line, and a fill's blocks are those covering the tile.
 TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
   std::mt19937 rng(9);
@@ -174,7 +177,8 @@ TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
       for (int l = 0; l < 3; ++l)
         for (int y = 0; y < d[0].level_height(l); ++y)
           for (int x = 0; x < d[0].level_width(l); ++x) {
-            ASSERT_EQ(blocks.line_of(0, l, x, y), d[0].texel_address(l, x, y) / static_cast<uint64_t>(line))
+            ASSERT_EQ(blocks.line_of(0, l, x / info.block_w, y / info.block_h),
+                      d[0].texel_address(l, x, y) / static_cast<uint64_t>(line))
                 << block_format_name(f) << " line " << line << " level " << l << " " << x << "," << y;
             const uint64_t v = decoded.line_of(0, l, x, y);
             ASSERT_GE(v, (uint64_t{1} << 41) / static_cast<uint64_t>(line));
@@ -192,7 +196,8 @@ TEST(CompressedCache, LineOfEveryTexelIsItsBlockAddressOverTheLineSize) {
 
 // The 32-byte sectors of compressed lines: a tap's sector is its block's byte address mod the line
 // size / 32 (cache.holds compressed), or its texel's offset in the decoded RGBA8 tile / 32
-// (decoded); random grids of taps, lookups and hits against that reference (a fully associative
+// (decoded); random grids of taps (given to the tags in blocks under cache.holds compressed, as the
+// address generator forms them), lookups and hits against that reference (a fully associative
 // cache larger than the level: a line hits iff an earlier footprint read it).
 TEST(CompressedCache, SectorsOfRandomFootprints) {
   std::mt19937 rng(17);
@@ -223,7 +228,9 @@ TEST(CompressedCache, SectorsOfRandomFootprints) {
           for (int cell = 0; cell < 16; ++cell) {
             if (!((g.used >> cell) & 1)) continue;
             const int x = g.x[static_cast<size_t>(cell & 3)], y = g.y[static_cast<size_t>(cell >> 2)];
-            const uint64_t l = cache.line_of(0, 0, x, y);
+            const BlockFormatInfo& info = block_format_info(f);
+            const uint64_t l = holds == CacheHolds::Compressed ? cache.line_of(0, 0, x / info.block_w, y / info.block_h)
+                                                               : cache.line_of(0, 0, x, y);
             const int sector = holds == CacheHolds::Compressed
                                    ? static_cast<int>(d[0].texel_address(0, x, y) % static_cast<uint64_t>(line) / 32)
                                    : ((y % side) * side + x % side) * 4 / 32;
@@ -234,7 +241,9 @@ TEST(CompressedCache, SectorsOfRandomFootprints) {
           for (const auto& [l, sector] : sectors) sector_hits += std::find(seen.begin(), seen.end(), l) != seen.end() ? 1 : 0;
           for (const uint64_t l : lines)
             if (std::find(seen.begin(), seen.end(), l) == seen.end()) seen.push_back(l);
-          const FootprintResult r = cache.access(0, 0, g);
+          TapBlocks b;
+          block_grid(block_format_info(f), g, b);
+          const FootprintResult r = cache.access(0, 0, holds == CacheHolds::Compressed ? b.blocks : g);
           ASSERT_EQ(r.sector_lookups, static_cast<int>(sectors.size())) << block_format_name(f) << " " << line << " " << n;
           ASSERT_EQ(r.sector_hits, sector_hits) << block_format_name(f) << " " << line << " " << n;
         }
@@ -384,6 +393,125 @@ TEST(CompressedUnit, BlockQuotientByMultiplicationIsExact) {
     for (int x = 0; x < kMaxTextureSize; ++x) ASSERT_EQ(block_quotient(x, m), x / d) << x << " / " << d;
   }
   EXPECT_NE(block_quotient(1 << 18, block_reciprocal(12)), (1 << 18) / 12);  // the bound matters
+  for (int d = 1; d <= 16; ++d) EXPECT_EQ(kBlockReciprocals[static_cast<size_t>(d)], block_reciprocal(d)) << d;
+}
+
+// The address generator's block coordinates (AddressGen::footprint: block_grid,
+// rtl/address_gen_blocks.hpp), which the cache stage's tags, decoders and read-out take on a
+// compressed texture, are the plain definition on every footprint: column i's block x[i] / block_w
+// and texel x[i] mod block_w (floor division of a texel coordinate >= 0), row j's the same with
+// block_h, -1 (clamp-to-border outside the level) kept, the grid's shape and used cells unchanged,
+// and each used tap's block address (TextureDescriptor::block_address) the texel's
+// (texel_address). Random pixels through the address generator's sequencer (begin / issue) on
+// every unsigned block format (block sides 4x4 to 12x12), level 0 sizes that are not multiples of
+// the block (partial edge blocks) up to 16384 wide, every filter mode (NEAREST 1 x 1, LINEAR 2 x 2,
+// CUBIC 4 x 4, the edge cross, each plain, MIPMAP_NEAREST and MIPMAP_LINEAR), every wrap mode, and
+// anisotropic probes; the loop counts the cases it must meet (wraps, partial blocks, border taps,
+// each footprint shape, probes) and fails if one is missing.
+TEST(CompressedUnit, AddressGenBlockCoordinatesAreTheTexelCoordinatesOverTheBlockSide) {
+  std::mt19937 rng(404);
+  Registers regs;
+  for (const BlockFormat f : unsigned_formats()) {
+    const BlockFormatInfo& info = block_format_info(f);
+    TextureDescriptor d;
+    d.compressed = true;
+    d.block_format = f;
+    const int n = static_cast<int>(regs.textures.size());
+    d.width = n % 5 == 0 ? kMaxTextureSize : 1 + static_cast<int>(rng() % 300);
+    d.height = n % 5 == 0 ? 1 + static_cast<int>(rng() % 40) : 1 + static_cast<int>(rng() % 300);
+    if (d.width % info.block_w == 0) ++d.width;  // a partial block column at the right edge
+    if (d.height % info.block_h == 0) ++d.height;
+    d.levels = std::min(mip_level_count(d.width, d.height), kMaxLevels);
+    uint64_t address = 0x10000;
+    for (int l = 0; l < d.levels; ++l) {
+      const auto pitch = static_cast<uint64_t>(blocks_across(f, d.level_width(l)) * info.block_bytes);
+      d.level[static_cast<size_t>(l)] = {address, static_cast<uint32_t>(pitch)};
+      address += (pitch * static_cast<uint64_t>(blocks_down(f, d.level_height(l))) + 255) / 256 * 256;
+    }
+    regs.textures.push_back(d);
+  }
+  for (const FilterMode& m : all_filter_modes())
+    for (const int aniso : {1, 8}) {
+      if (aniso > 1 && m.mip == MipMode::None) continue;
+      SamplerDescriptor s;
+      s.mode = m;
+      s.max_aniso = aniso;
+      for (int k = 0; k < 16; ++k) {  // every pair of wrap modes
+        s.wrap_s = static_cast<WrapMode>(k / 4);
+        s.wrap_t = static_cast<WrapMode>(k % 4);
+        regs.samplers.push_back(s);
+      }
+    }
+  const WeightRomBank roms(regs.samplers);
+  sim::Simulator sim;
+  sim::Channel<PixelReq> in("pixel", 2);
+  sim::Channel<FootprintReq> out("footprint", 2);
+  AddressGen gen(sim, in, out, regs, roms);
+  std::uniform_real_distribution<float> coord(-1.5f, 2.5f);
+  // Cases met: wrapped grid (a column or row below its predecessor), partial edge block, border
+  // tap, 1 x 1, 2 x 2, 4 x 4, cross, anisotropic probe.
+  std::array<int, 8> met{};
+  int footprints = 0;
+  for (int it = 0; it < test::iterations(20000); ++it) {
+    PixelReq p;
+    p.req.texture = static_cast<uint16_t>(rng() % regs.textures.size());
+    p.req.sampler = static_cast<uint8_t>(rng() % regs.samplers.size());
+    p.s = coord(rng);
+    p.t = coord(rng);
+    p.lambda_q8 = static_cast<int32_t>(rng() % (14 * 256)) - 256;
+    if (regs.samplers[p.req.sampler].anisotropic()) {
+      p.probes = 1 + static_cast<int>(rng() % 8);
+      p.major_du_q16 = static_cast<int64_t>(rng() % (1u << 24)) - (1 << 23);
+      p.major_dv_q16 = static_cast<int64_t>(rng() % (1u << 24)) - (1 << 23);
+    }
+    const TextureDescriptor& d = regs.textures[p.req.texture];
+    const BlockFormatInfo& info = d.block();
+    gen.begin(p);
+    for (bool last = false; !last;) {
+      FootprintReq f{};
+      last = gen.issue(f);
+      ++footprints;
+      const TapGrid& g = f.grid;
+      const TapBlocks& b = f.blocks;
+      const int w = d.level_width(f.level), h = d.level_height(f.level);
+      const auto where = [&] {
+        return fmt::format("{} {}x{} level {}, {} wraps {} {}, s {} t {}", info.name, d.width, d.height, f.level,
+                           filter_mode_name(regs.samplers[p.req.sampler].mode),
+                           static_cast<int>(regs.samplers[p.req.sampler].wrap_s),
+                           static_cast<int>(regs.samplers[p.req.sampler].wrap_t), p.s, p.t);
+      };
+      ASSERT_EQ(b.blocks.cols, g.cols) << where();
+      ASSERT_EQ(b.blocks.rows, g.rows) << where();
+      ASSERT_EQ(b.blocks.used, g.used) << where();
+      const auto check = [&](int x, int16_t block, uint8_t texel, int side, int size) {
+        if (x < 0) {
+          ++met[2];
+          return block == -1 && texel == 0;
+        }
+        if (size % side != 0 && x / side == size / side) ++met[1];
+        return x < size && block == x / side && texel == x % side;
+      };
+      for (size_t i = 0; i < static_cast<size_t>(g.cols); ++i) {
+        ASSERT_TRUE(check(g.x[i], b.blocks.x[i], b.u[i], info.block_w, w)) << where() << " column " << g.x[i];
+        if (i > 0 && g.x[i] >= 0 && g.x[i] < g.x[i - 1]) ++met[0];
+      }
+      for (size_t j = 0; j < static_cast<size_t>(g.rows); ++j) {
+        ASSERT_TRUE(check(g.y[j], b.blocks.y[j], b.v[j], info.block_h, h)) << where() << " row " << g.y[j];
+        if (j > 0 && g.y[j] >= 0 && g.y[j] < g.y[j - 1]) ++met[0];
+      }
+      for (size_t cell = 0; cell < 16; ++cell) {
+        if (((g.used >> cell) & 1u) == 0) continue;
+        const int x = g.x[cell & 3u], y = g.y[cell >> 2];
+        ASSERT_EQ(d.block_address(f.level, b.blocks.x[cell & 3u], b.blocks.y[cell >> 2]), d.texel_address(f.level, x, y))
+            << where();
+        ASSERT_EQ(texel_in_block(b, cell, info.block_w), static_cast<size_t>((y % info.block_h) * info.block_w + x % info.block_w))
+            << where();
+      }
+      ++met[f.cross ? 6 : g.cols == 1 ? 3 : g.cols == 2 ? 4 : 5];
+      met[7] += f.tag.probes > 1 ? 1 : 0;
+    }
+  }
+  for (size_t k = 0; k < met.size(); ++k) EXPECT_GT(met[k], 0) << "case " << k << " of " << footprints << " footprints";
 }
 
 // The timing recurrences' LINEAR quad path on block-compressed textures (the blocks' 2 x 2
