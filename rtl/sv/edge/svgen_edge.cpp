@@ -221,11 +221,12 @@ std::string median_network_sv() {
       "  /* verilator lint_on UNUSEDSIGNAL */\n"
       "  output logic [47:0]  low\n"
       ");\n"
-      "  localparam logic [{}:0] PLUS_INF = '1;\n"
-      "  localparam logic [{}:0] MINUS_INF = '0;\n\n"
+      "  // Replications, not '1 / '0: Yosys 0.23 reads a typed localparam's '1 as 1 (docs/silicon-log.md).\n"
+      "  localparam logic [{}:0] PLUS_INF = {{{}{{1'b1}}}};\n"
+      "  localparam logic [{}:0] MINUS_INF = {{{}{{1'b0}}}};\n\n"
       "  // ---- input select: wire n-1 carries the key for texel Cn's position ----\n",
       net.cells.size(), net.selects.size(), net.depth, kKeyBits * lj::kTexels - 1, kKeyBits * lj::kTexels - 1, centre_names,
-      kKeyBits - 1, kKeyBits - 1);
+      kKeyBits - 1, kKeyBits, kKeyBits - 1, kKeyBits);
   std::vector<std::string> in_expr(lj::kTexels);
   for (int n = 1; n <= lj::kTexels; ++n) in_expr[static_cast<size_t>(n - 1)] = key_slice(n);
   for (const lj::CentreMedian& c : lj::kCentreMedians)
