@@ -92,7 +92,9 @@ TEST(DramPresets, EveryPresetIsConsistent) {
     EXPECT_GE(t.tRC, t.tRAS + t.tRP - 1) << "tRC is tRAS + tRP (one clock of rounding)";
     EXPECT_LE(t.tCCD_S, t.tCCD_L);
     EXPECT_LE(t.tRRD_S, t.tRRD_L);
-    if (t.tFAW > 0) EXPECT_GE(t.tFAW, 4 * t.tRRD_S) << "else tFAW never binds";  // 0: the part has no window
+    if (t.tFAW > 0) {  // 0: the part has no four-activate window
+      EXPECT_GE(t.tFAW, 4 * t.tRRD_S) << "else tFAW never binds";
+    }
     EXPECT_EQ(p.g.row_bytes % p.g.burst_bytes, 0);
     EXPECT_FALSE(p.source.empty());
   }

@@ -176,7 +176,9 @@ TEST(UnitCost, DramCommandEnergiesByTheMethodOfTn4007) {
   for (size_t k = 1; k <= rtl::dram::parts().size(); ++k) {
     const std::optional<rtl::DramCommandEnergy> e = rtl::dram_command_energy(static_cast<int>(k));
     EXPECT_EQ(e.has_value(), rtl::dram::parts()[k - 1].name != "gddr3-1400-x32") << k;
-    if (e) EXPECT_GT(e->read_burst_pj, 0.0);
+    if (e) {
+      EXPECT_GT(e->read_burst_pj, 0.0);
+    }
   }
 }
 
