@@ -212,7 +212,7 @@ const SramMacro* sram_macro(Node n) { return n == Node::Osu018 ? &kGf180Sram512x
 
 const std::vector<DramPowerSheet>& dram_power_sheets() { return kDramPowerSheets; }
 
-DramCommandEnergy dram_command_energy(int dram_part) {
+std::optional<DramCommandEnergy> dram_command_energy(int dram_part) {
   const dram::Part& part = dram::parts().at(static_cast<size_t>(dram_part - 1));
   for (const DramPowerSheet& s : kDramPowerSheets) {
     if (part.name != s.part) continue;
@@ -229,7 +229,7 @@ DramCommandEnergy dram_command_energy(int dram_part) {
     e.burst_bytes = part.g.burst_bytes;
     return e;
   }
-  throw std::logic_error(fmt::format("no DRAM power sheet for part {}", part.name));
+  return std::nullopt;
 }
 
 std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
@@ -302,12 +302,12 @@ UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDe
     const double line_words = static_cast<double>(ceil_div(static_cast<uint64_t>(config.cache.line_bytes) * 8,
                                                            static_cast<uint64_t>(m->bits_per_word)));
     *c.sram_pj += static_cast<double>(run.line_misses) * line_words * (m->write_pj + m->read_pj);  // the line buffer
-    if (config.memory.dram > 0) {
-      const DramCommandEnergy d = dram_command_energy(config.memory.dram);
-      c.dram_pj = static_cast<double>(run.dram_bursts) * d.read_burst_pj +
-                  static_cast<double>(run.dram_activates) * d.activate_pj;
-    }
-    if (run.pixels)
+    const std::optional<DramCommandEnergy> d =
+        config.memory.dram > 0 ? dram_command_energy(config.memory.dram) : std::nullopt;
+    if (d)
+      c.dram_pj = static_cast<double>(run.dram_bursts) * d->read_burst_pj +
+                  static_cast<double>(run.dram_activates) * d->activate_pj;
+    if (run.pixels && (config.memory.dram == 0 || d))
       c.energy_pj_per_pixel = (c.logic_pj + *c.sram_pj + c.dram_pj.value_or(0.0)) / static_cast<double>(run.pixels);
   }
   return c;

@@ -36,7 +36,8 @@
 //                       word reads and writes per line lookup and per line fill, and per line fill
 //                       the line buffer's write (on arrival) and read (into the cache); DRAM (with a
 //                       DRAM part, memory.dram > 0): bursts x read_burst_pj + activates x activate_pj
-//                       (dram_command_energy); none with the ideal memory
+//                       (dram_command_energy); none with the ideal memory, none (and no total) for
+//                       a part without a power sheet
 #pragma once
 
 #include <array>
@@ -153,8 +154,9 @@ struct DramCommandEnergy {
   int burst_bytes = 0;  // bytes one burst reads (dram::Geometry::burst_bytes)
 };
 const std::vector<DramPowerSheet>& dram_power_sheets();
-// The energies of the part memory.dram names (1-based, dram::parts()); logic_error if a part has no sheet.
-DramCommandEnergy dram_command_energy(int dram_part);
+// The energies of the part memory.dram names (1-based, dram::parts()); none for a part without a
+// power sheet (no cited IDD table: gddr3-1400-x32).
+std::optional<DramCommandEnergy> dram_command_energy(int dram_part);
 
 // Bits of one miss-FIFO entry: the FootprintReq fields hardware stores (rtl/unit_ports.hpp):
 //   tag: id 32, texture 12, sampler 8, stage 2, base 2, format 2, fu 8, fv 8, blend 9, blends 1,
@@ -183,7 +185,9 @@ struct UnitCost {
   double logic_leakage_nw = 0;  // all units
   double logic_pj = 0;          // the run's logic energy (leakage + switching)
   std::optional<double> sram_um2, area_mm2, sram_pj, energy_pj_per_pixel;  // absent without an SRAM macro
-  std::optional<double> dram_pj;  // absent with the ideal memory (memory.dram 0): no DRAM part to cost
+  // Absent with the ideal memory (memory.dram 0) and for a part without a power sheet; energy_pj_per_pixel
+  // is then absent too for such a part (a total without its DRAM would not compare with the others).
+  std::optional<double> dram_pj;
 };
 UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
                    const RunCounts& run);

@@ -68,6 +68,27 @@ const std::vector<Part>& parts() {
        "tREFI 3.904 us, tRFCab 180 ns) and the standard's core timings (tRCD max(4CK, 18 ns), tRRD max(4CK, "
        "10 ns), tFAW 40 ns, tCCD 8CK for BL16; tRC = tRAS + tRPpb); one x16 channel, 8 banks, 2 KB page: "
        "a 32-byte BL16 burst"},
+      // A graphics DRAM. GDDR3 registers commands on CK and moves data on both edges of RDQS, which
+      // runs at CK: 2 data beats per CK (1400 MT/s at 700 MHz), as DDR4 and LPDDR4 (burst_length / 2
+      // clocks a burst). The data sheet prints the row and column timing in clocks per speed bin. The
+      // -14 bin (700 MHz) is taken: Tables 38 and 39 print it alike and its tRC = tRAS + tRP (the
+      // -12 bin's tRC 32 is below its tRAS 21 + tRP 13). No four-activate window (tFAW 0: the rule
+      // never binds) and no bank groups (one group; tCCD and tRRD are both the _S and the _L figure).
+      // READ to PRECHARGE is not a table entry: BL/2 clocks, the GDDR3 READ-to-PRECHARGE diagram.
+      {"gddr3-1400-x32", 700,
+       Datasheet{.tAA = {0, 11}, .tRCD = {0, 11}, .tRP = {0, 12}, .tRAS = {0, 18}, .tRC = {0, 30}, .tRTP = {0, 2},
+                 .tCCD_S = {0, 2}, .tCCD_L = {0, 2}, .tRRD_S = {0, 7}, .tRRD_L = {0, 7}, .tFAW = {0, 0},
+                 .tREFI = {from_ns(3900), 0}, .tRFC = {from_ns(52.0), 0}, .burst_length = 4},
+       Geometry{.channels = 1, .ranks = 1, .bank_groups = 1, .banks_per_group = 8, .rows = 4096,
+                .row_bytes = 2 * 1024, .burst_bytes = 16},
+       "Qimonda HYB18H512321AF 512-Mbit GDDR3 data sheet rev. 1.73 (2005-08), table 38 (AC timings, "
+       "speed bin -14; table 39 prints the same figures for -14): fCK 700 MHz at CL 11 (fCK11 max), tRC 30, "
+       "tRAS 18, tRRD 7, tRP 12, tRCDRD 11, tCCD 2 clocks, tREFI 3.9 us, tRFC 52.0 ns; no tFAW, no bank "
+       "groups; tRTP = BL/2 = 2 clocks (not tabulated: the READ-to-PRECHARGE diagram of GDDR3 data sheets, "
+       "e.g. Samsung K4J55323QG rev. 1.1 p. 31, PRECHARGE two clocks after a BL4 READ); one x32 device, "
+       "8 banks and two 32-bit words per clock (section 1.2 of the data sheet of its next die revision, "
+       "HYB18H512321BF rev. 1.1, 2007-09), BL4: a 16-byte burst; 4096 rows of 2 KB per bank "
+       "(512 Mbit = 8 banks x 4096 x 2 KB; the address table was not in the public copies read)"},
   };
   return p;
 }

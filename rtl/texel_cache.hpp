@@ -41,6 +41,7 @@
 //     figures weight each line lookup by the sectors the footprint reads from it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -64,6 +65,8 @@ enum class BankMapping { TexelParity, BlockParity };
 enum class CacheHolds { Compressed, Decoded };
 
 inline constexpr int kSectorBytes = 32;
+inline constexpr int kSectorBytesLog2 = 5;
+static_assert(1 << kSectorBytesLog2 == kSectorBytes);
 // The fully associative cache compares every tag on a miss: bounded so that a model run stays fast.
 inline constexpr int kMaxFullyAssociativeLines = 4096;
 
@@ -198,7 +201,8 @@ class TexelCache {
     int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;
   };
   std::vector<FillTile> fill_;  // The lookup tail both share: one line into r's hits or misses; the level's counters.
-  void probe(uint64_t line, uint32_t sectors, FootprintResult& r);
+  bool probe(uint64_t line, FootprintResult& r);                    // true on a hit
+  void probe(uint64_t line, uint32_t sectors, FootprintResult& r);  // and the sectors of its mask
   void tally(size_t l, const FootprintResult& r);
   // The distinct lines of one footprint, in the order its row-major taps first reach them (the LRU
   // order), and the reads per bank: distinct lines (block parity) or distinct texels (texel parity).
@@ -245,15 +249,19 @@ inline size_t TexelCache::set_of(uint64_t line) const {
   return false;
 }
 
+[[gnu::always_inline]] inline bool TexelCache::probe(uint64_t line, FootprintResult& r) {
+  if (lookup(line)) {
+    ++r.hits;
+    return true;
+  }
+  r.missed_lines[static_cast<size_t>(r.misses++)] = line;
+  return false;
+}
+
 [[gnu::always_inline]] inline void TexelCache::probe(uint64_t line, uint32_t sectors, FootprintResult& r) {
   const int n = std::popcount(sectors);
   r.sector_lookups += n;
-  if (lookup(line)) {
-    ++r.hits;
-    r.sector_hits += n;
-  } else {
-    r.missed_lines[static_cast<size_t>(r.misses++)] = line;
-  }
+  if (probe(line, r)) r.sector_hits += n;
 }
 
 inline void TexelCache::tally(size_t l, const FootprintResult& r) {
@@ -276,20 +284,26 @@ inline void TexelCache::tally(size_t l, const FootprintResult& r) {
   const auto dx = static_cast<uint64_t>(static_cast<int64_t>(bx1 - bx0));  // modulo 2^64
   const uint64_t dy = static_cast<uint64_t>(static_cast<int64_t>(by1 - by0)) * row;
   const bool two_cols = bx1 != bx0, two_rows = by1 != by0;
-  // Tap (i, j) is in line (two_cols && i) + 2 (two_rows && j) of line0, line0 + dx, line0 + dy, line0 + dy + dx.
-  std::array<uint32_t, 4> sectors{};
-  const size_t c1 = two_cols ? 1 : 0, r1 = two_rows ? 2 : 0;
-  sectors[0] = sector_bit(ll, g.x[0], g.y[0]);
-  sectors[c1] |= sector_bit(ll, g.x[1], g.y[0]);
-  sectors[r1] |= sector_bit(ll, g.x[0], g.y[1]);
-  sectors[c1 + r1] |= sector_bit(ll, g.x[1], g.y[1]);
   FootprintResult r;
-  probe(line0, sectors[0], r);
-  if (two_cols) probe(line0 + dx, sectors[1], r);
+  probe(line0, r);
+  if (two_cols) probe(line0 + dx, r);
   if (two_rows) {
-    probe(line0 + dy, sectors[2], r);
-    if (two_cols) probe(line0 + dy + dx, sectors[3], r);
+    probe(line0 + dy, r);
+    if (two_cols) probe(line0 + dy + dx, r);
   }
+  // Sectors (sector_bit's rule without a mask per line): a tap's byte offset in its line is
+  // (row in the line << (shift_x + b)) | (column in the line << b), b = log2 of a texel's or a
+  // block's bytes, so its sector (offset >> kSectorBytesLog2) is a pair (row >> ky, column >> kx),
+  // one to one, with kx = max(0, 5 - b), ky = max(0, 5 - shift_x - b). A line's taps are the
+  // product of its columns and its rows, so it holds (distinct column sectors) x (distinct row
+  // sectors): two columns in one line 1 or 2 (x0 >> kx against x1 >> kx), columns in two lines 1
+  // each; rows alike. Every line of the footprint has the same count: lookups and hits times it.
+  const int b = line_log2_ - ll.shift_x - ll.shift_y;
+  const int kx = std::max(0, kSectorBytesLog2 - b), ky = std::max(0, kSectorBytesLog2 - ll.shift_x - b);
+  const int per_line =
+      (two_cols || (g.x[0] >> kx) == (g.x[1] >> kx) ? 1 : 2) * (two_rows || (g.y[0] >> ky) == (g.y[1] >> ky) ? 1 : 2);
+  r.sector_lookups = (r.hits + r.misses) * per_line;
+  r.sector_hits = r.hits * per_line;
   if (cfg_.banks == 4) {
     r.cycles = (two_cols && !((bx0 ^ bx1) & 1) ? 2 : 1) * (two_rows && !((by0 ^ by1) & 1) ? 2 : 1);
   } else {

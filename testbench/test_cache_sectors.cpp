@@ -1,15 +1,21 @@
 // The texel cache's 32-byte sector statistics (rtl/texel_cache.hpp, "Sectors") through the whole
 // unit: hand-derived request sequences with their line and sector lookups and hits, the same in the
 // clocked and the recurrence engine, tiled and linear layouts; and the fully associative cache
-// (cache.ways 0) in a unit run.
+// (cache.ways 0) in a unit run; the 2x2 footprint's sector counts (TexelCache::access_quad, which
+// counts them per axis) against the taps' byte addresses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <random>
+#include <vector>
 
 #include "cmodel/error.hpp"
 #include "cmodel/frame.hpp"
+#include "cmodel/texture_memory.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_stats.hpp"
+#include "testbench/iterations.hpp"
 
 namespace tfu::rtl {
 namespace {
@@ -109,6 +115,70 @@ TEST(CacheSectors, FullyAssociativeUnitRun) {
   EXPECT_NO_THROW(u.validate());
   u.cache.capacity_bytes = 1 << 20;  // 16384 lines: above the fully associative bound
   EXPECT_THROW(u.validate(), InputError);
+}
+
+// The LINEAR 2x2 footprint under block parity (access_quad) counts a footprint's sectors per axis,
+// not per tap: against the distinct (line, address % line_bytes / 32) of its four taps' byte
+// addresses (TextureDescriptor::texel_address), with hits where the line hit (the cache's own line
+// hits, r.hits; every line of the footprint holds the same number of sectors). Every line size (64, 256, 1024),
+// RGBA8 and L8, tiled and linear, random positions with wrapped and clamped edges, several levels.
+TEST(CacheSectors, QuadSectorsEqualTheTapsAddresses) {
+  std::mt19937 rng(11);
+  for (const int line : {64, 256, 1024})
+    for (const TexelFormat f : {TexelFormat::RGBA8, TexelFormat::L8})
+      for (const MemoryLayout layout : {MemoryLayout::Tiled, MemoryLayout::Linear}) {
+        SCOPED_TRACE(::testing::Message() << line << " " << static_cast<int>(f) << " " << static_cast<int>(layout));
+        Texture t;
+        t.format = f;
+        t.layout = layout;
+        t.tile_bytes = line;
+        for (int l = 0; l < 4; ++l) t.levels.emplace_back(mip_extent(96, l), mip_extent(80, l));
+        TextureMemory mem;
+        const std::vector<TextureDescriptor> d{place_texture(mem, t, static_cast<uint64_t>(line))};
+        TexelCacheConfig cfg;
+        cfg.line_bytes = line;
+        cfg.capacity_bytes = 8 * line;
+        cfg.ways = 2;
+        cfg.bank_mapping = BankMapping::BlockParity;
+        TexelCache c(cfg, d);
+        for (int n = 0; n < test::iterations(4000); ++n) {
+          const int level = static_cast<int>(rng() % 4);
+          const int w = mip_extent(96, level), h = mip_extent(80, level);
+          const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(w)),
+                    y0 = static_cast<int>(rng() % static_cast<uint32_t>(h));
+          const bool clamp = rng() % 2 == 0;
+          TapGrid g{};
+          g.cols = g.rows = 2;
+          g.used = square_cells(2, 2);
+          for (int i = 0; i < 2; ++i) {
+            g.x[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(x0 + i, w - 1) : (x0 + i) % w);
+            g.y[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(y0 + i, h - 1) : (y0 + i) % h);
+          }
+          std::vector<uint64_t> lines;
+          std::vector<std::pair<uint64_t, uint64_t>> sectors;
+          for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+              const uint64_t a = d[0].texel_address(level, g.x[static_cast<size_t>(i)], g.y[static_cast<size_t>(j)]);
+              const std::pair sector{a / static_cast<uint64_t>(line), a % static_cast<uint64_t>(line) / 32};
+              if (std::find(lines.begin(), lines.end(), sector.first) == lines.end()) lines.push_back(sector.first);
+              if (std::find(sectors.begin(), sectors.end(), sector) == sectors.end()) sectors.push_back(sector);
+            }
+          const uint64_t before_hits = c.sector_hits();
+          const FootprintResult r = c.access(0, level, g);
+          ASSERT_EQ(static_cast<size_t>(r.hits + r.misses), lines.size());
+          ASSERT_EQ(static_cast<size_t>(r.sector_lookups), sectors.size()) << n;
+          // Every line of a 2x2 footprint holds the same number of its sectors (the product of the
+          // line's distinct column and row sectors), so a hit line brings that many sector hits.
+          const auto per_line = static_cast<size_t>(
+              std::count_if(sectors.begin(), sectors.end(), [&](const auto& q) { return q.first == lines[0]; }));
+          for (const uint64_t l : lines)
+            ASSERT_EQ(static_cast<size_t>(
+                          std::count_if(sectors.begin(), sectors.end(), [&](const auto& q) { return q.first == l; })),
+                      per_line);
+          ASSERT_EQ(static_cast<size_t>(r.sector_hits), static_cast<size_t>(r.hits) * per_line) << n;
+          ASSERT_EQ(c.sector_hits() - before_hits, static_cast<uint64_t>(r.sector_hits));
+        }
+      }
 }
 
 }  // namespace

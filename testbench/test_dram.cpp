@@ -60,6 +60,31 @@ TEST(DramPresets, Lpddr4_3200ClocksAreTheStandardsFiguresRoundedUp) {
   EXPECT_EQ(t.burst, 8);
 }
 
+TEST(DramPresets, Gddr3_1400ClocksAreTheDatasheetClocks) {
+  // tCK = 1.4286 ns; the row and column figures are the data sheet's clocks as printed; tREFI 3.9 us
+  // x 700 MHz = 2730 exactly; tRFC 52.0 ns -> 36.4 -> 37. BL4 at two beats per clock: 2 clocks.
+  const Timing t = Timing::of(part("gddr3-1400-x32").sheet, 700);
+  EXPECT_EQ(t.CL, 11);
+  EXPECT_EQ(t.tRCD, 11);
+  EXPECT_EQ(t.tRP, 12);
+  EXPECT_EQ(t.tRAS, 18);
+  EXPECT_EQ(t.tRC, 30);
+  EXPECT_EQ(t.tRC, t.tRAS + t.tRP);
+  EXPECT_EQ(t.tRTP, 2);
+  EXPECT_EQ(t.tCCD_S, 2);
+  EXPECT_EQ(t.tCCD_L, 2);
+  EXPECT_EQ(t.tRRD_S, 7);
+  EXPECT_EQ(t.tRRD_L, 7);
+  EXPECT_EQ(t.tFAW, 0);
+  EXPECT_EQ(t.tREFI, 2730);
+  EXPECT_EQ(t.tRFC, 37);
+  EXPECT_EQ(t.burst, 2);
+  EXPECT_EQ(t.tCCD_S, t.burst) << "back-to-back bursts fill the bus";
+  const Geometry& g = part("gddr3-1400-x32").g;
+  EXPECT_EQ(int64_t{g.banks()} * g.rows * g.row_bytes * 8, int64_t{512} << 20) << "512 Mbit";
+  EXPECT_EQ(g.columns(), 128);
+}
+
 TEST(DramPresets, EveryPresetIsConsistent) {
   for (const Part& p : parts()) {
     SCOPED_TRACE(std::string(p.name));
@@ -67,7 +92,9 @@ TEST(DramPresets, EveryPresetIsConsistent) {
     EXPECT_GE(t.tRC, t.tRAS + t.tRP - 1) << "tRC is tRAS + tRP (one clock of rounding)";
     EXPECT_LE(t.tCCD_S, t.tCCD_L);
     EXPECT_LE(t.tRRD_S, t.tRRD_L);
-    EXPECT_GE(t.tFAW, 4 * t.tRRD_S) << "else tFAW never binds";
+    if (t.tFAW > 0) {  // 0: the part has no four-activate window
+      EXPECT_GE(t.tFAW, 4 * t.tRRD_S) << "else tFAW never binds";
+    }
     EXPECT_EQ(p.g.row_bytes % p.g.burst_bytes, 0);
     EXPECT_FALSE(p.source.empty());
   }
@@ -143,6 +170,21 @@ TEST(DramRules, ReadWaitsForTrcdTccdAndTheDataBus) {
   EXPECT_EQ(earliest_read(t, r, 0, b, ch, 0), 84);  // data 16 clocks later must not start before 100
 }
 
+TEST(DramRules, Gddr3HasNoFourActivateWindow) {
+  // Four ACTIVATEs tRRD 7 apart: the fifth waits for tRRD only (28); on ddr4-2400-x64 the same
+  // state (tRRD_S 4 apart) holds the fifth to the fourth-last + tFAW 26.
+  const Timing t = Timing::of(part("gddr3-1400-x32").sheet, 700);
+  RankState r = rank_of(part("gddr3-1400-x32").g);
+  r.act_window = {0, 7, 14, 21};
+  r.last_act = 21;
+  r.last_act_in_group[0] = 21;
+  EXPECT_EQ(earliest_activate(t, r, 0, BankState{}, 0), 28);
+  RankState d = rank_of(part("ddr4-2400-x64").g);
+  d.act_window = {0, 4, 8, 12};
+  d.last_act = 12;
+  EXPECT_EQ(earliest_activate(ddr4(), d, 1, BankState{}, 0), 26);
+}
+
 TEST(DramRules, RefreshPrechargesOpenBanksFirst) {
   const Timing& t = ddr4();
   const Geometry& g = part("ddr4-2400-x64").g;
@@ -200,6 +242,42 @@ TEST(DramModel, FirstReadRowHitAndRowConflictTakeTheRulesCycles) {
   EXPECT_EQ(s.activates, 2u);
   EXPECT_EQ(s.precharges, 1u);
   EXPECT_EQ(s.latency_max, 91u);
+}
+
+TEST(DramModel, Gddr3FirstReadRowHitAndRowConflictTakeTheRulesCycles) {
+  DramModel d(Config{.part = "gddr3-1400-x32", .unit_clock_mhz = 700});
+  // Idle bank: ACT 0, READ tRCD 11 later, data CL 11 later for 2 clocks: tRCD + CL + burst = 24.
+  EXPECT_EQ(d.read(0, 0, 16), 24u);
+  // The row's next burst: READ at max(last command + 1 = 12, 11 + tCCD 2, data bus 24 - CL 11 = 13)
+  // = 13, done 13 + 11 + 2 = 26.
+  EXPECT_EQ(d.read(0, 16, 16), 26u);
+  // Another row of bank 0 (the row above 4 offset + 7 column + 3 bank bits): PRE at max(14, ACT 0 +
+  // tRAS 18, READ 13 + tRTP 2) = 18, ACT at max(19, PRE + tRP 12, ACT 0 + tRC 30) = 30, READ 41,
+  // done 54: the conflict waits out tRAS and adds tRP before the idle bank's tRCD + CL + burst.
+  EXPECT_EQ(d.read(0, uint64_t{1} << 14, 16), 54u);
+  EXPECT_EQ(d.stats().row_empty, 1u);
+  EXPECT_EQ(d.stats().row_hits, 1u);
+  EXPECT_EQ(d.stats().row_conflicts, 1u);
+  // A 64-byte line in an idle bank: four bursts tCCD 2 apart, back to back on the bus: READs at
+  // ACT + 11, 13, 15, 17 (ACT at 0 on a fresh model), done 17 + 11 + 2 = 30.
+  DramModel line(Config{.part = "gddr3-1400-x32", .unit_clock_mhz = 700});
+  EXPECT_EQ(line.read(0, 0, 64), 30u);
+  EXPECT_EQ(line.stats().bursts, 4u);
+}
+
+TEST(DramModel, Gddr3RefreshAndStreaming) {
+  // REFRESH at tREFI 2730, the rank busy for tRFC 37: ACT 2767, READ 2778, done 2791.
+  DramModel d(Config{.part = "gddr3-1400-x32", .unit_clock_mhz = 700});
+  EXPECT_EQ(d.read(2731, 0, 16), 2791u);
+  EXPECT_EQ(d.stats().refreshes, 1u);
+  // 64 KiB line by line: tCCD 2 = the burst, so a row streams at the peak 5.6 GB/s; each of the 32
+  // rows (2 KB, 128 bursts) opens with an ACT tRCD before its first READ.
+  const double peak = 700e6 * 2 * 4 / 1e9;
+  DramModel s(Config{.part = "gddr3-1400-x32", .unit_clock_mhz = 700, .refresh = false});
+  for (uint64_t i = 0; i < 1024; ++i) s.read(i, i * 64, 64);
+  EXPECT_GT(s.bandwidth_gbps(), 0.9 * peak);
+  EXPECT_LE(s.bandwidth_gbps(), peak + 1e-9);
+  EXPECT_EQ(s.stats().activates, 32u);
 }
 
 TEST(DramModel, ClosePageMakesEveryBurstAnActivate) {
@@ -311,6 +389,33 @@ TEST(DramUnit, SceneThroughDdr4IsBitExactInBothEnginesAndCountsEveryBurst) {
   // The ideal memory publishes no DRAM statistics.
   const SceneSimResult plain = simulate_scene(s, render, UnitConfig{}, SceneSimOptions{});
   EXPECT_EQ(plain.stats.counters().count("dram_bursts"), 0u);
+}
+
+// The same scene through the GDDR3 part: bit-exact in both engines, a 64-byte line is four 16-byte
+// bursts, no DRAM energy (no power sheet) but every DRAM statistic.
+TEST(DramUnit, SceneThroughGddr3IsBitExactInBothEngines) {
+  Scene s = load_scene("ground_plane");
+  s.width = 64;
+  s.height = 48;
+  RenderOptions ro;
+  ro.trace = true;
+  const RenderResult render = render_scene(s, ro);
+  UnitConfig u = unit_config_from_json(R"({"memory.dram": "gddr3-1400-x32", "memory.unit_clock_mhz": 700})", "c.json");
+  EXPECT_EQ(u.memory.dram, 3);
+  SceneSimOptions so;
+  so.engine = UnitEngine::Recurrence;
+  const SceneSimResult rec = simulate_scene(s, render, u, so);
+  so.engine = UnitEngine::Clocked;
+  const SceneSimResult clk = simulate_scene(s, render, u, so);
+  ASSERT_TRUE(rec.mismatch.empty()) << rec.mismatch;
+  ASSERT_TRUE(clk.mismatch.empty()) << clk.mismatch;
+  EXPECT_EQ(rec.cycles, clk.cycles);
+  EXPECT_EQ(rec.stats.counters(), clk.stats.counters());
+  const uint64_t bursts = counter(rec.stats, UnitStat::DramBursts);
+  EXPECT_GT(bursts, 0u);
+  EXPECT_EQ(bursts * 16, counter(rec.stats, UnitStat::MemoryBytes));
+  // At the unit's 700 MHz one unit clock is one DRAM clock: every read waits CL 11 + 4 bursts of 2.
+  EXPECT_GE(value(rec.stats, UnitStat::DramLatencyMean), 11.0 + 8.0);
 }
 
 TEST(DramUnit, ConfigNamesThePartPolicyAndMapping) {

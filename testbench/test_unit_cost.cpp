@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "cmodel/error.hpp"
@@ -157,7 +158,8 @@ TEST(UnitCost, DramCommandEnergiesByTheMethodOfTn4007) {
   // READ: (IDD4R 184.5 - IDD3N 44.0) mA x 1.2 V x 4 clocks of 0.8333 ns = 562.0 pJ a device, 4,496 pJ
   // per 64-byte burst. ACTIVATE: (IDD0 60.75 x tRC 55 - IDD3N 44.0 x tRAS 39 - IDD2N 38.25 x 16)
   // mA x clocks = 1,013.25 mA x clocks x 0.8333 ns x 1.2 V = 1,013.25 pJ a device, 8,106 pJ.
-  const rtl::DramCommandEnergy ddr4 = rtl::dram_command_energy(1);
+  ASSERT_TRUE(rtl::dram_command_energy(1).has_value());
+  const rtl::DramCommandEnergy ddr4 = *rtl::dram_command_energy(1);
   EXPECT_NEAR(ddr4.read_burst_pj, 4496.0, 1e-9);
   EXPECT_NEAR(ddr4.activate_pj, 8106.0, 1e-9);
   EXPECT_EQ(ddr4.burst_bytes, 64);
@@ -165,12 +167,19 @@ TEST(UnitCost, DramCommandEnergiesByTheMethodOfTn4007) {
   // READ, 8 clocks = 5 ns: VDD1 (2.25 - 2.25) x 1.8 + VDD2 (275 - 30) x 1.1 = 269.5 mW -> 1,347.5 pJ per
   // 32 bytes. ACTIVATE: 0.625 x (1.8 x (3.5 x 97 - 2.25 x 68 - 2.0 x 29) + 1.1 x (45 x 97 - 30 x 68
   // - 27 x 29)) = 0.625 x (231.3 + 1,696.2) = 1,204.6875 pJ.
-  const rtl::DramCommandEnergy lp4 = rtl::dram_command_energy(2);
+  ASSERT_TRUE(rtl::dram_command_energy(2).has_value());
+  const rtl::DramCommandEnergy lp4 = *rtl::dram_command_energy(2);
   EXPECT_NEAR(lp4.read_burst_pj, 1347.5, 1e-9);
   EXPECT_NEAR(lp4.activate_pj, 1204.6875, 1e-9);
   EXPECT_EQ(lp4.burst_bytes, 32);
-  // Every preset has a power sheet.
-  for (size_t k = 1; k <= rtl::dram::parts().size(); ++k) EXPECT_GT(rtl::dram_command_energy(static_cast<int>(k)).read_burst_pj, 0.0);
+  // Every preset with a power sheet costs a burst; gddr3-1400-x32 has none (no cited IDD table).
+  for (size_t k = 1; k <= rtl::dram::parts().size(); ++k) {
+    const std::optional<rtl::DramCommandEnergy> e = rtl::dram_command_energy(static_cast<int>(k));
+    EXPECT_EQ(e.has_value(), rtl::dram::parts()[k - 1].name != "gddr3-1400-x32") << k;
+    if (e) {
+      EXPECT_GT(e->read_burst_pj, 0.0);
+    }
+  }
 }
 
 TEST(UnitCost, DramEnergyIsAddedPerBurstAndActivate) {
@@ -189,6 +198,12 @@ TEST(UnitCost, DramEnergyIsAddedPerBurstAndActivate) {
   ASSERT_TRUE(k.dram_pj.has_value());
   EXPECT_NEAR(*k.dram_pj, 20 * 4496.0 + 3 * 8106.0, 1e-6);
   EXPECT_NEAR(*k.energy_pj_per_pixel, *ideal.energy_pj_per_pixel + (20 * 4496.0 + 3 * 8106.0) / 400, 1e-6);
+  // A part without a power sheet: no DRAM energy, and no total that would leave it out.
+  c.memory.dram = 3;  // gddr3-1400-x32
+  const rtl::UnitCost g = rtl::unit_cost(rtl::Node::Osu018, c, {sampler("LINEAR")}, 1, run);
+  EXPECT_FALSE(g.dram_pj.has_value());
+  EXPECT_FALSE(g.energy_pj_per_pixel.has_value());
+  EXPECT_TRUE(g.sram_pj.has_value());
 }
 
 }  // namespace

@@ -111,12 +111,13 @@ const std::vector<Column>& result_columns() {
       {"area_mm2", "mm^2", "logic_um2 + sram_um2", ResultType::NumberOrNull},
       {"fmax_mhz", "MHz", "the clock of the slowest block the frame needs at the node (the slowest part sets the clock)", ResultType::Number},
       {"energy_pj_per_pixel", "pJ/pixel",
-       "logic_pj_per_pixel + sram_pj_per_pixel + dram_pj_per_pixel (DRAM 0 with the ideal memory)", ResultType::NumberOrNull},
+       "logic_pj_per_pixel + sram_pj_per_pixel + dram_pj_per_pixel (DRAM 0 with the ideal memory; empty with a DRAM "
+       "part that has no power sheet)", ResultType::NumberOrNull},
       {"logic_pj_per_pixel", "pJ/pixel", "logic: leakage + uniform-activity switching at fmax, per request", ResultType::NumberOrNull},
       {"sram_pj_per_pixel", "pJ/pixel", "texel cache and line buffer SRAM word reads and writes, per request", ResultType::NumberOrNull},
       {"dram_pj_per_pixel", "pJ/pixel",
        "DRAM bursts and activates at the part's TN-40-07 command energies (rtl::dram_command_energy), per request; empty with the "
-       "ideal memory",
+       "ideal memory and with a part that has no power sheet (no cited IDD table: gddr3-1400-x32)",
        ResultType::NumberOrNull},
       {"point", "", "the point's id: its file DIR/points/ID.json"},
       {"error", "", "why the point could not run (empty when it ran)"},
