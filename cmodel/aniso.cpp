@@ -32,6 +32,42 @@ int aniso_probe_count(uint64_t pmax2_q32, uint64_t pmin2_q32, const AnisoParams&
   return n;
 }
 
+DotCross aniso_dot_cross(const TexelDerivatives& d) {
+  const auto clamp_signed = [](int64_t v) {
+    const auto m = static_cast<int64_t>(derivative_magnitude(v));
+    return v < 0 ? -m : m;
+  };
+  const int64_t ux = clamp_signed(d.dudx), vx = clamp_signed(d.dvdx), uy = clamp_signed(d.dudy), vy = clamp_signed(d.dvdy);
+  // Each product < 2^62 in magnitude; a sum or difference of two < 2^63: no overflow.
+  return {ux * uy + vx * vy, ux * vy - vx * uy};
+}
+
+AnisoU128 aniso_hypot(uint64_t e, uint64_t f) {
+  const uint64_t big = std::max(e, f), small = std::min(e, f);
+  const int s = std::max(0, static_cast<int>(std::bit_width(big)) - 16);  // 0..48
+  const uint64_t big_m = big >> s, small_m = small >> s;                 // 16-bit mantissas, truncated
+  const uint64_t h = axis_length_q16(big_m * big_m + small_m * small_m);  // 17 bits, h >= big_m
+  return AnisoU128{big} + (AnisoU128{h - big_m} << s);                     // (h - big_m) < 2^15
+}
+
+uint64_t ellipse_major_len2(uint64_t px2_q32, uint64_t py2_q32, int64_t dot_q32) {
+  const AnisoU128 a = AnisoU128{px2_q32} + py2_q32;  // < 2^64 for the clamped magnitudes
+  const uint64_t e = px2_q32 >= py2_q32 ? px2_q32 - py2_q32 : py2_q32 - px2_q32;
+  const uint64_t f = 2 * (dot_q32 < 0 ? uint64_t{0} - static_cast<uint64_t>(dot_q32) : static_cast<uint64_t>(dot_q32));
+  const AnisoU128 h = std::min(aniso_hypot(e, f), a);  // H <= A in exact terms (4 D^2 >= 0)
+  return static_cast<uint64_t>((a + h) >> 1);
+}
+
+int aniso_probe_count_ellipse(uint64_t pmax2_q32, uint64_t det_q32, const AnisoParams& p) {
+  // n (8 + t) |D| >= 8 Pmax'^2: n <= 16, 8 + t <= 15, |D| < 2^63: < 2^71; 8 Pmax'^2 < 2^67.
+  const auto scale = static_cast<uint32_t>(8 + std::clamp(p.aniso_threshold, 0, kAnisoThresholdMax));
+  int n = 1;
+  while (n <= kMaxAniso && u128{static_cast<uint64_t>(n)} * scale * det_q32 < u128{pmax2_q32} << 3) ++n;
+  n = std::min(n, clamp_max_aniso(p.max_aniso));  // n = 17 (no n covers) becomes maxAniso
+  if (p.aniso_rounding == AnisoRounding::PowerOfTwo) n = static_cast<int>(std::bit_ceil(static_cast<unsigned>(n)));
+  return n;
+}
+
 const std::array<int32_t, kMaxAniso>& aniso_log2_sq_rom() {
   // Offline table generation (double precision), the one source of the ROM contents.
   static const auto rom = [] {
@@ -58,10 +94,16 @@ AnisoLod aniso_lod(const TexelDerivatives& d, const AnisoParams& p) {
   };
   a.major_du_q16 = clamp_signed(a.major_x ? d.dudx : d.dudy);
   a.major_dv_q16 = clamp_signed(a.major_x ? d.dvdx : d.dvdy);
-  const uint64_t pmax2 = std::max(a.px2_q32, a.py2_q32);
-  const uint64_t pmin2 = std::min(a.px2_q32, a.py2_q32);
-  a.probes = aniso_probe_count(pmax2, pmin2, p);
-  a.lambda_q8 = aniso_lambda(pmax2, a.probes);
+  if (p.aniso_axes == AnisoAxes::Ellipse) {
+    const DotCross dc = aniso_dot_cross(d);
+    a.pmax2_q32 = ellipse_major_len2(a.px2_q32, a.py2_q32, dc.dot_q32);
+    a.det_q32 = dc.det_q32 < 0 ? uint64_t{0} - static_cast<uint64_t>(dc.det_q32) : static_cast<uint64_t>(dc.det_q32);
+    a.probes = aniso_probe_count_ellipse(a.pmax2_q32, a.det_q32, p);
+  } else {
+    a.pmax2_q32 = std::max(a.px2_q32, a.py2_q32);
+    a.probes = aniso_probe_count(a.pmax2_q32, std::min(a.px2_q32, a.py2_q32), p);
+  }
+  a.lambda_q8 = aniso_lambda(a.pmax2_q32, a.probes);
   return a;
 }
 

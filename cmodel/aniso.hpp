@@ -27,6 +27,31 @@
 //   on level L       sgn * ((|o| + 2^(7 + L)) >> (8 + L)): Q.8 texels of level L, added to
 //                    dp::texel_coord's u = floor(s W_L 2^8) - 128
 //   average          c = (sum_i w_i c_i + 128) >> 8 per channel, w_i from the probe ROM, sum w_i = 256
+//
+// Ellipse axes (aniso_axes Ellipse; the spec's Px, Py are lengths along the screen axes, not the
+// footprint ellipse's axes, so its lambda depends on the angle of the ellipse against the screen).
+// The ellipse's axes follow from the two derivative vectors a = (du/dx, dv/dx), b = (du/dy, dv/dy)
+// (Heckbert 1989, "Fundamentals of Texture Mapping and Image Warping", Sec. 3.5.5: the singular
+// values of the Jacobian J = [a b]):
+//   A = Px^2 + Py^2, E = Px^2 - Py^2, F = 2 a.b, D = a x b = du/dx dv/dy - dv/dx du/dy
+//   Pmax'^2 = (A + H) / 2, H = sqrt(E^2 + F^2) (= sqrt(A^2 - 4 D^2)), Pmax' Pmin' = |D|
+//   dot, cross       four 31 x 31-bit products of the clamped magnitudes, signed sums: |a.b|, |D|
+//                    < 2^63, exact (Q.32)
+//   H                hypot of |E| (63 bits) and |F| (64 bits): M = max, m = min, s = max(0,
+//                    bit_width(M) - 16), M' = M >> s, m' = m >> s (16 bits, truncated), h =
+//                    floor(sqrt(M'^2 + m'^2)) (33-bit radicand, 17-bit digit-by-digit root),
+//                    H = M + ((h - M') << s) (65 bits); exact when E or F is 0; relative error
+//                    below 2^-13
+//   Pmax'^2          (A + min(H, A)) >> 1 (65-bit sum, floor; < 2^64 since H <= A in exact terms)
+//   N                smallest n in 1..16 with n (8 + t) |D| >= 8 Pmax'^2 (Pmax'^2 / |D| = Pmax' /
+//                    Pmin'; t = 0: n |D| >= Pmax'^2; 71-bit products, linear in n), 17 if none
+//                    (|D| = 0 < Pmax'^2: a line), then min(., maxAniso) and the power-of-two
+//                    rounding as above
+//   lambda           lambda_from_length_sq(Pmax'^2, R[N]), the same unit and ROM
+//   major axis       unchanged: the longer derivative vector carries the probes
+// For axis-aligned derivatives (F = 0: du/dx du/dy = -dv/dx dv/dy, e.g. a = (du, 0), b = (0, dv))
+// H = |E| exactly, Pmax'^2 = max(Px^2, Py^2), and n |D| >= Pmax'^2 is n^2 Pmin^2 >= Pmax^2: the
+// ellipse axes give the screen axes' result bit for bit.
 #pragma once
 
 #include <array>
@@ -49,6 +74,12 @@ inline constexpr int kAnisoThresholdMax = (1 << kAnisoThresholdBits) - 1;
 // sampling rate").
 enum class AnisoRounding { Integer, PowerOfTwo };
 
+// Which axis lengths the LOD unit takes (sampler-descriptor field aniso_axes): the spec's Px, Py
+// along the screen axes (Screen, the EXT text), or the true axes of the footprint ellipse
+// (Ellipse: Pmax', Pmin' from the derivatives' dot and cross products; lambda does not depend on
+// the ellipse's angle against the screen).
+enum class AnisoAxes { Screen, Ellipse };
+
 // The sampler-descriptor fields of anisotropic filtering (SamplerDescriptor::aniso() hands them to
 // the LOD unit; a sampler without MIP-mapping gives max_aniso 1: it has no lambda to lower).
 //
@@ -63,6 +94,7 @@ struct AnisoParams {
   int max_aniso = 1;  // maxAniso, 1..16 (1 = isotropic); values outside are clamped into 1..16
   AnisoRounding aniso_rounding = AnisoRounding::Integer;
   int aniso_threshold = 0;  // t, 0..7 (0: the spec's N); values outside are clamped into 0..7
+  AnisoAxes aniso_axes = AnisoAxes::Screen;
 };
 
 // The anisotropic LOD unit's result for one pixel (or quad).
@@ -74,6 +106,9 @@ struct AnisoLod {
   int64_t major_dv_q16 = 0;    //   magnitudes clamped to 2^31 - 1, signs kept
   int probes = 1;              // N, 1..16
   int32_t lambda_q8 = kLodMinusInfinity;  // log2(Pmax / N) in Q.8, before bias and clamp
+  uint64_t pmax2_q32 = 0;      // the squared major length lambda is formed from: max(Px^2, Py^2)
+                               //   (Screen) or the ellipse's Pmax'^2 (Ellipse), Q.32
+  uint64_t det_q32 = 0;        // |D| = |a x b| = Pmax' Pmin', Q.32 (Ellipse; 0 with Screen)
 };
 
 // The LOD result of a request without derivatives (a lod-mode trace, textureLod) or of an
@@ -99,12 +134,33 @@ constexpr uint32_t aniso_threshold_scale(int t) {
   return static_cast<uint32_t>(c * c);
 }
 
+// The ellipse axes' parts (Ellipse mode; see the top of this file).
+// The dot-and-cross unit: a.b and D = a x b of the clamped derivative vectors (magnitudes clamped
+// to 2^31 - 1, signs kept), exact, Q.32 level-0 texels^2, |each| < 2^63.
+struct DotCross {
+  int64_t dot_q32 = 0;  // a.b = du/dx du/dy + dv/dx dv/dy
+  int64_t det_q32 = 0;  // D = du/dx dv/dy - dv/dx du/dy
+};
+DotCross aniso_dot_cross(const TexelDerivatives& d);
+// The hypot unit: H ~ sqrt(e^2 + f^2) from 16-bit mantissas, H = M + ((h - M') << s) as above;
+// exact when e or f is 0; H >= max(e, f); H < 2^65 (returned in a 128-bit integer's low 65 bits).
+__extension__ using AnisoU128 = unsigned __int128;
+AnisoU128 aniso_hypot(uint64_t e, uint64_t f);
+// Pmax'^2 = (A + min(H, A)) >> 1 from Px^2, Py^2 (each < 2^63) and a.b: A = Px^2 + Py^2, H =
+// aniso_hypot(|Px^2 - Py^2|, 2 |a.b|). Q.32, <= A < 2^64.
+uint64_t ellipse_major_len2(uint64_t px2_q32, uint64_t py2_q32, int64_t dot_q32);
+// N from Pmax'^2 and |D|: smallest n in 1..16 with n (8 + t) |D| >= 8 Pmax'^2 (17 if none),
+// capped at max_aniso, then rounded up to a power of two with AnisoRounding::PowerOfTwo.
+// pmax2 = 0 (also with |D| = 0) gives 1; |D| = 0 < pmax2 gives maxAniso.
+int aniso_probe_count_ellipse(uint64_t pmax2_q32, uint64_t det_q32, const AnisoParams& p);
+
 // R[N - 1] = round(512 log2 N) = 256 log2(N^2) in Q.8, N = 1..16 (0, 512, 811, 1024, ...).
 const std::array<int32_t, kMaxAniso>& aniso_log2_sq_rom();
 // lambda = log2(Pmax / N) in Q.8: lambda_from_length_sq(pmax2, R[N - 1]); n in 1..16.
 int32_t aniso_lambda(uint64_t pmax2_q32, int n);
 
-// Exact floor(sqrt(x)): Px, Py in Q.16 level-0 texels from their squares (reporting, --query-lod).
+// Exact floor(sqrt(x)), digit by digit: Px, Py in Q.16 level-0 texels from their squares
+// (reporting, --query-lod), and the hypot unit's 17-bit root of a 33-bit radicand.
 uint32_t axis_length_q16(uint64_t len2_q32);
 
 // Probe ROM word for (N, i): the signed fraction q(N, i) = round-half-away(2^16 (2i - N - 1) /

@@ -80,6 +80,8 @@ const std::initializer_list<std::pair<const char*, RomRounding>> kRounding{{"sum
                                                                            {"nearest", RomRounding::Nearest}};
 const std::initializer_list<std::pair<const char*, AnisoRounding>> kAnisoRounding{{"integer", AnisoRounding::Integer},
                                                                                   {"pow2", AnisoRounding::PowerOfTwo}};
+const std::initializer_list<std::pair<const char*, AnisoAxes>> kAnisoAxes{{"screen", AnisoAxes::Screen},
+                                                                          {"ellipse", AnisoAxes::Ellipse}};
 
 using SD = SamplerDescriptor;
 const SamplerParam kSamplerParams[] = {
@@ -131,6 +133,9 @@ const SamplerParam kSamplerParams[] = {
     {"aniso_threshold", "probe threshold in eighths of Pmin (0..7; 0 the spec's N)",
      [](SD& s, const std::string& v) { s.aniso_threshold = static_cast<int>(parse_int(v, 0, kAnisoThresholdMax)); },
      [](const SD& s) { return std::to_string(s.aniso_threshold); }},
+    {"aniso_axes", "axis lengths: screen (the spec's Px, Py) or ellipse (the footprint's true axes)",
+     [](SD& s, const std::string& v) { s.aniso_axes = pick(v, kAnisoAxes); },
+     [](const SD& s) { return name_of(s.aniso_axes, kAnisoAxes); }},
 };
 
 constexpr const char* kTextureParamKeys[] = {"format", "mipmaps", "alpha", "layout", "tile_bytes", "compress", "srgb"};

@@ -339,6 +339,9 @@ const std::vector<Codec<SD>>& sampler_codecs() {
       {{"aniso_threshold", 5, 5, 3, 1, 0, "probe threshold t: N = ceil(Pmax / ((1 + t/8) Pmin)), 0 the spec's N"},
        [](const SD& d, int) { return static_cast<uint32_t>(d.aniso_threshold); },
        [](SD& d, int, uint32_t b) { d.aniso_threshold = static_cast<int>(b); }},
+      {{"aniso_axes", 5, 8, 1, 1, 0, "axis lengths: 0 Px, Py along the screen axes (the EXT spec), 1 the footprint ellipse's axes"},
+       [](const SD& d, int) { return u(d.aniso_axes); },
+       [](SD& d, int, uint32_t b) { d.aniso_axes = static_cast<AnisoAxes>(b); }},
   };
   return c;
 }

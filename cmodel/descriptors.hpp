@@ -85,10 +85,12 @@ struct SamplerDescriptor {
   EdgeShape edge_shape = EdgeShape::Static;
   // Anisotropic filtering (docs/anisotropic.md): probes per pixel at most, 1..16 (1 = isotropic),
   // and the rounding of the probe count N (any integer, or up to a power of two), and the probe
-  // threshold t (0..7; 0 = the spec's N; AnisoParams).
+  // threshold t (0..7; 0 = the spec's N; AnisoParams), and the axis lengths (the spec's screen
+  // axes or the footprint ellipse's axes).
   int max_aniso = 1;
   AnisoRounding aniso_rounding = AnisoRounding::Integer;
   int aniso_threshold = 0;
+  AnisoAxes aniso_axes = AnisoAxes::Screen;
   // Model option, not a register (no effect on results): evaluate the CUBIC tile-weight multipliers
   // once per ROM address pair instead of per sample (nearest reconstruction, R <= 128).
   bool memoize_cubic_weights = true;
@@ -97,8 +99,9 @@ struct SamplerDescriptor {
   // Anisotropic: max_aniso > 1 on a MIP-mapped mode. A mode without MIP-mapping has no lambda to
   // lower (GL: level 0 whatever the footprint), so it ignores max_aniso and filters isotropically.
   bool anisotropic() const { return max_aniso > 1 && mode.mip != MipMode::None; }
-  // What the LOD unit reads: max_aniso (1 unless anisotropic()), aniso_rounding and aniso_threshold.
-  AnisoParams aniso() const { return {anisotropic() ? max_aniso : 1, aniso_rounding, aniso_threshold}; }
+  // What the LOD unit reads: max_aniso (1 unless anisotropic()), aniso_rounding, aniso_threshold
+  // and aniso_axes.
+  AnisoParams aniso() const { return {anisotropic() ? max_aniso : 1, aniso_rounding, aniso_threshold, aniso_axes}; }
   friend bool operator==(const SamplerDescriptor&, const SamplerDescriptor&) = default;
 };
 

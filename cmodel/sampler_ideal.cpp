@@ -142,12 +142,19 @@ std::array<double, 4> Sampler::sample_ideal(double s, double t, double lambda) c
 // Pmin), maxAniso) (with aniso_threshold t: ceil(Pmax / ((1 + t/8) Pmin)); rounded up to a power
 // of two with AnisoRounding::PowerOfTwo), lambda =
 // log2(Pmax / N), probe i at the centre + (-1/2 + i / (N + 1)) times the major derivative vector,
-// each probe the ideal sample of the mode, the plain mean.
+// each probe the ideal sample of the mode, the plain mean. With AnisoAxes::Ellipse, Pmax and Pmin
+// are the footprint ellipse's axes (the singular values of [a b]: Pmax^2 = (A + sqrt(E^2 + F^2)) /
+// 2, Pmin = |D| / Pmax; aniso.hpp), and the probes stay on the longer derivative vector.
 std::array<double, 4> Sampler::sample_ideal_aniso(double s, double t, const std::array<double, 4>& d) const {
   const double px = std::hypot(d[0], d[1]), py = std::hypot(d[2], d[3]);
   const bool major_x = px >= py;
-  const double pmax = std::max(px, py), pmin = std::min(px, py);
+  double pmax = std::max(px, py), pmin = std::min(px, py);
   const AnisoParams ap = cfg_.aniso();
+  if (ap.aniso_axes == AnisoAxes::Ellipse && pmax > 0 && std::isfinite(pmax)) {
+    const double a = px * px + py * py, e = px * px - py * py, f = 2 * (d[0] * d[2] + d[1] * d[3]);
+    pmax = std::sqrt((a + std::hypot(e, f)) / 2);
+    pmin = std::fabs(d[0] * d[3] - d[1] * d[2]) / pmax;
+  }
   const int cap = std::clamp(ap.max_aniso, 1, kMaxAniso);
   int n = 1;
   const double widen = 1.0 + std::clamp(ap.aniso_threshold, 0, kAnisoThresholdMax) / 8.0;

@@ -3,7 +3,8 @@
 // log2 ROM of cmodel/lod.hpp, in texels of the request's texture (level-0 width and height from
 // its texture descriptor); then the pixels one per cycle. For an anisotropic sampler (max_aniso > 1
 // on a MIP-mapped mode) the anisotropic LOD unit of cmodel/aniso.hpp (EXT_texture_filter_anisotropic:
-// axis lengths, probe count N by exact compares, lambda = log2(Pmax / N)) on the same derivatives;
+// axis lengths along the screen axes or the footprint ellipse's axes, probe count N by exact
+// compares, lambda = log2(Pmax / N)) on the same derivatives;
 // the pixels carry N and the major derivative vector to the address generator.
 //
 // Ports:
@@ -11,7 +12,7 @@
 //   out pixel      PixelReq: lambda[15:0] Q.8 before bias and clamp, probes[4:0], major_du[31:0],
 //                  major_dv[31:0]; one per cycle
 //   in  registers  texture descriptors (width_m1, height_m1), sampler descriptors (mip_mode,
-//                  max_aniso_m1, aniso_rounding, aniso_threshold)
+//                  max_aniso_m1, aniso_rounding, aniso_threshold, aniso_axes)
 // A sampler without MIP-mapping has no level to select (GL: level 0), so its lambda is not used:
 // the model then leaves it at 0 instead of evaluating the derivatives and the log2 ROM (software
 // speed only; the pixels' timing is the same). A lod trace has no derivatives: one probe (N = 1).

@@ -46,6 +46,7 @@ SamplerDescriptor random_sampler(std::mt19937& rng) {
   s.max_aniso = 1 + static_cast<int>(rng() % 16);
   s.aniso_rounding = static_cast<AnisoRounding>(rng() % 2);
   s.aniso_threshold = static_cast<int>(rng() % 8);
+  s.aniso_axes = static_cast<AnisoAxes>(rng() % 2);
   return s;
 }
 

@@ -76,6 +76,24 @@ TEST(PlainPaths, AnisotropicThresholdIsTheSameWithAndWithoutFastPaths) {
     }
 }
 
+// The ellipse axes change only the LOD unit's N and lambda: the fast and plain probe paths and
+// both cycle-model engines agree on them as on the screen axes'.
+TEST(PlainPaths, AnisotropicEllipseAxesAreTheSameWithAndWithoutFastPaths) {
+  for (const char* name : {"tunnel", "grazing"}) {
+    Scene scene = load_scene(name);
+    scene.width = 96;
+    scene.height = 64;
+    const std::map<std::string, std::string> ellipse{{"max_aniso", "16"}, {"aniso_axes", "ellipse"}};
+    const PathsRun fast = run_scene(scene, true, ellipse), plain = run_scene(scene, false, ellipse);
+    EXPECT_EQ(fast.render.image.texels, plain.render.image.texels) << name;
+    for (const rtl::SceneSimResult* s : {&fast.clocked, &fast.recurrence, &plain.clocked, &plain.recurrence}) {
+      EXPECT_EQ(s->mismatch, "") << name;
+      EXPECT_EQ(s->image.texels, fast.render.image.texels) << name;
+      EXPECT_EQ(s->cycles, fast.clocked.cycles) << name;
+    }
+  }
+}
+
 TEST(PlainPaths, EveryBuiltinSceneIsTheSameWithAndWithoutFastPaths) {
   for (const std::string& name : builtin_scene_names()) {
     Scene scene = load_scene(name);

@@ -908,6 +908,33 @@ TEST(TfuUnit, AnisotropicThresholdBitExactInBothEngines) {
   }
 }
 
+// The ellipse axes (aniso_axes ellipse) through the cycle model: the LOD unit calls aniso_lod, so
+// both engines equal the golden model; on the tunnel (every angle against the screen axes) the
+// pixels take other probe counts than with the screen axes.
+TEST(TfuUnit, AnisotropicEllipseAxesBitExactInBothEngines) {
+  for (const char* scene : {"tunnel", "grazing"}) {
+    const SceneTrace st = scene_trace(scene, 48, 48);
+    const Mesh& mesh = st.scene.meshes.front();
+    for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"})
+      for (const auto& [max_aniso, t] : {std::pair{16, 0}, std::pair{4, 4}}) {
+        SamplerDescriptor cfg = mesh.stages[0].sampler;
+        cfg.mode = filter_mode_from_name(mode);
+        cfg.max_aniso = max_aniso;
+        cfg.aniso_threshold = t;
+        const SamplerDescriptor screen = cfg;
+        cfg.aniso_axes = AnisoAxes::Ellipse;
+        const std::string what = fmt::format("{} {} max {} t {}", scene, mode, max_aniso, t);
+        const UnitOutput got = run_and_compare(*mesh.stages[0].texture, cfg, st.trace, small_cache(4), what);
+        const OneTexture one = one_texture(*mesh.stages[0].texture, cfg, st.trace, small_cache(4));
+        EXPECT_EQ(compare_engines(one.frame, one.trace, small_cache(4)), "") << what;
+        const UnitOutput scr = run_and_compare(*mesh.stages[0].texture, screen, st.trace, small_cache(4), what + " screen");
+        if (std::string(scene) == "tunnel") {
+          EXPECT_NE(got.stats.counter("probes"), scr.stats.counter("probes")) << what;
+        }
+      }
+  }
+}
+
 // Anisotropic probes: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
 // so anisotropic EDGE_PRESERVING_MIPMAP_LINEAR probes read exactly the bytes of trilinear probes on
 // the same footprints (the same probes per pixel); the full cross reads more on minified scenes.

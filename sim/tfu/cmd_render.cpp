@@ -31,7 +31,7 @@ namespace {
 struct RenderCliOptions {
   std::string scene = kDefaultScene;
   std::string filter;  // empty: each mesh keeps its own
-  std::string max_aniso, aniso_rounding, aniso_threshold;  // empty: each mesh keeps its own
+  std::string max_aniso, aniso_rounding, aniso_threshold, aniso_axes;  // empty: each mesh keeps its own
   std::string out, trace_out, truth_out, surface_truth_out, interior_out;
   std::string game_dir;  // empty: $TFU_OPENARENA_DIR or the Debian default
   GlTraceOptions gl;  // --gl-trace, --frame, --alpha-bits
@@ -116,10 +116,12 @@ void run(const RenderCliOptions& o) {
 
   RenderOptions ro;
   if (!o.filter.empty()) ro.filter = filter_mode_from_name(o.filter);
-  // Anisotropy of every base stage: the sampler keys max_aniso, aniso_rounding and aniso_threshold (bindings.hpp).
+  // Anisotropy of every base stage: the sampler keys max_aniso, aniso_rounding, aniso_threshold and
+  // aniso_axes (bindings.hpp).
   for (const auto& [flag, key, value] : {std::tuple{"--max-aniso", "max_aniso", &o.max_aniso},
                                          std::tuple{"--aniso-rounding", "aniso_rounding", &o.aniso_rounding},
-                                         std::tuple{"--aniso-threshold", "aniso_threshold", &o.aniso_threshold}}) {
+                                         std::tuple{"--aniso-threshold", "aniso_threshold", &o.aniso_threshold},
+                                         std::tuple{"--aniso-axes", "aniso_axes", &o.aniso_axes}}) {
     if (value->empty()) continue;
     SamplerDescriptor scratch;
     try {
@@ -203,6 +205,8 @@ void register_render(CLI::App& app) {
   cmd->add_option("--aniso-rounding", o->aniso_rounding, "Override the probe-count rounding of every base stage: integer or pow2");
   cmd->add_option("--aniso-threshold", o->aniso_threshold,
                   "Override the probe threshold of every base stage: 0..7 eighths of Pmin (0: the spec's N; docs/anisotropic.md)");
+  cmd->add_option("--aniso-axes", o->aniso_axes,
+                  "Override the axis lengths of every base stage's LOD unit: screen (the spec's Px, Py) or ellipse (the footprint's axes)");
   cmd->add_option("--out", o->out, "Output image (default: out/render/SCENE.png)");
   cmd->add_option("--trace-out", o->trace_out, "Also write the quad request trace (docs/traces.md)");
   cmd->add_option("--raster", o->raster,

@@ -41,7 +41,7 @@ namespace tfu::cli {
 namespace {
 
 // Sampler keys a scene run takes from the command line for every base stage (besides --filter).
-constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding", "aniso_threshold"};
+constexpr const char* kSceneSamplerOverrides[] = {"max_aniso", "aniso_rounding", "aniso_threshold", "aniso_axes"};
 
 struct SimOptions {
   std::string scene;  // default: the default scene when no --requests
@@ -471,7 +471,7 @@ void run(SimOptions& o, CLI::App& cmd) {
           std::find(std::begin(kSceneSamplerOverrides), std::end(kSceneSamplerOverrides), std::string(p.key)) ==
               std::end(kSceneSamplerOverrides))
         throw InputError(fmt::format("{} applies to --requests runs; a scene's stages carry their own samplers "
-                                     "(--filter, --max-aniso, --aniso-rounding, --aniso-threshold and --shape-policy override the base stage's)",
+                                     "(--filter, --max-aniso, --aniso-rounding, --aniso-threshold, --aniso-axes and --shape-policy override the base stage's)",
                                      flag_of(p.key)));
     if (given("--wrap")) throw InputError("--wrap applies to --requests runs");
   }

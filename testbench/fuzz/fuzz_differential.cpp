@@ -133,6 +133,7 @@ tfu::SamplerDescriptor make_sampler(ByteReader& in) {
   c.max_aniso = static_cast<int>(in.in_range(1, 16));
   c.aniso_rounding = in.flag() ? tfu::AnisoRounding::PowerOfTwo : tfu::AnisoRounding::Integer;
   c.aniso_threshold = static_cast<int>(in.in_range(0, 7));
+  c.aniso_axes = in.flag() ? tfu::AnisoAxes::Ellipse : tfu::AnisoAxes::Screen;
   return c;
 }
 

@@ -19,6 +19,7 @@
 // min(ceil(.), 17) (17: none, e.g. Pmin = 0 < Pmax). With t = 0 the scale is 64, a shift matched
 // by the shift of Pmax^2: the spec's k^2 Pmin^2 >= Pmax^2. The products share their adders: nine
 // adders for the 16 constants (3, 7, 9, 25, 49, 81, 121, 169, 225; the rest are shifts of these).
+// tfu_aniso_cap_round caps the count at maxAniso and rounds it.
 module tfu_aniso_count (
   input  logic [62:0] pmax2,
   input  logic [62:0] pmin2,
@@ -75,15 +76,5 @@ module tfu_aniso_count (
     for (int k = 0; k < 16; k++) ratio_ceil = ratio_ceil + 5'(below[k]);
   end
 
-  logic [4:0] cap;
-  assign cap = (max_aniso == 5'd0) ? 5'd1 : (max_aniso > 5'd16) ? 5'd16 : max_aniso;
-
-  logic [4:0] n;
-  assign n = (ratio_ceil < cap) ? ratio_ceil : cap;
-  always_comb begin
-    if (!aniso_rounding || n <= 5'd2) probes = n;
-    else if (n <= 5'd4) probes = 5'd4;
-    else if (n <= 5'd8) probes = 5'd8;
-    else probes = 5'd16;
-  end
+  tfu_aniso_cap_round u_cap (.count(ratio_ceil), .max_aniso(max_aniso), .aniso_rounding(aniso_rounding), .probes(probes));
 endmodule
