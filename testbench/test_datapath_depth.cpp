@@ -19,6 +19,7 @@
 #include "rtl/golden_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_config.hpp"
+#include "testbench/one_texture.hpp"
 #include "testbench/scene_trace.hpp"
 
 namespace tfu::rtl {
@@ -70,14 +71,7 @@ TEST(DatapathDepth, OfferedDepthsAreTheSvTopsLatencies) {
   EXPECT_EQ(find_unit_field("filter.bilinear_stages")->allowed, (std::vector<int64_t>{2, 3, 4}));
   EXPECT_EQ(UnitConfig{}.filter.edge_stages, 3);
   EXPECT_EQ(UnitConfig{}.filter.bilinear_stages, 2);
-  const auto error = [](const std::string& text) {
-    try {
-      unit_config_from_json(text, "c.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto error = test::unit_config_error;
   EXPECT_EQ(error(R"({"filter": {"edge_stages": 4}})"), "c.json: 'filter.edge_stages' 4 must be one of 3, 8");
   EXPECT_EQ(error(R"({"filter": {"bilinear_stages": 1}})"),
             "c.json: 'filter.bilinear_stages' 1 must be one of 2, 3, 4");
@@ -88,21 +82,8 @@ TEST(DatapathDepth, OfferedDepthsAreTheSvTopsLatencies) {
   EXPECT_EQ(unit_config_from_json(unit_config_to_json(deep), "deep"), deep);
 }
 
-// A frame of the scene's first texture under filter mode `mode` as sampler 0, the trace bound to it.
-struct OneTexture {
-  Frame frame;
-  Trace trace;
-};
-OneTexture one_texture(const Mesh& mesh, const char* mode, Trace tr, const UnitConfig& u) {
-  SamplerDescriptor s = mesh.stages[0].sampler;
-  s.mode = filter_mode_from_name(mode);
-  FrameBuilder b(u.cache.line_bytes);
-  b.add_texture(mesh.stages[0].texture, {"test", {}});
-  b.add_sampler(s);
-  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
-  bind_requests(b, tr);
-  return {b.finish(), std::move(tr)};
-}
+using test::one_texture;
+using test::OneTexture;
 
 // Both engines: equal outputs, cycles and statistics, every pixel the golden model's; the run.
 UnitOutput run_both(const OneTexture& one, const UnitConfig& u, const std::string& what) {

@@ -8,6 +8,7 @@
 #include "cmodel/scene.hpp"
 #include "rtl/engine_compare.hpp"
 #include "rtl/tfu_unit.hpp"
+#include "testbench/one_texture.hpp"
 #include "testbench/scene_trace.hpp"
 
 namespace tfu::rtl {
@@ -15,22 +16,10 @@ namespace {
 
 // A built-in scene's trace at a small size, its first mesh's texture bound as texture 0 with the
 // scene's sampler under filter mode `mode` as sampler 0.
-struct OneTextureRun {
-  Frame frame;
-  Trace trace;
-};
+using OneTextureRun = test::OneTexture;
 OneTextureRun scene_run(const std::string& scene_name, const char* mode, const UnitConfig& u) {
   const test::SceneTrace st = test::scene_trace(scene_name, 48, 32);
-  Trace tr = st.trace;
-  const Mesh& mesh = st.scene.meshes.front();
-  SamplerDescriptor s = mesh.stages[0].sampler;
-  s.mode = filter_mode_from_name(mode);
-  FrameBuilder b(u.cache.line_bytes);
-  b.add_texture(mesh.stages[0].texture, {"test", {}});
-  b.add_sampler(s);
-  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
-  bind_requests(b, tr);
-  return {b.finish(), std::move(tr)};
+  return test::one_texture(st.scene.meshes.front(), mode, st.trace, u);
 }
 
 size_t row(const UnitEvents& e, UnitEvent which) { return e[static_cast<size_t>(which)].size(); }

@@ -29,6 +29,7 @@
 #include "rtl/tfu_unit.hpp"
 #include "testbench/docs_text.hpp"
 #include "testbench/iterations.hpp"
+#include "testbench/one_texture.hpp"
 #include "testbench/scene_trace.hpp"
 
 namespace tfu::rtl {
@@ -37,19 +38,8 @@ namespace {
 using test::scene_trace;
 using test::SceneTrace;
 
-// A frame of one texture and one sampler, tiled for the unit's lines; the trace bound to it.
-struct OneTexture {
-  Frame frame;
-  Trace trace;
-};
-OneTexture one_texture(const Texture& tex, const SamplerDescriptor& cfg, Trace tr, const UnitConfig& u) {
-  FrameBuilder b(u.cache.line_bytes);
-  b.add_texture(std::make_shared<const Texture>(tex), {"test", {}});
-  b.add_sampler(cfg);
-  for (TraceRequest& r : tr.requests) r.texture = r.sampler = 0;
-  bind_requests(b, tr);
-  return {b.finish(), std::move(tr)};
-}
+using test::one_texture;
+using test::OneTexture;
 
 // Checks every output of a run against the golden model.
 void expect_golden(const Frame& frame, const Trace& tr, const UnitOutput& got, const std::string& what) {
@@ -1030,14 +1020,7 @@ TEST(TfuUnit, ConfigJsonRoundTripAndErrors) {
     EXPECT_NE(j.find(fmt::format("\"{}\"", key.substr(key.rfind('.') + 1))), std::string::npos) << key;
   }
   EXPECT_EQ(unit_config_from_json(j, "defaults"), UnitConfig{});
-  const auto error = [](const std::string& text) {
-    try {
-      unit_config_from_json(text, "c.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto error = test::unit_config_error;
   EXPECT_NE(error("{\"cache\": {\"line_bytes\": 6}}").find("c.json: 'cache.line_bytes' 6 must be one of 64, 256, 1024"),
             std::string::npos);
   EXPECT_NE(error("{\"cache\": {\"capacity_bytes\": 32}}").find("'cache.capacity_bytes' 32 must be in"), std::string::npos);
