@@ -119,7 +119,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
   // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `slot`: its
   // statistics slot (stat_slot()), where its stalls count.
-  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit) {
+  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit)
+                                 __attribute__((always_inline)) {
     const int64_t pushed = u.address_gen.timing.push(first_footprint, pixel_taken, ch.footprint);
     const int64_t shaped =
         log.at(KernelSelectTakesFootprint, u.kernel_select.timing.move(pushed, ch.footprint, &ch.shaped_footprint));
