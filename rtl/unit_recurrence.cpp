@@ -203,7 +203,9 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
           for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
             const int64_t exit =
                 through_cache(level == 0, pixel_taken, false, slot,
-                              [&](uint64_t now, int& bank_cycles) { return linear.admit(k, level, now, bank_cycles); });
+                              [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
+                                return linear.admit(k, level, now, bank_cycles);
+                              });
             const bool emits = level + 1 == kLevels;
             const int64_t done =
                 log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
