@@ -128,12 +128,14 @@ bool TexelCache::resident(int texture, int level, int x, int y) const {
 
 uint64_t TexelCache::texture_hits(int texture) const {
   uint64_t n = 0;
-  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += counters_[l].hits;
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l)
+    n += counters_[l].hits;
   return n;
 }
 uint64_t TexelCache::texture_misses(int texture) const {
   uint64_t n = 0;
-  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += counters_[l].misses;
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l)
+    n += counters_[l].misses;
   return n;
 }
 uint64_t TexelCache::level_hits(int level) const {

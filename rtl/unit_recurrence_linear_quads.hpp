@@ -73,7 +73,8 @@ class LinearQuadPath {
     if (compressed_) [[unlikely]]
       return admit_compressed(k, n, now, bank_cycles);
     return u_.cache_stage.admit_square(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
-                                       footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now, bank_cycles);
+                                       footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now,
+                                       bank_cycles);
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.
   void filter(std::array<Rgba8, 4>& out) const;
