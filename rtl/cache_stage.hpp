@@ -157,6 +157,13 @@ class CacheStage : public sim::Module {
     r = cache_.access(texture, level, lookup);
     return lines_in(texture, stage, level, r, now, bank_cycles);
   }
+  // admit_lines of a 2 x 2 footprint whose four taps are all used (the recurrences' LINEAR quad
+  // path): the tags through TexelCache::access_square, inline.
+  [[gnu::always_inline]] uint64_t admit_square(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
+                                               int& bank_cycles) {
+    const FootprintResult r = cache_.access_square(texture, level, lookup);
+    return lines_in(texture, stage, level, r, now, bank_cycles);
+  }
   // admit_lines after the tags: the counters of the lookup `r`, the bank cycles, the memory reads
   // of its missing lines; the cycle the lines are all in.
   [[gnu::always_inline]] uint64_t lines_in(int texture, int stage, int level, const FootprintResult& r, uint64_t now,
@@ -237,20 +244,24 @@ class CacheStage : public sim::Module {
       const int64_t port_free = last_accept_ + port_cycles_;
       const int64_t fifo_room = std::max({visible, port_free, miss_fifo.freed()});
       // The line buffer: the lines of the footprints still queued at `t` (they leave in order, and
-      // free their slots in the cycle they leave).
+      // free their slots in the cycle they leave). lines_in_flight_ may still count footprints that
+      // have left (their slots are given back only when the count is short of room, as `t` never
+      // decreases, the same result): when it leaves room, the exact count does too.
       int64_t t = fifo_room;
-      for (;;) {
-        while (!in_flight_.empty() && in_flight_.front().exit <= t) {
-          lines_in_flight_ -= in_flight_.front().lines;
-          in_flight_.pop_front();
-        }
-        if (lines_in_flight_ + kMaxFootprintLines <= b_.line_buffer_depth_) break;
-        t = in_flight_.front().exit;
-      }
       SlotCounters& c = b_.slots_[slot];
+      if (lines_in_flight_ + kMaxFootprintLines > b_.line_buffer_depth_) [[unlikely]] {
+        for (;;) {
+          while (!in_flight_.empty() && in_flight_.front().exit <= t) {
+            lines_in_flight_ -= in_flight_.front().lines;
+            in_flight_.pop_front();
+          }
+          if (lines_in_flight_ + kMaxFootprintLines <= b_.line_buffer_depth_) break;
+          t = in_flight_.front().exit;
+        }
+        c.stall_line_buffer += cycles_between(fifo_room, t);
+      }
       ++c.footprints;
       c.stall_bank += cycles_between(visible, std::min(t, port_free));
-      c.stall_line_buffer += cycles_between(fifo_room, t);
       in.pop(t);
       last_accept_ = t;
       return t;
@@ -281,7 +292,7 @@ class CacheStage : public sim::Module {
       int lines;     // the line-buffer slots it holds until then
     };
     std::deque<QueuedLines> in_flight_;  // footprints that missed lines, in order
-    int lines_in_flight_ = 0;            // their slots
+    int lines_in_flight_ = 0;            // their slots (with some that have left: accept)
     int64_t last_accept_ = -1, last_exit_ = -1;  // the previous footprint's cycles (-1: none)
     int port_cycles_ = 0;                        // the cycles it held the tag port
   } timing{*this};

@@ -92,10 +92,11 @@ TexelCache::TexelCache(TexelCacheConfig cfg, const std::vector<TextureDescriptor
   }
   first_level_.push_back(lines_.size());
   ways_.resize(static_cast<size_t>(cfg_.sets()) * static_cast<size_t>(ways_per_set_));
-  hits_.assign(lines_.size(), 0);
-  misses_.assign(lines_.size(), 0);
-  sector_hits_.assign(lines_.size(), 0);
-  sector_lookups_.assign(lines_.size(), 0);
+  counters_.assign(lines_.size(), LevelCounters{});
+  for (const LevelLines& ll : lines_) {  // access_quad's kx and ky
+    const int b = line_log2_ - ll.shift_x - ll.shift_y;
+    sector_shifts_.push_back({std::max(0, kSectorBytesLog2 - b), std::max(0, kSectorBytesLog2 - ll.shift_x - b)});
+  }
 }
 
 int TexelCache::fill_blocks(int texture, int level, uint64_t line, int& texels) const {
@@ -127,32 +128,34 @@ bool TexelCache::resident(int texture, int level, int x, int y) const {
 
 uint64_t TexelCache::texture_hits(int texture) const {
   uint64_t n = 0;
-  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += hits_[l];
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l)
+    n += counters_[l].hits;
   return n;
 }
 uint64_t TexelCache::texture_misses(int texture) const {
   uint64_t n = 0;
-  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l) n += misses_[l];
+  for (size_t l = first_level_[static_cast<size_t>(texture)]; l < first_level_[static_cast<size_t>(texture) + 1]; ++l)
+    n += counters_[l].misses;
   return n;
 }
 uint64_t TexelCache::level_hits(int level) const {
   uint64_t n = 0;
-  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? hits_[l] : 0;
+  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? counters_[l].hits : 0;
   return n;
 }
 uint64_t TexelCache::level_misses(int level) const {
   uint64_t n = 0;
-  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? misses_[l] : 0;
+  for (size_t l = 0; l < lines_.size(); ++l) n += level_of_[l] == level ? counters_[l].misses : 0;
   return n;
 }
 uint64_t TexelCache::sector_hits() const {
   uint64_t n = 0;
-  for (uint64_t h : sector_hits_) n += h;
+  for (const LevelCounters& c : counters_) n += c.sector_hits;
   return n;
 }
 uint64_t TexelCache::sector_lookups() const {
   uint64_t n = 0;
-  for (uint64_t k : sector_lookups_) n += k;
+  for (const LevelCounters& c : counters_) n += c.sector_lookups;
   return n;
 }
 
@@ -284,10 +287,7 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
 void TexelCache::reset() {
   std::fill(ways_.begin(), ways_.end(), Way{});
   hint_.fill(0);
-  std::fill(hits_.begin(), hits_.end(), 0);
-  std::fill(misses_.begin(), misses_.end(), 0);
-  std::fill(sector_hits_.begin(), sector_hits_.end(), 0);
-  std::fill(sector_lookups_.begin(), sector_lookups_.end(), 0);
+  std::fill(counters_.begin(), counters_.end(), LevelCounters{});
   tick_ = 0;
 }
 

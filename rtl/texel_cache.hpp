@@ -138,6 +138,14 @@ class TexelCache {
       return access_quad(l, grid);  // every LINEAR footprint
     return access_grid(l, grid);
   }
+  // access() of a 2 x 2 footprint whose four taps are all used (the recurrences' LINEAR quad path):
+  // inline, so that the caller keeps the result in registers.
+  [[gnu::always_inline]] FootprintResult access_square(int texture, int level, const TapGrid& grid) {
+    const size_t l = level_index(texture, level);
+    if (cfg_.bank_mapping == BankMapping::BlockParity) [[likely]]
+      return access_quad(l, grid);
+    return access_grid(l, grid);
+  }
   // Decoded lines of a compressed level (CacheHolds::Decoded): how many blocks a fill of `line`
   // fetches (those covering the line's tile, clipped to the level), and in `texels` the tile's
   // texels inside the level (what the decoders produce).
@@ -183,8 +191,17 @@ class TexelCache {
   // LRU behaviour are those of the search.
   static constexpr size_t kHints = 64;
   std::array<uint32_t, kHints> hint_{};
-  std::vector<uint64_t> hits_, misses_;  // per lines_ entry (texture and level)
-  std::vector<uint64_t> sector_hits_, sector_lookups_;  // per lines_ entry
+  // Per lines_ entry (texture and level): its counters, and the shifts that take a tap's column and
+  // row to its sector's column and row part (access_quad).
+  struct LevelCounters {
+    uint64_t hits = 0, misses = 0;
+    uint64_t sector_hits = 0, sector_lookups = 0;
+  };
+  std::vector<LevelCounters> counters_;
+  struct SectorShifts {
+    int x = 0, y = 0;
+  };
+  std::vector<SectorShifts> sector_shifts_;
   bool lookup(uint64_t line);  // true on hit; allocates (LRU victim) on miss
   // The sector of tap (x, y) inside its line of level ll, as a bit of a line's sector mask: the
   // tap's index in the line, ((y mod 2^shift_y) << shift_x) + x mod 2^shift_x (row-major in a
@@ -265,10 +282,11 @@ inline size_t TexelCache::set_of(uint64_t line) const {
 }
 
 inline void TexelCache::tally(size_t l, const FootprintResult& r) {
-  hits_[l] += static_cast<uint64_t>(r.hits);
-  misses_[l] += static_cast<uint64_t>(r.misses);
-  sector_hits_[l] += static_cast<uint64_t>(r.sector_hits);
-  sector_lookups_[l] += static_cast<uint64_t>(r.sector_lookups);
+  LevelCounters& c = counters_[l];
+  c.hits += static_cast<uint64_t>(r.hits);
+  c.misses += static_cast<uint64_t>(r.misses);
+  c.sector_hits += static_cast<uint64_t>(r.sector_hits);
+  c.sector_lookups += static_cast<uint64_t>(r.sector_lookups);
 }
 
 // The bilinear 2x2 footprint under block parity: its block columns bx0, bx1 and rows by0, by1 give
@@ -294,12 +312,13 @@ inline void TexelCache::tally(size_t l, const FootprintResult& r) {
   // Sectors (sector_bit's rule without a mask per line): a tap's byte offset in its line is
   // (row in the line << (shift_x + b)) | (column in the line << b), b = log2 of a texel's or a
   // block's bytes, so its sector (offset >> kSectorBytesLog2) is a pair (row >> ky, column >> kx),
-  // one to one, with kx = max(0, 5 - b), ky = max(0, 5 - shift_x - b). A line's taps are the
-  // product of its columns and its rows, so it holds (distinct column sectors) x (distinct row
-  // sectors): two columns in one line 1 or 2 (x0 >> kx against x1 >> kx), columns in two lines 1
-  // each; rows alike. Every line of the footprint has the same count: lookups and hits times it.
-  const int b = line_log2_ - ll.shift_x - ll.shift_y;
-  const int kx = std::max(0, kSectorBytesLog2 - b), ky = std::max(0, kSectorBytesLog2 - ll.shift_x - b);
+  // one to one, with kx = max(0, 5 - b), ky = max(0, 5 - shift_x - b) (per level: sector_shifts_).
+  // A line's taps are the product of its columns and its rows, so it holds (distinct column
+  // sectors) x (distinct row sectors): two columns in one line 1 or 2 (x0 >> kx against x1 >> kx),
+  // columns in two lines 1 each; rows alike. Every line of the footprint has the same count:
+  // lookups and hits times it.
+  const SectorShifts k = sector_shifts_[l];
+  const int kx = k.x, ky = k.y;
   const int per_line =
       (two_cols || (g.x[0] >> kx) == (g.x[1] >> kx) ? 1 : 2) * (two_rows || (g.y[0] >> ky) == (g.y[1] >> ky) ? 1 : 2);
   r.sector_lookups = (r.hits + r.misses) * per_line;

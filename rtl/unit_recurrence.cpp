@@ -119,7 +119,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
   // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `slot`: its
   // statistics slot (stat_slot()), where its stalls count.
-  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit) {
+  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit)
+      __attribute__((always_inline)) {
     const int64_t pushed = u.address_gen.timing.push(first_footprint, pixel_taken, ch.footprint);
     const int64_t shaped =
         log.at(KernelSelectTakesFootprint, u.kernel_select.timing.move(pushed, ch.footprint, &ch.shaped_footprint));
@@ -200,9 +201,10 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         for (int k = 0; k < 4; ++k) {
           const int64_t pixel_taken = pixel_taken_at(k);
           for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
-            const int64_t exit =
-                through_cache(level == 0, pixel_taken, false, slot,
-                              [&](uint64_t now, int& bank_cycles) { return linear.admit(k, level, now, bank_cycles); });
+            const auto quad_admit = [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
+              return linear.admit(k, level, now, bank_cycles);
+            };
+            const int64_t exit = through_cache(level == 0, pixel_taken, false, slot, quad_admit);
             const bool emits = level + 1 == kLevels;
             const int64_t done =
                 log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));

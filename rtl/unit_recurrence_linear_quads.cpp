@@ -33,6 +33,12 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   return levels;
 }
 
+uint64_t LinearQuadPath::admit_compressed(int k, int n, uint64_t now, int& bank_cycles) {
+  return u_.cache_stage.admit_block_square(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
+                                           footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid,
+                                           squares_[static_cast<size_t>(n)][static_cast<size_t>(k)], now, bank_cycles);
+}
+
 void LinearQuadPath::level_taps(int n, int level, dp::fast::Quad8& q) const {
   const std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
   const auto lanes = [&](size_t k, const Rgba8* taps) {

@@ -68,15 +68,13 @@ class LinearQuadPath {
   // texel_cache, input side: level footprint `n` (0: level0, 1: level1) of pixel k, looked up at
   // cycle `now`; the cycle its lines are all in, and the cycles it holds the tag port in
   // `bank_cycles`.
-  uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
-    const int level = n == 0 ? pick_.level0 : pick_.level1;
-    const TapGrid& grid = footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid;
+  // Inline in the recurrences' footprint loop, as admit_lines; the compressed branch out of line.
+  [[gnu::always_inline]] uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
     if (compressed_) [[unlikely]]
-      return u_.cache_stage.admit_block_square(texture_, stage_, level, grid,
-                                               squares_[static_cast<size_t>(n)][static_cast<size_t>(k)], now,
-                                               bank_cycles);
-    FootprintResult r;
-    return u_.cache_stage.admit_lines(texture_, stage_, level, grid, now, bank_cycles, r);
+      return admit_compressed(k, n, now, bank_cycles);
+    return u_.cache_stage.admit_square(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
+                                       footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now,
+                                       bank_cycles);
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.
   void filter(std::array<Rgba8, 4>& out) const;
@@ -94,6 +92,8 @@ class LinearQuadPath {
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
   // On a compressed texture, the same footprints in blocks (block_grid, rtl/address_gen_blocks.hpp).
   std::array<std::array<TapBlocks, 4>, 2> squares_{};
+  // admit() on a compressed texture: CacheStage::admit_block_square.
+  [[gnu::noinline]] uint64_t admit_compressed(int k, int n, uint64_t now, int& bank_cycles);
   // Read-out of the four footprints on one level (`n`: 0 level0, 1 level1) as the lerp unit's
   // lanes (lane k: pixel k).
   void level_taps(int n, int level, dp::fast::Quad8& q) const;
