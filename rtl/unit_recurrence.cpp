@@ -242,9 +242,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
             quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
         }
       }
-      probes.filter(quad_colour);
       for (size_t k = 0; k < 4; ++k)
-        u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+        u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
     for (int k = 0; k < quad.npix; ++k) {

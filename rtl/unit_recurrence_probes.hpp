@@ -23,16 +23,19 @@
 //   kernel_select nothing (it passes non-edge footprints unchanged);
 //   texel_cache   CacheStage::admit_lines per footprint in the plain path's order (pixel by pixel,
 //                 probe by probe, level0 then level1: the tags, the LRU and the memory queue see the
-//                 same sequence); the read-out read_square_taps<2> (the texel words are read from
-//                 the texture's memory, not from the cache state, so they may be read at address
-//                 time);
+//                 same sequence); the read-out read_square_taps' addresses (LevelReadout column,
+//                 row, at);
 //   filter        per probe the four pixels in the four lanes of the lerp unit
-//                 (FilterUnit::filter_linear8x4) or, blending, of both levels and the blend unit
-//                 (FilterUnit::filter_blend_linear8x4), then per pixel the probe accumulator
-//                 (dp::AnisoAccumulator's sum of w(N, i) c_i and (sum + 128) >> 8, the probe ROM's
-//                 weights) and encode_texel. (The plain filter keeps a blending probe's level0 Q.8
-//                 result in a register and the pixel's sum in the accumulator; no later footprint
-//                 reads either before writing it.)
+//                 (dp::fast::bilinear_lerp8x4_lanes, FilterUnit::filter_linear8x4's unit) or,
+//                 blending, of both levels and the blend unit (dp::fast::bilinear_lerp8x4q_lanes
+//                 and level_blend8x4_lanes, FilterUnit::filter_blend_linear8x4's), then per pixel
+//                 the probe accumulator: dp::AnisoAccumulator's sum of w(N, i) c_i (the probe ROM's
+//                 weights; at most 256 x 255, so 16-bit lanes hold it) and (sum + 128) >> 8, which
+//                 lies in 0..255, where encode_texel of RGBA8 and L8 is the identity. (The plain
+//                 filter keeps a blending probe's level0 Q.8 result in a register and the pixel's
+//                 sum in the accumulator; no later footprint reads either before writing it.)
+// The texel words come from the texture's memory, not from the cache's state, so the read-out and
+// the filter run at address time, before the quad's lookups; the colours wait for the retire.
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by footprint.
 #pragma once
 
@@ -60,9 +63,9 @@ class ProbeQuadPath {
     return s.mode.base == BaseFilter::Linear && s.anisotropic() && s.wrap_s != WrapMode::ClampToBorder &&
            s.wrap_t != WrapMode::ClampToBorder;
   }
-  // address_gen and the read-out: the levels of the quad's LOD result `lod`, the footprints of the
-  // four pixels' probes and their taps; returns the level footprints per pixel (N, or 2N when
-  // blending), each pixel's in the plain path's order.
+  // address_gen, the read-out and the filter: the levels of the quad's LOD result `lod`, the
+  // footprints of the four pixels' probes, their taps and the pixels' colours; returns the level
+  // footprints per pixel (N, or 2N when blending), each pixel's in the plain path's order.
   int address(const QuadReq& q, const AnisoLod& lod);
   // texel_cache, input side: footprint `j` of pixel k (probe j / levels, level j % levels), looked
   // up at cycle `now`; the cycle its lines are all in, and the cycles it holds the tag port in
@@ -73,31 +76,26 @@ class ProbeQuadPath {
     return u_.cache_stage.admit_lines(texture_, stage_, levels_of_[jj], grid_[static_cast<size_t>(k)][jj], now,
                                       bank_cycles, r);
   }
-  // filter, blend and the probe accumulator: the four pixels' colours.
-  void filter(std::array<Rgba8, 4>& out) const;
+  // The four pixels' colours (address() formed them).
+  const std::array<Rgba8, 4>& colours() const { return colour_; }
 
  private:
   static constexpr size_t kFootprints = 2 * kMaxAniso;  // per pixel at most
   Unit& u_;
   const Registers& regs_;
   std::vector<bool> sampler_ok_, texture_ok_;
-  int texture_ = 0, stage_ = 0, probes_ = 1, levels_ = 1;
-  TexelFormat format_ = TexelFormat::RGBA8;
-  LevelPick pick_{};
-  // Per footprint j of a pixel: its level; per pixel and footprint: its grid.
+  int texture_ = 0, stage_ = 0;
+  // Per footprint j of a pixel: its level; per pixel and footprint: its grid (2 x 2 taps, every
+  // cell used: only the columns and rows change).
   std::array<int, kFootprints> levels_of_{};
   std::array<std::array<TapGrid, kFootprints>, 4> grid_{};
-  // Probe i's offset on level0 (n = 0) and level1 (n = 1), Q.8 texels of the level.
-  std::array<std::array<int64_t, kMaxAniso>, 2> du_q8_{}, dv_q8_{};
-  // Probe i's taps and fractions on level n, lane k pixel k: the lerp unit's lanes.
-  std::array<std::array<dp::fast::Quad8, kMaxAniso>, 2> taps_{};
-  // The grids, fractions and taps of pixel k's probes on level n, with the wrap modes fixed
-  // (one function per pair of modes, chosen per quad from the sampler's).
+  std::array<Rgba8, 4> colour_{};
+  // address() with the sampler's wrap modes fixed (one function per pair, chosen per quad).
   template <WrapMode kWs, WrapMode kWt>
-  void level_footprints(size_t k, size_t n, float s, float t, int w, int h, const LevelReadout& readout);
-  using LevelFootprintsFn = void (ProbeQuadPath::*)(size_t, size_t, float, float, int, int, const LevelReadout&);
+  int probe_footprints(const QuadReq& q, const AnisoLod& lod);
+  using ProbeFootprintsFn = int (ProbeQuadPath::*)(const QuadReq&, const AnisoLod&);
   template <size_t... k>
-  static LevelFootprintsFn level_footprints_fn(size_t wrap_pair, std::index_sequence<k...>);
+  static ProbeFootprintsFn probe_footprints_fn(size_t wrap_pair, std::index_sequence<k...>);
 };
 
 }  // namespace tfu::rtl::detail
