@@ -37,7 +37,9 @@
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
-// (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only), and for quads of anisotropic ones on
+// uncompressed 8-bit textures by the probe quad path (rtl/unit_recurrence_probes.hpp, likewise),
+// with the same timing functions.
 // A unit sharing a memory system with other units (rtl/shared_memory.hpp) runs here too: its texel
 // cache issues its misses at nondecreasing cycles, the same as the clocked run's, and each miss's
 // answer (the cycle its data is in) is all the recurrences need from it, so the run pauses at each
