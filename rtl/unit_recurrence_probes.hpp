@@ -2,7 +2,7 @@
 // cmodel/fast_paths.hpp; internal to rtl/unit_recurrence.cpp). Its plain twin is the plain
 // per-footprint path of rtl/unit_recurrence.cpp (AddressGen::begin / issue, CacheStage::
 // admit_footprint / read_out_footprint, FilterUnit::filter with its probe accumulator);
-// TfuUnit.ProbeQuadPathEqualsThePlainBlocks (testbench/test_unit_probe_quads.cpp) compares the two,
+// TfuUnit.ProbeQuadPathEqualsThePlainBlocks (testbench/test_tfu_unit.cpp) compares the two,
 // and the clocked blocks, over random anisotropic configurations.
 //
 // A quad of four pixels whose sampler is anisotropic and LINEAR-family (LINEAR_MIPMAP_NEAREST or
