@@ -199,6 +199,14 @@ struct Lanes8q {
 [[gnu::always_inline]] inline __m128i level_blend8q_pairs(__m128i xy, __m128i w) {
   return _mm_srli_epi32(_mm_add_epi32(_mm_madd_epi16(xy, w), _mm_set1_epi32((1 << 23) + (1 << 15))), 16);
 }
+// The blend unit of bilinear_blend8x4 on the four lanes of both levels (x level0, y level1), w01
+// and w23 the (256 - f, f) pairs of lanes 0, 1 and 2, 3 (each twice); returns the four words.
+[[gnu::always_inline]] inline __m128i level_blend8x4_lanes(const Lanes8q& x, const Lanes8q& y, __m128i w01, __m128i w23) {
+  const auto blend = [&](__m128i p, __m128i q) {  // 16-bit codes (ch0, ch1) of lanes 0..3
+    return _mm_packs_epi32(level_blend8q_pairs(_mm_unpacklo_epi16(p, q), w01), level_blend8q_pairs(_mm_unpackhi_epi16(p, q), w23));
+  };
+  return _mm_or_si128(blend(x.rb, y.rb), _mm_slli_epi16(blend(x.ga, y.ga), 8));
+}
 #endif
 inline void bilinear_blend8x4(const Quad8& q0, const Quad8& q1, const std::array<int, 4>& f, Rgba8* out) {
 #if defined(__SSE2__)
@@ -207,10 +215,7 @@ inline void bilinear_blend8x4(const Quad8& q0, const Quad8& q1, const std::array
   const Lanes8q y = bilinear_lerp8x4q_lanes(lanes(q1.a), lanes(q1.b), lanes(q1.c), lanes(q1.d), lanes(q1.fu), lanes(q1.fv));
   const auto pair = [&](size_t k) { return static_cast<int32_t>((static_cast<uint32_t>(f[k]) << 16) | static_cast<uint32_t>(256 - f[k])); };
   const __m128i w01 = _mm_setr_epi32(pair(0), pair(0), pair(1), pair(1)), w23 = _mm_setr_epi32(pair(2), pair(2), pair(3), pair(3));
-  const auto blend = [&](__m128i p, __m128i q) {  // 16-bit codes (ch0, ch1) of lanes 0..3
-    return _mm_packs_epi32(level_blend8q_pairs(_mm_unpacklo_epi16(p, q), w01), level_blend8q_pairs(_mm_unpackhi_epi16(p, q), w23));
-  };
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_or_si128(blend(x.rb, y.rb), _mm_slli_epi16(blend(x.ga, y.ga), 8)));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), level_blend8x4_lanes(x, y, w01, w23));
 #else
   for (size_t k = 0; k < 4; ++k)
     out[k] = level_blend8q(bilinear_lerp8q(q0.a[k], q0.b[k], q0.c[k], q0.d[k], q0.fu[k], q0.fv[k]),

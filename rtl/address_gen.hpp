@@ -69,6 +69,9 @@ class AddressGen : public sim::Module {
   // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
   // forms their grids through pick_levels() and grid_function() itself.
   void count_isotropic_pixels(uint64_t n, size_t slot) { probe_hist_[slot][1] += n; }
+  // The same for `n` pixels of `probes` probes each (the recurrences' probe quad path,
+  // rtl/unit_recurrence_probes.cpp).
+  void count_pixels(uint64_t n, int probes, size_t slot) { probe_hist_[slot][static_cast<size_t>(probes)] += n; }
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when a sampler is anisotropic), of the
   // run and of one statistics slot (stat_slot()).
   void publish(sim::Stats& st) const;

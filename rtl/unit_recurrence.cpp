@@ -37,7 +37,9 @@
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
-// (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only), and for quads of anisotropic ones on
+// uncompressed 8-bit textures by the probe quad path (rtl/unit_recurrence_probes.hpp, likewise),
+// with the same timing functions.
 // A unit sharing a memory system with other units (rtl/shared_memory.hpp) runs here too: its texel
 // cache issues its misses at nondecreasing cycles, the same as the clocked run's, and each miss's
 // answer (the cycle its data is in) is all the recurrences need from it, so the run pauses at each
@@ -56,6 +58,7 @@
 #include "rtl/tfu_unit.hpp"
 #include "rtl/timing.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
+#include "rtl/unit_recurrence_probes.hpp"
 #include "rtl/unit_wiring.hpp"
 
 namespace tfu::rtl {
@@ -113,6 +116,7 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out, shared);
   detail::Unit& u = *unit;
   detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
+  detail::ProbeQuadPath probes(frame.regs, u, linear_quads && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
   // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
   // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
@@ -222,6 +226,28 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
       linear.filter(quad_colour);
       for (size_t k = 0; k < 4; ++k)
         u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+      continue;
+    }
+    if (probes.takes(quad)) {
+      // The probe quad path: N probes per pixel, one or two level footprints each, the functions
+      // batched per quad.
+      const int footprints = probes.address(quad, lod);
+      const size_t slot = stat_slot(quad.req);
+      for (int k = 0; k < 4; ++k) {
+        const int64_t pixel_taken = pixel_taken_at(k);
+        for (int j = 0; j < footprints; ++j) {
+          const int64_t exit =
+              through_cache(j == 0, pixel_taken, false, slot,
+                            [&](uint64_t now, int& bank_cycles) { return probes.admit(k, j, now, bank_cycles); });
+          const bool emits = j + 1 == footprints;
+          const int64_t done =
+              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
+          if (emits)
+            quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+        }
+      }
+      for (size_t k = 0; k < 4; ++k)
+        u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
     for (int k = 0; k < quad.npix; ++k) {

@@ -925,6 +925,118 @@ TEST(TfuUnit, AnisotropicEllipseAxesBitExactInBothEngines) {
   }
 }
 
+// The timing recurrences' probe quad path (rtl/unit_recurrence_probes.hpp: anisotropic
+// LINEAR_MIPMAP_NEAREST and LINEAR_MIPMAP_LINEAR without clamp-to-border, uncompressed 8-bit
+// textures, four pixels a quad; software speed only) gives the plain per-footprint path's and the
+// clocked blocks' pixels, response cycles, cycles and statistics: random max anisotropy, probe-count
+// rounding, threshold, screen and ellipse axes, wrap pairs, LOD biases and clamps, quads of random
+// length, elongation and direction (N = 1..16) on RGBA8 tiled, L8 linear-row and non-power-of-two
+// textures, interleaved quad by quad with quads the path does not take (clamp-to-border, isotropic,
+// NEAREST and edge-preserving probes, VS16X2), on random unit configurations (stalls of every kind).
+TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
+  std::mt19937 rng(6161);
+  std::vector<std::shared_ptr<Texture>> textures;
+  {
+    textures.push_back(std::make_shared<Texture>(random_mip_texture(TexelFormat::RGBA8, 3)));  // tiled
+    Texture lum = l8_linear_checkerboard();
+    generate_mipmaps(lum, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(lum)));
+    Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
+    npot.levels[0] = Image(40, 24);
+    for (Rgba8& t : npot.levels[0].texels)
+      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+    npot.layout = MemoryLayout::Linear;
+    generate_mipmaps(npot, MipMethod::Box);
+    textures.push_back(std::make_shared<Texture>(std::move(npot)));
+    textures.push_back(std::make_shared<Texture>(random_mip_texture(TexelFormat::VS16X2, 5)));  // not taken
+  }
+  std::vector<SamplerDescriptor> samplers;
+  for (const char* mode : {"LINEAR_MIPMAP_NEAREST", "LINEAR_MIPMAP_LINEAR", "LINEAR_MIPMAP_LINEAR"})
+    for (int k = 0; k < 4; ++k) {  // taken unless a wrap mode clamps to the border (1 in 4 each)
+      SamplerDescriptor s;  // the first of each mode taken with every N, 1..16
+      s.mode = filter_mode_from_name(mode);
+      s.max_aniso = k == 0 ? 16 : 2 + static_cast<int>(rng() % 15);
+      s.aniso_rounding = k > 0 && rng() % 3 == 0 ? AnisoRounding::PowerOfTwo : AnisoRounding::Integer;
+      s.aniso_threshold = k > 0 && rng() % 2 ? static_cast<int>(rng() % 8) : 0;
+      s.aniso_axes = k > 0 && rng() % 2 ? AnisoAxes::Ellipse : AnisoAxes::Screen;
+      s.wrap_s = static_cast<WrapMode>(rng() % (k == 0 ? 3 : 4));
+      s.wrap_t = static_cast<WrapMode>(rng() % (k == 0 ? 3 : 4));
+      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
+      s.lod.bias_q8 = static_cast<int32_t>(rng() % 1024) - 512;
+      if (k == 3) s.lod.max_lod_q8 = 256;
+      samplers.push_back(s);
+    }
+  for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "NEAREST_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
+    SamplerDescriptor s;  // not taken: isotropic (the LINEAR quad path), NEAREST and edge probes
+    s.mode = filter_mode_from_name(mode);
+    s.max_aniso = s.mode.base == BaseFilter::Linear ? 1 : 8;
+    samplers.push_back(s);
+  }
+  const auto taken = [&](const TraceRequest& r) {
+    const SamplerDescriptor& s = samplers[r.sampler];
+    return s.mode.base == BaseFilter::Linear && s.max_aniso > 1 && s.wrap_s != WrapMode::ClampToBorder &&
+           s.wrap_t != WrapMode::ClampToBorder && textures[r.texture]->format != TexelFormat::VS16X2;
+  };
+  FrameBuilder b(64);
+  for (const auto& t : textures) b.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  Trace tr;
+  tr.mode = TraceMode::Quad;
+  std::uniform_real_distribution<float> pos(-1.5f, 2.5f), len(0.001f, 0.03f), ratio(1.0f, 24.0f), angle(0.0f, 6.2831853f);
+  const int quads = test::iterations(700);
+  int quads_taken = 0;
+  for (int n = 0; n < quads; ++n) {
+    TraceRequest r;
+    r.texture = static_cast<uint16_t>(rng() % textures.size());
+    r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+    r.stage = static_cast<uint8_t>(rng() % 2);
+    // The quad's pixel steps (ds, dt)/dx = major (cos a, sin a), (ds, dt)/dy = minor (-sin a, cos a).
+    float s0 = pos(rng), t0 = pos(rng), minor = len(rng), elongation = ratio(rng), a = angle(rng);
+    if (n < 2 * kMaxAniso) {  // first every N = 1..16 through the path's samplers 0 and 4 (screen axes, t = 0)
+      r.texture = 0;
+      r.sampler = static_cast<uint8_t>(n < kMaxAniso ? 0 : 4);
+      elongation = static_cast<float>(n % kMaxAniso) + 0.5f;  // N = ceil(elongation), 2..16
+      if (n % kMaxAniso == 0) {  // N = 1: a square footprint, exact in binary32 (steps of 1/64 texture)
+        elongation = 1.0f, minor = 1.0f / 64, a = 0.0f;
+        s0 = std::round(s0 * 64) / 64, t0 = std::round(t0 * 64) / 64;
+      }
+    }
+    const float major = minor * elongation;
+    const float dsdx = major * std::cos(a), dtdx = major * std::sin(a), dsdy = -minor * std::sin(a), dtdy = minor * std::cos(a);
+    quads_taken += taken(r) ? 1 : 0;
+    for (size_t k = 0; k < 4; ++k) {
+      const auto x = static_cast<float>(k & 1), y = static_cast<float>(k >> 1);
+      r.s = s0 + x * dsdx + y * dsdy;
+      r.t = t0 + x * dtdx + y * dtdy;
+      tr.requests.push_back(r);
+    }
+  }
+  EXPECT_GT(quads_taken, quads / 4);  // the first 32, then about 7/15 samplers x 3/4 textures of the quads
+  EXPECT_LT(quads_taken, quads);
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  for (int k = 0; k < 8; ++k) {
+    ClockedOptions opt;
+    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
+    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
+    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
+    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
+    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
+    expect_golden(frame, tr, quad_path, what);
+    // Every probe count occurs (the histogram of pixels per N; the first quads above).
+    const std::vector<uint64_t>* hist = quad_path.stats.histogram("aniso_probes");
+    ASSERT_NE(hist, nullptr) << what;
+    ASSERT_EQ(hist->size(), static_cast<size_t>(kMaxAniso + 1)) << what;
+    for (size_t n = 1; n <= static_cast<size_t>(kMaxAniso); ++n) EXPECT_GT((*hist)[n], 0u) << what << " N = " << n;
+    for (const UnitOutput* other : {&plain, &clocked}) {
+      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
+      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
+      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
+      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
+    }
+  }
+}
+
 // Anisotropic probes: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
 // so anisotropic EDGE_PRESERVING_MIPMAP_LINEAR probes read exactly the bytes of trilinear probes on
 // the same footprints (the same probes per pixel); the full cross reads more on minified scenes.
