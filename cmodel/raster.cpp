@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -654,7 +655,12 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   ctx.width = scene.width;
   ctx.height = scene.height;
   ctx.result = &result;
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  const Clock::time_point t_upload = Clock::now();
   make_samplers(ctx, result);
+  result.times.upload = seconds_since(t_upload);
+  const Clock::time_point t_draw = Clock::now();
   setup_scene(ctx);
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
@@ -700,6 +706,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.trace.requests = std::move(requests);
     result.quad_targets = std::move(targets);
   }
+  result.times.draw = seconds_since(t_draw);
   return result;
 }
 

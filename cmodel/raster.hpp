@@ -146,6 +146,15 @@ struct QuadTarget {
   std::array<Rgba8, 4> primary{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};  // stage 0's Cp
 };
 
+// Wall-clock seconds of a render's parts, for speed measurements only (no result depends on them;
+// testbench/bench_render_mesa.cpp). upload: the frame's descriptors and texel memory and the golden
+// unit's samplers (as a GL driver's texture upload); draw: everything after it, i.e. transform,
+// clipping and triangle setup, the colour and depth buffers cleared, every band rasterized and
+// shaded on the render's threads, and the bands' outputs (trace, quad targets) gathered in order.
+struct RenderTimes {
+  double upload = 0, draw = 0;
+};
+
 struct RenderResult {
   Image image;
   Image truth;          // antialiased truth; empty unless RenderOptions::ground_truth
@@ -156,6 +165,7 @@ struct RenderResult {
   std::shared_ptr<const SceneFrame> frame;  // the descriptors and texel memory the render used
   std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
   RenderStats stats;
+  RenderTimes times;
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
