@@ -33,8 +33,8 @@
 // GL_RGB_SCALE the stage's scale; the display ramp (Scene::display_shift) as the last stage's
 // GL_RGB_SCALE when the product is at most 4, else one more unit (a 1 x 1 white texture, REPLACE of
 // previous, scaled); the primary colour glColor per vertex for vertex-coloured meshes, white
-// otherwise; culling by Scene::cull (the golden renderer's screen is y down: its clockwise is GL's
-// counter-clockwise, glCullFace(GL_FRONT) with glFrontFace(GL_CCW)); depth GL_LESS, 24 bits (the
+// otherwise; culling by Scene::cull (a winding as seen on the screen: clockwise ones are GL's back
+// faces with glFrontFace(GL_CCW), glCullFace(GL_BACK)); depth GL_LESS, 24 bits (the
 // golden renderer keeps float z). Filters: NEAREST/LINEAR with MIPMAP_NEAREST/LINEAR, maxAniso as
 // GL_TEXTURE_MAX_ANISOTROPY_EXT; CUBIC and EDGE_PRESERVING have no GL counterpart and are refused.
 #define GL_GLEXT_PROTOTYPES 1
@@ -208,7 +208,7 @@ class MesaScene {
     if (scene_.cull != tfu::CullWinding::None) {
       glEnable(GL_CULL_FACE);
       glFrontFace(GL_CCW);
-      glCullFace(scene_.cull == tfu::CullWinding::Clockwise ? GL_FRONT : GL_BACK);
+      glCullFace(scene_.cull == tfu::CullWinding::Clockwise ? GL_BACK : GL_FRONT);
     }
     const uint8_t white[4] = {255, 255, 255, 255};
     glGenTextures(1, &white_);
