@@ -51,8 +51,8 @@ TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int w
   // compiler from merging repeated conversions).
   const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
   const int64_t u0 = float_to_fixed_fast(s[0], w, 16), v0 = float_to_fixed_fast(t[0], h, 16);
-  return {float_to_fixed_fast(s[1], w, 16) - u0, float_to_fixed_fast(t[1], h, 16) - v0, float_to_fixed_fast(s[2], w, 16) - u0,
-          float_to_fixed_fast(t[2], h, 16) - v0};
+  return {float_to_fixed_fast(s[1], w, 16) - u0, float_to_fixed_fast(t[1], h, 16) - v0,
+          float_to_fixed_fast(s[2], w, 16) - u0, float_to_fixed_fast(t[2], h, 16) - v0};
 }
 
 TexelDerivatives derivatives_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -188,24 +189,13 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   for (size_t i = 0; i < 3; ++i) step_x[i] = -(tri.Y[(i + 2) % 3] - tri.Y[(i + 1) % 3]) * kOne;
   const auto area = static_cast<double>(tri.area);
   for (int qy = qy_first; qy <= qy_last; qy += 2) {
-    // The quads of this row that can hold a covered centre: on each of the quad's two pixel rows,
-    // edge i is e(x) = e(x0) + (x - x0) step_x[i] (x in pixels), and the centre is covered where
-    // e(x) + bias >= 0 for all three edges, an interval of x solved exactly in integers; the quads
-    // outside the union of the two rows' intervals have no covered centre (what the test below
-    // would find) and are not visited.
+    // The quads of this row that can hold a covered centre: the union of the covered intervals of
+    // its two pixel rows; the quads outside it have no covered centre (what the test below would
+    // find) and are not visited.
     int x_lo = tri.xmax + 1, x_hi = tri.xmin - 1;
     for (int row = qy; row <= qy + 1 && row <= tri.ymax; ++row) {
-      int64_t lo = tri.xmin, hi = tri.xmax;
-      for (size_t i = 0; i < 3; ++i) {
-        const int64_t at = tri.edge(static_cast<int>(i), RasterTriangle::centre(tri.xmin), RasterTriangle::centre(row)) + tri.bias[i];
-        if (step_x[i] > 0)
-          lo = std::max(lo, tri.xmin - floor_div(at, step_x[i]));  // x - xmin >= ceil(-at / step)
-        else if (step_x[i] < 0)
-          hi = std::min(hi, tri.xmin + floor_div(at, -step_x[i]));  // x - xmin <= floor(at / -step)
-        else if (at < 0)
-          hi = lo - 1;  // a horizontal edge this row lies outside of
-      }
-      if (lo <= hi) x_lo = std::min(x_lo, static_cast<int>(lo)), x_hi = std::max(x_hi, static_cast<int>(hi));
+      const auto [lo, hi] = tri.covered_interval(row);
+      if (lo <= hi) x_lo = std::min(x_lo, lo), x_hi = std::max(x_hi, hi);
     }
     if (x_lo > x_hi) continue;
     const int qx_first = x_lo & ~1, qx_last = x_hi;
@@ -629,6 +619,24 @@ bool RasterTriangle::covers_point(int64_t px, int64_t py) const {
   return true;
 }
 
+std::pair<int, int> RasterTriangle::covered_interval(int row) const {
+  // Along the row, edge i at pixel x is e(x) = e(xmin) + (x - xmin) step with step = -(Y[b] - Y[a])
+  // one pixel (Q.8), and the centre is covered where e(x) + bias >= 0 for all three edges.
+  int64_t lo = xmin, hi = xmax;
+  for (size_t i = 0; i < 3; ++i) {
+    const int64_t step = -(Y[(i + 2) % 3] - Y[(i + 1) % 3]) * kOne;
+    const int64_t at = edge(static_cast<int>(i), centre(xmin), centre(row)) + bias[i];
+    if (step > 0)
+      lo = std::max(lo, xmin - floor_div(at, step));  // x - xmin >= ceil(-at / step)
+    else if (step < 0)
+      hi = std::min(hi, xmin + floor_div(at, -step));  // x - xmin <= floor(at / -step)
+    else if (at < 0)
+      return {xmin, xmin - 1};  // a horizontal edge the row lies outside of
+  }
+  if (lo > hi) return {xmin, xmin - 1};
+  return {static_cast<int>(lo), static_cast<int>(hi)};
+}
+
 std::array<double, 3> RasterTriangle::barycentric(int64_t px, int64_t py) const {
   const auto a = static_cast<double>(area);
   return {static_cast<double>(edge(0, px, py)) / a, static_cast<double>(edge(1, px, py)) / a,
@@ -704,11 +712,14 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   ctx.height = scene.height;
   ctx.result = &result;
   using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  const auto seconds_since = [](Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
   const Clock::time_point t_upload = Clock::now();
   make_samplers(ctx, result);
   result.times.upload = seconds_since(t_upload);
   const Clock::time_point t_draw = Clock::now();
+  const std::clock_t cpu_draw = std::clock();
   setup_scene(ctx);
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
@@ -755,6 +766,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.quad_targets = std::move(targets);
   }
   result.times.draw = seconds_since(t_draw);
+  result.times.draw_cpu = static_cast<double>(std::clock() - cpu_draw) / CLOCKS_PER_SEC;
   return result;
 }
 

@@ -12,7 +12,9 @@
 // read when the first context is made, so one thread count per process (scripts/render-vs-llvmpipe
 // runs the counts).
 //
-// What each side's time includes (wall clock, std::chrono::steady_clock):
+// What each side's time includes (wall clock, std::chrono::steady_clock, and the process's CPU
+// seconds over the same span, std::clock: all its threads', llvmpipe's workers included; on a loaded
+// machine the steadier figure, at one thread the same work as the wall time):
 //   golden   RenderResult::times.draw: transform, clipping and setup of the scene's triangles, the
 //            colour and depth buffers cleared, every band rasterized and shaded (LOD, golden sampler,
 //            texture environment, display ramp, depth), the band outputs gathered; not the upload
@@ -48,6 +50,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
@@ -78,7 +81,8 @@ struct Options {
 int int_arg(const char* name, const char* v, int lo, int hi) {
   char* end = nullptr;
   const long x = std::strtol(v, &end, 10);
-  if (end == v || *end != '\0' || x < lo || x > hi) throw InputError(fmt::format("{} '{}': expected an integer in {}..{}", name, v, lo, hi));
+  if (end == v || *end != '\0' || x < lo || x > hi)
+    throw InputError(fmt::format("{} '{}': expected an integer in {}..{}", name, v, lo, hi));
   return static_cast<int>(x);
 }
 
@@ -86,19 +90,30 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (i + 1 >= argc) throw InputError(fmt::format("{}: missing value (usage: see testbench/bench_render_mesa.cpp)", a));
+    if (i + 1 >= argc)
+      throw InputError(fmt::format("{}: missing value (usage: see testbench/bench_render_mesa.cpp)", a));
     const char* v = argv[++i];
-    if (a == "--scene") o.scene = v;
-    else if (a == "--width") o.width = int_arg("--width", v, 1, tfu::kMaxRenderSize);
-    else if (a == "--height") o.height = int_arg("--height", v, 1, tfu::kMaxRenderSize);
-    else if (a == "--threads") o.threads = int_arg("--threads", v, 1, 64);
-    else if (a == "--reps") o.reps = int_arg("--reps", v, 1, 1000);
-    else if (a == "--driver") o.driver = v;
-    else if (a == "--game-dir") o.game_dir = v;
-    else if (a == "--out-prefix") o.out_prefix = v;
-    else throw InputError(fmt::format("unknown option '{}' (usage: see testbench/bench_render_mesa.cpp)", a));
+    if (a == "--scene")
+      o.scene = v;
+    else if (a == "--width")
+      o.width = int_arg("--width", v, 1, tfu::kMaxRenderSize);
+    else if (a == "--height")
+      o.height = int_arg("--height", v, 1, tfu::kMaxRenderSize);
+    else if (a == "--threads")
+      o.threads = int_arg("--threads", v, 1, 64);
+    else if (a == "--reps")
+      o.reps = int_arg("--reps", v, 1, 1000);
+    else if (a == "--driver")
+      o.driver = v;
+    else if (a == "--game-dir")
+      o.game_dir = v;
+    else if (a == "--out-prefix")
+      o.out_prefix = v;
+    else
+      throw InputError(fmt::format("unknown option '{}' (usage: see testbench/bench_render_mesa.cpp)", a));
   }
-  if (o.driver != "llvmpipe" && o.driver != "softpipe") throw InputError(fmt::format("--driver '{}': llvmpipe or softpipe", o.driver));
+  if (o.driver != "llvmpipe" && o.driver != "softpipe")
+    throw InputError(fmt::format("--driver '{}': llvmpipe or softpipe", o.driver));
   return o;
 }
 
@@ -143,8 +158,17 @@ class MesaScene {
   MesaScene(const tfu::Scene& scene, const std::string& driver, int threads) : scene_(scene) {
     setenv("GALLIUM_DRIVER", driver.c_str(), 1);
     setenv("LP_NUM_THREADS", std::to_string(threads == 1 ? 0 : threads).c_str(), 1);
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
-                           OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           24,
+                           OSMESA_STENCIL_BITS,
+                           0,
+                           OSMESA_ACCUM_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_COMPAT_PROFILE,
+                           0};
     ctx_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (ctx_ == nullptr) throw InputError("OSMesaCreateContextAttribs failed (Debian libosmesa6)");
     buffer_.assign(static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height) * 4, 0);
@@ -152,7 +176,8 @@ class MesaScene {
       throw InputError("OSMesaMakeCurrent failed");
     OSMesaPixelStore(OSMESA_Y_UP, 0);  // row 0 on top, as the golden image
     renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    if (renderer_.find(driver) == std::string::npos) throw InputError(fmt::format("GL_RENDERER '{}' is not {}", renderer_, driver));
+    if (renderer_.find(driver) == std::string::npos)
+      throw InputError(fmt::format("GL_RENDERER '{}' is not {}", renderer_, driver));
     GLint units = 0;
     glGetIntegerv(GL_MAX_TEXTURE_UNITS, &units);
     max_units_ = units;
@@ -218,7 +243,8 @@ class MesaScene {
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
     for (const tfu::Mesh& mesh : scene_.meshes) {
       if (mesh.stages.size() + 1 > static_cast<size_t>(max_units_))
-        throw InputError(fmt::format("a mesh of {} stages: Mesa offers {} texture units", mesh.stages.size(), max_units_));
+        throw InputError(
+            fmt::format("a mesh of {} stages: Mesa offers {} texture units", mesh.stages.size(), max_units_));
       for (const tfu::TextureStage& st : mesh.stages) {
         if (st.sampler.mode.base == tfu::BaseFilter::Cubic || st.sampler.mode.base == tfu::BaseFilter::EdgePreserving)
           throw InputError(fmt::format("filter {} has no GL counterpart (nearest and linear modes only)",
@@ -231,8 +257,8 @@ class MesaScene {
         const GLenum internal = st.texture->format == tfu::TexelFormat::SRGBA8 ? GL_SRGB8_ALPHA8 : GL_RGBA8;
         for (size_t l = 0; l < st.texture->levels.size(); ++l) {
           const tfu::Image& im = st.texture->levels[l];
-          glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(l), static_cast<GLint>(internal), im.width, im.height, 0, GL_RGBA,
-                       GL_UNSIGNED_BYTE, im.texels.data());
+          glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(l), static_cast<GLint>(internal), im.width, im.height, 0,
+                       GL_RGBA, GL_UNSIGNED_BYTE, im.texels.data());
         }
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, st.texture->max_level());
         textures_[st.texture.get()] = name;
@@ -242,8 +268,8 @@ class MesaScene {
       std::vector<float> v;
       v.reserve(mesh.vertices.size() * g.stride);
       for (const tfu::Vertex& x : mesh.vertices)
-        for (double c : {x.pos.x, x.pos.y, x.pos.z, x.uv.x, x.uv.y, x.uv1.x, x.uv1.y, x.colour.r / 255.0, x.colour.g / 255.0,
-                         x.colour.b / 255.0, x.colour.a / 255.0})
+        for (double c : {x.pos.x, x.pos.y, x.pos.z, x.uv.x, x.uv.y, x.uv1.x, x.uv1.y, x.colour.r / 255.0,
+                         x.colour.g / 255.0, x.colour.b / 255.0, x.colour.a / 255.0})
           v.push_back(static_cast<float>(c));
       std::vector<uint32_t> idx;
       for (const auto& t : mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
@@ -253,21 +279,23 @@ class MesaScene {
       glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(), GL_STATIC_DRAW);
       glGenBuffers(1, &g.ibo);
       glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.ibo);
-      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(uint32_t)), idx.data(), GL_STATIC_DRAW);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(uint32_t)), idx.data(),
+                   GL_STATIC_DRAW);
       meshes_.push_back(g);
     }
     glFinish();
   }
 
-  void set_unit(int unit, GLuint texture, const tfu::SamplerDescriptor* s, tfu::TexEnv env, int scale, GLintptr uv_offset,
-                GLsizei stride_bytes) {
+  void set_unit(int unit, GLuint texture, const tfu::SamplerDescriptor* s, tfu::TexEnv env, int scale,
+                GLintptr uv_offset, GLsizei stride_bytes) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glClientActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glEnable(GL_TEXTURE_2D);
     glBindTexture(GL_TEXTURE_2D, texture);
     if (s != nullptr) {
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_min_filter(s->mode)));
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, s->mode.base == tfu::BaseFilter::Linear ? GL_LINEAR : GL_NEAREST);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER,
+                      s->mode.base == tfu::BaseFilter::Linear ? GL_LINEAR : GL_NEAREST);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, static_cast<GLint>(gl_wrap(s->wrap_s)));
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, static_cast<GLint>(gl_wrap(s->wrap_t)));
       const GLfloat border[4] = {s->border.r / 255.f, s->border.g / 255.f, s->border.b / 255.f, s->border.a / 255.f};
@@ -378,23 +406,26 @@ int run(const Options& o) {
   tfu::RenderOptions ro;
   ro.threads = o.threads;
   tfu::RenderResult golden = tfu::render_scene(scene, ro);
-  std::vector<double> draw, upload;
+  std::vector<double> draw, draw_cpu, upload;
   for (int r = 0; r < o.reps; ++r) {
     golden = tfu::render_scene(scene, ro);
     draw.push_back(golden.times.draw);
+    draw_cpu.push_back(golden.times.draw_cpu);
     upload.push_back(golden.times.upload);
   }
-  const Times g = summarize(draw), gu = summarize(upload);
+  const Times g = summarize(draw), gc = summarize(draw_cpu), gu = summarize(upload);
 
   MesaScene mesa(scene, o.driver, o.threads);
   const int64_t fragments = mesa.passed_fragments();  // also the untimed first frame
-  std::vector<double> mt;
+  std::vector<double> mt, mc;
   for (int r = 0; r < o.reps; ++r) {
     const Clock::time_point t0 = Clock::now();
+    const std::clock_t c0 = std::clock();
     mesa.draw();
+    mc.push_back(static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
     mt.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
   }
-  const Times m = summarize(mt);
+  const Times m = summarize(mt), mcpu = summarize(mc);
   const tfu::Image mesa_image = mesa.image();
   const auto [psnr, far] = compare(golden.image, mesa_image);
   if (!o.out_prefix.empty()) {
@@ -403,16 +434,20 @@ int run(const Options& o) {
     outputs.add_image("--out-prefix", o.out_prefix + "-mesa.png").write_image(mesa_image);
     outputs.commit();
   }
-  fmt::print("{} {}x{}, {} triangles, threads {}: golden draw best {:.2f} ms (median {:.2f}; upload {:.2f} ms apart), "
-             "{} draw best {:.2f} ms (median {:.2f}); golden / {} = {:.2f}; shaded pixels golden {} / Mesa depth-passed "
-             "fragments {}; PSNR golden vs Mesa {:.1f} dB, {} pixels differ by > 8 codes; {}\n",
-             scene.name, scene.width, scene.height, triangles, o.threads, g.best * 1e3, g.median * 1e3, gu.best * 1e3,
-             o.driver, m.best * 1e3, m.median * 1e3, o.driver, g.best / m.best, golden.stats.pixels, fragments, psnr, far,
-             mesa.renderer());
+  fmt::print(
+      "{} {}x{}, {} triangles, threads {}: golden draw best {:.2f} ms wall (median {:.2f}), {:.2f} ms CPU (median "
+      "{:.2f}; upload {:.2f} ms apart); {} draw best {:.2f} ms wall (median {:.2f}), {:.2f} ms CPU (median {:.2f}); "
+      "golden / {} = {:.2f} wall, {:.2f} CPU; shaded pixels golden {} / Mesa depth-passed fragments {}; PSNR golden "
+      "vs Mesa {:.1f} dB, {} pixels differ by > 8 codes; {}\n",
+      scene.name, scene.width, scene.height, triangles, o.threads, g.best * 1e3, g.median * 1e3, gc.best * 1e3,
+      gc.median * 1e3, gu.best * 1e3, o.driver, m.best * 1e3, m.median * 1e3, mcpu.best * 1e3, mcpu.median * 1e3,
+      o.driver, g.best / m.best, gc.best / mcpu.best, golden.stats.pixels, fragments, psnr, far, mesa.renderer());
   // The machine-readable line scripts/render-vs-llvmpipe reads.
-  fmt::print("RESULT scene={} width={} height={} threads={} golden_ms={:.3f} mesa_ms={:.3f} ratio={:.3f} pixels={} fragments={} psnr={:.2f}\n",
-             scene.name, scene.width, scene.height, o.threads, g.best * 1e3, m.best * 1e3, g.best / m.best,
-             golden.stats.pixels, fragments, psnr);
+  fmt::print(
+      "RESULT scene={} width={} height={} threads={} golden_ms={:.3f} mesa_ms={:.3f} ratio={:.3f} golden_cpu_ms={:.3f} "
+      "mesa_cpu_ms={:.3f} cpu_ratio={:.3f} pixels={} fragments={} psnr={:.2f}\n",
+      scene.name, scene.width, scene.height, o.threads, g.best * 1e3, m.best * 1e3, g.best / m.best, gc.best * 1e3,
+      mcpu.best * 1e3, gc.best / mcpu.best, golden.stats.pixels, fragments, psnr);
   return 0;
 }
 
