@@ -47,9 +47,12 @@ int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_
 }
 
 TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
-  const auto u = [&](int k) { return float_to_fixed_fast(s[k], static_cast<uint32_t>(width), 16); };
-  const auto v = [&](int k) { return float_to_fixed_fast(t[k], static_cast<uint32_t>(height), 16); };
-  return {u(1) - u(0), v(1) - v(0), u(2) - u(0), v(2) - v(0)};
+  // Each of the three pixels' coordinates converted once (the out-of-line general case keeps the
+  // compiler from merging repeated conversions).
+  const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);
+  const int64_t u0 = float_to_fixed_fast(s[0], w, 16), v0 = float_to_fixed_fast(t[0], h, 16);
+  return {float_to_fixed_fast(s[1], w, 16) - u0, float_to_fixed_fast(t[1], h, 16) - v0,
+          float_to_fixed_fast(s[2], w, 16) - u0, float_to_fixed_fast(t[2], h, 16) - v0};
 }
 
 TexelDerivatives derivatives_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height) {

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <exception>
 #include <limits>
 #include <memory>
@@ -179,16 +181,51 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   RenderResult& res = *ctx.result;
   const int W = ctx.width, H = ctx.height;
   const int qy_first = std::max(tri.ymin, y0) & ~1, qy_last = std::min(tri.ymax, y1 - 1);
-  for (int qy = qy_first; qy <= qy_last; qy += 2)
-    for (int qx = tri.xmin & ~1; qx <= tri.xmax; qx += 2) {
+  // The edge functions at the pixel centres, stepped in integers across a row of quads: edge i at
+  // (x + 1, y) is edge i at (x, y) minus (Y[b] - Y[a]) one pixel, exactly RasterTriangle::edge of
+  // each centre (the same integers; setup bounds them below 2^58). Coverage is decided on them
+  // before any barycentric is formed: a quad none of whose centres is covered costs no division.
+  std::array<int64_t, 3> step_x{};
+  for (size_t i = 0; i < 3; ++i) step_x[i] = -(tri.Y[(i + 2) % 3] - tri.Y[(i + 1) % 3]) * kOne;
+  const auto area = static_cast<double>(tri.area);
+  for (int qy = qy_first; qy <= qy_last; qy += 2) {
+    // The quads of this row that can hold a covered centre: the union of the covered intervals of
+    // its two pixel rows; the quads outside it have no covered centre (what the test below would
+    // find) and are not visited.
+    int x_lo = tri.xmax + 1, x_hi = tri.xmin - 1;
+    for (int row = qy; row <= qy + 1 && row <= tri.ymax; ++row) {
+      const auto [lo, hi] = tri.covered_interval(row);
+      if (lo <= hi) x_lo = std::min(x_lo, lo), x_hi = std::max(x_hi, hi);
+    }
+    if (x_lo > x_hi) continue;
+    const int qx_first = x_lo & ~1, qx_last = x_hi;
+    std::array<std::array<int64_t, 3>, 4> e;  // e[k][i]: edge i at pixel k of the quad
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < 3; ++i)
+        e[static_cast<size_t>(k)][static_cast<size_t>(i)] =
+            tri.edge(i, RasterTriangle::centre(qx_first + (k & 1)), RasterTriangle::centre(qy + (k >> 1)));
+    for (int qx = qx_first; qx <= qx_last; qx += 2) {
+      if (qx != qx_first)
+        for (auto& ek : e)
+          for (size_t i = 0; i < 3; ++i) ek[i] += 2 * step_x[i];
+      unsigned covered = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int px = qx + (k & 1), py = qy + (k >> 1);
+        const auto& ek = e[static_cast<size_t>(k)];
+        if (px < W && py < H && ek[0] + tri.bias[0] >= 0 && ek[1] + tri.bias[1] >= 0 && ek[2] + tri.bias[2] >= 0)
+          covered |= 1u << k;
+      }
+      if (covered == 0) continue;
+      // RasterTriangle::barycentric of each centre (helper pixels extrapolate), then depth.
       std::array<std::array<double, 3>, 4> b;
       std::array<double, 4> z{};
       unsigned mask = 0;
       for (int k = 0; k < 4; ++k) {
-        const int px = qx + (k & 1), py = qy + (k >> 1);
         const auto uk = static_cast<size_t>(k);
-        b[uk] = tri.barycentric(RasterTriangle::centre(px), RasterTriangle::centre(py));
-        if (px >= W || py >= H || !tri.covers_pixel(px, py)) continue;
+        b[uk] = {static_cast<double>(e[uk][0]) / area, static_cast<double>(e[uk][1]) / area,
+                 static_cast<double>(e[uk][2]) / area};
+        if (!(covered >> k & 1u)) continue;
+        const int px = qx + (k & 1), py = qy + (k >> 1);
         z[uk] = interpolate_z(tri, b[uk]);
         if (z[uk] < ctx.depth[static_cast<size_t>(py) * static_cast<size_t>(W) + static_cast<size_t>(px)])
           mask |= 1u << k;
@@ -200,8 +237,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
       const std::array<Rgba8, 4> primary = colour;
       std::array<std::array<double, 4>, 4> ideal{};
-      for (size_t k = 0; k < 4; ++k)
-        ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
+      if (ctx.opts->ideal)
+        for (size_t k = 0; k < 4; ++k)
+          ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
       std::array<float, 4> s0{}, t0{};  // UV set of stage 0 (kept coordinates)
       for (size_t st = 0; st < mesh.stages.size(); ++st) {
         const TextureStage& stage = mesh.stages[st];
@@ -275,6 +313,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       }
       ++out.quads;
     }
+  }
 }
 
 // ---- Ground truth ----
@@ -580,6 +619,24 @@ bool RasterTriangle::covers_point(int64_t px, int64_t py) const {
   return true;
 }
 
+std::pair<int, int> RasterTriangle::covered_interval(int row) const {
+  // Along the row, edge i at pixel x is e(x) = e(xmin) + (x - xmin) step with step = -(Y[b] - Y[a])
+  // one pixel (Q.8), and the centre is covered where e(x) + bias >= 0 for all three edges.
+  int64_t lo = xmin, hi = xmax;
+  for (size_t i = 0; i < 3; ++i) {
+    const int64_t step = -(Y[(i + 2) % 3] - Y[(i + 1) % 3]) * kOne;
+    const int64_t at = edge(static_cast<int>(i), centre(xmin), centre(row)) + bias[i];
+    if (step > 0)
+      lo = std::max(lo, xmin - floor_div(at, step));  // x - xmin >= ceil(-at / step)
+    else if (step < 0)
+      hi = std::min(hi, xmin + floor_div(at, -step));  // x - xmin <= floor(at / -step)
+    else if (at < 0)
+      return {xmin, xmin - 1};  // a horizontal edge the row lies outside of
+  }
+  if (lo > hi) return {xmin, xmin - 1};
+  return {static_cast<int>(lo), static_cast<int>(hi)};
+}
+
 std::array<double, 3> RasterTriangle::barycentric(int64_t px, int64_t py) const {
   const auto a = static_cast<double>(area);
   return {static_cast<double>(edge(0, px, py)) / a, static_cast<double>(edge(1, px, py)) / a,
@@ -654,7 +711,15 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   ctx.width = scene.width;
   ctx.height = scene.height;
   ctx.result = &result;
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  const Clock::time_point t_upload = Clock::now();
   make_samplers(ctx, result);
+  result.times.upload = seconds_since(t_upload);
+  const Clock::time_point t_draw = Clock::now();
+  const std::clock_t cpu_draw = std::clock();
   setup_scene(ctx);
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
@@ -700,6 +765,8 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.trace.requests = std::move(requests);
     result.quad_targets = std::move(targets);
   }
+  result.times.draw = seconds_since(t_draw);
+  result.times.draw_cpu = static_cast<double>(std::clock() - cpu_draw) / CLOCKS_PER_SEC;
   return result;
 }
 

@@ -42,6 +42,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -84,6 +85,10 @@ struct RasterTriangle {
   int64_t edge(int i, int64_t px, int64_t py) const;
   bool covers_point(int64_t px, int64_t py) const;  // fill rule applied
   bool covers_pixel(int x, int y) const { return covers_point(centre(x), centre(y)); }
+  // The pixels of row `row` (in ymin..ymax) whose centres the triangle covers, [first, last] within
+  // xmin..xmax (first > last: none): the covered interval solved exactly on the integer edge
+  // functions, equal to covers_pixel over the row (Raster.CoveredIntervalEqualsPerPixelCoverage).
+  std::pair<int, int> covered_interval(int row) const;
   std::array<double, 3> barycentric(int64_t px, int64_t py) const;
   static constexpr int64_t centre(int x) { return (int64_t{x} << kSubpixelBits) + (1 << (kSubpixelBits - 1)); }
 };
@@ -146,6 +151,17 @@ struct QuadTarget {
   std::array<Rgba8, 4> primary{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};  // stage 0's Cp
 };
 
+// Wall-clock seconds of a render's parts, for speed measurements only (no result depends on them;
+// testbench/bench_render_mesa.cpp). upload: the frame's descriptors and texel memory and the golden
+// unit's samplers (as a GL driver's texture upload); draw: everything after it, i.e. transform,
+// clipping and triangle setup, the colour and depth buffers cleared, every band rasterized and
+// shaded on the render's threads, and the bands' outputs (trace, quad targets) gathered in order;
+// draw_cpu: the process's CPU seconds over the same span (std::clock: every thread's; on a loaded
+// machine the steadier figure).
+struct RenderTimes {
+  double upload = 0, draw = 0, draw_cpu = 0;
+};
+
 struct RenderResult {
   Image image;
   Image truth;          // antialiased truth; empty unless RenderOptions::ground_truth
@@ -156,6 +172,7 @@ struct RenderResult {
   std::shared_ptr<const SceneFrame> frame;  // the descriptors and texel memory the render used
   std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
   RenderStats stats;
+  RenderTimes times;
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts);

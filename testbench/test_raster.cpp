@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "cmodel/mipmap.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
+#include "testbench/iterations.hpp"
 
 namespace tfu {
 namespace {
@@ -87,6 +89,46 @@ TEST(Raster, FillRuleTopAndLeftEdgesOnly) {
   EXPECT_FALSE(mirrored->covers_pixel(5, 8));  // bottom edge
   EXPECT_FALSE(mirrored->covers_pixel(8, 5));  // right edge
   EXPECT_TRUE(mirrored->covers_pixel(5, 5));   // the hypotenuse is its left edge
+}
+
+// The renderer visits only the quads of each row's covered interval (covered_interval, solved on
+// the integer edge functions): it must be exactly the pixels covers_pixel accepts, on random
+// triangles of every shape (large, partly off screen, thin slivers, vertices on pixel centres and
+// edges on the sample grid, where the fill rule decides) and on every row of their bounding boxes.
+TEST(Raster, CoveredIntervalEqualsPerPixelCoverage) {
+  constexpr int w = 64, h = 48;
+  std::mt19937 rng(20261206);
+  std::uniform_real_distribution<double> wide(-40.0, 104.0), pos(0.0, 64.0), small(-1.5, 1.5);
+  std::uniform_int_distribution<int> grid(-16, 80), kind(0, 3);
+  int rows = 0, covered = 0;
+  for (int n = 0; n < test::iterations(4000); ++n) {
+    std::array<ScreenVertex, 3> v;
+    const int k = kind(rng);
+    for (size_t i = 0; i < 3; ++i) {
+      if (k == 0)
+        v[i] = sv(wide(rng), wide(rng));  // large, off screen too
+      else if (k == 1)
+        v[i] = sv(pos(rng), pos(rng));  // on screen
+      else if (k == 2)
+        v[i] = sv(grid(rng) + 0.5, grid(rng) * 0.5);  // centres and half rows
+      else
+        v[i] = i == 0 ? sv(pos(rng), pos(rng)) : sv(v[0].x + 30 * small(rng), v[0].y + small(rng));  // slivers
+    }
+    const auto t = setup_triangle(v, w, h);
+    if (!t) continue;
+    for (int y = t->ymin; y <= t->ymax; ++y) {
+      const auto [first, last] = t->covered_interval(y);
+      ++rows;
+      for (int x = t->xmin; x <= t->xmax; ++x) {
+        const bool in = x >= first && x <= last;
+        covered += in;
+        ASSERT_EQ(in, t->covers_pixel(x, y)) << "triangle " << n << " (kind " << k << ") pixel " << x << "," << y
+                                             << " interval " << first << ".." << last;
+      }
+    }
+  }
+  EXPECT_GT(rows, test::iterations(4000));  // the loop checked something
+  EXPECT_GT(covered, 0);
 }
 
 TEST(Raster, DegenerateTriangleAfterSnappingIsSkipped) {
