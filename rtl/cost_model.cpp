@@ -67,17 +67,47 @@ CacheSramBits texel_cache_sram_bits(const TexelCacheConfig& c) {
   return b;
 }
 
+namespace {
+
+// What anisotropic filtering adds to a LOD unit and a filter (docs/design-space.md, "Cost"): the
+// select of the major axis, the probe count, lambda with the log2(N^2) ROM, the probe generator.
+// The squares of the two axes (aniso_axis_len2) are not counted: an isotropic LOD unit has them.
+constexpr std::array kAnisoBlocks{"aniso_major_select", "aniso_count", "aniso_lambda", "aniso_probe"};
+// What the footprint's true axes (SamplerDescriptor::aniso_axes Ellipse) add beside them in
+// tfu_aniso_lod: the dot and cross products, the hypot (the major axis) and their probe count.
+constexpr std::array kEllipseAxesBlocks{"aniso_dot_cross", "aniso_ellipse_major", "aniso_count_ellipse"};
+
+// A frame's samplers as the cost model reads them: their modes, whether any filters
+// anisotropically, and whether any of those on the footprint's true axes.
+struct DatapathUse {
+  std::vector<FilterMode> modes;
+  bool anisotropic = false, ellipse_axes = false;
+};
+DatapathUse datapath_use(const std::vector<SamplerDescriptor>& samplers) {
+  DatapathUse use;
+  for (const SamplerDescriptor& d : samplers) {
+    use.modes.push_back(d.mode);
+    use.anisotropic = use.anisotropic || d.anisotropic();
+    use.ellipse_axes = use.ellipse_axes || (d.anisotropic() && d.aniso_axes == AnisoAxes::Ellipse);
+  }
+  return use;
+}
+
+}  // namespace
+
 const std::vector<GateBlock>& filter_gate_table() { return table().blocks; }
 const std::string& filter_gate_source() { return table().source; }
 
-FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic) {
+FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic, bool ellipse_axes) {
   std::vector<std::string> need;
   for (const FilterMode& m : modes) {
     need.emplace_back(block_of(m.base));
     if (m.mip == MipMode::Linear) need.emplace_back("level_blend");
   }
   if (anisotropic)
-    for (const char* b : {"aniso_major_select", "aniso_count", "aniso_lambda", "aniso_probe"}) need.emplace_back(b);
+    for (const char* b : kAnisoBlocks) need.emplace_back(b);
+  if (anisotropic && ellipse_axes)
+    for (const char* b : kEllipseAxesBlocks) need.emplace_back(b);
   FilterGates g;
   for (const GateBlock& b : filter_gate_table())
     if (std::find(need.begin(), need.end(), b.block) != need.end()) {
@@ -91,13 +121,8 @@ FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool ani
 }
 
 FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers) {
-  std::vector<FilterMode> modes;
-  bool anisotropic = false;
-  for (const SamplerDescriptor& d : samplers) {
-    modes.push_back(d.mode);
-    anisotropic = anisotropic || d.anisotropic();
-  }
-  return filter_datapath_gates(modes, anisotropic);
+  const DatapathUse use = datapath_use(samplers);
+  return filter_datapath_gates(use.modes, use.anisotropic, use.ellipse_axes);
 }
 
 namespace {
@@ -233,8 +258,8 @@ std::optional<DramCommandEnergy> dram_command_energy(int dram_part) {
 }
 
 std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
-                                                               int lanes) {
-  const FilterGates g = filter_datapath_gates(modes, anisotropic);
+                                                               int lanes, bool ellipse_axes) {
+  const FilterGates g = filter_datapath_gates(modes, anisotropic, ellipse_axes);
   std::vector<std::pair<std::string, double>> out;
   for (const std::string& b : g.blocks) {
     double count = lanes;                          // one datapath per lane
@@ -264,16 +289,11 @@ uint64_t line_buffer_sram_bits(const UnitConfig& c) {
 
 UnitCost unit_cost(Node n, const UnitConfig& config, const std::vector<SamplerDescriptor>& samplers, int units,
                    const RunCounts& run) {
-  std::vector<FilterMode> modes;
-  bool anisotropic = false;
-  for (const SamplerDescriptor& d : samplers) {
-    modes.push_back(d.mode);
-    anisotropic = anisotropic || d.anisotropic();
-  }
+  const DatapathUse use = datapath_use(samplers);
   const NodeTech& tech = node_tech(n);
   const double u = units;
   UnitCost c;
-  c.instances = datapath_instances(modes, anisotropic, config.filter_lanes);
+  c.instances = datapath_instances(use.modes, use.anisotropic, config.filter_lanes, use.ellipse_axes);
   c.fmax_mhz = std::numeric_limits<double>::infinity();
   for (const auto& [block, count] : c.instances) {
     const NodeBlock& b = node_block(n, block);

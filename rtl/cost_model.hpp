@@ -76,12 +76,15 @@ const std::vector<GateBlock>& filter_gate_table();
 const std::string& filter_gate_source();
 
 // The distinct datapath blocks the modes need (in table order) and their summed gate equivalents;
-// `anisotropic`: some sampler filters anisotropically (SamplerDescriptor::anisotropic()).
+// `anisotropic`: some sampler filters anisotropically (SamplerDescriptor::anisotropic());
+// `ellipse_axes`: one of those on the footprint's true axes (aniso_axes Ellipse), whose blocks the
+// unit then holds too.
 struct FilterGates {
   std::vector<std::string> blocks;
   double ge = 0;
 };
-FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic = false);
+FilterGates filter_datapath_gates(const std::vector<FilterMode>& modes, bool anisotropic = false,
+                                  bool ellipse_axes = false);
 // The same for a frame's samplers (their modes, and whether any is anisotropic).
 FilterGates filter_datapath_gates(const std::vector<SamplerDescriptor>& samplers);
 
@@ -166,7 +169,7 @@ inline constexpr int kMissFifoEntryBits = 106 + 159;
 
 // Datapath instances the modes need with `lanes` filter lanes, in table order: (block, count).
 std::vector<std::pair<std::string, double>> datapath_instances(const std::vector<FilterMode>& modes, bool anisotropic,
-                                                               int lanes);
+                                                               int lanes, bool ellipse_axes = false);
 
 // What a run counted that the energy needs (all units together).
 struct RunCounts {

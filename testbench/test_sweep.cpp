@@ -123,8 +123,8 @@ TEST(CostModel, FilterGatesSumTheBlocksTheModesNeed) {
 }
 
 TEST(CostModel, AnisotropicSamplersAddTheAnisoBlocks) {
-  // docs/gates.md: major select 1053.3 + probe count 8951.4 + lambda 1096.9 + probe generator 9266.9.
-  const double aniso = 1053.3 + 8951.4 + 1096.9 + 9266.9;
+  // docs/gates.md: major select 1053.3 + probe count 13749.4 + lambda 1073.9 + probe generator 9266.9.
+  const double aniso = 1053.3 + 13749.4 + 1073.9 + 9266.9;
   const double trilinear = 14087.7 + 5284.3;  // bilinear_top + level_blend (Q.8 blend, docs/gates.md)
   const auto sampler = [](const char* mode, int max_aniso) {
     SamplerDescriptor d;
@@ -142,6 +142,21 @@ TEST(CostModel, AnisotropicSamplersAddTheAnisoBlocks) {
   EXPECT_NEAR(g.ge, 14087.7 + 46355.2 + aniso, 1e-6);
   EXPECT_EQ(g.blocks, (std::vector<std::string>{"bilinear_top", "cubic_filter", "aniso_major_select", "aniso_count",
                                                 "aniso_lambda", "aniso_probe"}));
+  // The footprint's true axes add tfu_aniso_lod's ellipse parts (docs/gates.md, "The ellipse axes"):
+  // dot and cross 32672.5 + the hypot 11140.2 + the ellipse count 10195.0; only on an anisotropic
+  // sampler (an isotropic one never reaches them).
+  const double ellipse = 32672.5 + 11140.2 + 10195.0;
+  SamplerDescriptor on_axes = sampler("trilinear", 8);
+  on_axes.aniso_axes = AnisoAxes::Ellipse;
+  const rtl::FilterGates e = rtl::filter_datapath_gates({on_axes, sampler("LINEAR", 1)});
+  EXPECT_NEAR(e.ge, trilinear + aniso + ellipse, 1e-6);
+  EXPECT_EQ(e.blocks, (std::vector<std::string>{"bilinear_top", "level_blend", "aniso_major_select", "aniso_count",
+                                                "aniso_lambda", "aniso_probe", "aniso_dot_cross",
+                                                "aniso_ellipse_major", "aniso_count_ellipse"}));
+  on_axes.max_aniso = 1;
+  EXPECT_NEAR(rtl::filter_datapath_gates({on_axes}).ge, trilinear, 1e-6);
+  EXPECT_NEAR(rtl::filter_datapath_gates({filter_mode_from_name("trilinear")}, true, true).ge,
+              trilinear + aniso + ellipse, 1e-6);
 }
 
 // ---- provenance ----

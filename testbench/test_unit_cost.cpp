@@ -118,6 +118,15 @@ TEST(UnitCost, AnisotropicBlocksOncePerUnitAtOsu035) {
   EXPECT_DOUBLE_EQ(k.miss_fifo_um2, 128.0 * 265 * 384);
   EXPECT_DOUBLE_EQ(k.fmax_mhz, 35.8);  // aniso_count (its 112-cell compare path; the others 59.8-112.3)
   EXPECT_GT(k.logic_pj, 0.0);
+  // On the footprint's true axes the unit holds tfu_aniso_lod's ellipse parts too, once: osu035
+  // aniso_dot_cross 3,739,728, aniso_ellipse_major 1,248,216 (its four parts), aniso_count_ellipse
+  // 1,104,248; the clock is still aniso_count's (the hypot's root 36.9 MHz, the ellipse count 44.2).
+  SamplerDescriptor on_axes = sampler("LINEAR_MIPMAP_LINEAR", 4);
+  on_axes.aniso_axes = AnisoAxes::Ellipse;
+  const rtl::UnitCost e = rtl::unit_cost(rtl::Node::Osu035, c, {on_axes}, 1, run);
+  EXPECT_DOUBLE_EQ(e.datapath_um2, k.datapath_um2 + 3739728.0 + 1248216.0 + 1104248.0);
+  EXPECT_DOUBLE_EQ(e.fmax_mhz, 35.8);
+  EXPECT_EQ(e.instances.size(), k.instances.size() + 3);
 }
 
 TEST(UnitCost, Osu035SramIsOpenRamCellsWithTheGf180PeripheryAt3V3) {
