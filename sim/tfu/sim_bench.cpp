@@ -28,6 +28,8 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
   if (bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
   // --bench: the units one at a time, so that the CPU seconds are those of one core. Units sharing
   // a memory then take turns at their misses on that core, and their hand-overs are in the figure.
+  // (A streamed run gives each unit a thread of its own beside the render: its figures are still
+  // each thread's CPU seconds.)
   if (bench) so.threads = 1;
   // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
   // seconds, so that the figures do not depend on other work on the machine; the two alternate
