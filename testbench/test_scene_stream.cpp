@@ -107,7 +107,7 @@ TEST(SceneStream, SameResultsAsRecordedBeforeStreaming) {
       {{"text_quad", 448, 336, "EDGE_PRESERVING", "cache-aware", nullptr}, 2, 83272, 41852, 0x5007b0d692efe9c1ull,
        0x62246f6f6f6fd685ull, 0x6ca558c70ab8faacull},
   };
-  for (const Recorded& r : recorded) {
+  for (const StreamRecorded& r : recorded) {
     const RenderedSceneSim got = run_case(r.c, r.units, 2, false);
     ASSERT_TRUE(got.streamed) << r.c.scene;
     EXPECT_TRUE(got.sim.mismatch.empty()) << got.sim.mismatch;
