@@ -8,7 +8,8 @@ bool RequestStream::push(const TraceRequest* r, size_t n) {
   std::unique_lock lock(mutex_);
   size_t done = 0;
   while (done < n) {
-    changed_.wait(lock, [&] { return abandoned_ || produced_.load(std::memory_order_relaxed) - released_ < capacity_; });
+    changed_.wait(lock,
+                  [&] { return abandoned_ || produced_.load(std::memory_order_relaxed) - released_ < capacity_; });
     if (abandoned_) return false;
     const size_t at = produced_.load(std::memory_order_relaxed);
     const size_t k = std::min(n - done, capacity_ - (at - released_));

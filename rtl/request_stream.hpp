@@ -61,8 +61,13 @@ class RequestStream {
  public:
   // A whole trace: every request available, nothing queued (the trace must outlive the stream).
   explicit RequestStream(const Trace& trace)
-      : mode_(trace.mode), data_(trace.requests.data()), mask_(~size_t{0}), known_(trace.requests.size()),
-        produced_(trace.requests.size()), closed_(true), whole_(true) {}
+      : mode_(trace.mode),
+        data_(trace.requests.data()),
+        mask_(~size_t{0}),
+        known_(trace.requests.size()),
+        produced_(trace.requests.size()),
+        closed_(true),
+        whole_(true) {}
   // A bounded queue of `capacity` requests (a power of two) in `mode`, filled by push().
   RequestStream(TraceMode mode, size_t capacity)
       : mode_(mode), ring_(capacity), data_(ring_.data()), mask_(capacity - 1), capacity_(capacity) {}

@@ -69,8 +69,8 @@ RenderedSceneSim run_case(const StreamCase& c, int units, int threads, bool whol
 // requests: twice round its window of kStreamWindow.
 TEST(SceneStream, SameResultsAsTheWholeFrame) {
   const StreamCase cases[] = {{"lightmapped", 384, 288, nullptr, nullptr, nullptr},
-                        {"text_quad", 256, 192, "EDGE_PRESERVING_MIPMAP_LINEAR", "cache-aware", nullptr},
-                        {"grazing", 192, 128, "LINEAR_MIPMAP_LINEAR", nullptr, "8"}};
+                              {"text_quad", 256, 192, "EDGE_PRESERVING_MIPMAP_LINEAR", "cache-aware", nullptr},
+                              {"grazing", 192, 128, "LINEAR_MIPMAP_LINEAR", nullptr, "8"}};
   for (const StreamCase& c : cases)
     for (const int units : {1, 3}) {
       const RenderedSceneSim whole = run_case(c, units, 2, true);
@@ -78,7 +78,8 @@ TEST(SceneStream, SameResultsAsTheWholeFrame) {
       ASSERT_TRUE(whole.sim.mismatch.empty()) << whole.sim.mismatch;
       for (const int threads : {1, 3}) {
         const RenderedSceneSim streamed = run_case(c, units, threads, false);
-        const std::string what = fmt::format("{} {} units {} threads {}", c.scene, c.filter ? c.filter : "", units, threads);
+        const std::string what =
+            fmt::format("{} {} units {} threads {}", c.scene, c.filter ? c.filter : "", units, threads);
         ASSERT_TRUE(streamed.streamed) << what;
         EXPECT_TRUE(streamed.render.trace.requests.empty()) << what;  // the render held no trace
         EXPECT_TRUE(streamed.sim.mismatch.empty()) << what << ": " << streamed.sim.mismatch;
@@ -102,10 +103,20 @@ TEST(SceneStream, SameResultsAsRecordedBeforeStreaming) {
     uint64_t cycles, image, counters, histograms;
   };
   const StreamRecorded recorded[] = {
-      {{"lightmapped", 384, 288, nullptr, nullptr, nullptr}, 1, 134312, 200749, 0xe1eafc5a15234b33ull,
-       0xbd6976aae13091c5ull, 0xc4a5b1e5595d69b9ull},
-      {{"text_quad", 448, 336, "EDGE_PRESERVING", "cache-aware", nullptr}, 2, 83272, 41852, 0x5007b0d692efe9c1ull,
-       0x62246f6f6f6fd685ull, 0x6ca558c70ab8faacull},
+      {{"lightmapped", 384, 288, nullptr, nullptr, nullptr},
+       1,
+       134312,
+       200749,
+       0xe1eafc5a15234b33ull,
+       0xbd6976aae13091c5ull,
+       0xc4a5b1e5595d69b9ull},
+      {{"text_quad", 448, 336, "EDGE_PRESERVING", "cache-aware", nullptr},
+       2,
+       83272,
+       41852,
+       0x5007b0d692efe9c1ull,
+       0x62246f6f6f6fd685ull,
+       0x6ca558c70ab8faacull},
   };
   for (const StreamRecorded& r : recorded) {
     const RenderedSceneSim got = run_case(r.c, r.units, 2, false);
