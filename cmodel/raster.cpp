@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <ctime>
 #include <exception>
 #include <limits>
@@ -578,14 +579,60 @@ void make_samplers(Context& ctx, RenderResult& result) {
   }
 }
 
-// Runs every band on `threads` workers; bands are independent (disjoint rows).
+// Runs every band on `threads` workers; bands are independent (disjoint rows). With a trace sink
+// (RenderOptions::sink) each band's trace is handed on, and freed, once it and every band above it
+// are done, in band order, by whichever worker completes that run of bands; a worker starts a band
+// only when fewer than 2 x threads bands lie between it and the next one to hand on.
 void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
   const int bands = static_cast<int>(ctx.band_triangles.size());
   std::atomic<int> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
+  TraceSink* const sink = ctx.opts->sink;
+  const int lookahead = 2 * threads;
+  std::mutex emit_mutex;
+  std::condition_variable emit_cv;
+  int emitted = 0;  // bands handed on
+  bool emitting = false, failed = false;
+  std::vector<uint8_t> done(static_cast<size_t>(bands), 0);
+  const auto fail = [&](std::exception_ptr e) {
+    {
+      const std::lock_guard lock(error_mutex);
+      if (!error) error = e;
+    }
+    const std::lock_guard lock(emit_mutex);
+    failed = true;
+    emit_cv.notify_all();
+  };
+  const auto hand_on = [&](int band) {
+    std::unique_lock lock(emit_mutex);
+    done[static_cast<size_t>(band)] = 1;
+    if (emitting) return;  // the worker handing on picks it up
+    emitting = true;
+    while (!failed && emitted < bands && done[static_cast<size_t>(emitted)]) {
+      BandOutput& b = outputs[static_cast<size_t>(emitted)];
+      lock.unlock();
+      try {
+        sink->band(b.trace, b.targets);
+      } catch (...) {
+        fail(std::current_exception());
+      }
+      std::vector<TraceRequest>().swap(b.trace);
+      std::vector<QuadTarget>().swap(b.targets);
+      std::vector<uint32_t>().swap(b.triangles);
+      lock.lock();
+      ++emitted;
+      emit_cv.notify_all();
+    }
+    emitting = false;
+  };
   const auto worker = [&] {
     for (int band = next++; band < bands; band = next++) {
+      if (sink != nullptr) {
+        std::unique_lock lock(emit_mutex);
+        emit_cv.wait(lock, [&] { return failed || band < emitted + lookahead; });
+        if (failed) return;
+      }
       try {
         const int y0 = band * kBandRows, y1 = std::min(ctx.height, y0 + kBandRows);
         for (uint32_t ti : ctx.band_triangles[static_cast<size_t>(band)])
@@ -595,9 +642,10 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
           surface_truth_band(ctx, y0, y1);
         }
       } catch (...) {
-        const std::lock_guard lock(error_mutex);
-        if (!error) error = std::current_exception();
+        fail(std::current_exception());
+        return;
       }
+      if (sink != nullptr) hand_on(band);
     }
   };
   run_workers(threads, [&](int) { worker(); });
@@ -721,9 +769,14 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   const Clock::time_point t_draw = Clock::now();
   const std::clock_t cpu_draw = std::clock();
   setup_scene(ctx);
+  if (opts.sink != nullptr) {
+    if (!opts.trace || opts.raster.traversal != RasterTraversal::Scanline)
+      throw CheckFailed("a render's trace sink needs the trace in the scanline order");
+    opts.sink->begin(*result.frame);
+  }
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
-  result.image = Image(scene.width, scene.height, to_rgba8(scene.background));
+  result.image = Image(scene.width, scene.height, background_rgba8(scene));
   if (opts.ground_truth) {
     result.truth = Image(scene.width, scene.height);
     result.surface_truth = Image(scene.width, scene.height);
@@ -769,6 +822,8 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   result.times.draw_cpu = static_cast<double>(std::clock() - cpu_draw) / CLOCKS_PER_SEC;
   return result;
 }
+
+Rgba8 background_rgba8(const Scene& scene) { return to_rgba8(scene.background); }
 
 void compose_quad_outputs(const Scene& scene, const std::vector<QuadTarget>& targets, const std::vector<Rgba8>& outputs,
                           Image& image) {

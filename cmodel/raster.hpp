@@ -116,6 +116,8 @@ Rgba8 primary_colour(const RasterTriangle& tri, const std::array<double, 3>& b);
 glm::dmat4 view_matrix(const Camera& cam);
 glm::dmat4 projection_matrix(const Camera& cam, double aspect);
 
+class TraceSink;
+
 struct RenderOptions {
   std::optional<FilterMode> filter;  // replaces the filter mode of every mesh's base stage
   Params sampler_overrides;          // further sampler keys of every base stage (bindings.hpp)
@@ -127,6 +129,9 @@ struct RenderOptions {
   bool ideal = false;                // Sampler::sample_ideal (double path) instead of sample
   bool keep_coords = false;          // keep each visible pixel's (s, t) (NaN where nothing is drawn)
   int threads = 0;                   // 0: std::thread::hardware_concurrency()
+  // With `trace` and the scanline order: the trace goes to this sink band by band instead of into
+  // RenderResult::trace and quad_targets (which stay empty).
+  TraceSink* sink = nullptr;
 };
 
 struct RenderStats {
@@ -162,6 +167,18 @@ struct RenderTimes {
   double upload = 0, draw = 0, draw_cpu = 0;
 };
 
+// Receives a render's trace in its order, band by band (kBandRows rows; RenderOptions::sink), so
+// that a consumer (the streamed scene simulation, rtl/scene_sim.hpp) need not hold the frame's
+// trace: begin() once the frame's descriptors and texel memory exist, before any band; then each
+// band's requests (4 per quad target) and quad targets, top to bottom, from one thread at a time.
+// The render shades at most 2 x threads bands ahead of the last one handed on.
+class TraceSink {
+ public:
+  virtual ~TraceSink() = default;
+  virtual void begin(const SceneFrame& frame) = 0;
+  virtual void band(const std::vector<TraceRequest>& requests, const std::vector<QuadTarget>& targets) = 0;
+};
+
 struct RenderResult {
   Image image;
   Image truth;          // antialiased truth; empty unless RenderOptions::ground_truth
@@ -176,6 +193,9 @@ struct RenderResult {
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
+
+// The colour of a pixel the render leaves empty: the scene's background, rounded to 8 bits.
+Rgba8 background_rgba8(const Scene& scene);
 
 // Writes the covered pixels of traced quads into `image` from the filtered outputs of their
 // requests (4 per quad target, in target order): each quad's stages combined in order by their

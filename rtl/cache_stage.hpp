@@ -69,6 +69,7 @@
 #include "rtl/address_gen_blocks.hpp"
 #include "rtl/memory_model.hpp"
 #include "rtl/texel_cache.hpp"
+#include "rtl/request_stream.hpp"
 #include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
@@ -119,9 +120,10 @@ class CacheStage : public sim::Module {
   // Kernel shape chosen per pixel, probe and level, for the golden compare of cache-aware shapes:
   // recorded when some sampler is EDGE_PRESERVING with the cache-aware policy (records_shapes();
   // the other policies' shapes follow from the descriptors), into `shapes` sized by the caller to
-  // one entry per request before the run.
+  // one entry per request (or a window of them, zeroed for reuse: rtl/request_stream.hpp) before
+  // the run.
   bool records_shapes() const { return record_shapes_; }
-  std::vector<ProbeShapes> shapes;
+  RequestRing<ProbeShapes> shapes;
   // The block's counters per statistics slot (a texture descriptor and material stage,
   // stat_slot()): line hits and misses per level, memory reads, stalls (counted for the footprint
   // that waits: the one at the input for the bank port, the miss-FIFO head for lines and room),

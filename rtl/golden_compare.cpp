@@ -35,13 +35,14 @@ std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, 
   return want;
 }
 
-std::string first_mismatch(const Trace& trace, const std::vector<Rgba8>& want, const UnitOutput& out, const std::string& where) {
+std::string first_mismatch(const Trace& trace, const std::vector<Rgba8>& want, const UnitOutput& out, const std::string& where,
+                           size_t first) {
   for (size_t i = 0; i < trace.requests.size(); ++i) {
     const Rgba8 have = out.pixels[i];
     if (want[i] == have) continue;
     const TraceRequest& r = trace.requests[i];
     return fmt::format("{}{}request {} (texture {}, sampler {}, s={:.9g}, t={:.9g}) at cycle {}: cycle model {},{},{},{} vs golden {},{},{},{}",
-                       where, where.empty() ? "" : " ", i, r.texture, int{r.sampler}, r.s, r.t, out.response_cycle[i], have.r,
+                       where, where.empty() ? "" : " ", first + i, r.texture, int{r.sampler}, r.s, r.t, out.response_cycle[i], have.r,
                        have.g, have.b, have.a, want[i].r, want[i].g, want[i].b, want[i].a);
   }
   return {};

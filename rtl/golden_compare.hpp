@@ -20,7 +20,9 @@ namespace tfu::rtl {
 // built while the switch was on.
 std::vector<Rgba8> golden_outputs(const GoldenUnit& golden, const Trace& trace, const UnitOutput& out);
 // Empty when every output equals the golden model's, else one line naming the first request that
-// differs, both values and the cycle (`where` prefixes it, e.g. "unit 2").
-std::string first_mismatch(const Trace& trace, const std::vector<Rgba8>& want, const UnitOutput& out, const std::string& where = {});
+// differs, both values and the cycle (`where` prefixes it, e.g. "unit 2"). `first`: the index of
+// the trace's first request in the unit's requests (a chunk of a stream: rtl/tfu_unit.hpp).
+std::string first_mismatch(const Trace& trace, const std::vector<Rgba8>& want, const UnitOutput& out, const std::string& where = {},
+                           size_t first = 0);
 
 }  // namespace tfu::rtl

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cmodel/trace.hpp"
+#include "rtl/request_stream.hpp"
 #include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
@@ -19,10 +20,11 @@ namespace tfu::rtl {
 
 class RequestFifo : public sim::Module {
  public:
-  RequestFifo(sim::Simulator& s, const Trace& tr, sim::Channel<QuadReq>& o, std::vector<uint64_t>& accept_cycle)
+  // The clocked engine runs on a whole trace (RequestStream::whole): every request is there.
+  RequestFifo(sim::Simulator& s, RequestStream& tr, sim::Channel<QuadReq>& o, RequestRing<uint64_t>& accept_cycle)
       : Module(s, "request_fifo"), trace_(tr), out_(o), accept_(accept_cycle) {}
   void evaluate() override {
-    if (next_ >= trace_.requests.size() || !out_.can_push()) return;
+    if (!out_.can_push() || !trace_.has(next_)) return;
     QuadReq& q = out_.push_slot();  // formed in the output register
     form_quad(trace_, next_, q);
     for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) accept_[next_ + k] = sim_.cycle();
@@ -30,15 +32,15 @@ class RequestFifo : public sim::Module {
     sim_.progress();
   }
   // The combinational part: the quad (or pixel) of `trace` that starts at request `first`.
-  static void form_quad(const Trace& trace, size_t first, QuadReq& q) {
+  static void form_quad(const RequestStream& trace, size_t first, QuadReq& q) {
     q.id = static_cast<uint32_t>(first);
-    q.npix = trace.mode == TraceMode::Quad ? 4 : 1;
+    q.npix = trace.mode() == TraceMode::Quad ? 4 : 1;
     for (size_t k = 0; k < static_cast<size_t>(q.npix); ++k) {
-      const TraceRequest& r = trace.requests[first + k];
+      const TraceRequest& r = trace[first + k];
       q.s[k] = r.s;
       q.t[k] = r.t;
     }
-    const TraceRequest& r = trace.requests[first];
+    const TraceRequest& r = trace[first];
     q.req = {r.texture, r.sampler, r.stage};
     q.lod = r.lod;
     q.dsdx = r.dsdx;
@@ -59,9 +61,9 @@ class RequestFifo : public sim::Module {
   } timing;
 
  private:
-  const Trace& trace_;
+  RequestStream& trace_;
   sim::Channel<QuadReq>& out_;
-  std::vector<uint64_t>& accept_;
+  RequestRing<uint64_t>& accept_;
   size_t next_ = 0;
 };
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cmodel/error.hpp"
+#include "rtl/request_stream.hpp"
 #include "rtl/timing.hpp"
 #include "rtl/unit_ports.hpp"
 #include "rtl/kernel/kernel.hpp"
@@ -22,11 +23,12 @@ namespace tfu::rtl {
 
 class ResponseSink : public sim::Module {
  public:
-  // `pixels` and `exit_cycle` have one slot per request (sized by the caller); pixel i lands in
-  // slot i when it retires.
-  ResponseSink(sim::Simulator& s, sim::Channel<Response>& filter, sim::Channel<Response>& edge, std::vector<Rgba8>& pixels,
-               std::vector<uint64_t>& exit_cycle, const std::vector<uint64_t>& accept_cycle)
-      : Module(s, "response"), filter_(filter), edge_(edge), pixels_(pixels), exit_(exit_cycle), accept_(accept_cycle) {}
+  // `pixels` and `exit_cycle` have a slot per request (the whole trace or a window of it,
+  // rtl/request_stream.hpp); pixel i lands in slot i when it retires. `trace` says which ids exist.
+  ResponseSink(sim::Simulator& s, sim::Channel<Response>& filter, sim::Channel<Response>& edge, RequestRing<Rgba8>& pixels,
+               RequestRing<uint64_t>& exit_cycle, const RequestRing<uint64_t>& accept_cycle, const RequestStream& trace)
+      : Module(s, "response"), filter_(filter), edge_(edge), pixels_(pixels), exit_(exit_cycle), accept_(accept_cycle),
+        trace_(trace) {}
   void evaluate() override {
     sim::Channel<Response>* in = nullptr;
     if (filter_.can_pop() && filter_.front().id == retired_) in = &filter_;
@@ -42,7 +44,7 @@ class ResponseSink : public sim::Module {
   }
   // Pixel r.id leaves the unit at cycle `now` (its colour, exit cycle and latency recorded).
   [[gnu::always_inline]] void retire(const Response& r, uint64_t now) {
-    if (r.id >= pixels_.size()) [[unlikely]]
+    if (r.id >= trace_.produced()) [[unlikely]]
       beyond_trace(r.id, now);
     pixels_[r.id] = r.rgba;
     exit_[r.id] = now;
@@ -71,9 +73,10 @@ class ResponseSink : public sim::Module {
  private:
   sim::Channel<Response>& filter_;
   sim::Channel<Response>& edge_;
-  std::vector<Rgba8>& pixels_;
-  std::vector<uint64_t>& exit_;
-  const std::vector<uint64_t>& accept_;
+  RequestRing<Rgba8>& pixels_;
+  RequestRing<uint64_t>& exit_;
+  const RequestRing<uint64_t>& accept_;
+  const RequestStream& trace_;
   uint32_t retired_ = 0;
   [[noreturn, gnu::cold, gnu::noinline]] static void beyond_trace(uint32_t id, uint64_t now) {
     throw CheckFailed(fmt::format("response {} beyond the trace at cycle {}", id, now));

@@ -41,8 +41,12 @@ struct SceneSimOptions {
   // Also run each unit's requests through both engines with every event recorded; the first event,
   // pixel or statistic at which they differ is a mismatch (rtl/engine_compare.hpp; a debugging aid).
   bool compare_engines = false;
-  // Units simulated at once (0: hardware_threads()); results do not depend on it.
+  // Units simulated at once (0: hardware_threads()); results do not depend on it. (A streamed
+  // run, render_and_simulate_scene, runs every unit on a thread of its own.)
   int threads = 0;
+  // render_and_simulate_scene: hold the whole frame's trace (simulate_scene) even where the run
+  // could stream; the results are the same (tested).
+  bool whole_frame = false;
 };
 
 struct SceneSimResult {
@@ -61,5 +65,22 @@ double thread_cpu_seconds();
 
 // `render` must come from render_scene(scene, {trace = true, line_bytes = u.cache.line_bytes}).
 SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, const UnitConfig& u, const SceneSimOptions& opt);
+
+// The scene rendered (`ro`, its trace recorded) and simulated (`opt`) together. Where the run
+// streams (streams_scene: the timing recurrences, no waveform, no engine compare, no memory system
+// shared by the units, the scanline raster order), the render hands its trace band by band to the
+// units, which run on threads of their own beside it, each on a bounded window of its requests
+// (rtl/request_stream.hpp), and the golden compare and the image take their results chunk by
+// chunk: the working set does not grow with the frame (docs/cycle-model.md, "Streaming"), and the
+// render, the units and the compare overlap. Otherwise: render_scene, then simulate_scene. The
+// results, statistics and image are the same either way (tested); a streamed render has no trace
+// (RenderResult::trace and quad_targets empty).
+struct RenderedSceneSim {
+  RenderResult render;
+  SceneSimResult sim;
+  bool streamed = false;
+};
+RenderedSceneSim render_and_simulate_scene(const Scene& scene, RenderOptions ro, const UnitConfig& u, const SceneSimOptions& opt);
+bool streams_scene(const RenderOptions& ro, const UnitConfig& u, const SceneSimOptions& opt);
 
 }  // namespace tfu::rtl

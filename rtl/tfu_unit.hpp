@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "cmodel/frame.hpp"
 #include "cmodel/trace.hpp"
 #include "rtl/engine_compare.hpp"
+#include "rtl/request_stream.hpp"
 #include "rtl/unit_config.hpp"
 #include "rtl/unit_output.hpp"
 
@@ -95,5 +97,24 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 // receives every event of the run (rtl/engine_compare.hpp).
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true,
                                UnitEvents* events = nullptr);
+
+// A unit on a stream of requests (rtl/request_stream.hpp; a scene's render, band by band): the
+// timing recurrences, as run_unit_recurrence, with the requests taken from `stream` as they come
+// and the results handed to `sink` in request order, chunk by chunk (kStreamChunk requests, the
+// last one shorter), so that the working set does not grow with the frame. The returned output
+// has the cycles and statistics (the same as a run on the whole trace, tested) and no per-request
+// vectors (they went to the sink). The stream's requests must have passed check_requests.
+struct UnitChunk {
+  size_t first = 0;  // the index of its first request in the unit's stream
+  Trace trace;       // its requests (the stream's mode)
+  UnitOutput out;    // their pixels, response cycles and edge shapes (no cycles, no statistics)
+};
+using UnitChunkSink = std::function<void(const UnitChunk&)>;
+UnitOutput run_unit_stream(const Frame& frame, RequestStream& stream, const UnitConfig& ucfg, const UnitChunkSink& sink);
+
+// What the unit refuses in requests (InputError naming request first + i): a descriptor index not
+// bound, a sampler not defined on the texture's format, a B-spline sampler and a texture of texels
+// (or the reverse). run_unit checks its trace; a stream's producer checks what it pushes.
+void check_requests(const Frame& frame, const TraceRequest* r, size_t n, size_t first);
 
 }  // namespace tfu::rtl

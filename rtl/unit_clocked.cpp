@@ -178,9 +178,8 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
   detail::check_inputs(frame, trace, ucfg);
   const size_t n = trace.requests.size();
   UnitOutput out;
-  out.pixels.resize(n);
-  out.response_cycle.resize(n);
-  auto unit = std::make_unique<Unit>(frame, trace, ucfg, out, shared);
+  RequestStream whole(trace);
+  auto unit = std::make_unique<Unit>(frame, whole, ucfg, shared);
   std::unique_ptr<sim::VcdWriter> vcd;
   if (vcd_stream) {
     vcd = std::make_unique<sim::VcdWriter>(*vcd_stream);
@@ -217,8 +216,9 @@ UnitOutput run(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, c
     unit->sim.run(done, sim::Simulator::kNoCycleLimit, retired, n);
   }
   out.cycles = unit->sim.cycle();
-  out.edge_shapes = std::move(unit->cache_stage.shapes);
-  detail::derive_stats(frame, trace, ucfg, *unit, out);
+  unit->drain_to(n, nullptr);
+  unit->take_outputs(out);
+  detail::derive_stats(frame, ucfg, *unit, out);
   return out;
 }
 

@@ -104,16 +104,15 @@ struct EventLog {
   }
 };
 
+// `trace`: a whole trace (its requests checked by the caller) or a stream, whose results go to
+// `sink` chunk by chunk (rtl/request_stream.hpp).
 template <bool kRecord>
-UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
-                       EventLog<kRecord> log, MemoryBinding shared) {
+UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfig& ucfg, bool linear_quads,
+                       EventLog<kRecord> log, MemoryBinding shared, const UnitChunkSink* sink = nullptr) {
   using enum UnitEvent;
-  detail::check_inputs(frame, trace, ucfg);
-  const size_t n = trace.requests.size();
+  const size_t n = trace.whole() ? trace.produced() : 0;  // 0: not known (no progress bar)
   UnitOutput out;
-  out.pixels.resize(n);
-  out.response_cycle.resize(n);
-  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out, shared);
+  auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, shared);
   detail::Unit& u = *unit;
   detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
   detail::ProbeQuadPath probes(frame.regs, u, linear_quads && fast_paths_enabled());
@@ -180,9 +179,12 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
   sim::ProgressBar bar(retired, n);
-  for (size_t first = 0, quads_in = 0; first < n; ++quads_in) {
+  const size_t last_pixel = trace.mode() == TraceMode::Quad ? 3 : 0;  // of a quad, after its first
+  for (size_t first = 0, quads_in = 0; trace.has(first + last_pixel); ++quads_in) {
     if ((quads_in & 0xFFFu) == 0)
       bar.update(static_cast<uint64_t>(std::max<int64_t>(u.response.timing.last_retire(), 0)));
+    // A stream: every request before `first` has retired; hand on a chunk when one is complete.
+    if (sink != nullptr && first - u.drained >= kStreamChunk) u.drain_to(u.drained + kStreamChunk, sink);
     // request_fifo -> lod_unit
     RequestFifo::form_quad(trace, first, quad);
     const int64_t quad_pushed = log.at(RequestFifoPushesQuad, u.request_fifo.timing.push(ch.quad));
@@ -267,8 +269,9 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   }
   out.cycles = static_cast<uint64_t>(u.response.timing.last_retire() + 1);
   bar.finish(out.cycles);
-  out.edge_shapes = std::move(u.cache_stage.shapes);
-  detail::derive_stats(frame, trace, ucfg, u, out);
+  u.drain_to(u.response.retired(), sink);
+  if (sink == nullptr) u.take_outputs(out);
+  detail::derive_stats(frame, ucfg, u, out);
   return out;
 }
 
@@ -276,16 +279,32 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
 
 UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
                                UnitEvents* events) {
-  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
+  detail::check_inputs(frame, trace, ucfg);
+  RequestStream whole(trace);
+  if (events == nullptr) return recurrences(frame, whole, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
   for (std::vector<int64_t>& row : *events) row.clear();
-  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
+  return recurrences(frame, whole, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
 }
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,
                     MemoryBinding shared) {
-  if (engine == UnitEngine::Recurrence && vcd.out == nullptr)
-    return recurrences(frame, trace, ucfg, true, EventLog<false>{nullptr}, shared);
+  if (engine == UnitEngine::Recurrence && vcd.out == nullptr) {
+    detail::check_inputs(frame, trace, ucfg);
+    RequestStream whole(trace);
+    return recurrences(frame, whole, ucfg, true, EventLog<false>{nullptr}, shared);
+  }
   return run_unit(frame, trace, ucfg, vcd, ClockedOptions{}, shared);
+}
+
+UnitOutput run_unit_stream(const Frame& frame, RequestStream& stream, const UnitConfig& ucfg, const UnitChunkSink& sink) {
+  detail::check_config(frame, ucfg);
+  if (stream.whole()) throw CheckFailed("run_unit_stream needs a queued stream (a whole trace: run_unit)");
+  try {
+    return recurrences(frame, stream, ucfg, true, EventLog<false>{nullptr}, MemoryBinding{}, &sink);
+  } catch (...) {
+    stream.abandon();  // the producer must not wait for a unit that has stopped
+    throw;
+  }
 }
 
 }  // namespace tfu::rtl

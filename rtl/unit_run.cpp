@@ -17,18 +17,58 @@ namespace tfu::rtl {
 namespace detail {
 
 // check_inputs and derive_stats: rtl/unit_wiring.hpp.
-void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
+void check_config(const Frame& frame, const UnitConfig& u) {
   u.validate();
   frame.regs.validate();
   if (frame.line_bytes != u.cache.line_bytes)
     throw InputError(fmt::format("the frame's textures are tiled for {}-byte lines, the cache has {}-byte lines",
                                  frame.line_bytes, u.cache.line_bytes));
+}
+
+void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
+  check_config(frame, u);
   if (trace.mode == TraceMode::Quad && trace.requests.size() % 4 != 0)
     throw InputError("a quad trace needs a multiple of 4 requests");
+  check_requests(frame, trace.requests.data(), trace.requests.size(), 0);
+}
+
+void Unit::drain_to(size_t end, const UnitChunkSink* sink) {
+  UnitChunk chunk;
+  if (sink != nullptr) {
+    const size_t k = end - drained;
+    chunk.first = drained;
+    chunk.trace.mode = source.mode();
+    chunk.trace.requests.resize(k);
+    chunk.out.pixels.resize(k);
+    chunk.out.response_cycle.resize(k);
+    if (cache_stage.records_shapes()) chunk.out.edge_shapes.resize(k);
+  }
+  for (size_t i = drained, j = 0; i < end; ++i, ++j) {
+    retire_stats.add(source[i], exit_cycle[i], accept[i]);
+    if (sink == nullptr) continue;
+    chunk.trace.requests[j] = source[i];
+    chunk.out.pixels[j] = pixels[i];
+    chunk.out.response_cycle[j] = exit_cycle[i];
+    if (cache_stage.records_shapes()) {
+      chunk.out.edge_shapes[j] = cache_stage.shapes[i];
+      cache_stage.shapes[i] = ProbeShapes{};  // the slot's next request starts from no shape
+    }
+  }
+  drained = end;
+  if (sink != nullptr) {
+    source.release(end);
+    (*sink)(chunk);
+  }
+}
+
+}  // namespace detail
+
+void check_requests(const Frame& frame, const TraceRequest* requests, size_t n, size_t first) {
   const size_t nt = frame.regs.textures.size(), ns = frame.regs.samplers.size();
   std::vector<uint8_t> seen(nt * ns, 0);
-  for (size_t i = 0; i < trace.requests.size(); ++i) {
-    const TraceRequest& r = trace.requests[i];
+  for (size_t j = 0; j < n; ++j) {
+    const TraceRequest& r = requests[j];
+    const size_t i = first + j;
     if (r.texture >= nt || r.sampler >= ns)
       throw InputError(fmt::format("request {} names texture {} and sampler {}; {} and {} are bound", i, r.texture,
                                    r.sampler, nt, ns));
@@ -48,10 +88,13 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
   }
 }
 
-void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
+namespace detail {
+
+void derive_stats(const Frame& frame, const UnitConfig& ucfg, Unit& u, UnitOutput& out) {
   (void)ucfg;
   sim::Stats& st = out.stats;
-  const size_t n = trace.requests.size();
+  const RetireStats& rs = u.retire_stats;
+  const size_t n = rs.requests;
   const size_t nt = frame.regs.textures.size();
   const size_t slots = stat_slots(nt);
   u.cache_stage.publish(st);
@@ -78,24 +121,11 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
     st.set_histogram(stat_key(UnitStat::EdgeDirection), directions(all));
   }
   st.set_histogram(stat_key(UnitStat::Latency), u.response.latency);
-  // Per statistics slot (texture descriptor x material stage), from the requests' own cycles: the
-  // requests, the output cycles given to them (pixels retire in request order, one per cycle at
-  // most: request i is given its retirement cycle minus request i - 1's, the first its retirement
-  // cycle + 1, so that one unit's slots add up to its cycles) and their latencies.
-  std::vector<uint64_t> slot_requests(slots, 0), slot_cycles(slots, 0);
-  std::vector<std::vector<uint64_t>> slot_latency(slots);
-  uint64_t retired_by = 0;  // the cycle after the previous request's retirement
-  for (size_t i = 0; i < n; ++i) {
-    const TraceRequest& r = trace.requests[i];
-    const size_t k = stat_slot(r.texture, r.stage);
-    ++slot_requests[k];
-    slot_cycles[k] += out.response_cycle[i] + 1 - retired_by;
-    retired_by = out.response_cycle[i] + 1;
-    const uint64_t lat = out.response_cycle[i] - u.accept[i];
-    std::vector<uint64_t>& h = slot_latency[k];
-    if (h.size() <= lat) h.resize(lat + 1);
-    ++h[lat];
-  }
+  // Per statistics slot (texture descriptor x material stage), from the requests' own cycles
+  // (RetireStats): the requests, the output cycles given to them and their latencies.
+  const std::vector<uint64_t>& slot_requests = rs.slot_requests;
+  const std::vector<uint64_t>& slot_cycles = rs.slot_cycles;
+  const std::vector<std::vector<uint64_t>>& slot_latency = rs.slot_latency;
   // The groups: per material stage and per texture descriptor, each the sum of its slots, with
   // every counter and histogram of the run, and the rates derived from them.
   const auto texture_label = [&frame](size_t t) { return fmt::format("{} {}", t, frame.textures[t].name); };
@@ -115,8 +145,7 @@ void derive_stats(const Frame& frame, const Trace& trace, const UnitConfig& ucfg
   derive_group_rates(st);
   // The tables: traffic per texture descriptor (requests and memory bytes counted apart from the
   // slots: the request tags, the cache's tag unit, the memory model) and per material stage.
-  std::vector<uint64_t> tex_requests(nt, 0);
-  for (const TraceRequest& r : trace.requests) ++tex_requests[r.texture];
+  const std::vector<uint64_t>& tex_requests = rs.tex_requests;
   sim::Stats::Table textures{{"index", "requests", "line_hits", "line_misses", "memory_bytes"}, {}};
   for (size_t t = 0; t < nt; ++t) {
     const int ti = static_cast<int>(t);

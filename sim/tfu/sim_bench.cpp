@@ -5,6 +5,8 @@
 #include <iostream>
 #include <string>
 
+#include <sys/resource.h>
+
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
@@ -15,11 +17,19 @@
 
 namespace tfu::cli {
 
+size_t peak_rss_bytes() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return static_cast<size_t>(ru.ru_maxrss) * 1024;  // Linux: kilobytes
+}
+
 SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit, rtl::SceneSimOptions so,
                              bool bench) {
   if (bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
   // --bench: the units one at a time, so that the CPU seconds are those of one core. Units sharing
   // a memory then take turns at their misses on that core, and their hand-overs are in the figure.
+  // (A streamed run gives each unit a thread of its own beside the render: its figures are still
+  // each thread's CPU seconds.)
   if (bench) so.threads = 1;
   // --bench: best of kBenchRuns runs of the golden render and of the simulation, in thread CPU
   // seconds, so that the figures do not depend on other work on the machine; the two alternate
@@ -32,13 +42,34 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
   out.clocked = bench && so.engine == rtl::UnitEngine::Recurrence;
   rtl::SceneSimResult& res = out.res;
   for (int run = 0; run < out.runs; ++run) {
-    const double tr = rtl::thread_cpu_seconds();
-    out.render = render_scene(scene, ro);
-    out.render_secs = std::min(out.render_secs, rtl::thread_cpu_seconds() - tr);
-    const auto t0 = std::chrono::steady_clock::now();
-    rtl::SceneSimResult r = rtl::simulate_scene(scene, out.render, unit, so);
+    double render_secs = 0;
+    double wall = 0;
+    rtl::SceneSimResult r;
+    if (rtl::streams_scene(ro, unit, so)) {
+      // The render and the units together (rtl/scene_sim.hpp): the render's figure is the calling
+      // thread's (the render's, dealing its bands to the units included), the wall clock both.
+      const auto t0 = std::chrono::steady_clock::now();
+      const double tr = rtl::thread_cpu_seconds();
+      rtl::RenderedSceneSim both = rtl::render_and_simulate_scene(scene, ro, unit, so);
+      render_secs = rtl::thread_cpu_seconds() - tr;
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      out.render = std::move(both.render);
+      r = std::move(both.sim);
+      out.streamed = true;
+    } else {
+      RenderOptions traced = ro;
+      traced.trace = true;
+      const double tr = rtl::thread_cpu_seconds();
+      out.render = render_scene(scene, traced);
+      render_secs = rtl::thread_cpu_seconds() - tr;
+      const auto t0 = std::chrono::steady_clock::now();
+      r = rtl::simulate_scene(scene, out.render, unit, so);
+      wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    out.render_secs = std::min(out.render_secs, render_secs);
     if (run == 0) {
-      out.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      out.wall = wall;
+      out.peak_rss_bytes = peak_rss_bytes();
       res = std::move(r);
     } else {
       res.cycle_seconds = std::min(res.cycle_seconds, r.cycle_seconds);
@@ -47,8 +78,8 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
     out.pair_ratio.push_back(r.cycle_seconds / r.golden_seconds);
     if (out.clocked) {
       rtl::SceneSimOptions clocked = so;
-      clocked.engine = rtl::UnitEngine::Clocked;
-      const rtl::SceneSimResult c = rtl::simulate_scene(scene, out.render, unit, clocked);
+      clocked.engine = rtl::UnitEngine::Clocked;  // on the whole frame's trace
+      const rtl::SceneSimResult c = rtl::render_and_simulate_scene(scene, ro, unit, clocked).sim;
       if (c.cycles != res.cycles || c.stats.json_text() != res.stats.json_text())
         throw CheckFailed("--bench: the clocked unit and the timing recurrences disagree (cycles or statistics)");
       out.clocked_secs = std::min(out.clocked_secs, c.cycle_seconds);
@@ -80,8 +111,15 @@ void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units) {
         run.clocked_ratio[run.clocked_ratio.size() / 2]);
   std::cout << fmt::format(
       "    (for scale, not in the ratio: the golden render of the scene, rasterizer included, {:.3f} s)\n"
-      "    wall {:.3f} s for {} unit(s) (first run: cycle model + golden compare)\n",
-      run.render_secs, run.wall, units);
+      "    wall {:.3f} s for {} unit(s) (first run: {})\n",
+      run.render_secs, run.wall, units,
+      run.streamed ? "render, cycle model and golden compare streamed together" : "cycle model + golden compare");
+  // The process's peak resident set after the first run (before the clocked blocks' whole-frame
+  // runs): the scene, its textures and the working set of the run (docs/cycle-model.md, "Streaming").
+  std::cout << fmt::format("    peak RSS {:.1f} MB after the first run ({}), {:.1f} bytes per request\n",
+                           static_cast<double>(run.peak_rss_bytes) / 1e6,
+                           run.streamed ? "streamed: the working set does not grow with the frame" : "whole-frame trace",
+                           static_cast<double>(run.peak_rss_bytes) / n);
   if (const uint64_t probes = rtl::counter(res.stats, rtl::UnitStat::Probes); probes != res.requests) {
     const std::string clocked =
         run.clocked ? fmt::format(" (clocked blocks {:.2f} M)", static_cast<double>(probes) / run.clocked_secs / 1e6)

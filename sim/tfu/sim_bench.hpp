@@ -17,6 +17,9 @@ namespace tfu::cli {
 
 inline constexpr int kBenchRuns = 7;  // --bench: best of this many runs
 
+// The process's peak resident set so far (getrusage), bytes.
+size_t peak_rss_bytes();
+
 struct SceneRun {
   RenderResult render;     // the last run's golden render
   rtl::SceneSimResult res; // the first run's simulation; with --bench its seconds the best of all runs
@@ -26,10 +29,13 @@ struct SceneRun {
   std::vector<double> pair_ratio;    // cycle model / golden LOD + sampler of each run, sorted
   bool clocked = false;              // the clocked blocks were timed too (the recurrences ran)
   double clocked_secs = 0;           // their best run
+  bool streamed = false;             // the render and the units ran together (rtl::render_and_simulate_scene)
+  size_t peak_rss_bytes = 0;         // the process's peak resident set after the first run
   std::vector<double> clocked_ratio; // their ratio of each run, sorted
 };
 
-// Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`; one thread with `bench`).
+// Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`; one thread with `bench`),
+// streamed where the run allows (rtl::render_and_simulate_scene).
 SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit, rtl::SceneSimOptions so,
                              bool bench);
 // The --bench lines of a run of `units` units by `engine`.
