@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -619,6 +620,32 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
     }
 }
 
+// The equality test of the timing recurrences' quad paths (software speed only): on `configs` unit
+// configurations, the first small_cache(4) and the rest random (stalls of every kind), the
+// recurrences with their fast paths, without them (the plain twin) and the clocked blocks give the
+// same pixels, response cycles, cycles and statistics, every pixel the golden model's. `also` sees
+// each fast-path run with its configuration's name.
+void expect_quad_paths_equal_the_plain_blocks(
+    const Frame& frame, const Trace& tr, std::mt19937& rng, int configs,
+    const std::function<void(const UnitOutput&, const std::string&)>& also = {}) {
+  for (int k = 0; k < configs; ++k) {
+    ClockedOptions opt;
+    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
+    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
+    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
+    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
+    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
+    expect_golden(frame, tr, quad_path, what);
+    if (also) also(quad_path, what);
+    for (const UnitOutput* other : {&plain, &clocked}) {
+      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
+      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
+      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
+      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
+    }
+  }
+}
+
 // The timing recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.hpp: isotropic
 // LINEAR, LINEAR_MIPMAP_NEAREST and LINEAR_MIPMAP_LINEAR without clamp-to-border, 8-bit textures,
 // four pixels a quad; software speed only) gives the plain per-pixel path's and the clocked
@@ -699,22 +726,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   EXPECT_GT(quads_taken, 650);  // the path carries about half of the quads (17/27 samplers x 3/4 textures)
   EXPECT_LT(quads_taken, 1100);
   bind_requests(b, tr);
-  const Frame frame = b.finish();
-  for (int k = 0; k < 10; ++k) {
-    ClockedOptions opt;
-    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
-    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
-    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
-    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
-    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
-    expect_golden(frame, tr, quad_path, what);
-    for (const UnitOutput* other : {&plain, &clocked}) {
-      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
-      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
-      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
-      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
-    }
-  }
+  expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 10);
 }
 
 // ---- Anisotropic filtering (docs/anisotropic.md) ----
@@ -1014,27 +1026,14 @@ TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
   EXPECT_GT(quads_taken, quads / 4);  // the first 32, then about 7/15 samplers x 3/4 textures of the quads
   EXPECT_LT(quads_taken, quads);
   bind_requests(b, tr);
-  const Frame frame = b.finish();
-  for (int k = 0; k < 8; ++k) {
-    ClockedOptions opt;
-    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
-    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
-    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
-    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
-    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
-    expect_golden(frame, tr, quad_path, what);
-    // Every probe count occurs (the histogram of pixels per N; the first quads above).
+  // Every probe count occurs (the histogram of pixels per N; the first quads above).
+  const auto every_probe_count = [](const UnitOutput& quad_path, const std::string& what) {
     const std::vector<uint64_t>* hist = quad_path.stats.histogram("aniso_probes");
     ASSERT_NE(hist, nullptr) << what;
     ASSERT_EQ(hist->size(), static_cast<size_t>(kMaxAniso + 1)) << what;
     for (size_t n = 1; n <= static_cast<size_t>(kMaxAniso); ++n) EXPECT_GT((*hist)[n], 0u) << what << " N = " << n;
-    for (const UnitOutput* other : {&plain, &clocked}) {
-      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
-      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
-      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
-      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
-    }
-  }
+  };
+  expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 8, every_probe_count);
 }
 
 // Anisotropic probes: Lee & Jen's static shapes stay within the lines of each probe's bilinear footprint,
