@@ -88,11 +88,11 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 
 // The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes
-// and statistics as the clocked run (tested). No waveform. `linear_quads` false runs every quad
-// through the plain per-pixel path, without the LINEAR quad path (software speed only,
-// rtl/unit_recurrence_linear_quads.hpp): for the test that the two are equal. `events`, if given,
-// receives every event of the run (rtl/engine_compare.hpp).
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true,
+// and statistics as the clocked run (tested). No waveform. `quad_paths` false runs every quad
+// through the plain per-pixel path, without the LINEAR and CUBIC quad paths (software speed only,
+// rtl/unit_recurrence_linear_quads.hpp, rtl/unit_recurrence_cubic_quads.hpp): for the tests that
+// they are equal. `events`, if given, receives every event of the run (rtl/engine_compare.hpp).
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool quad_paths = true,
                                UnitEvents* events = nullptr);
 
 }  // namespace tfu::rtl

@@ -37,7 +37,9 @@
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
-// (rtl/unit_recurrence_linear_quads.hpp, software speed only), with the same timing functions.
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only), and for those of isotropic
+// CUBIC-family samplers by the CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp), with the
+// same timing functions.
 // A unit sharing a memory system with other units (rtl/shared_memory.hpp) runs here too: its texel
 // cache issues its misses at nondecreasing cycles, the same as the clocked run's, and each miss's
 // answer (the cycle its data is in) is all the recurrences need from it, so the run pauses at each
@@ -55,6 +57,7 @@
 #include "rtl/engine_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/timing.hpp"
+#include "rtl/unit_recurrence_cubic_quads.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
 #include "rtl/unit_wiring.hpp"
 
@@ -102,7 +105,7 @@ struct EventLog {
 };
 
 template <bool kRecord>
-UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
+UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool quad_paths,
                        EventLog<kRecord> log, MemoryBinding shared) {
   using enum UnitEvent;
   detail::check_inputs(frame, trace, ucfg);
@@ -112,7 +115,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
   out.response_cycle.resize(n);
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, out, shared);
   detail::Unit& u = *unit;
-  detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
+  detail::LinearQuadPath linear(frame.regs, u, quad_paths && fast_paths_enabled());
+  detail::CubicQuadPath cubic(frame.regs, u, quad_paths && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
   // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
   // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
@@ -222,6 +226,29 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
+    if (cubic.takes(quad)) {
+      // The CUBIC quad path: one or two level footprints of 4 x 4 taps per pixel, timed as the
+      // LINEAR quad path's above, the functions batched per quad.
+      const size_t slot = stat_slot(quad.req);
+      const int levels = cubic.address(quad, lod);
+      for (int k = 0; k < 4; ++k) {
+        const int64_t pixel_taken = pixel_taken_at(k);
+        for (int level = 0; level < levels; ++level) {  // level0, then level1 when blending
+          const int64_t exit =
+              through_cache(level == 0, pixel_taken, false, slot,
+                            [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
+          const bool emits = level + 1 == levels;
+          const int64_t done =
+              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
+          if (emits)
+            quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+        }
+      }
+      cubic.filter(quad_colour);
+      for (size_t k = 0; k < 4; ++k)
+        u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+      continue;
+    }
     for (int k = 0; k < quad.npix; ++k) {
       const int64_t pixel_taken = pixel_taken_at(k);
       u.address_gen.begin(LodUnit::pixel(quad, lod, k));
@@ -246,11 +273,11 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
 
 }  // namespace
 
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool quad_paths,
                                UnitEvents* events) {
-  if (events == nullptr) return recurrences(frame, trace, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
+  if (events == nullptr) return recurrences(frame, trace, ucfg, quad_paths, EventLog<false>{nullptr}, MemoryBinding{});
   for (std::vector<int64_t>& row : *events) row.clear();
-  return recurrences(frame, trace, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
+  return recurrences(frame, trace, ucfg, quad_paths, EventLog<true>{events}, MemoryBinding{});
 }
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,
