@@ -5,6 +5,7 @@
 // the plain twins are the reference, what the golden model's plain path and the cycle model's
 // filter block call and what the SystemVerilog implements:
 //   cubic_accumulate8    dp::cubic_accumulate of the 16 words' channels
+//   cubic_accumulate8_narrow   the same for weights below 2^15 in magnitude (SSE2 multiply-adds)
 //   cubic_normalize8     dp::cubic_normalize to a result within 0..255, packed (encode_texel)
 //   TileWeightMemo       dp::tile_weights_2d of one ROM, memoized per fraction pair
 // Off with the fast-path switch (cmodel/fast_paths.hpp: TFU_PLAIN=1, the CLI's --plain), which turns
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -27,19 +29,56 @@ namespace tfu::dp::fast {
 // and (G, A) in 32-bit lanes (word_lanes_rb / word_lanes_ga): products wrap modulo 2^64, which
 // keeps lo + hi 2^32 exact, and every channel's true sum is below 2^31 in magnitude (16 taps x 255
 // x a weight of at most 2^16 - 1: < 2^28), so each lane's low 32 bits read as a signed number are
-// that sum, and the borrow a negative low lane takes from the high one is added back.
+// that sum, and the borrow a negative low lane takes from the high one is added back. One row of
+// taps per iteration (fully unrolled, the compiler spills the words' lanes).
 [[gnu::always_inline]] inline std::array<int64_t, 4> cubic_accumulate8(const Rgba8* c, const int32_t* w) {
   uint64_t rb = 0, ga = 0;
-  for (size_t k = 0; k < 16; ++k) {
-    const auto wk = static_cast<uint64_t>(static_cast<int64_t>(w[k]));
-    rb += word_lanes_rb(c[k]) * wk;
-    ga += word_lanes_ga(c[k]) * wk;
-  }
+#pragma GCC unroll 1
+  for (size_t j = 0; j < 16; j += 4)
+    for (size_t k = j; k < j + 4; ++k) {
+      const auto wk = static_cast<uint64_t>(static_cast<int64_t>(w[k]));
+      rb += word_lanes_rb(c[k]) * wk;
+      ga += word_lanes_ga(c[k]) * wk;
+    }
   const auto lo = [](uint64_t x) { return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>(x))); };
   const auto hi = [&lo](uint64_t x) {
     return static_cast<int64_t>(static_cast<int32_t>(static_cast<uint32_t>((x - static_cast<uint64_t>(lo(x))) >> 32)));
   };
   return {lo(rb), lo(ga), hi(rb), hi(ga)};
+}
+
+// A weight of the 16-bit multiply-add (cubic_accumulate8_narrow): |w| < 2^15.
+constexpr bool narrow_weight(int32_t w) { return w > -32768 && w < 32768; }
+
+// cubic_accumulate8 for weights that are all narrow_weight (ROMs of up to 14 bits; TileWeightMemo
+// tells): with SSE2 (every x86-64) the channels of two taps side by side in 16-bit lanes, (a.r, b.r,
+// a.g, b.g, ...), against their weights (w_a, w_b) in each 32-bit lane, so one pmaddwd adds two
+// taps' products per channel (|a w_a + b w_b| <= 2 x 255 x 2^15 < 2^31) and the sums stay below
+// 2^27 in 32-bit lanes. Elsewhere cubic_accumulate8.
+[[gnu::always_inline]] inline std::array<int64_t, 4> cubic_accumulate8_narrow(const Rgba8* c, const int32_t* w) {
+#if defined(__SSE2__)
+  const auto word = [c](size_t k) { return _mm_cvtsi32_si128(std::bit_cast<int32_t>(c[k])); };
+  const auto weights = [w](size_t k) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(w + k)); };
+  const __m128i w0 = _mm_packs_epi32(weights(0), weights(4)), w1 = _mm_packs_epi32(weights(8), weights(12));
+  const __m128i zero = _mm_setzero_si128();
+  __m128i acc = zero;
+  // Row j's taps a, b, c, d (4 j .. 4 j + 3): (a, b) and (c, d) interleaved byte by byte, widened.
+  const auto row = [&](size_t j, __m128i ab_weights, __m128i cd_weights) __attribute__((always_inline)) {
+    const __m128i ac = _mm_unpacklo_epi32(word(4 * j), word(4 * j + 2)),
+                  bd = _mm_unpacklo_epi32(word(4 * j + 1), word(4 * j + 3));
+    const __m128i x = _mm_unpacklo_epi8(ac, bd);  // a.r b.r a.g b.g a.b b.b a.a b.a c.r d.r ...
+    acc = _mm_add_epi32(acc, _mm_madd_epi16(_mm_unpacklo_epi8(x, zero), ab_weights));
+    acc = _mm_add_epi32(acc, _mm_madd_epi16(_mm_unpackhi_epi8(x, zero), cd_weights));
+  };
+  row(0, _mm_shuffle_epi32(w0, 0x00), _mm_shuffle_epi32(w0, 0x55));
+  row(1, _mm_shuffle_epi32(w0, 0xAA), _mm_shuffle_epi32(w0, 0xFF));
+  row(2, _mm_shuffle_epi32(w1, 0x00), _mm_shuffle_epi32(w1, 0x55));
+  row(3, _mm_shuffle_epi32(w1, 0xAA), _mm_shuffle_epi32(w1, 0xFF));
+  return {_mm_cvtsi128_si32(acc), _mm_cvtsi128_si32(_mm_shuffle_epi32(acc, 0x55)),
+          _mm_cvtsi128_si32(_mm_shuffle_epi32(acc, 0xAA)), _mm_cvtsi128_si32(_mm_shuffle_epi32(acc, 0xFF))};
+#else
+  return cubic_accumulate8(c, w);
+#endif
 }
 
 // = encode_texel(dp::cubic_normalize(acc, n), f) for n's channel range 0..255 (RGBA8, L8, and
@@ -55,7 +94,8 @@ namespace tfu::dp::fast {
     return {n8(acc[0]), n8(acc[1]), n8(acc[2]), n8(acc[3])};
   }
   const Texel4 c = cubic_normalize(acc, n);  // within n.lo..n.hi = 0..255
-  return {static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]), static_cast<uint8_t>(c[3])};
+  return {static_cast<uint8_t>(c[0]), static_cast<uint8_t>(c[1]), static_cast<uint8_t>(c[2]),
+          static_cast<uint8_t>(c[3])};
 }
 
 // dp::tile_weights_2d(rom, recon, fu, fv) of one 4-tap ROM, computed the first time a fraction pair
@@ -77,11 +117,13 @@ class TileWeightMemo {
     weights_ = std::make_unique_for_overwrite<std::array<int32_t, 16>[]>(classes_ * classes_);
     known_.assign(classes_ * classes_, 0);
   }
-  // The 16 weights of (fu, fv), row-major (tap (i, j) at 4 j + i), as dp::tile_weights_2d writes them.
-  [[gnu::always_inline]] const int32_t* weights(uint32_t fu, uint32_t fv) {
+  // The 16 weights of (fu, fv), row-major (tap (i, j) at 4 j + i), as dp::tile_weights_2d writes
+  // them; `narrow`: every one is narrow_weight.
+  [[gnu::always_inline]] const int32_t* weights(uint32_t fu, uint32_t fv, bool& narrow) {
     const size_t e = key_[fv] * classes_ + key_[fu];
-    if (!known_[e]) [[unlikely]]
+    if (known_[e] == 0) [[unlikely]]
       fill(e, fu, fv);
+    narrow = known_[e] == kNarrow;
     return weights_[e].data();
   }
 
@@ -91,10 +133,11 @@ class TileWeightMemo {
   std::array<uint16_t, 256> key_{};  // the class of each 8-bit fraction
   size_t classes_ = 0;
   std::unique_ptr<std::array<int32_t, 16>[]> weights_;  // [key(fv) classes + key(fu)], written on first use
-  std::vector<uint8_t> known_;
+  static constexpr uint8_t kNarrow = 1, kWide = 2;
+  std::vector<uint8_t> known_;  // per entry: 0 not yet computed, kNarrow, kWide
   void fill(size_t e, uint32_t fu, uint32_t fv) {
     tile_weights_2d(rom_, recon_, fu, fv, weights_[e]);
-    known_[e] = 1;
+    known_[e] = std::all_of(weights_[e].begin(), weights_[e].end(), narrow_weight) ? kNarrow : kWide;
   }
 };
 

@@ -24,7 +24,8 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
     if (fast && (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving))
       grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving ? FixedGrid::Cross : FixedGrid::Linear, c.wrap_s,
                              c.wrap_t);
-    if (fast && c.mode.base == BaseFilter::Cubic && rom->taps() == 4) grid = fixed_wrap_grid(FixedGrid::Cubic4, c.wrap_s, c.wrap_t);
+    if (fast && c.mode.base == BaseFilter::Cubic && rom->taps() == 4)
+      grid = fixed_wrap_grid(FixedGrid::Cubic4, c.wrap_s, c.wrap_t);
     decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
   }
 }

@@ -241,7 +241,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
           const int64_t done =
               log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
           if (emits)
-            quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+            quad_retire[static_cast<size_t>(k)] =
+                retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
         }
       }
       cubic.filter(quad_colour);

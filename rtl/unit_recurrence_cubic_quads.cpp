@@ -50,7 +50,11 @@ void CubicQuadPath::level_codes(int n, int level, std::array<Rgba8, 4>& out) {
   for (size_t k = 0; k < 4; ++k) {
     Rgba8 taps[16];
     read_square_taps<4>(f[k].grid, readout, taps);
-    out[k] = dp::fast::cubic_normalize8(dp::fast::cubic_accumulate8(taps, weights.weights(f[k].tag.fu, f[k].tag.fv)), norm_);
+    bool narrow = false;
+    const int32_t* w = weights.weights(f[k].tag.fu, f[k].tag.fv, narrow);
+    const std::array<int64_t, 4> acc =
+        narrow ? dp::fast::cubic_accumulate8_narrow(taps, w) : dp::fast::cubic_accumulate8(taps, w);
+    out[k] = dp::fast::cubic_normalize8(acc, norm_);
   }
 }
 

@@ -20,12 +20,13 @@
 //   texel_cache   CacheStage::admit_square4 per footprint, in the plain path's order (pixel by
 //                 pixel, level0 then level1: the tags, the LRU, the memory queue see the same
 //                 sequence), whose TexelCache::access_square4 is access_grid's lookup in closed form
-//                 for a grid of runs (rtl/texel_cache_square_runs.cpp); then read_square_taps<4>,
-//                 read_out's form of a full square grid;
+//                 for a grid whose cells are all used (rtl/texel_cache_full_squares.cpp); then
+//                 read_square_taps<4>, read_out's form of a full square grid;
 //   filter        FilterUnit::filter_level's CUBIC on 8-bit words: the weight stage
 //                 (dp::tile_weights_2d, memoized per fraction pair and sampler:
 //                 dp::fast::TileWeightMemo), the adder tree and the normalise-and-clamp stage
-//                 (dp::fast::cubic_accumulate8, cubic_normalize8, with the texture's
+//                 (dp::fast::cubic_accumulate8 or, for weights below 2^15, its multiply-add form
+//                 cubic_accumulate8_narrow; cubic_normalize8, with the texture's
 //                 cubic_normalize_registers), then the blend unit per pixel (dp::fast::level_blend8:
 //                 level_blend of the two levels' codes; without blending the code itself,
 //                 round_level(level_q8(c)) = c). (The plain filter keeps a blending pixel's level0
@@ -64,8 +65,8 @@ class CubicQuadPath {
   // `bank_cycles`.
   uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
     const int level = n == 0 ? pick_.level0 : pick_.level1;
-    return u_.cache_stage.admit_square4(texture_, stage_, level,
-                                        footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now, bank_cycles);
+    return u_.cache_stage.admit_square4(
+        texture_, stage_, level, footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now, bank_cycles);
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.
   void filter(std::array<Rgba8, 4>& out);
