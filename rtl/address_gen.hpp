@@ -66,8 +66,9 @@ class AddressGen : public sim::Module {
                                        : select_levels(lambda_q8, c, regs_.textures[req.texture].levels - 1);
   }
   // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
-  // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
-  // forms their grids through pick_levels() and grid_function() itself.
+  // issue() by the recurrences' quad paths (rtl/unit_recurrence_linear_quads.cpp,
+  // unit_recurrence_cubic_quads.cpp), which form their grids through pick_levels() and
+  // grid_function() themselves.
   void count_isotropic_pixels(uint64_t n, size_t slot) { probe_hist_[slot][1] += n; }
   // Statistics: probes (counter), aniso_probes (histogram of N per pixel, when a sampler is anisotropic), of the
   // run and of one statistics slot (stat_slot()).

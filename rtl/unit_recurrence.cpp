@@ -226,9 +226,10 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
-    if (cubic.takes(quad)) {
-      // The CUBIC quad path: one or two level footprints of 4 x 4 taps per pixel, timed as the
-      // LINEAR quad path's above, the functions batched per quad.
+    // The CUBIC quad path: one or two level footprints of 4 x 4 taps per pixel, timed as the LINEAR
+    // quad path's above, the functions batched per quad. (Out of line, so that the compiler inlines
+    // the other paths' block functions into this loop as it did without it.)
+    const auto cubic_quad = [&]() __attribute__((noinline)) {
       const size_t slot = stat_slot(quad.req);
       const int levels = cubic.address(quad, lod);
       for (int k = 0; k < 4; ++k) {
@@ -248,6 +249,9 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
       cubic.filter(quad_colour);
       for (size_t k = 0; k < 4; ++k)
         u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+    };
+    if (cubic.takes(quad)) {
+      cubic_quad();
       continue;
     }
     for (int k = 0; k < quad.npix; ++k) {
