@@ -176,6 +176,32 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
     if (u.edge_merge->merge(direction_out, r))
       retire(r, u.edge_pipe, ch.edge_response, merged, ResponseRetiresEdgePixel);
   };
+  // The CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp): one or two level footprints of 4 x 4
+  // taps per pixel of `quad`, which lod_unit took at `quad_taken` (its levels from `lod`), timed
+  // footprint by footprint as the LINEAR quad path's below (each pixel as pixel_taken_at takes it),
+  // the functions batched per quad. Out of line, the quad's values passed by value: the loop's
+  // other paths then compile as they would without it.
+  const auto cubic_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
+    const size_t slot = stat_slot(quad.req);
+    const int levels = cubic.address(quad, lod);
+    for (int k = 0; k < 4; ++k) {
+      const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
+      const int64_t pixel_taken = log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
+      for (int level = 0; level < levels; ++level) {  // level0, then level1 when blending
+        const int64_t exit =
+            through_cache(level == 0, pixel_taken, false, slot,
+                          [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
+        const bool emits = level + 1 == levels;
+        const int64_t done =
+            log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
+        if (emits)
+          quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+      }
+    }
+    cubic.filter(quad_colour);
+    for (size_t k = 0; k < 4; ++k)
+      u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+  };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
   sim::ProgressBar bar(retired, n);
@@ -226,32 +252,8 @@ UnitOutput recurrences(const Frame& frame, const Trace& trace, const UnitConfig&
         u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
-    // The CUBIC quad path: one or two level footprints of 4 x 4 taps per pixel, timed as the LINEAR
-    // quad path's above, the functions batched per quad. (Out of line, so that the compiler inlines
-    // the other paths' block functions into this loop as it did without it.)
-    const auto cubic_quad = [&]() __attribute__((noinline)) {
-      const size_t slot = stat_slot(quad.req);
-      const int levels = cubic.address(quad, lod);
-      for (int k = 0; k < 4; ++k) {
-        const int64_t pixel_taken = pixel_taken_at(k);
-        for (int level = 0; level < levels; ++level) {  // level0, then level1 when blending
-          const int64_t exit =
-              through_cache(level == 0, pixel_taken, false, slot,
-                            [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
-          const bool emits = level + 1 == levels;
-          const int64_t done =
-              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
-          if (emits)
-            quad_retire[static_cast<size_t>(k)] =
-                retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
-        }
-      }
-      cubic.filter(quad_colour);
-      for (size_t k = 0; k < 4; ++k)
-        u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
-    };
     if (cubic.takes(quad)) {
-      cubic_quad();
+      cubic_quad(quad_taken, lod);
       continue;
     }
     for (int k = 0; k < quad.npix; ++k) {
