@@ -22,7 +22,10 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
     GridFn grid = &grid_any;
     const bool fast = fast_paths_enabled();  // off (TFU_PLAIN=1, --plain): grid_any, the plain twin
     if (fast && (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving))
-      grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving, c.wrap_s, c.wrap_t);
+      grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving ? FixedGrid::Cross : FixedGrid::Linear, c.wrap_s,
+                             c.wrap_t);
+    if (fast && c.mode.base == BaseFilter::Cubic && rom->taps() == 4)
+      grid = fixed_wrap_grid(FixedGrid::Cubic4, c.wrap_s, c.wrap_t);
     decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
   }
 }

@@ -66,8 +66,9 @@ class AddressGen : public sim::Module {
                                        : select_levels(lambda_q8, c, regs_.textures[req.texture].levels - 1);
   }
   // The sequencer's count of `n` isotropic pixels (one probe each), issued without begin() /
-  // issue() by the recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.cpp), which
-  // forms their grids through pick_levels() and grid_function() itself.
+  // issue() by the recurrences' quad paths (rtl/unit_recurrence_linear_quads.cpp,
+  // unit_recurrence_cubic_quads.cpp), which form their grids through pick_levels() and
+  // grid_function() themselves.
   void count_isotropic_pixels(uint64_t n, size_t slot) { probe_hist_[slot][1] += n; }
   // The same for `n` pixels of `probes` probes each (the recurrences' probe quad path,
   // rtl/unit_recurrence_probes.cpp).
@@ -79,9 +80,9 @@ class AddressGen : public sim::Module {
   bool any_anisotropic() const;  // a bound sampler is anisotropic (the histogram is published, for every slot too)
   // The grid of one footprint (taps, fractions, used cells) on a level of w x h texels, with `o`
   // for an anisotropic probe. grid_any forms every filter's grid with the wrap modes read at run
-  // time (the plain unit); LINEAR and the edge cross use one function per pair of wrap modes
-  // (fixed_wrap_grid, chosen per sampler at reset, in rtl/address_gen_fixed_grids.cpp; software
-  // speed only, equal to grid_any: tested).
+  // time (the plain unit); LINEAR, the edge cross and CUBIC of a 4-tap ROM use one function per
+  // pair of wrap modes (fixed_wrap_grid, chosen per sampler at reset, in
+  // rtl/address_gen_fixed_grids.cpp; software speed only, equal to grid_any: tested).
   using GridFn = void (*)(const SamplerDescriptor&, int taps, int first_tap, FootprintReq&, int w, int h, float, float,
                           const ProbeLevelOffset*);
   static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
@@ -92,12 +93,13 @@ class AddressGen : public sim::Module {
   sim::Channel<PixelReq>& in_;
   sim::Channel<FootprintReq>& out_;
   const Registers& regs_;
-  // The per-wrap-pair grid of LINEAR (cross false) or the edge cross (cross true).
-  static GridFn fixed_wrap_grid(bool cross, WrapMode wrap_s, WrapMode wrap_t);
-  template <WrapMode kWs, WrapMode kWt, bool kCross>
+  // The grids with a per-wrap-pair function: LINEAR's 2 x 2, the edge cross, CUBIC's 4 x 4 (T = 4).
+  enum class FixedGrid { Linear, Cross, Cubic4 };
+  static GridFn fixed_wrap_grid(FixedGrid shape, WrapMode wrap_s, WrapMode wrap_t);
+  template <WrapMode kWs, WrapMode kWt, FixedGrid kShape>
   static void grid_fixed(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
                          const ProbeLevelOffset* o);
-  template <bool kCross, size_t... k>
+  template <FixedGrid kShape, size_t... k>
   static GridFn fixed_grid(size_t wrap_pair, std::index_sequence<k...>);
   // The decoded registers of each sampler descriptor (at reset): the grid function of its filter
   // and wrap modes, the weight ROM's tap count and first tap (CUBIC).

@@ -1,5 +1,6 @@
-// The address generator's per-wrap-pair grids: LINEAR and the edge cross with both wrap modes
-// fixed at compile time, one function per pair, chosen per sampler descriptor at reset
+// The address generator's per-wrap-pair grids: LINEAR, the edge cross and CUBIC of a 4-tap weight
+// ROM with both wrap modes fixed at compile time, one function per pair, chosen per sampler
+// descriptor at reset
 // (AddressGen::fixed_wrap_grid). Software speed only: the plain unit is AddressGen::grid_any
 // in rtl/address_gen.cpp, which reads the wrap modes at run time; these must form the same grid
 // (TfuUnit.FixedWrapGridsEqualThePlainAddressUnit compares them over every wrap pair, level
@@ -14,13 +15,15 @@ namespace tfu::rtl {
 using detail::cells_inside;
 using detail::probe_coord;
 
-// LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1) and the edge cross (columns and rows -1..2
-// around the centre square, grid_any's EdgePreserving case) through the wrap unit of each axis
+// LINEAR (columns i0, i0 + 1 and rows j0, j0 + 1), the edge cross (columns and rows -1..2
+// around the centre square, grid_any's EdgePreserving case) and CUBIC with T = 4 taps (columns and
+// rows from i0 + m0, m0 = 1 - T/2 = -1: grid_any's Cubic case) through the wrap unit of each axis
 // with the modes fixed (dp::fast::wrap_taps): the same grid as grid_any's.
-template <WrapMode kWs, WrapMode kWt, bool kCross>
+template <WrapMode kWs, WrapMode kWt, AddressGen::FixedGrid kShape>
 void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f, int w, int h, float s, float t,
                             const ProbeLevelOffset* o) {
-  constexpr int kTaps = kCross ? 4 : 2, kFirst = kCross ? -1 : 0;
+  constexpr bool kCross = kShape == FixedGrid::Cross;
+  constexpr int kTaps = kShape == FixedGrid::Linear ? 2 : 4, kFirst = kShape == FixedGrid::Linear ? 0 : -1;
   const dp::LevelCoord u = probe_coord(s, w, o, o ? o->du_q8 : 0), v = probe_coord(t, h, o, o ? o->dv_q8 : 0);
   f.tag.fu = u.f;
   f.tag.fv = v.f;
@@ -34,20 +37,25 @@ void AddressGen::grid_fixed(const SamplerDescriptor&, int, int, FootprintReq& f,
     g.y[i] = static_cast<int16_t>(row[i]);
   }
   f.cross = kCross;
-  g.used = kCross ? cross_cells(lee_jen::kAllTexels) : square_cells(2, 2);
+  g.used = kCross ? cross_cells(lee_jen::kAllTexels) : square_cells(kTaps, kTaps);
   if constexpr (kWs == WrapMode::ClampToBorder || kWt == WrapMode::ClampToBorder)
     g.used = static_cast<uint16_t>(g.used & cells_inside(g));
 }
 
-template <bool kCross, size_t... k>
+template <AddressGen::FixedGrid kShape, size_t... k>
 AddressGen::GridFn AddressGen::fixed_grid(size_t wrap_pair, std::index_sequence<k...>) {
-  static constexpr GridFn kTable[] = {&grid_fixed<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4), kCross>...};
+  static constexpr GridFn kTable[] = {&grid_fixed<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4), kShape>...};
   return kTable[wrap_pair];
 }
 
-AddressGen::GridFn AddressGen::fixed_wrap_grid(bool cross, WrapMode wrap_s, WrapMode wrap_t) {
+AddressGen::GridFn AddressGen::fixed_wrap_grid(FixedGrid shape, WrapMode wrap_s, WrapMode wrap_t) {
   const auto pair = static_cast<size_t>(4 * static_cast<int>(wrap_s) + static_cast<int>(wrap_t));
-  return cross ? fixed_grid<true>(pair, std::make_index_sequence<16>()) : fixed_grid<false>(pair, std::make_index_sequence<16>());
+  switch (shape) {
+    case FixedGrid::Linear: return fixed_grid<FixedGrid::Linear>(pair, std::make_index_sequence<16>());
+    case FixedGrid::Cross: return fixed_grid<FixedGrid::Cross>(pair, std::make_index_sequence<16>());
+    case FixedGrid::Cubic4: break;
+  }
+  return fixed_grid<FixedGrid::Cubic4>(pair, std::make_index_sequence<16>());
 }
 
 }  // namespace tfu::rtl

@@ -166,6 +166,12 @@ class CacheStage : public sim::Module {
     const FootprintResult r = cache_.access_square(texture, level, lookup);
     return lines_in(texture, stage, level, r, now, bank_cycles);
   }
+  // admit_lines of a full 4 x 4 grid (the recurrences' CUBIC quad path,
+  // rtl/unit_recurrence_cubic_quads.cpp): the tags through TexelCache::access_square4.
+  [[gnu::always_inline]] uint64_t admit_square4(int texture, int stage, int level, const TapGrid& lookup, uint64_t now,
+                                                int& bank_cycles) {
+    return lines_in(texture, stage, level, cache_.access_square4(texture, level, lookup), now, bank_cycles);
+  }
   // admit_lines after the tags: the counters of the lookup `r`, the bank cycles, the memory reads
   // of its missing lines; the cycle the lines are all in.
   [[gnu::always_inline]] uint64_t lines_in(int texture, int stage, int level, const FootprintResult& r, uint64_t now,

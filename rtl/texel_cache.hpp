@@ -146,6 +146,11 @@ class TexelCache {
       return access_quad(l, grid);
     return access_grid(l, grid);
   }
+  // access() of a full 4 x 4 grid (every cell used: CUBIC's footprint with a 4-tap ROM), for the
+  // recurrences' CUBIC quad path: its lines, bank cycles and sectors in closed form
+  // (rtl/texel_cache_full_squares.cpp, software speed only; its plain twin is access_grid); any
+  // other grid goes to access().
+  FootprintResult access_square4(int texture, int level, const TapGrid& grid);
   // Decoded lines of a compressed level (CacheHolds::Decoded): how many blocks a fill of `line`
   // fetches (those covering the line's tile, clipped to the level), and in `texels` the tile's
   // texels inside the level (what the decoders produce).

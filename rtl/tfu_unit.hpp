@@ -90,12 +90,12 @@ UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& uc
 
 // The same unit run by timing recurrences (rtl/unit_recurrence.cpp): request by request through
 // every block instead of cycle by cycle; the same pixels, response cycles, cycles, edge shapes
-// and statistics as the clocked run (tested). No waveform. `linear_quads` false runs every quad
-// through the plain per-pixel path, without the LINEAR quad path and the probe quad path (software
-// speed only, rtl/unit_recurrence_linear_quads.hpp, rtl/unit_recurrence_probes.hpp): for the tests
-// that they equal it. `events`, if given,
+// and statistics as the clocked run (tested). No waveform. `quad_paths` false runs every quad
+// through the plain per-pixel path, without the LINEAR, probe and CUBIC quad paths (software speed
+// only; rtl/unit_recurrence_linear_quads.hpp, rtl/unit_recurrence_probes.hpp,
+// rtl/unit_recurrence_cubic_quads.hpp): for the tests that they are equal. `events`, if given,
 // receives every event of the run (rtl/engine_compare.hpp).
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads = true,
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool quad_paths = true,
                                UnitEvents* events = nullptr);
 
 // A unit on a stream of requests (rtl/request_stream.hpp; a scene's render, band by band): the

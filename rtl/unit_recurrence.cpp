@@ -37,9 +37,10 @@
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
-// (rtl/unit_recurrence_linear_quads.hpp, software speed only), and for quads of anisotropic ones on
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only), for quads of anisotropic ones on
 // uncompressed 8-bit textures by the probe quad path (rtl/unit_recurrence_probes.hpp, likewise),
-// with the same timing functions.
+// and for those of isotropic CUBIC-family samplers by the CUBIC quad path
+// (rtl/unit_recurrence_cubic_quads.hpp, likewise), with the same timing functions.
 // A unit sharing a memory system with other units (rtl/shared_memory.hpp) runs here too: its texel
 // cache issues its misses at nondecreasing cycles, the same as the clocked run's, and each miss's
 // answer (the cycle its data is in) is all the recurrences need from it, so the run pauses at each
@@ -57,6 +58,7 @@
 #include "rtl/engine_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/timing.hpp"
+#include "rtl/unit_recurrence_cubic_quads.hpp"
 #include "rtl/unit_recurrence_linear_quads.hpp"
 #include "rtl/unit_recurrence_probes.hpp"
 #include "rtl/unit_wiring.hpp"
@@ -107,15 +109,16 @@ struct EventLog {
 // `trace`: a whole trace (its requests checked by the caller) or a stream, whose results go to
 // `sink` chunk by chunk (rtl/request_stream.hpp).
 template <bool kRecord>
-UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfig& ucfg, bool linear_quads,
+UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfig& ucfg, bool quad_paths,
                        EventLog<kRecord> log, MemoryBinding shared, const UnitChunkSink* sink = nullptr) {
   using enum UnitEvent;
   const size_t n = trace.whole() ? trace.produced() : 0;  // 0: not known (no progress bar)
   UnitOutput out;
   auto unit = std::make_unique<detail::Unit>(frame, trace, ucfg, shared);
   detail::Unit& u = *unit;
-  detail::LinearQuadPath linear(frame.regs, u, linear_quads && fast_paths_enabled());
-  detail::ProbeQuadPath probes(frame.regs, u, linear_quads && fast_paths_enabled());
+  detail::LinearQuadPath linear(frame.regs, u, quad_paths && fast_paths_enabled());
+  detail::ProbeQuadPath probes(frame.regs, u, quad_paths && fast_paths_enabled());
+  detail::CubicQuadPath cubic(frame.regs, u, quad_paths && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
   // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
   // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
@@ -175,6 +178,32 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     Response r;
     if (u.edge_merge->merge(direction_out, r))
       retire(r, u.edge_pipe, ch.edge_response, merged, ResponseRetiresEdgePixel);
+  };
+  // The CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp): one or two level footprints of 4 x 4
+  // taps per pixel of `quad`, which lod_unit took at `quad_taken` (its levels from `lod`), timed
+  // footprint by footprint as the LINEAR quad path's below (each pixel as pixel_taken_at takes it),
+  // the functions batched per quad. Out of line, the quad's values passed by value: the loop's
+  // other paths then compile as they would without it.
+  const auto cubic_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
+    const size_t slot = stat_slot(quad.req);
+    const int levels = cubic.address(quad, lod);
+    for (int k = 0; k < 4; ++k) {
+      const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
+      const int64_t pixel_taken = log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
+      for (int level = 0; level < levels; ++level) {  // level0, then level1 when blending
+        const int64_t exit =
+            through_cache(level == 0, pixel_taken, false, slot,
+                          [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
+        const bool emits = level + 1 == levels;
+        const int64_t done =
+            log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
+        if (emits)
+          quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+      }
+    }
+    cubic.filter(quad_colour);
+    for (size_t k = 0; k < 4; ++k)
+      u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
   };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
@@ -252,6 +281,10 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
         u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]}, static_cast<uint64_t>(quad_retire[k]));
       continue;
     }
+    if (cubic.takes(quad)) {
+      cubic_quad(quad_taken, lod);
+      continue;
+    }
     for (int k = 0; k < quad.npix; ++k) {
       const int64_t pixel_taken = pixel_taken_at(k);
       u.address_gen.begin(LodUnit::pixel(quad, lod, k));
@@ -277,13 +310,13 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
 
 }  // namespace
 
-UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool linear_quads,
+UnitOutput run_unit_recurrence(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, bool quad_paths,
                                UnitEvents* events) {
   detail::check_inputs(frame, trace, ucfg);
   RequestStream whole(trace);
-  if (events == nullptr) return recurrences(frame, whole, ucfg, linear_quads, EventLog<false>{nullptr}, MemoryBinding{});
+  if (events == nullptr) return recurrences(frame, whole, ucfg, quad_paths, EventLog<false>{nullptr}, MemoryBinding{});
   for (std::vector<int64_t>& row : *events) row.clear();
-  return recurrences(frame, whole, ucfg, linear_quads, EventLog<true>{events}, MemoryBinding{});
+  return recurrences(frame, whole, ucfg, quad_paths, EventLog<true>{events}, MemoryBinding{});
 }
 
 UnitOutput run_unit(const Frame& frame, const Trace& trace, const UnitConfig& ucfg, UnitEngine engine, const VcdOptions& vcd,

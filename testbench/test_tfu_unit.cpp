@@ -395,12 +395,13 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
   }
 }
 
-// The address generator's per-wrap-pair grid functions (LINEAR, the edge cross) form the grids of
-// the plain unit, grid_any, for every pair of wrap modes, power-of-two and other level sizes,
-// coordinates inside and outside [0, 1], with and without an anisotropic probe offset.
+// The address generator's per-wrap-pair grid functions (LINEAR, the edge cross, CUBIC of a 4-tap
+// ROM) form the grids of the plain unit, grid_any, for every pair of wrap modes, power-of-two and
+// other level sizes, coordinates inside and outside [0, 1], with and without an anisotropic probe
+// offset.
 TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
   Registers regs;
-  for (const char* mode : {"LINEAR", "EDGE_PRESERVING"})
+  for (const char* mode : {"LINEAR", "EDGE_PRESERVING", "CUBIC"})  // CUBIC: a 4-tap ROM (catmull-rom)
     for (int k = 0; k < 16; ++k) {
       SamplerDescriptor c;
       c.mode = filter_mode_from_name(mode);
@@ -426,8 +427,9 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
       const ProbeLevelOffset probe{offset(rng), offset(rng)};
       const ProbeLevelOffset* o = it % 3 == 0 ? &probe : nullptr;
       FootprintReq want{}, got{};
-      AddressGen::grid_any(c, 0, 0, want, w, h, s, t, o);
-      gen.grid_function(k)(c, 0, 0, got, w, h, s, t, o);
+      const int taps = c.mode.base == BaseFilter::Cubic ? 4 : 0, first_tap = c.mode.base == BaseFilter::Cubic ? -1 : 0;
+      AddressGen::grid_any(c, taps, first_tap, want, w, h, s, t, o);
+      gen.grid_function(k)(c, taps, first_tap, got, w, h, s, t, o);
       ASSERT_NE(gen.grid_function(k), &AddressGen::grid_any);
       const auto where = [&] { return fmt::format("{} wraps {} {}, {}x{}, s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s), static_cast<int>(c.wrap_t), w, h, s, t); };
       ASSERT_EQ(got.tag.fu, want.tag.fu) << where();
@@ -440,7 +442,7 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
       for (size_t j = 0; j < static_cast<size_t>(want.grid.rows); ++j) ASSERT_EQ(got.grid.y[j], want.grid.y[j]) << where();
       ++compared;
     }
-  EXPECT_EQ(compared, test::iterations(4000) * 32);
+  EXPECT_EQ(compared, test::iterations(4000) * 48);
 }
 
 // A 32 x 32 checkerboard in L8 texels, linear rows, no MIP chain yet.
@@ -727,6 +729,125 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   EXPECT_LT(quads_taken, 1100);
   bind_requests(b, tr);
   expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 10);
+}
+
+// The timing recurrences' CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp: isotropic CUBIC,
+// CUBIC_MIPMAP_NEAREST and CUBIC_MIPMAP_LINEAR with a 4-tap weight ROM, without clamp-to-border,
+// uncompressed 8-bit textures, four pixels a quad; software speed only) gives the plain
+// per-pixel path's and the clocked blocks' pixels, response cycles, cycles and statistics: every
+// non-border wrap pair, LOD biases and clamps, the 4-tap kernels, ROMs of 16 to 512 samples and 4
+// to 16 bits, both reconstructions, bspline-interp (its coefficient textures), on RGBA8 tiled, L8
+// linear-row and non-power-of-two textures, interleaved quad by quad with quads the path does not
+// take (2-tap and 1-tap kernels, clamp-to-border, anisotropic, VS16X2; and LINEAR, which the
+// LINEAR quad path takes), on random unit configurations (stalls of every kind).
+TEST(TfuUnit, CubicQuadPathEqualsThePlainBlocks) {
+  std::mt19937 rng(4343);
+  std::vector<std::shared_ptr<Texture>> textures;
+  {
+    Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
+    textures.push_back(std::make_shared<Texture>(std::move(text)));
+    Texture lum = l8_linear_checkerboard();
+    textures.push_back(std::make_shared<Texture>(std::move(lum)));
+    Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
+    npot.levels[0] = Image(40, 24);
+    for (Rgba8& t : npot.levels[0].texels)
+      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+    npot.layout = MemoryLayout::Linear;
+    textures.push_back(std::make_shared<Texture>(std::move(npot)));
+    Texture vs = make_procedural("checkerboard", 32).texture;  // VS16X2, tiled: not taken
+    vs.format = TexelFormat::VS16X2;
+    textures.push_back(std::make_shared<Texture>(std::move(vs)));
+  }
+  for (auto& t : textures) generate_mipmaps(*t, MipMethod::Box);
+  std::vector<SamplerDescriptor> samplers;
+  for (int ws = 0; ws < 4; ++ws)
+    for (int wt = 0; wt < 4; ++wt) {  // CUBIC with every wrap pair (the border pairs are not taken)
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name("CUBIC");
+      s.wrap_s = static_cast<WrapMode>(ws);
+      s.wrap_t = static_cast<WrapMode>(wt);
+      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
+      samplers.push_back(s);
+    }
+  const std::vector<TileRomSpec> roms{{}, {16, 4, SamplePos::Corner}, {512, 16}, {64, 12, SamplePos::Centre, RomRounding::Nearest}};
+  for (const char* mode : {"CUBIC_MIPMAP_NEAREST", "CUBIC_MIPMAP_LINEAR"})
+    for (int k = 0; k < 6; ++k) {  // MIP-mapped, taken: random non-border wraps, kernels, ROMs, LOD bias, clamps
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name(mode);
+      s.wrap_s = static_cast<WrapMode>(rng() % 3);
+      s.wrap_t = static_cast<WrapMode>(rng() % 3);
+      s.kernel = std::array{"catmull-rom", "bspline", "mitchell", "kaiser", "blackman", "catmull-rom"}[static_cast<size_t>(k)];
+      s.cubic_rom = roms[static_cast<size_t>(k) % roms.size()];
+      s.cubic_recon = k % 2 ? RomRecon::Linear : RomRecon::Nearest;
+      s.lod.bias_q8 = static_cast<int32_t>(rng() % 1024) - 512;
+      if (k == 3) s.lod.max_lod_q8 = 256;
+      samplers.push_back(s);
+    }
+  SamplerDescriptor interp;  // taken: the coefficient textures of the 8-bit textures
+  interp.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
+  interp.kernel = kBsplineInterp;
+  interp.wrap_s = WrapMode::MirroredRepeat;
+  samplers.push_back(interp);
+  const size_t interp_index = samplers.size() - 1;
+  for (const char* kernel : {"tent", "box"}) {  // not taken: 2 and 1 taps
+    SamplerDescriptor s;
+    s.mode = filter_mode_from_name("CUBIC_MIPMAP_LINEAR");
+    s.kernel = kernel;
+    samplers.push_back(s);
+  }
+  for (const char* mode : {"CUBIC_MIPMAP_LINEAR", "LINEAR_MIPMAP_LINEAR", "EDGE_PRESERVING"}) {  // not taken
+    SamplerDescriptor s;
+    s.mode = filter_mode_from_name(mode);
+    if (s.mode.base == BaseFilter::Cubic) s.max_aniso = 4;
+    samplers.push_back(s);
+  }
+  const auto taken = [&](const TraceRequest& r) {
+    const SamplerDescriptor& s = samplers[r.sampler];
+    return s.mode.base == BaseFilter::Cubic && s.max_aniso == 1 && s.wrap_s != WrapMode::ClampToBorder &&
+           s.wrap_t != WrapMode::ClampToBorder && s.kernel != "tent" && s.kernel != "box" &&
+           textures[r.texture]->format != TexelFormat::VS16X2;
+  };
+  FrameBuilder b(64);
+  for (const auto& t : textures) b.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  Trace tr;
+  tr.mode = TraceMode::Quad;
+  std::uniform_real_distribution<float> uni(-1.5f, 2.5f), d(-0.08f, 0.08f);
+  int quads_taken = 0;
+  for (int n = 0; n < 1500; ++n) {
+    TraceRequest r;
+    do {
+      r.texture = static_cast<uint16_t>(rng() % textures.size());
+      r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+    } while (r.sampler == interp_index && textures[r.texture]->format == TexelFormat::VS16X2);
+    r.stage = static_cast<uint8_t>(rng() % 2);
+    quads_taken += taken(r) ? 1 : 0;
+    const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+    for (size_t k = 0; k < 4; ++k) {
+      r.s = s0 + static_cast<float>(k & 1) * step;
+      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+      tr.requests.push_back(r);
+    }
+  }
+  EXPECT_GT(quads_taken, 600);  // the path carries about half of the quads (22/34 samplers x 3/4 textures)
+  EXPECT_LT(quads_taken, 1050);
+  bind_requests(b, tr);
+  const Frame frame = b.finish();
+  for (int k = 0; k < 10; ++k) {
+    ClockedOptions opt;
+    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
+    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
+    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
+    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
+    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
+    expect_golden(frame, tr, quad_path, what);
+    for (const UnitOutput* other : {&plain, &clocked}) {
+      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
+      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
+      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
+      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
+    }
+  }
 }
 
 // ---- Anisotropic filtering (docs/anisotropic.md) ----
