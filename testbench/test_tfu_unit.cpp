@@ -832,22 +832,7 @@ TEST(TfuUnit, CubicQuadPathEqualsThePlainBlocks) {
   EXPECT_GT(quads_taken, 600);  // the path carries about half of the quads (22/34 samplers x 3/4 textures)
   EXPECT_LT(quads_taken, 1050);
   bind_requests(b, tr);
-  const Frame frame = b.finish();
-  for (int k = 0; k < 10; ++k) {
-    ClockedOptions opt;
-    const UnitConfig c = k == 0 ? small_cache(4) : random_unit_config(rng, small_cache(4), &opt);
-    const std::string what = fmt::format("config {}: {}", k, unit_config_to_json(c));
-    const UnitOutput quad_path = run_unit_recurrence(frame, tr, c, true);
-    const UnitOutput plain = run_unit_recurrence(frame, tr, c, false);
-    const UnitOutput clocked = run_unit(frame, tr, c, VcdOptions{}, opt);
-    expect_golden(frame, tr, quad_path, what);
-    for (const UnitOutput* other : {&plain, &clocked}) {
-      EXPECT_EQ(quad_path.pixels, other->pixels) << what;
-      EXPECT_EQ(quad_path.response_cycle, other->response_cycle) << what;
-      EXPECT_EQ(quad_path.cycles, other->cycles) << what;
-      EXPECT_EQ(quad_path.stats.json_text(), other->stats.json_text()) << what;
-    }
-  }
+  expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 10);
 }
 
 // ---- Anisotropic filtering (docs/anisotropic.md) ----
