@@ -4,8 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "cmodel/error.hpp"
 #include "rtl/cost_model.hpp"
@@ -215,5 +220,39 @@ TEST(UnitCost, DramEnergyIsAddedPerBurstAndActivate) {
   EXPECT_TRUE(g.sram_pj.has_value());
 }
 
+
+// Every block of the SV manifests scripts/gate_count reads (composites included) has its row in
+// rtl/sv/silicon_gates.json at the generic library and at both nodes, with a positive area and,
+// at the nodes, a positive register-to-register fmax: docs/silicon.md's table is the whole design.
+TEST(UnitCost, EveryManifestBlockHasARowAtEveryLibrary) {
+  const std::filesystem::path root = std::filesystem::path(TFU_DOCS_DIR).parent_path();
+  const auto parse = [&](const char* rel) {
+    std::ifstream in(root / rel);
+    std::stringstream text;
+    text << in.rdbuf();
+    return nlohmann::json::parse(text.str());
+  };
+  const nlohmann::json table = parse("rtl/sv/silicon_gates.json");
+  size_t blocks = 0;
+  for (const char* manifest :
+       {"rtl/sv/blocks.json", "rtl/sv/edge/blocks.json", "rtl/sv/aniso/blocks.json", "rtl/sv/srgb/blocks.json"})
+    for (const nlohmann::json& b : parse(manifest)) {
+      const std::string name = b.at("block").get<std::string>();
+      ++blocks;
+      for (const char* lib : {"generic", "osu035", "osu018"}) {
+        const nlohmann::json* row = nullptr;
+        for (const nlohmann::json& r : table.at(lib))
+          if (r.at("block") == name) row = &r;
+        ASSERT_NE(row, nullptr) << manifest << ": " << name << " has no " << lib << " row";
+        if (std::string(lib) == "generic") {
+          EXPECT_GT(row->at("ge").get<double>(), 0.0) << name;
+        } else {
+          EXPECT_GT(row->at("area_um2").get<double>(), 0.0) << name << " " << lib;
+          EXPECT_GT(row->at("fmax_reg2reg_mhz").get<double>(), 0.0) << name << " " << lib;
+        }
+      }
+    }
+  EXPECT_GE(blocks, 47u);
+}
 }  // namespace
 }  // namespace tfu
