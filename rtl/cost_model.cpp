@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -16,7 +18,9 @@ namespace tfu::rtl {
 
 namespace detail {
 extern const char* const kFilterGatesJson;   // generated from rtl/sv/filter_gates.json (rtl/CMakeLists.txt)
-extern const char* const kSiliconGatesJson;  // generated from rtl/sv/silicon_gates.json (rtl/CMakeLists.txt)
+// generated from rtl/sv/silicon_gates.json (rtl/CMakeLists.txt), in pieces to be joined
+extern const char* const kSiliconGatesJsonPieces[];
+extern const std::size_t kSiliconGatesJsonPieceCount;
 }  // namespace detail
 
 namespace {
@@ -131,7 +135,9 @@ namespace {
 const std::vector<NodeBlock>& node_table(Node n) {
   static const std::array<std::vector<NodeBlock>, 2> t = [] {
     std::array<std::vector<NodeBlock>, 2> out;
-    const nlohmann::json j = nlohmann::json::parse(detail::kSiliconGatesJson);
+    std::string text;
+    for (std::size_t i = 0; i < detail::kSiliconGatesJsonPieceCount; ++i) text += detail::kSiliconGatesJsonPieces[i];
+    const nlohmann::json j = nlohmann::json::parse(text);
     for (const Node node : {Node::Osu035, Node::Osu018})
       for (const auto& r : j.at(node_name(node))) {
         NodeBlock b;
