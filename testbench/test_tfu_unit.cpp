@@ -648,6 +648,41 @@ void expect_quad_paths_equal_the_plain_blocks(
   }
 }
 
+// The quad paths' equality tests' textures, box MIP-mapped: RGBA8 tiled, L8 linear rows, RGBA8
+// 40 x 24 of random texels in linear rows, and VS16X2 tiled (which no quad path takes).
+std::vector<std::shared_ptr<Texture>> quad_path_textures(std::mt19937& rng) {
+  std::vector<std::shared_ptr<Texture>> textures;
+  textures.push_back(std::make_shared<Texture>(make_procedural("text", 64).texture));
+  textures.push_back(std::make_shared<Texture>(l8_linear_checkerboard()));
+  Texture npot = make_procedural("checkerboard", 64).texture;
+  npot.levels[0] = Image(40, 24);
+  for (Rgba8& t : npot.levels[0].texels)
+    t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
+  npot.layout = MemoryLayout::Linear;
+  textures.push_back(std::make_shared<Texture>(std::move(npot)));
+  Texture vs = make_procedural("checkerboard", 32).texture;
+  vs.format = TexelFormat::VS16X2;
+  textures.push_back(std::make_shared<Texture>(std::move(vs)));
+  for (auto& t : textures) generate_mipmaps(*t, MipMethod::Box);
+  return textures;
+}
+
+// Samplers of filter mode `mode` with every wrap pair (a quad path takes all but the border pairs),
+// each with a random border colour.
+std::vector<SamplerDescriptor> every_wrap_pair(const char* mode, std::mt19937& rng) {
+  std::vector<SamplerDescriptor> samplers;
+  for (int ws = 0; ws < 4; ++ws)
+    for (int wt = 0; wt < 4; ++wt) {
+      SamplerDescriptor s;
+      s.mode = filter_mode_from_name(mode);
+      s.wrap_s = static_cast<WrapMode>(ws);
+      s.wrap_t = static_cast<WrapMode>(wt);
+      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
+      samplers.push_back(s);
+    }
+  return samplers;
+}
+
 // The timing recurrences' LINEAR quad path (rtl/unit_recurrence_linear_quads.hpp: isotropic
 // LINEAR, LINEAR_MIPMAP_NEAREST and LINEAR_MIPMAP_LINEAR without clamp-to-border, 8-bit textures,
 // four pixels a quad; software speed only) gives the plain per-pixel path's and the clocked
@@ -657,33 +692,8 @@ void expect_quad_paths_equal_the_plain_blocks(
 // VS16X2), on random unit configurations (stalls of every kind).
 TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   std::mt19937 rng(4242);
-  std::vector<std::shared_ptr<Texture>> textures;
-  {
-    Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
-    textures.push_back(std::make_shared<Texture>(std::move(text)));
-    Texture lum = l8_linear_checkerboard();
-    textures.push_back(std::make_shared<Texture>(std::move(lum)));
-    Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
-    npot.levels[0] = Image(40, 24);
-    for (Rgba8& t : npot.levels[0].texels)
-      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
-    npot.layout = MemoryLayout::Linear;
-    textures.push_back(std::make_shared<Texture>(std::move(npot)));
-    Texture vs = make_procedural("checkerboard", 32).texture;  // VS16X2, tiled: not taken
-    vs.format = TexelFormat::VS16X2;
-    textures.push_back(std::make_shared<Texture>(std::move(vs)));
-  }
-  for (auto& t : textures) generate_mipmaps(*t, MipMethod::Box);
-  std::vector<SamplerDescriptor> samplers;
-  for (int ws = 0; ws < 4; ++ws)
-    for (int wt = 0; wt < 4; ++wt) {  // LINEAR with every wrap pair (the border pairs are not taken)
-      SamplerDescriptor s;
-      s.mode = filter_mode_from_name("LINEAR");
-      s.wrap_s = static_cast<WrapMode>(ws);
-      s.wrap_t = static_cast<WrapMode>(wt);
-      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
-      samplers.push_back(s);
-    }
+  const std::vector<std::shared_ptr<Texture>> textures = quad_path_textures(rng);
+  std::vector<SamplerDescriptor> samplers = every_wrap_pair("LINEAR", rng);
   for (const char* mode : {"LINEAR_MIPMAP_NEAREST", "LINEAR_MIPMAP_LINEAR"})
     for (int k = 0; k < 4; ++k) {  // MIP-mapped, taken: random non-border wraps, LOD bias, clamps
       SamplerDescriptor s;
@@ -742,33 +752,8 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
 // LINEAR quad path takes), on random unit configurations (stalls of every kind).
 TEST(TfuUnit, CubicQuadPathEqualsThePlainBlocks) {
   std::mt19937 rng(4343);
-  std::vector<std::shared_ptr<Texture>> textures;
-  {
-    Texture text = make_procedural("text", 64).texture;  // RGBA8, tiled
-    textures.push_back(std::make_shared<Texture>(std::move(text)));
-    Texture lum = l8_linear_checkerboard();
-    textures.push_back(std::make_shared<Texture>(std::move(lum)));
-    Texture npot = make_procedural("checkerboard", 64).texture;  // RGBA8 40 x 24, linear rows
-    npot.levels[0] = Image(40, 24);
-    for (Rgba8& t : npot.levels[0].texels)
-      t = {static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng()), static_cast<uint8_t>(rng())};
-    npot.layout = MemoryLayout::Linear;
-    textures.push_back(std::make_shared<Texture>(std::move(npot)));
-    Texture vs = make_procedural("checkerboard", 32).texture;  // VS16X2, tiled: not taken
-    vs.format = TexelFormat::VS16X2;
-    textures.push_back(std::make_shared<Texture>(std::move(vs)));
-  }
-  for (auto& t : textures) generate_mipmaps(*t, MipMethod::Box);
-  std::vector<SamplerDescriptor> samplers;
-  for (int ws = 0; ws < 4; ++ws)
-    for (int wt = 0; wt < 4; ++wt) {  // CUBIC with every wrap pair (the border pairs are not taken)
-      SamplerDescriptor s;
-      s.mode = filter_mode_from_name("CUBIC");
-      s.wrap_s = static_cast<WrapMode>(ws);
-      s.wrap_t = static_cast<WrapMode>(wt);
-      s.border = {static_cast<uint8_t>(rng()), 7, 9, 255};
-      samplers.push_back(s);
-    }
+  const std::vector<std::shared_ptr<Texture>> textures = quad_path_textures(rng);
+  std::vector<SamplerDescriptor> samplers = every_wrap_pair("CUBIC", rng);
   const std::vector<TileRomSpec> roms{{}, {16, 4, SamplePos::Corner}, {512, 16}, {64, 12, SamplePos::Centre, RomRounding::Nearest}};
   for (const char* mode : {"CUBIC_MIPMAP_NEAREST", "CUBIC_MIPMAP_LINEAR"})
     for (int k = 0; k < 6; ++k) {  // MIP-mapped, taken: random non-border wraps, kernels, ROMs, LOD bias, clamps
