@@ -15,8 +15,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cmodel/error.hpp"
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/parallel.hpp"
+#include "cmodel/raster_quad_fast.hpp"
 #include "cmodel/texenv.hpp"
+#include "cmodel/texenv_quad.hpp"
 
 namespace tfu {
 namespace {
@@ -189,6 +192,14 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   std::array<int64_t, 3> step_x{};
   for (size_t i = 0; i < 3; ++i) step_x[i] = -(tri.Y[(i + 2) % 3] - tri.Y[(i + 1) % 3]) * kOne;
   const auto area = static_cast<double>(tri.area);
+  // The fast paths (raster_quad_fast.hpp, texenv_quad.hpp: four pixels at once) or their plain twins.
+  const bool fast = fast_paths_enabled();
+  const int display_shift = ctx.scene->display_shift;
+  // Per-quad scratch, zeroed once per call here rather than once per quad (a 128-byte clear per quad
+  // cost more than the work it guards): each quad writes what it reads.
+  raster_fast::QuadLanes lanes{};                 // the fast path's interpolation
+  std::array<std::array<double, 4>, 4> ideal{};   // the ideal path's colours
+  std::array<float, 4> s0{}, t0{};                // UV set of stage 0 (kept coordinates)
   for (int qy = qy_first; qy <= qy_last; qy += 2) {
     // The quads of this row that can hold a covered centre: the union of the covered intervals of
     // its two pixel rows; the quads outside it have no covered centre (what the test below would
@@ -221,7 +232,17 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       std::array<std::array<double, 3>, 4> b;
       std::array<double, 4> z{};
       unsigned mask = 0;
-      for (int k = 0; k < 4; ++k) {
+      if (fast) {
+        raster_fast::barycentrics(e, area, tri, lanes);
+        z = raster_fast::depth(lanes, tri);
+        for (int k = 0; k < 4; ++k) {
+          const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
+          if ((covered >> k & 1u) && z[static_cast<size_t>(k)] < ctx.depth[idx]) mask |= 1u << k;
+        }
+        if (mesh.vertex_colour)
+          for (size_t k = 0; k < 4; ++k) b[k] = {lanes.b[0][k], lanes.b[1][k], lanes.b[2][k]};
+      }
+      for (int k = 0; k < 4 && !fast; ++k) {
         const auto uk = static_cast<size_t>(k);
         b[uk] = {static_cast<double>(e[uk][0]) / area, static_cast<double>(e[uk][1]) / area,
                  static_cast<double>(e[uk][2]) / area};
@@ -237,22 +258,23 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         for (size_t k = 0; k < 4; ++k)
           if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
       const std::array<Rgba8, 4> primary = colour;
-      std::array<std::array<double, 4>, 4> ideal{};
       if (ctx.opts->ideal)
         for (size_t k = 0; k < 4; ++k)
           ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
-      std::array<float, 4> s0{}, t0{};  // UV set of stage 0 (kept coordinates)
       for (size_t st = 0; st < mesh.stages.size(); ++st) {
         const TextureStage& stage = mesh.stages[st];
         const Sampler& sampler = *samplers[st];
         const Texture& tex = sampler.texture();
         float s[4], t[4];
-        for (size_t k = 0; k < 4; ++k) {
-          const glm::dvec2 uv = interpolate_st(tri, b[k], stage.uv_set);
-          s[k] = to_float_coord(uv.x);
-          t[k] = to_float_coord(uv.y);
-        }
-        if (st == 0) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
+        if (fast)
+          raster_fast::st(lanes, tri, stage.uv_set, s, t);
+        else
+          for (size_t k = 0; k < 4; ++k) {
+            const glm::dvec2 uv = interpolate_st(tri, b[k], stage.uv_set);
+            s[k] = to_float_coord(uv.x);
+            t[k] = to_float_coord(uv.y);
+          }
+        if (st == 0 && ctx.opts->keep_coords) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
         const bool aniso = sampler.descriptor().anisotropic();
         if (ctx.opts->ideal) {
           // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
@@ -269,8 +291,15 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           // Anisotropic: the LOD unit's whole result for the quad (N, lambda, major axis), then the
           // covered pixels' probes.
           const AnisoLod lod = aniso_lod(derivatives_from_quad(s, t, tex.width(), tex.height()), sampler.descriptor().aniso());
-          for (size_t k = 0; k < 4; ++k)
-            if (mask >> k & 1u) colour[k] = combine_stage(colour[k], sampler.sample(s[k], t[k], lod), stage.combine);
+          if (fast) {
+            texenv_quad::Quad texel{};  // the pixels not drawn combine with 0, unused
+            for (size_t k = 0; k < 4; ++k)
+              if (mask >> k & 1u) texel[k] = sampler.sample(s[k], t[k], lod);
+            texenv_quad::combine(colour, texel, stage.combine);
+          } else {
+            for (size_t k = 0; k < 4; ++k)
+              if (mask >> k & 1u) colour[k] = combine_stage(colour[k], sampler.sample(s[k], t[k], lod), stage.combine);
+          }
         } else {
           const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
           // The quad's covered pixels go to the filter unit together (its quad interface).
@@ -280,9 +309,16 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           for (size_t k = 0; k < 4; ++k)
             if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
           sampler.sample_batch(reqs.data(), n, texel.data());
-          size_t next = 0;
-          for (size_t k = 0; k < 4; ++k)
-            if (mask >> k & 1u) colour[k] = combine_stage(colour[k], texel[next++], stage.combine);
+          if (fast) {
+            if (n < 4) {  // the covered pixels' texels back to their lanes; the others 0, unused
+              for (size_t k = 4; k-- > 0;) texel[k] = mask >> k & 1u ? texel[--n] : Rgba8{};
+            }
+            texenv_quad::combine(colour, texel, stage.combine);
+          } else {
+            size_t next = 0;
+            for (size_t k = 0; k < 4; ++k)
+              if (mask >> k & 1u) colour[k] = combine_stage(colour[k], texel[next++], stage.combine);
+          }
         }
         if (ctx.opts->trace) {
           out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st), primary});
@@ -300,13 +336,15 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           }
         }
       }
+      if (fast && !ctx.opts->ideal) texenv_quad::display_ramp(colour, display_shift);
       for (int k = 0; k < 4; ++k) {
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        const int shift = ctx.scene->display_shift;
-        res.image.texels[idx] =
-            ctx.opts->ideal ? to_rgba8(display_ramp_real(ideal[uk], shift)) : display_ramp(colour[uk], shift);
+        const int shift = display_shift;
+        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(display_ramp_real(ideal[uk], shift))
+                                : fast          ? colour[uk]
+                                                : display_ramp(colour[uk], shift);
         ctx.depth[idx] = static_cast<float>(z[uk]);
         if (!ctx.winner.empty()) ctx.winner[idx] = static_cast<int32_t>(&tri - ctx.triangles.data());
         if (ctx.opts->keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
