@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -195,6 +196,13 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   // The fast paths (raster_quad_fast.hpp, texenv_quad.hpp: four pixels at once) or their plain twins.
   const bool fast = fast_paths_enabled();
   const int display_shift = ctx.scene->display_shift;
+  // The options and buffers in locals: the colour stores (bytes) may alias anything, and the
+  // compiler would reload them through ctx after each.
+  const bool ideal_path = ctx.opts->ideal, trace = ctx.opts->trace, keep_coords = ctx.opts->keep_coords;
+  const bool track_winner = !ctx.winner.empty();
+  const auto triangle_index = static_cast<int32_t>(&tri - ctx.triangles.data());
+  Rgba8* const image = res.image.texels.data();
+  float* const depth = ctx.depth.data();
   // Per-quad scratch, zeroed once per call here rather than once per quad (a 128-byte clear per quad
   // cost more than the work it guards): each quad writes what it reads.
   raster_fast::QuadLanes lanes{};                 // the fast path's interpolation
@@ -237,7 +245,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         z = raster_fast::depth(lanes, tri);
         for (int k = 0; k < 4; ++k) {
           const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-          if ((covered >> k & 1u) && z[static_cast<size_t>(k)] < ctx.depth[idx]) mask |= 1u << k;
+          if ((covered >> k & 1u) && z[static_cast<size_t>(k)] < depth[idx]) mask |= 1u << k;
         }
         if (mesh.vertex_colour)
           for (size_t k = 0; k < 4; ++k) b[k] = {lanes.b[0][k], lanes.b[1][k], lanes.b[2][k]};
@@ -249,7 +257,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         if (!(covered >> k & 1u)) continue;
         const int px = qx + (k & 1), py = qy + (k >> 1);
         z[uk] = interpolate_z(tri, b[uk]);
-        if (z[uk] < ctx.depth[static_cast<size_t>(py) * static_cast<size_t>(W) + static_cast<size_t>(px)])
+        if (z[uk] < depth[static_cast<size_t>(py) * static_cast<size_t>(W) + static_cast<size_t>(px)])
           mask |= 1u << k;
       }
       if (mask == 0) continue;
@@ -258,7 +266,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         for (size_t k = 0; k < 4; ++k)
           if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
       const std::array<Rgba8, 4> primary = colour;
-      if (ctx.opts->ideal)
+      if (ideal_path)
         for (size_t k = 0; k < 4; ++k)
           ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
       for (size_t st = 0; st < mesh.stages.size(); ++st) {
@@ -274,9 +282,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
             s[k] = to_float_coord(uv.x);
             t[k] = to_float_coord(uv.y);
           }
-        if (st == 0 && ctx.opts->keep_coords) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
+        if (st == 0 && keep_coords) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
         const bool aniso = sampler.descriptor().anisotropic();
-        if (ctx.opts->ideal) {
+        if (ideal_path) {
           // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
           // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
           std::array<glm::dvec2, 4> st_if;
@@ -320,9 +328,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
               if (mask >> k & 1u) colour[k] = combine_stage(colour[k], texel[next++], stage.combine);
           }
         }
-        if (ctx.opts->trace) {
+        if (trace) {
           out.targets.push_back({tri.mesh, qx, qy, static_cast<uint8_t>(mask), static_cast<uint8_t>(st), primary});
-          out.triangles.push_back(static_cast<uint32_t>(&tri - ctx.triangles.data()));
+          out.triangles.push_back(static_cast<uint32_t>(triangle_index));
           for (size_t k = 0; k < 4; ++k) {
             TraceRequest r;
             r.texture = static_cast<uint16_t>(bindings[st].texture);
@@ -336,20 +344,19 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           }
         }
       }
-      if (fast && !ctx.opts->ideal) texenv_quad::display_ramp(colour, display_shift);
+      if (fast && !ideal_path) texenv_quad::display_ramp(colour, display_shift);
       for (int k = 0; k < 4; ++k) {
         if (!(mask >> k & 1u)) continue;
         const auto uk = static_cast<size_t>(k);
         const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        const int shift = display_shift;
-        res.image.texels[idx] = ctx.opts->ideal ? to_rgba8(display_ramp_real(ideal[uk], shift))
-                                : fast          ? colour[uk]
-                                                : display_ramp(colour[uk], shift);
-        ctx.depth[idx] = static_cast<float>(z[uk]);
-        if (!ctx.winner.empty()) ctx.winner[idx] = static_cast<int32_t>(&tri - ctx.triangles.data());
-        if (ctx.opts->keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
-        ++out.pixels;
+        image[idx] = ideal_path ? to_rgba8(display_ramp_real(ideal[uk], display_shift))
+                     : fast     ? colour[uk]
+                                : display_ramp(colour[uk], display_shift);
+        depth[idx] = static_cast<float>(z[uk]);
+        if (track_winner) ctx.winner[idx] = triangle_index;
+        if (keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
       }
+      out.pixels += std::popcount(mask);
       ++out.quads;
     }
   }
@@ -787,10 +794,20 @@ glm::dmat4 projection_matrix(const Camera& cam, double aspect) {
 }
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
+  RenderResult result;
+  render_scene(scene, opts, result);
+  return result;
+}
+
+void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& result) {
   if (scene.width < 1 || scene.height < 1 || scene.width > kMaxRenderSize || scene.height > kMaxRenderSize)
     throw InputError("render size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
                      " outside 1.." + std::to_string(kMaxRenderSize));
-  RenderResult result;
+  // The colour and depth buffers' memory is kept from the previous frame (cleared below, no page
+  // faults); everything else starts afresh.
+  std::vector<Rgba8> colour_memory = std::move(result.image.texels);
+  std::vector<float> depth_memory = std::move(result.depth);
+  result = RenderResult{};
   Context ctx;
   ctx.scene = &scene;
   ctx.opts = &opts;
@@ -814,7 +831,10 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   }
 
   const size_t n = static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height);
-  result.image = Image(scene.width, scene.height, background_rgba8(scene));
+  result.image.width = scene.width;
+  result.image.height = scene.height;
+  result.image.texels = std::move(colour_memory);
+  result.image.texels.assign(n, background_rgba8(scene));
   if (opts.ground_truth) {
     result.truth = Image(scene.width, scene.height);
     result.surface_truth = Image(scene.width, scene.height);
@@ -822,6 +842,7 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     ctx.winner.assign(static_cast<size_t>(scene.width) * static_cast<size_t>(scene.height), -1);
   }
   if (opts.keep_coords) result.coords.assign(n, {std::nanf(""), std::nanf("")});
+  ctx.depth = std::move(depth_memory);
   ctx.depth.assign(n, std::numeric_limits<float>::infinity());
 
   const int bands = static_cast<int>(ctx.band_triangles.size());
@@ -856,9 +877,9 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
     result.trace.requests = std::move(requests);
     result.quad_targets = std::move(targets);
   }
+  result.depth = std::move(ctx.depth);
   result.times.draw = seconds_since(t_draw);
   result.times.draw_cpu = static_cast<double>(std::clock() - cpu_draw) / CLOCKS_PER_SEC;
-  return result;
 }
 
 Rgba8 background_rgba8(const Scene& scene) { return to_rgba8(scene.background); }

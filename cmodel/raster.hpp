@@ -188,11 +188,16 @@ struct RenderResult {
   std::vector<QuadTarget> quad_targets;  // one per traced quad
   std::shared_ptr<const SceneFrame> frame;  // the descriptors and texel memory the render used
   std::vector<std::array<float, 2>> coords;  // width x height, row-major, if keep_coords
+  std::vector<float> depth;  // the depth buffer after the frame: width x height, z of the pixel drawn, +inf where none
   RenderStats stats;
   RenderTimes times;
 };
 
 RenderResult render_scene(const Scene& scene, const RenderOptions& opts);
+// The same into `result`, whose colour and depth buffers' memory is reused (every field is
+// overwritten): a loop drawing frame after frame clears its framebuffer, as a GL driver does,
+// instead of allocating it (and taking its page faults) per frame. Results identical to the above.
+void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& result);
 
 // The colour of a pixel the render leaves empty: the scene's background, rounded to 8 bits.
 Rgba8 background_rgba8(const Scene& scene);
