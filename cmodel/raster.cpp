@@ -799,15 +799,16 @@ RenderResult render_scene(const Scene& scene, const RenderOptions& opts) {
   return result;
 }
 
-void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& result) {
+void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& reuse) {
   if (scene.width < 1 || scene.height < 1 || scene.width > kMaxRenderSize || scene.height > kMaxRenderSize)
     throw InputError("render size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
                      " outside 1.." + std::to_string(kMaxRenderSize));
   // The colour and depth buffers' memory is kept from the previous frame (cleared below, no page
-  // faults); everything else starts afresh.
-  std::vector<Rgba8> colour_memory = std::move(result.image.texels);
-  std::vector<float> depth_memory = std::move(result.depth);
-  result = RenderResult{};
+  // faults); everything else starts afresh, the previous frame's released at the end (as when the
+  // caller's old result outlives the new render).
+  std::vector<Rgba8> colour_memory = std::move(reuse.image.texels);
+  std::vector<float> depth_memory = std::move(reuse.depth);
+  RenderResult result;
   Context ctx;
   ctx.scene = &scene;
   ctx.opts = &opts;
@@ -880,6 +881,7 @@ void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& r
   result.depth = std::move(ctx.depth);
   result.times.draw = seconds_since(t_draw);
   result.times.draw_cpu = static_cast<double>(std::clock() - cpu_draw) / CLOCKS_PER_SEC;
+  reuse = std::move(result);
 }
 
 Rgba8 background_rgba8(const Scene& scene) { return to_rgba8(scene.background); }
