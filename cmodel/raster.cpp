@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -356,7 +355,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         if (track_winner) ctx.winner[idx] = triangle_index;
         if (keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
       }
-      out.pixels += std::popcount(mask);
+      out.pixels += (mask & 1u) + (mask >> 1 & 1u) + (mask >> 2 & 1u) + (mask >> 3);  // std::popcount is a libgcc call without POPCNT
       ++out.quads;
     }
   }

@@ -16,7 +16,9 @@
 // seconds over the same span, std::clock: all its threads', llvmpipe's workers included; on a loaded
 // machine the steadier figure, at one thread the same work as the wall time):
 //   golden   RenderResult::times.draw: transform, clipping and setup of the scene's triangles, the
-//            colour and depth buffers cleared, every band rasterized and shaded (LOD, golden sampler,
+//            colour and depth buffers cleared (the frames drawn into one RenderResult, whose buffers'
+//            memory is reused as llvmpipe keeps its framebuffer: cleared, not allocated and
+//            page-faulted per frame), every band rasterized and shaded (LOD, golden sampler,
 //            texture environment, display ramp, depth), the band outputs gathered; not the upload
 //            (descriptors, texel memory, samplers: times.upload, shown apart).
 //   Mesa     glClear of colour and depth, every mesh's state (texture units, environment) and
