@@ -211,7 +211,7 @@ class TexelCache {
   // lookup of a line in that slot, checked against the way's tag before use, so that runs of
   // footprints in a few lines (of several interleaved textures) skip the way search. Hit, miss and
   // LRU behaviour are those of the search.
-  static constexpr size_t kHints = 64;
+  static constexpr size_t kHints = 1024;
   std::array<uint32_t, kHints> hint_{};
   // Per lines_ entry (texture and level): its counters, and the shifts that take a tap's column and
   // row to its sector's column and row part (access_quad).

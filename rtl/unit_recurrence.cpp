@@ -146,9 +146,6 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     FilterUnit::Timing filter;
     ResponseSink::Timing response;
     ChannelTimes footprint, shaped_footprint, miss_fifo, texels, response_in;
-    PathTiming path() {
-      return {address_gen, kernel_select, cache, filter, response, footprint, shaped_footprint, miss_fifo, texels, response_in};
-    }
   };
   const auto lend = [&]() __attribute__((always_inline)) {
     return LentTiming{unit_path.address_gen,   unit_path.kernel_select,          unit_path.cache,
@@ -173,7 +170,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
   // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `stalls`:
   // the counters of its statistics slot (stat_slot()), where its stalls count, or a batch's.
-  const auto through_cache = [&](const PathTiming& p, bool first_footprint, int64_t pixel_taken, bool edge,
+  const auto through_cache = [&](auto& p, bool first_footprint, int64_t pixel_taken, bool edge,
                                  auto& stalls, auto&& admit) __attribute__((always_inline)) {
     const int64_t pushed = p.address_gen.push(first_footprint, pixel_taken, p.footprint);
     const int64_t shaped =
@@ -263,8 +260,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   const auto probe_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
     const int footprints = probes.address(quad, lod);
     const size_t slot = stat_slot(quad.req);
-    LentTiming lent = lend();
-    const PathTiming p = lent.path();
+    LentTiming p = lend();  // its members named as PathTiming's
     CacheStage::StallCounts stalls;  // the quad's, in registers too
     uint64_t busy = 0;
     for (int k = 0; k < 4; ++k) {
@@ -282,7 +278,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
               retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
       }
     }
-    settle(lent);
+    settle(p);
     u.cache_stage.add_stalls(slot, stalls);
     u.filter->busy_cycles(slot) += busy;
     for (size_t k = 0; k < 4; ++k)
