@@ -322,6 +322,29 @@ class CacheStage : public sim::Module {
       return t;
     }
 
+    // The probe quad path's lockstep footprint (software speed only; rtl/unit_recurrence.cpp,
+    // probe_quad, derives it from accept and exit above, which it must equal): in_step(t) tells
+    // that the previous footprint was accepted at t - 1 holding the port one cycle, that the line
+    // buffer has room without a look at the queue and that the miss FIFO has room at t; step(t) is
+    // accept and exit of a footprint pushed at t - 1 with one bank cycle and no misses, whose
+    // output channel has room: accepted at t, out the cycle after it or after the previous
+    // footprint's exit (the later), no stalls; returns its exit cycle.
+    bool in_step(int64_t t, const ChannelTimes& miss_fifo) const {
+      return last_accept_ == t - 1 && port_cycles_ == 1 && lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ &&
+             miss_fifo.freed() <= t;
+    }
+    int64_t last_exit() const { return last_exit_; }
+    template <class Stalls>
+    [[gnu::always_inline]] int64_t step(int64_t t, ChannelTimes& in, ChannelTimes& miss_fifo, Stalls& c) {
+      ++c.footprints;
+      in.pop(t);
+      last_accept_ = t;
+      b_->admitted_lines_ = 0;
+      last_exit_ = std::max(t + 1, last_exit_ + 1);
+      miss_fifo.pop(last_exit_);
+      return last_exit_;
+    }
+
    private:
     // Pointers, and the queue of footprints in the block (CacheStage::timing_in_flight_): the
     // recurrences may copy the timing into registers for a batch of footprints.

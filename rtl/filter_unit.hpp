@@ -76,6 +76,15 @@ class FilterUnit : public sim::Module {
       return stage_.move(pushed, in, emits ? &out : nullptr, hold);
     }
 
+    // The probe quad path's lockstep footprint (rtl/unit_recurrence.cpp, probe_quad, derives it
+    // from done above): the previous footprint left at t - 1; step(t) is done of a footprint of no
+    // hold that completes no pixel, pushed at t - 1: it leaves `in` at t.
+    bool in_step(int64_t t) const { return stage_.last == t - 1; }
+    [[gnu::always_inline]] void step(int64_t t, ChannelTimes& in) {
+      in.pop(t);
+      stage_.last = t;
+    }
+
    private:
     FilterUnit* b_;  // a pointer: the recurrences may copy the timing into registers for a batch
     InOrderTiming stage_;

@@ -257,6 +257,30 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // The probe quad path (rtl/unit_recurrence_probes.hpp): N probes per pixel of `quad`, one or two
   // level footprints each, timed footprint by footprint on register copies of the path's timing
   // (LentTiming), the functions batched per quad. Out of line, as cubic_quad.
+  //
+  // The lockstep footprint (software speed only; its plain twin is the through_cache and done
+  // below, which it equals; TfuUnit.ProbeQuadPathEqualsThePlainBlocks). Footprint j > 0 of a
+  // pixel, which completes no pixel, hits every line with one bank cycle and holds the filter no
+  // cycle (4 taps on 4 lanes), whose predecessor j - 1 (the previous item of every channel below)
+  // went through the input side in lockstep: pushed by address_gen at P - 1, taken by
+  // kernel_select at P, accepted at P + 1 holding the port one cycle; and left the miss FIFO at
+  // E' and the filter at E' + 1; whose line buffer has room at a glance (lines_in_flight_) and
+  // whose miss FIFO has room at P + 2 (freed() <= P + 2). Then, with channels of depth D >= 2
+  // (footprint, shaped, texels): each channel's pop cycles increase strictly (every rule takes
+  // t >= its last + 1), so the item D back left at most D - 1 cycles before j - 1:
+  //   address_gen   max(P - 1 + 1, footprint.room() <= P - (D - 1) + 1 <= P) = P
+  //   kernel_select max(P + 1, P + 1, shaped.room() <= P + 1 - (D - 1) + 1 <= P + 1) = P + 1
+  //   accept        visible max(P + 2, P + 2), port free P + 1 + 1, miss FIFO room: P + 2; no bank
+  //                 stall (min(t, port free) = visible)
+  //   lines         one bank cycle, no misses: in at P + 2 + 1 - 1 (no memory reads, no slots)
+  //   exit          head e = max(P + 3, E' + 1), ready P + 2 < e, texels.room() <= E' + 1 - (D - 1)
+  //                 + 1 <= e: e; no miss stall (min(ready, e) = ready < head), no back-pressure
+  //   filter        max(e + 1, E' + 1 + 1) + 0 = e + 1, no output
+  // so it goes through in lockstep too (the input side one cycle after its predecessor, the
+  // output side at e and e + 1), no stall counted (the footprint counted), the same pops into the
+  // same channels. (Behind a miss the output side lags the input side by the memory's latency:
+  // the hits behind it leave the miss FIFO one a cycle, E' + 1.)
+  const bool lockstep_depths = ucfg.channel_depth >= 2 && u.filter->extra_clocks(4) == 0;
   const auto probe_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
     const int footprints = probes.address(quad, lod);
     const size_t slot = stat_slot(quad.req);
@@ -267,6 +291,18 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
       const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
       const int64_t pixel_taken = log.at(AddressGenTakesPixel, p.address_gen.take(pushed, ch.pixel));
       for (int j = 0; j < footprints; ++j) {
+        const int64_t t = p.address_gen.last_push + 1;  // P, in lockstep
+        if (lockstep_depths && j > 0 && j + 1 < footprints && probes.hits_in_one_cycle(k, j) &&
+            p.kernel_select.last == t && p.cache.in_step(t + 2, p.miss_fifo) &&
+            p.filter.in_step(p.cache.last_exit() + 2)) {
+          p.address_gen.last_push = t;
+          p.footprint.pop(log.at(KernelSelectTakesFootprint, t + 1));
+          p.kernel_select.last = t + 1;
+          log.at(CacheAcceptsFootprint, t + 2);
+          const int64_t e = log.at(CacheEmitsFootprint, p.cache.step(t + 2, p.shaped_footprint, p.miss_fifo, stalls));
+          p.filter.step(log.at(FilterFinishesFootprint, e + 1), p.texels);
+          continue;
+        }
         const int64_t exit = through_cache(p, j == 0, pixel_taken, false, stalls, [&](uint64_t now, int& bank_cycles) {
           return probes.admit(k, j, now, bank_cycles);
         });

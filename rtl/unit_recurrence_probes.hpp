@@ -80,6 +80,11 @@ class ProbeQuadPath {
     const SquareLookup& l = lookup_[static_cast<size_t>(k)][static_cast<size_t>(j)];
     return u_.cache_stage.lines_ready(texture_, l.cycles, l.misses, missed_.data() + l.first_miss, now, bank_cycles);
   }
+  // Footprint `j` of pixel k hits every line in one bank cycle (its tags, looked up by address()).
+  bool hits_in_one_cycle(int k, int j) const {
+    const SquareLookup& l = lookup_[static_cast<size_t>(k)][static_cast<size_t>(j)];
+    return l.misses == 0 && l.cycles <= 1;
+  }
   // The four pixels' colours (address() formed them).
   const std::array<Rgba8, 4>& colours() const { return colour_; }
 
