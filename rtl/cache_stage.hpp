@@ -330,8 +330,8 @@ class CacheStage : public sim::Module {
     // output channel has room: accepted at t, out the cycle after it or after the previous
     // footprint's exit (the later), no stalls; returns its exit cycle.
     bool in_step(int64_t t, const ChannelTimes& miss_fifo) const {
-      return last_accept_ == t - 1 && port_cycles_ == 1 && lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ &&
-             miss_fifo.freed() <= t;
+      return last_accept_ == t - 1 && port_cycles_ == 1 &&
+             lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ && miss_fifo.freed() <= t;
     }
     int64_t last_exit() const { return last_exit_; }
     template <class Stalls>

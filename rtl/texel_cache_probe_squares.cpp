@@ -16,9 +16,9 @@ namespace tfu::rtl {
 // access_quad of one footprint with its level's registers `ll`, `k` in hand (its derivation is
 // there): its lookups in order, the missed lines appended to missed[nmissed ...], its sums into `sum`;
 // returns its answer.
-[[gnu::always_inline]] inline SquareLookup TexelCache::square_lines(const LevelLines& ll, SectorShifts k, bool four_banks,
-                                                                    const TapGrid& g, uint64_t* missed, uint16_t& nmissed,
-                                                                    LineCounts& sum) {
+[[gnu::always_inline]] inline SquareLookup TexelCache::square_lines(const LevelLines& ll, SectorShifts k,
+                                                                    bool four_banks, const TapGrid& g, uint64_t* missed,
+                                                                    uint16_t& nmissed, LineCounts& sum) {
   const int bx0 = g.x[0] >> ll.shift_x, bx1 = g.x[1] >> ll.shift_x;
   const int by0 = g.y[0] >> ll.shift_y, by1 = g.y[1] >> ll.shift_y;
   const uint64_t line0 = ll.first + static_cast<uint64_t>(by0) * ll.stride + static_cast<uint64_t>(bx0);

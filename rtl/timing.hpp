@@ -61,7 +61,8 @@ class ChannelTimes {
   uint32_t mask_;
   int64_t depth_;
   int64_t count_ = 0;  // items that left so far
-  ChannelTimes(int64_t* v, uint32_t mask, int64_t depth, int64_t count) : v_(v), mask_(mask), depth_(depth), count_(count) {}
+  ChannelTimes(int64_t* v, uint32_t mask, int64_t depth, int64_t count)
+      : v_(v), mask_(mask), depth_(depth), count_(count) {}
   int64_t at(int64_t i) const { return v_[static_cast<size_t>(i) & mask_]; }
 };
 

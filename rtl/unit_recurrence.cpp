@@ -132,13 +132,13 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     SequencerTiming& address_gen;
     InOrderTiming& kernel_select;
     CacheStage::Timing& cache;
-    FilterUnit::Timing& filter;
+    FilterUnit::Timing* filter;  // null when no sampler of the frame uses the filter
     ResponseSink::Timing& response;
     ChannelTimes &footprint, &shaped_footprint, &miss_fifo, &texels, &response_in;
   };
-  const PathTiming unit_path{u.address_gen.timing, u.kernel_select.timing, u.cache_stage.timing, u.filter->timing,
-                        u.response.timing,    ch.footprint,           ch.shaped_footprint,  ch.miss_fifo,
-                        ch.texels,            ch.response};
+  const PathTiming unit_path{u.address_gen.timing, u.kernel_select.timing, u.cache_stage.timing,
+                             u.filter ? &u.filter->timing : nullptr, u.response.timing, ch.footprint,
+                             ch.shaped_footprint, ch.miss_fifo, ch.texels, ch.response};
   struct LentTiming {
     SequencerTiming address_gen;
     InOrderTiming kernel_select;
@@ -148,16 +148,22 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     ChannelTimes footprint, shaped_footprint, miss_fifo, texels, response_in;
   };
   const auto lend = [&]() __attribute__((always_inline)) {
-    return LentTiming{unit_path.address_gen,   unit_path.kernel_select,          unit_path.cache,
-                      unit_path.filter,        unit_path.response,               unit_path.footprint.lend(),
-                      unit_path.shaped_footprint.lend(), unit_path.miss_fifo.lend(), unit_path.texels.lend(),
+    return LentTiming{unit_path.address_gen,
+                      unit_path.kernel_select,
+                      unit_path.cache,
+                      *unit_path.filter,
+                      unit_path.response,
+                      unit_path.footprint.lend(),
+                      unit_path.shaped_footprint.lend(),
+                      unit_path.miss_fifo.lend(),
+                      unit_path.texels.lend(),
                       unit_path.response_in.lend()};
   };
   const auto settle = [&](const LentTiming& l) __attribute__((always_inline)) {
     unit_path.address_gen = l.address_gen;
     unit_path.kernel_select = l.kernel_select;
     unit_path.cache = l.cache;
-    unit_path.filter = l.filter;
+    *unit_path.filter = l.filter;
     unit_path.response = l.response;
     unit_path.footprint.settle(l.footprint);
     unit_path.shaped_footprint.settle(l.shaped_footprint);
@@ -170,8 +176,8 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
   // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `stalls`:
   // the counters of its statistics slot (stat_slot()), where its stalls count, or a batch's.
-  const auto through_cache = [&](auto& p, bool first_footprint, int64_t pixel_taken, bool edge,
-                                 auto& stalls, auto&& admit) __attribute__((always_inline)) {
+  const auto through_cache = [&](auto& p, bool first_footprint, int64_t pixel_taken, bool edge, auto& stalls,
+                                 auto&& admit) __attribute__((always_inline)) {
     const int64_t pushed = p.address_gen.push(first_footprint, pixel_taken, p.footprint);
     const int64_t shaped =
         log.at(KernelSelectTakesFootprint, p.kernel_select.move(pushed, p.footprint, &p.shaped_footprint));
@@ -194,7 +200,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // pipeline registers -> response: the pixel pushed into `in` at `pushed` passes the datapath's
   // pipeline registers `pipe` (none at the default depths) and retires; the cycle it does.
   const auto retire_at = [&](ResponseSink::Timing& response, PipelineRegisters<Response>& pipe, ChannelTimes& in,
-                            int64_t pushed, UnitEvent e) __attribute__((always_inline)) {
+                             int64_t pushed, UnitEvent e) __attribute__((always_inline)) {
     const int64_t passed = pipe.timing.pass(pushed, in);
     return log.at(e, response.retire_at(pipe.timing.last(in), passed));
   };
@@ -205,10 +211,9 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // filter -> response: the texel words that left the cache at `exit`.
   const auto through_filter = [&](int64_t exit) {
     const bool emits = texel_words.tag.emits();
-    const int64_t done = log.at(
-        FilterFinishesFootprint,
-        u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response,
-                              u.filter->busy_cycles(stat_slot(texel_words.tag.req))));
+    const int64_t done =
+        log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response,
+                                                              u.filter->busy_cycles(stat_slot(texel_words.tag.req))));
     Response r;
     if (u.filter->filter(texel_words, r)) retire(r, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
   };
@@ -245,9 +250,11 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
                           [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
         const bool emits = level + 1 == levels;
         const int64_t done =
-            log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
+            log.at(FilterFinishesFootprint,
+                   u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
         if (emits)
-          quad_retire[static_cast<size_t>(k)] = retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+          quad_retire[static_cast<size_t>(k)] =
+              retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
       }
     }
     cubic.filter(quad_colour);
@@ -280,11 +287,11 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // output side at e and e + 1), no stall counted (the footprint counted), the same pops into the
   // same channels. (Behind a miss the output side lags the input side by the memory's latency:
   // the hits behind it leave the miss FIFO one a cycle, E' + 1.)
-  const bool lockstep_depths = ucfg.channel_depth >= 2 && u.filter->extra_clocks(4) == 0;
+  const bool lockstep_depths = ucfg.channel_depth >= 2 && u.filter && u.filter->extra_clocks(4) == 0;
   const auto probe_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
     const int footprints = probes.address(quad, lod);
     const size_t slot = stat_slot(quad.req);
-    LentTiming p = lend();  // its members named as PathTiming's
+    LentTiming p = lend();           // its members named as PathTiming's
     CacheStage::StallCounts stalls;  // the quad's, in registers too
     uint64_t busy = 0;
     for (int k = 0; k < 4; ++k) {
@@ -318,7 +325,8 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     u.cache_stage.add_stalls(slot, stalls);
     u.filter->busy_cycles(slot) += busy;
     for (size_t k = 0; k < 4; ++k)
-      u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]}, static_cast<uint64_t>(quad_retire[k]));
+      u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]},
+                        static_cast<uint64_t>(quad_retire[k]));
   };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
@@ -354,10 +362,12 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
             const auto quad_admit = [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
               return linear.admit(k, level, now, bank_cycles);
             };
-            const int64_t exit = through_cache(unit_path, level == 0, pixel_taken, false, u.cache_stage.counters(slot), quad_admit);
+            const int64_t exit =
+                through_cache(unit_path, level == 0, pixel_taken, false, u.cache_stage.counters(slot), quad_admit);
             const bool emits = level + 1 == kLevels;
             const int64_t done =
-                log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
+                log.at(FilterFinishesFootprint,
+                       u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
             if (emits)
               quad_retire[static_cast<size_t>(k)] =
                   retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);

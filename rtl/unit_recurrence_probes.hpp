@@ -42,7 +42,9 @@
 //                 sum in the accumulator; no later footprint reads either before writing it.)
 // The texel words come from the texture's memory, not from the cache's state, so the read-out and
 // the filter run at address time, before the quad's lookups; the colours wait for the retire.
-// The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by footprint.
+// The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by footprint
+// (on register copies of the blocks' timing state; a hit in lockstep with its predecessor in one
+// step, derived there).
 #pragma once
 
 #include <array>

@@ -63,7 +63,8 @@ TEST(TexelCache, ProbeSquaresEqualAccessSquare) {
               TapGrid& g = grids[j];
               g.cols = g.rows = 2;
               g.used = square_cells(2, 2);
-              const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(w)), y0 = static_cast<int>(rng() % static_cast<uint32_t>(h));
+              const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(w)),
+                        y0 = static_cast<int>(rng() % static_cast<uint32_t>(h));
               const bool clamp = rng() % 2 == 0;  // at the right or bottom edge: clamped, else wrapped to 0
               g.x[0] = static_cast<int16_t>(x0);
               g.y[0] = static_cast<int16_t>(y0);
@@ -81,8 +82,8 @@ TEST(TexelCache, ProbeSquaresEqualAccessSquare) {
               const size_t k = j % static_cast<size_t>(nlevels);
               const FootprintResult want = plain.access_square(t, levels[k], grids[j]);
               const auto where = [&] {
-                return fmt::format("mapping {} banks {} line {} ways {}: batch {} footprint {}", static_cast<int>(mapping),
-                                   banks, line_bytes, ways, batch, j);
+                return fmt::format("mapping {} banks {} line {} ways {}: batch {} footprint {}",
+                                   static_cast<int>(mapping), banks, line_bytes, ways, batch, j);
               };
               ASSERT_EQ(got[j].cycles, want.cycles) << where();
               ASSERT_EQ(got[j].misses, want.misses) << where();

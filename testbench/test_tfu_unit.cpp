@@ -1035,7 +1035,9 @@ TEST(TfuUnit, AnisotropicEllipseAxesBitExactInBothEngines) {
 // rounding, threshold, screen and ellipse axes, every wrap pair, LOD biases and clamps, quads of random
 // length, elongation and direction (N = 1..16) on RGBA8 tiled, L8 linear-row and non-power-of-two
 // textures, interleaved quad by quad with quads the path does not take (clamp-to-border, isotropic,
-// NEAREST and edge-preserving probes, VS16X2), on random unit configurations (stalls of every kind).
+// NEAREST and edge-preserving probes, VS16X2), on random unit configurations (stalls of every kind;
+// channel depths 1 and more and 1, 2 or 4 lanes, where the lockstep footprint of
+// rtl/unit_recurrence.cpp does and does not apply; both bank mappings for the batched tag lookup).
 TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
   std::mt19937 rng(6161);
   std::vector<std::shared_ptr<Texture>> textures;
