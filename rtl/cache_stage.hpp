@@ -139,6 +139,20 @@ class CacheStage : public sim::Module {
     uint64_t decoded_blocks = 0, decoder_busy = 0, decoder_stall = 0;
   };
   const std::vector<SlotCounters>& slot_counters() const { return slots_; }
+  SlotCounters& counters(size_t slot) { return slots_[slot]; }
+  // The stall counters Timing keeps for a batch of footprints of one slot (register copies, as the
+  // batch's timing: rtl/unit_recurrence.cpp), and their sum into the slot's.
+  struct StallCounts {
+    uint64_t footprints = 0, stall_miss = 0, stall_bank = 0, stall_back = 0, stall_line_buffer = 0;
+  };
+  void add_stalls(size_t slot, const StallCounts& s) {
+    SlotCounters& c = slots_[slot];
+    c.footprints += s.footprints;
+    c.stall_miss += s.stall_miss;
+    c.stall_bank += s.stall_bank;
+    c.stall_back += s.stall_back;
+    c.stall_line_buffer += s.stall_line_buffer;
+  }
   // The line buffer held some footprint at the tag stage (stall_line_buffer is published then only).
   bool stalled_on_line_buffer() const {
     return std::any_of(slots_.begin(), slots_.end(), [](const SlotCounters& c) { return c.stall_line_buffer != 0; });
@@ -176,23 +190,37 @@ class CacheStage : public sim::Module {
   // of its missing lines; the cycle the lines are all in.
   [[gnu::always_inline]] uint64_t lines_in(int texture, int stage, int level, const FootprintResult& r, uint64_t now,
                                            int& bank_cycles) {
-    admitted_lines_ = r.misses;  // the line buffer's slots this footprint takes (accept)
-    SlotCounters& c = slots_[stat_slot(texture, stage)];
+    count_lines(stat_slot(texture, stage), level, r);
+    return lines_ready(texture, r.cycles, r.misses, r.missed_lines.data(), now, bank_cycles);
+  }
+  // lines_in's two parts: the counters of the lookup `r` in statistics slot `slot` (sums, which the
+  // probe quad path adds a quad's lookups at a time); and, at cycle `now`, the bank cycles of a
+  // lookup of `cycles` (at least 1), the memory reads of its `misses` missing lines and the
+  // line-buffer slots they take; the cycle its lines are all in.
+  template <class Counts>  // FootprintResult, LineCounts
+  [[gnu::always_inline]] void count_lines(size_t slot, int level, const Counts& r) {
+    SlotCounters& c = slots_[slot];
     c.level_hits[static_cast<size_t>(level)] += static_cast<uint64_t>(r.hits);
     c.level_misses[static_cast<size_t>(level)] += static_cast<uint64_t>(r.misses);
     c.sector_hits += static_cast<uint64_t>(r.sector_hits);
     c.sector_lookups += static_cast<uint64_t>(r.sector_lookups);
     c.memory_requests += static_cast<uint64_t>(r.misses);
     c.memory_bytes += static_cast<uint64_t>(r.misses) * static_cast<uint64_t>(cache_.config().line_bytes);
-    bank_cycles = r.cycles > 1 ? r.cycles : 1;
+  }
+  [[gnu::always_inline]] uint64_t lines_ready(int texture, int cycles, int misses, const uint64_t* missed_lines,
+                                              uint64_t now, int& bank_cycles) {
+    admitted_lines_ = misses;  // the line buffer's slots this footprint takes (accept)
+    bank_cycles = cycles > 1 ? cycles : 1;
     uint64_t ready = now + static_cast<uint64_t>(bank_cycles) - 1;
-    for (int m = 0; m < r.misses; ++m) {
+    for (int m = 0; m < misses; ++m) {
       const int line_bytes = cache_.config().line_bytes;
-      const uint64_t in = mem_.read(now, line_bytes, texture, r.missed_lines[static_cast<size_t>(m)] * static_cast<uint64_t>(line_bytes));
+      const uint64_t in = mem_.read(now, line_bytes, texture, missed_lines[m] * static_cast<uint64_t>(line_bytes));
       ready = in > ready ? in : ready;
     }
     return ready;
   }
+  // The texel cache's tags (the recurrences' quad paths: rtl/unit_recurrence_probes.hpp).
+  TexelCache& tags() { return cache_; }
   // The recurrences' LINEAR quad path on a block-compressed texture (software speed only,
   // rtl/cache_stage_block_squares.cpp, which names the plain twins and the equality test): a 2 x 2
   // footprint whose taps are all inside the level, its grid in texels (`texels`) and in blocks
@@ -243,11 +271,12 @@ class CacheStage : public sim::Module {
   // Both count into the block's own stall counters (published by publish()).
   class Timing {
    public:
-    explicit Timing(CacheStage& b) : b_(b) {}
-    // The cycle the footprint of statistics slot `slot` pushed at `pushed` leaves the shaped
-    // channel `in` into the miss FIFO.
-    [[gnu::always_inline]] int64_t accept(int64_t pushed, ChannelTimes& in, const ChannelTimes& miss_fifo,
-                                          size_t slot) {
+    explicit Timing(CacheStage& b) : b_(&b) {}
+    // The cycle the footprint pushed at `pushed` leaves the shaped channel `in` into the miss FIFO;
+    // its stalls count into `c`: its statistics slot's counters (counters(slot)), or a batch's
+    // StallCounts, added to the slot's after the batch (sums).
+    template <class Stalls>
+    [[gnu::always_inline]] int64_t accept(int64_t pushed, ChannelTimes& in, const ChannelTimes& miss_fifo, Stalls& c) {
       const int64_t visible = std::max(pushed + 1, last_accept_ + 1);
       const int64_t port_free = last_accept_ + port_cycles_;
       const int64_t fifo_room = std::max({visible, port_free, miss_fifo.freed()});
@@ -256,15 +285,14 @@ class CacheStage : public sim::Module {
       // have left (their slots are given back only when the count is short of room, as `t` never
       // decreases, the same result): when it leaves room, the exact count does too.
       int64_t t = fifo_room;
-      SlotCounters& c = b_.slots_[slot];
-      if (lines_in_flight_ + kMaxFootprintLines > b_.line_buffer_depth_) [[unlikely]] {
+      if (lines_in_flight_ + kMaxFootprintLines > b_->line_buffer_depth_) [[unlikely]] {
         for (;;) {
-          while (!in_flight_.empty() && in_flight_.front().exit <= t) {
-            lines_in_flight_ -= in_flight_.front().lines;
-            in_flight_.pop_front();
+          while (!b_->timing_in_flight_.empty() && b_->timing_in_flight_.front().exit <= t) {
+            lines_in_flight_ -= b_->timing_in_flight_.front().lines;
+            b_->timing_in_flight_.pop_front();
           }
-          if (lines_in_flight_ + kMaxFootprintLines <= b_.line_buffer_depth_) break;
-          t = in_flight_.front().exit;
+          if (lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_) break;
+          t = b_->timing_in_flight_.front().exit;
         }
         c.stall_line_buffer += cycles_between(fifo_room, t);
       }
@@ -275,37 +303,65 @@ class CacheStage : public sim::Module {
       return t;
     }
     // The cycle the footprint accepted at `accepted`, holding the tag port `bank_cycles` cycles,
-    // with its lines in at `ready`, leaves the miss FIFO into `out`.
+    // with its lines in at `ready`, leaves the miss FIFO into `out`; its stalls count into `c`, as
+    // accept's.
+    template <class Stalls>
     [[gnu::always_inline]] int64_t exit(int64_t accepted, int bank_cycles, int64_t ready, ChannelTimes& miss_fifo,
-                                        const ChannelTimes& out, size_t slot) {
+                                        const ChannelTimes& out, Stalls& c) {
       port_cycles_ = bank_cycles;
       const int64_t head = std::max(accepted + 1, last_exit_ + 1);
       const int64_t t = std::max({head, ready, out.room()});
-      SlotCounters& c = b_.slots_[slot];
       c.stall_miss += cycles_between(head, std::min(ready, t));
       c.stall_back += cycles_between(std::max(head, ready), t);
       miss_fifo.pop(t);
       last_exit_ = t;
-      if (b_.admitted_lines_ > 0) {
-        in_flight_.push_back({t, b_.admitted_lines_});
-        lines_in_flight_ += b_.admitted_lines_;
+      if (b_->admitted_lines_ > 0) {
+        b_->timing_in_flight_.push_back({t, b_->admitted_lines_});
+        lines_in_flight_ += b_->admitted_lines_;
       }
       return t;
     }
 
+    // The probe quad path's lockstep footprint (software speed only; rtl/unit_recurrence.cpp,
+    // probe_quad, derives it from accept and exit above, which it must equal): in_step(t) tells
+    // that the previous footprint was accepted at t - 1 holding the port one cycle, that the line
+    // buffer has room without a look at the queue and that the miss FIFO has room at t; step(t) is
+    // accept and exit of a footprint pushed at t - 1 with one bank cycle and no misses, whose
+    // output channel has room: accepted at t, out the cycle after it or after the previous
+    // footprint's exit (the later), no stalls; returns its exit cycle.
+    bool in_step(int64_t t, const ChannelTimes& miss_fifo) const {
+      return last_accept_ == t - 1 && port_cycles_ == 1 &&
+             lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ && miss_fifo.freed() <= t;
+    }
+    int64_t last_exit() const { return last_exit_; }
+    template <class Stalls>
+    [[gnu::always_inline]] int64_t step(int64_t t, ChannelTimes& in, ChannelTimes& miss_fifo, Stalls& c) {
+      ++c.footprints;
+      in.pop(t);
+      last_accept_ = t;
+      b_->admitted_lines_ = 0;
+      last_exit_ = std::max(t + 1, last_exit_ + 1);
+      miss_fifo.pop(last_exit_);
+      return last_exit_;
+    }
+
    private:
-    CacheStage& b_;
-    struct QueuedLines {
-      int64_t exit;  // the cycle its footprint leaves the miss FIFO
-      int lines;     // the line-buffer slots it holds until then
-    };
-    std::deque<QueuedLines> in_flight_;  // footprints that missed lines, in order
-    int lines_in_flight_ = 0;            // their slots (with some that have left: accept)
+    // Pointers, and the queue of footprints in the block (CacheStage::timing_in_flight_): the
+    // recurrences may copy the timing into registers for a batch of footprints.
+    CacheStage* b_;
+    int lines_in_flight_ = 0;  // the slots of timing_in_flight_'s footprints (with some that have left: accept)
     int64_t last_accept_ = -1, last_exit_ = -1;  // the previous footprint's cycles (-1: none)
     int port_cycles_ = 0;                        // the cycles it held the tag port
   } timing{*this};
 
  private:
+  // Timing's queue: the footprints that missed lines, in order, with the cycle each leaves the miss
+  // FIFO and the line-buffer slots it holds until then.
+  struct QueuedLines {
+    int64_t exit;
+    int lines;
+  };
+  std::deque<QueuedLines> timing_in_flight_;
   sim::Channel<FootprintReq>& in_;
   sim::Channel<FilterReq>& filter_out_;
   sim::Channel<FilterReq>& edge_out_;

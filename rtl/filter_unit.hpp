@@ -43,6 +43,7 @@ class FilterUnit : public sim::Module {
   // it leaves (ceil(ntaps / (4 lanes)) - 1), and its filtering, true with the pixel's response in
   // `out` when the footprint completes one (LevelTag::emits()).
   int extra_clocks(int ntaps) const { return extra_clocks_[static_cast<size_t>(ntaps)]; }
+  uint64_t& busy_cycles(size_t slot) { return busy_cycles_[slot]; }  // the busy counter of a statistics slot
   bool filter(const FilterReq& r, Response& out);
   // filter()'s LINEAR lerp on 8-bit words (dp::fast::bilinear_lerp8) for four footprints of one level
   // at once (isotropic pixels), lane k the footprint of q's lane k (dp::fast::bilinear_lerp8x4,
@@ -64,18 +65,28 @@ class FilterUnit : public sim::Module {
   // hold.
   class Timing {
    public:
-    explicit Timing(FilterUnit& b) : b_(b) {}
-    // The cycle the footprint of `ntaps` texels and statistics slot `slot` pushed at `pushed`
-    // leaves `in` (`emits`: it completes a pixel, pushed into `out`).
+    explicit Timing(FilterUnit& b) : b_(&b) {}
+    // The cycle the footprint of `ntaps` texels pushed at `pushed` leaves `in` (`emits`: it
+    // completes a pixel, pushed into `out`); its busy cycles count into `busy`: its statistics
+    // slot's counter (busy_cycles(slot)), or a batch's, added to the slot's after it (sums).
     [[gnu::always_inline]] int64_t done(int64_t pushed, int ntaps, bool emits, ChannelTimes& in,
-                                        const ChannelTimes& out, size_t slot) {
-      const int hold = b_.extra_clocks(ntaps);
-      b_.busy_cycles_[slot] += static_cast<uint64_t>(hold);
+                                        const ChannelTimes& out, uint64_t& busy) {
+      const int hold = b_->extra_clocks(ntaps);
+      busy += static_cast<uint64_t>(hold);
       return stage_.move(pushed, in, emits ? &out : nullptr, hold);
     }
 
+    // The probe quad path's lockstep footprint (rtl/unit_recurrence.cpp, probe_quad, derives it
+    // from done above): the previous footprint left at t - 1; step(t) is done of a footprint of no
+    // hold that completes no pixel, pushed at t - 1: it leaves `in` at t.
+    bool in_step(int64_t t) const { return stage_.last == t - 1; }
+    [[gnu::always_inline]] void step(int64_t t, ChannelTimes& in) {
+      in.pop(t);
+      stage_.last = t;
+    }
+
    private:
-    FilterUnit& b_;
+    FilterUnit* b_;  // a pointer: the recurrences may copy the timing into registers for a batch
     InOrderTiming stage_;
   } timing{*this};
 

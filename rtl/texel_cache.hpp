@@ -118,6 +118,16 @@ struct FootprintResult {
   int cycles = 1;                           // bank occupancy
   std::array<uint64_t, 16> missed_lines;  // distinct line addresses fetched from memory: [0, misses)
 };
+// access_squares' answer for one footprint: its bank cycles, and its missed lines, `misses` of
+// them from position `first_miss` of the batch's list.
+struct SquareLookup {
+  uint8_t cycles, misses;
+  uint16_t first_miss;
+};
+// Line and sector lookups summed over footprints (the cache stage's counters per level).
+struct LineCounts {
+  int hits = 0, misses = 0, sector_hits = 0, sector_lookups = 0;
+};
 // The most distinct lines one footprint looks up (and may miss): the line-buffer slots the texel
 // cache stage needs free before it accepts a footprint (rtl/cache_stage.hpp).
 inline constexpr int kMaxFootprintLines = static_cast<int>(std::tuple_size_v<decltype(FootprintResult::missed_lines)>);
@@ -146,6 +156,13 @@ class TexelCache {
       return access_quad(l, grid);
     return access_grid(l, grid);
   }
+  // access_square of `n` footprints in order (the recurrences' probe quad path: a pixel's level
+  // footprints), footprint j on level levels[j % nlevels] (nlevels 1 or 2) with grid grids[j]:
+  // out[j] its bank cycles and misses, whose lines go to missed[first_miss ...] (`nmissed` the
+  // list's length, advanced); counts[j % nlevels] summed. The per-level work once per batch
+  // (rtl/texel_cache_probe_squares.cpp, software speed only; its plain twin is access_square).
+  void access_squares(int texture, const std::array<int, 2>& levels, int nlevels, const TapGrid* grids, size_t n,
+                      SquareLookup* out, uint64_t* missed, uint16_t& nmissed, std::array<LineCounts, 2>& counts);
   // access() of a full 4 x 4 grid (every cell used: CUBIC's footprint with a 4-tap ROM), for the
   // recurrences' CUBIC quad path: its lines, bank cycles and sectors in closed form
   // (rtl/texel_cache_full_squares.cpp, software speed only; its plain twin is access_grid); any
@@ -194,7 +211,7 @@ class TexelCache {
   // lookup of a line in that slot, checked against the way's tag before use, so that runs of
   // footprints in a few lines (of several interleaved textures) skip the way search. Hit, miss and
   // LRU behaviour are those of the search.
-  static constexpr size_t kHints = 64;
+  static constexpr size_t kHints = 1024;
   std::array<uint32_t, kHints> hint_{};
   // Per lines_ entry (texture and level): its counters, and the shifts that take a tap's column and
   // row to its sector's column and row part (access_quad).
@@ -218,6 +235,8 @@ class TexelCache {
     return 1u << ((index << bytes_log2) / kSectorBytes);
   }
   FootprintResult access_quad(size_t l, const TapGrid& g);
+  SquareLookup square_lines(const LevelLines& ll, SectorShifts k, bool four_banks, const TapGrid& g, uint64_t* missed,
+                            uint16_t& nmissed, LineCounts& sum);
   FootprintResult access_grid(size_t l, const TapGrid& g);
   struct FillTile {  // CacheHolds::Decoded, per lines_ entry of a compressed level: fill_blocks()
     int tile_log2 = 0, width = 0, height = 0, block_w = 1, block_h = 1;

@@ -120,22 +120,73 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   detail::ProbeQuadPath probes(frame.regs, u, quad_paths && fast_paths_enabled());
   detail::CubicQuadPath cubic(frame.regs, u, quad_paths && fast_paths_enabled());
   UnitChannelTimes ch(ucfg);
+  // The timing a footprint of the filter path moves through from address_gen to the response
+  // (rtl/timing.hpp): the blocks' timing and the channels between them (the pixel channel's
+  // consumer, address_gen, and the response sink included; the pipeline registers, which have
+  // timing of their own, are passed as they are). `unit_path` refers to the unit's own; a batch of
+  // footprints (the probe quad path) runs on register copies of them, lent() and settled() around
+  // it, the same functions on the same cycles in the same order (software speed only: the copies
+  // keep the blocks' last cycles and the channels' counts in registers, which the channels' ring
+  // stores would otherwise force the compiler to reload; rtl/unit_recurrence_probes.hpp).
+  struct PathTiming {
+    SequencerTiming& address_gen;
+    InOrderTiming& kernel_select;
+    CacheStage::Timing& cache;
+    FilterUnit::Timing* filter;  // null when no sampler of the frame uses the filter
+    ResponseSink::Timing& response;
+    ChannelTimes &footprint, &shaped_footprint, &miss_fifo, &texels, &response_in;
+  };
+  const PathTiming unit_path{u.address_gen.timing, u.kernel_select.timing, u.cache_stage.timing,
+                             u.filter ? &u.filter->timing : nullptr, u.response.timing, ch.footprint,
+                             ch.shaped_footprint, ch.miss_fifo, ch.texels, ch.response};
+  struct LentTiming {
+    SequencerTiming address_gen;
+    InOrderTiming kernel_select;
+    CacheStage::Timing cache;
+    FilterUnit::Timing filter;
+    ResponseSink::Timing response;
+    ChannelTimes footprint, shaped_footprint, miss_fifo, texels, response_in;
+  };
+  const auto lend = [&]() __attribute__((always_inline)) {
+    return LentTiming{unit_path.address_gen,
+                      unit_path.kernel_select,
+                      unit_path.cache,
+                      *unit_path.filter,
+                      unit_path.response,
+                      unit_path.footprint.lend(),
+                      unit_path.shaped_footprint.lend(),
+                      unit_path.miss_fifo.lend(),
+                      unit_path.texels.lend(),
+                      unit_path.response_in.lend()};
+  };
+  const auto settle = [&](const LentTiming& l) __attribute__((always_inline)) {
+    unit_path.address_gen = l.address_gen;
+    unit_path.kernel_select = l.kernel_select;
+    unit_path.cache = l.cache;
+    *unit_path.filter = l.filter;
+    unit_path.response = l.response;
+    unit_path.footprint.settle(l.footprint);
+    unit_path.shaped_footprint.settle(l.shaped_footprint);
+    unit_path.miss_fifo.settle(l.miss_fifo);
+    unit_path.texels.settle(l.texels);
+    unit_path.response_in.settle(l.response_in);
+  };
   // address_gen -> kernel_select -> texel_cache: a footprint of the pixel address_gen took at
   // `pixel_taken` (its first, or the next after the previous one), through the cache's input side,
   // where `admit(accepted, bank_cycles)` looks it up and returns the cycle its lines are in, and its
-  // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `slot`: its
-  // statistics slot (stat_slot()), where its stalls count.
-  const auto through_cache = [&](bool first_footprint, int64_t pixel_taken, bool edge, size_t slot, auto&& admit)
-      __attribute__((always_inline)) {
-    const int64_t pushed = u.address_gen.timing.push(first_footprint, pixel_taken, ch.footprint);
+  // output side (`edge`: towards the edge datapath); the cycle it leaves the miss FIFO. `stalls`:
+  // the counters of its statistics slot (stat_slot()), where its stalls count, or a batch's.
+  const auto through_cache = [&](auto& p, bool first_footprint, int64_t pixel_taken, bool edge, auto& stalls,
+                                 auto&& admit) __attribute__((always_inline)) {
+    const int64_t pushed = p.address_gen.push(first_footprint, pixel_taken, p.footprint);
     const int64_t shaped =
-        log.at(KernelSelectTakesFootprint, u.kernel_select.timing.move(pushed, ch.footprint, &ch.shaped_footprint));
+        log.at(KernelSelectTakesFootprint, p.kernel_select.move(pushed, p.footprint, &p.shaped_footprint));
     const int64_t accepted =
-        log.at(CacheAcceptsFootprint, u.cache_stage.timing.accept(shaped, ch.shaped_footprint, ch.miss_fifo, slot));
+        log.at(CacheAcceptsFootprint, p.cache.accept(shaped, p.shaped_footprint, p.miss_fifo, stalls));
     int bank_cycles = 1;
     const auto ready = static_cast<int64_t>(admit(static_cast<uint64_t>(accepted), bank_cycles));
-    return log.at(CacheEmitsFootprint, u.cache_stage.timing.exit(accepted, bank_cycles, ready, ch.miss_fifo,
-                                                                 edge ? ch.edge_texels : ch.texels, slot));
+    return log.at(CacheEmitsFootprint,
+                  p.cache.exit(accepted, bank_cycles, ready, p.miss_fifo, edge ? ch.edge_texels : p.texels, stalls));
   };
   // The blocks' output registers, reused from item to item as the clocked run reuses its channel
   // slots (every field the datapath functions read is written first).
@@ -148,18 +199,21 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   std::array<Rgba8, 4> quad_colour{};
   // pipeline registers -> response: the pixel pushed into `in` at `pushed` passes the datapath's
   // pipeline registers `pipe` (none at the default depths) and retires; the cycle it does.
-  const auto retire_at = [&](PipelineRegisters<Response>& pipe, ChannelTimes& in, int64_t pushed, UnitEvent e) {
+  const auto retire_at = [&](ResponseSink::Timing& response, PipelineRegisters<Response>& pipe, ChannelTimes& in,
+                             int64_t pushed, UnitEvent e) __attribute__((always_inline)) {
     const int64_t passed = pipe.timing.pass(pushed, in);
-    return log.at(e, u.response.timing.retire_at(pipe.timing.last(in), passed));
+    return log.at(e, response.retire_at(pipe.timing.last(in), passed));
   };
   const auto retire = [&](const Response& r, PipelineRegisters<Response>& pipe, ChannelTimes& in, int64_t pushed,
-                          UnitEvent e) { u.response.retire(r, static_cast<uint64_t>(retire_at(pipe, in, pushed, e))); };
+                          UnitEvent e) {
+    u.response.retire(r, static_cast<uint64_t>(retire_at(u.response.timing, pipe, in, pushed, e)));
+  };
   // filter -> response: the texel words that left the cache at `exit`.
   const auto through_filter = [&](int64_t exit) {
     const bool emits = texel_words.tag.emits();
-    const int64_t done = log.at(
-        FilterFinishesFootprint,
-        u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response, stat_slot(texel_words.tag.req)));
+    const int64_t done =
+        log.at(FilterFinishesFootprint, u.filter->timing.done(exit, texel_words.ntaps, emits, ch.texels, ch.response,
+                                                              u.filter->busy_cycles(stat_slot(texel_words.tag.req))));
     Response r;
     if (u.filter->filter(texel_words, r)) retire(r, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
   };
@@ -192,18 +246,87 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
       const int64_t pixel_taken = log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
       for (int level = 0; level < levels; ++level) {  // level0, then level1 when blending
         const int64_t exit =
-            through_cache(level == 0, pixel_taken, false, slot,
+            through_cache(unit_path, level == 0, pixel_taken, false, u.cache_stage.counters(slot),
                           [&](uint64_t now, int& bank_cycles) { return cubic.admit(k, level, now, bank_cycles); });
         const bool emits = level + 1 == levels;
         const int64_t done =
-            log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, slot));
+            log.at(FilterFinishesFootprint,
+                   u.filter->timing.done(exit, 16, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
         if (emits)
-          quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+          quad_retire[static_cast<size_t>(k)] =
+              retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
       }
     }
     cubic.filter(quad_colour);
     for (size_t k = 0; k < 4; ++k)
       u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+  };
+  // The probe quad path (rtl/unit_recurrence_probes.hpp): N probes per pixel of `quad`, one or two
+  // level footprints each, timed footprint by footprint on register copies of the path's timing
+  // (LentTiming), the functions batched per quad. Out of line, as cubic_quad.
+  //
+  // The lockstep footprint (software speed only; its plain twin is the through_cache and done
+  // below, which it equals; TfuUnit.ProbeQuadPathEqualsThePlainBlocks). Footprint j > 0 of a
+  // pixel, which completes no pixel, hits every line with one bank cycle and holds the filter no
+  // cycle (4 taps on 4 lanes), whose predecessor j - 1 (the previous item of every channel below)
+  // went through the input side in lockstep: pushed by address_gen at P - 1, taken by
+  // kernel_select at P, accepted at P + 1 holding the port one cycle; and left the miss FIFO at
+  // E' and the filter at E' + 1; whose line buffer has room at a glance (lines_in_flight_) and
+  // whose miss FIFO has room at P + 2 (freed() <= P + 2). Then, with channels of depth D >= 2
+  // (footprint, shaped, texels): each channel's pop cycles increase strictly (every rule takes
+  // t >= its last + 1), so the item D back left at most D - 1 cycles before j - 1:
+  //   address_gen   max(P - 1 + 1, footprint.room() <= P - (D - 1) + 1 <= P) = P
+  //   kernel_select max(P + 1, P + 1, shaped.room() <= P + 1 - (D - 1) + 1 <= P + 1) = P + 1
+  //   accept        visible max(P + 2, P + 2), port free P + 1 + 1, miss FIFO room: P + 2; no bank
+  //                 stall (min(t, port free) = visible)
+  //   lines         one bank cycle, no misses: in at P + 2 + 1 - 1 (no memory reads, no slots)
+  //   exit          head e = max(P + 3, E' + 1), ready P + 2 < e, texels.room() <= E' + 1 - (D - 1)
+  //                 + 1 <= e: e; no miss stall (min(ready, e) = ready < head), no back-pressure
+  //   filter        max(e + 1, E' + 1 + 1) + 0 = e + 1, no output
+  // so it goes through in lockstep too (the input side one cycle after its predecessor, the
+  // output side at e and e + 1), no stall counted (the footprint counted), the same pops into the
+  // same channels. (Behind a miss the output side lags the input side by the memory's latency:
+  // the hits behind it leave the miss FIFO one a cycle, E' + 1.)
+  const bool lockstep_depths = ucfg.channel_depth >= 2 && u.filter && u.filter->extra_clocks(4) == 0;
+  const auto probe_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
+    const int footprints = probes.address(quad, lod);
+    const size_t slot = stat_slot(quad.req);
+    LentTiming p = lend();           // its members named as PathTiming's
+    CacheStage::StallCounts stalls;  // the quad's, in registers too
+    uint64_t busy = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
+      const int64_t pixel_taken = log.at(AddressGenTakesPixel, p.address_gen.take(pushed, ch.pixel));
+      for (int j = 0; j < footprints; ++j) {
+        const int64_t t = p.address_gen.last_push + 1;  // P, in lockstep
+        if (lockstep_depths && j > 0 && j + 1 < footprints && probes.hits_in_one_cycle(k, j) &&
+            p.kernel_select.last == t && p.cache.in_step(t + 2, p.miss_fifo) &&
+            p.filter.in_step(p.cache.last_exit() + 2)) {
+          p.address_gen.last_push = t;
+          p.footprint.pop(log.at(KernelSelectTakesFootprint, t + 1));
+          p.kernel_select.last = t + 1;
+          log.at(CacheAcceptsFootprint, t + 2);
+          const int64_t e = log.at(CacheEmitsFootprint, p.cache.step(t + 2, p.shaped_footprint, p.miss_fifo, stalls));
+          p.filter.step(log.at(FilterFinishesFootprint, e + 1), p.texels);
+          continue;
+        }
+        const int64_t exit = through_cache(p, j == 0, pixel_taken, false, stalls, [&](uint64_t now, int& bank_cycles) {
+          return probes.admit(k, j, now, bank_cycles);
+        });
+        const bool emits = j + 1 == footprints;
+        const int64_t done =
+            log.at(FilterFinishesFootprint, p.filter.done(exit, 4, emits, p.texels, p.response_in, busy));
+        if (emits)
+          quad_retire[static_cast<size_t>(k)] =
+              retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
+      }
+    }
+    settle(p);
+    u.cache_stage.add_stalls(slot, stalls);
+    u.filter->busy_cycles(slot) += busy;
+    for (size_t k = 0; k < 4; ++k)
+      u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]},
+                        static_cast<uint64_t>(quad_retire[k]));
   };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
@@ -239,13 +362,15 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
             const auto quad_admit = [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
               return linear.admit(k, level, now, bank_cycles);
             };
-            const int64_t exit = through_cache(level == 0, pixel_taken, false, slot, quad_admit);
+            const int64_t exit =
+                through_cache(unit_path, level == 0, pixel_taken, false, u.cache_stage.counters(slot), quad_admit);
             const bool emits = level + 1 == kLevels;
             const int64_t done =
-                log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
+                log.at(FilterFinishesFootprint,
+                       u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
             if (emits)
               quad_retire[static_cast<size_t>(k)] =
-                  retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
+                  retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
           }
         }
       };
@@ -260,25 +385,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
       continue;
     }
     if (probes.takes(quad)) {
-      // The probe quad path: N probes per pixel, one or two level footprints each, the functions
-      // batched per quad.
-      const int footprints = probes.address(quad, lod);
-      const size_t slot = stat_slot(quad.req);
-      for (int k = 0; k < 4; ++k) {
-        const int64_t pixel_taken = pixel_taken_at(k);
-        for (int j = 0; j < footprints; ++j) {
-          const int64_t exit =
-              through_cache(j == 0, pixel_taken, false, slot,
-                            [&](uint64_t now, int& bank_cycles) { return probes.admit(k, j, now, bank_cycles); });
-          const bool emits = j + 1 == footprints;
-          const int64_t done =
-              log.at(FilterFinishesFootprint, u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, slot));
-          if (emits)
-            quad_retire[static_cast<size_t>(k)] = retire_at(u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
-        }
-      }
-      for (size_t k = 0; k < 4; ++k)
-        u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]}, static_cast<uint64_t>(quad_retire[k]));
+      probe_quad(quad_taken, lod);
       continue;
     }
     if (cubic.takes(quad)) {
@@ -293,7 +400,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
         u.kernel_select.shape(f);
         const bool edge = f.tag.base == BaseFilter::EdgePreserving;
         const int64_t exit = through_cache(
-            first_footprint, pixel_taken, edge, stat_slot(f.tag.req),
+            unit_path, first_footprint, pixel_taken, edge, u.cache_stage.counters(stat_slot(f.tag.req)),
             [&](uint64_t now, int& bank_cycles) { return u.cache_stage.admit_footprint(f, now, bank_cycles); });
         u.cache_stage.read_out_footprint(f, texel_words);
         edge ? through_edge_stages(exit) : through_filter(exit);

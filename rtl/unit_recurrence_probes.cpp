@@ -149,12 +149,26 @@ ProbeQuadPath::ProbeFootprintsFn ProbeQuadPath::probe_footprints_fn(size_t wrap_
   return kTable[wrap_pair];
 }
 
+void ProbeQuadPath::look_up(int footprints, int levels) {
+  TexelCache& tags = u_.cache_stage.tags();
+  const std::array<int, 2> level{levels_of_[0], levels_of_[static_cast<size_t>(levels) - 1]};
+  std::array<LineCounts, 2> sum{};  // per level
+  uint16_t missed = 0;
+  for (size_t k = 0; k < 4; ++k)
+    tags.access_squares(texture_, level, levels, grid_[k].data(), static_cast<size_t>(footprints), lookup_[k].data(),
+                        missed_.data(), missed, sum);
+  const size_t slot = stat_slot(texture_, stage_);
+  for (size_t n = 0; n < static_cast<size_t>(levels); ++n) u_.cache_stage.count_lines(slot, level[n], sum[n]);
+}
+
 int ProbeQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   texture_ = q.req.texture;
   stage_ = q.req.stage;
   const SamplerDescriptor& c = regs_.samplers[q.req.sampler];
   const auto pair = static_cast<size_t>(4 * static_cast<int>(c.wrap_s) + static_cast<int>(c.wrap_t));
-  return (this->*probe_footprints_fn(pair, std::make_index_sequence<16>()))(q, lod);
+  const int footprints = (this->*probe_footprints_fn(pair, std::make_index_sequence<16>()))(q, lod);
+  look_up(footprints, footprints / lod.probes);
+  return footprints;
 }
 
 }  // namespace tfu::rtl::detail

@@ -21,10 +21,16 @@
 //                 add (dp::probe_texel_coord), the wrap unit with the sampler's modes fixed
 //                 (dp::fast::wrap_taps, as AddressGen's per-wrap-pair grids); its probe count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
-//   texel_cache   CacheStage::admit_lines per footprint in the plain path's order (pixel by pixel,
-//                 probe by probe, level0 then level1: the tags, the LRU and the memory queue see the
-//                 same sequence); the read-out read_square_taps' addresses (LevelReadout column,
-//                 row, at);
+//   texel_cache   admit_lines split in two: the tags (TexelCache::access_squares, access_square
+//                 footprint by footprint with the level's registers read once) of the quad's
+//                 footprints in the plain path's order (pixel by pixel, probe by probe, level0 then
+//                 level1: the tags and the LRU see the same sequence) at address time, with the
+//                 line counters (CacheStage::count_lines, summed per level: sums); then per
+//                 footprint, at its accept cycle in the timing, CacheStage::lines_ready (the bank
+//                 cycles, the memory reads of its missed lines: the memory queue sees the same
+//                 sequence at the same cycles). The tags' state depends on the order of the
+//                 lookups only, never on their cycles, and nothing else reads it during the quad;
+//                 the read-out read_square_taps' addresses (LevelReadout column, row, at);
 //   filter        per probe the four pixels in the four lanes of the lerp unit
 //                 (dp::fast::bilinear_lerp8x4_lanes, FilterUnit::filter_linear8x4's unit) or,
 //                 blending, of both levels and the blend unit (dp::fast::bilinear_lerp8x4q_lanes
@@ -36,7 +42,9 @@
 //                 sum in the accumulator; no later footprint reads either before writing it.)
 // The texel words come from the texture's memory, not from the cache's state, so the read-out and
 // the filter run at address time, before the quad's lookups; the colours wait for the retire.
-// The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by footprint.
+// The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by footprint
+// (on register copies of the blocks' timing state; a hit in lockstep with its predecessor in one
+// step, derived there).
 #pragma once
 
 #include <array>
@@ -69,12 +77,15 @@ class ProbeQuadPath {
   int address(const QuadReq& q, const AnisoLod& lod);
   // texel_cache, input side: footprint `j` of pixel k (probe j / levels, level j % levels), looked
   // up at cycle `now`; the cycle its lines are all in, and the cycles it holds the tag port in
-  // `bank_cycles`.
-  uint64_t admit(int k, int j, uint64_t now, int& bank_cycles) {
-    const auto jj = static_cast<size_t>(j);
-    FootprintResult r;
-    return u_.cache_stage.admit_lines(texture_, stage_, levels_of_[jj], grid_[static_cast<size_t>(k)][jj], now,
-                                      bank_cycles, r);
+  // `bank_cycles`. (Its tags were looked up by address(): only the memory reads need `now`.)
+  [[gnu::always_inline]] uint64_t admit(int k, int j, uint64_t now, int& bank_cycles) {
+    const SquareLookup& l = lookup_[static_cast<size_t>(k)][static_cast<size_t>(j)];
+    return u_.cache_stage.lines_ready(texture_, l.cycles, l.misses, missed_.data() + l.first_miss, now, bank_cycles);
+  }
+  // Footprint `j` of pixel k hits every line in one bank cycle (its tags, looked up by address()).
+  bool hits_in_one_cycle(int k, int j) const {
+    const SquareLookup& l = lookup_[static_cast<size_t>(k)][static_cast<size_t>(j)];
+    return l.misses == 0 && l.cycles <= 1;
   }
   // The four pixels' colours (address() formed them).
   const std::array<Rgba8, 4>& colours() const { return colour_; }
@@ -90,6 +101,13 @@ class ProbeQuadPath {
   std::array<int, kFootprints> levels_of_{};
   std::array<std::array<TapGrid, kFootprints>, 4> grid_{};
   std::array<Rgba8, 4> colour_{};
+  // The tags' answers per pixel and footprint (look_up(): TexelCache::access_squares): the bank
+  // cycles, the missed lines (at most four of a 2 x 2 footprint) from missed_[first_miss].
+  std::array<std::array<SquareLookup, kFootprints>, 4> lookup_{};
+  std::array<uint64_t, 4 * kFootprints * 4> missed_{};
+  // The tags of the quad's `footprints` footprints per pixel, in the plain path's order, and the
+  // cache stage's line counters (their sums per level).
+  void look_up(int footprints, int levels);
   // address() with the sampler's wrap modes fixed (one function per pair, chosen per quad).
   template <WrapMode kWs, WrapMode kWt>
   int probe_footprints(const QuadReq& q, const AnisoLod& lod);

@@ -1032,10 +1032,12 @@ TEST(TfuUnit, AnisotropicEllipseAxesBitExactInBothEngines) {
 // LINEAR_MIPMAP_NEAREST and LINEAR_MIPMAP_LINEAR without clamp-to-border, uncompressed 8-bit
 // textures, four pixels a quad; software speed only) gives the plain per-footprint path's and the
 // clocked blocks' pixels, response cycles, cycles and statistics: random max anisotropy, probe-count
-// rounding, threshold, screen and ellipse axes, wrap pairs, LOD biases and clamps, quads of random
+// rounding, threshold, screen and ellipse axes, every wrap pair, LOD biases and clamps, quads of random
 // length, elongation and direction (N = 1..16) on RGBA8 tiled, L8 linear-row and non-power-of-two
 // textures, interleaved quad by quad with quads the path does not take (clamp-to-border, isotropic,
-// NEAREST and edge-preserving probes, VS16X2), on random unit configurations (stalls of every kind).
+// NEAREST and edge-preserving probes, VS16X2), on random unit configurations (stalls of every kind;
+// channel depths 1 and more and 1, 2 or 4 lanes, where the lockstep footprint of
+// rtl/unit_recurrence.cpp does and does not apply; both bank mappings for the batched tag lookup).
 TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
   std::mt19937 rng(6161);
   std::vector<std::shared_ptr<Texture>> textures;
@@ -1069,6 +1071,11 @@ TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
       if (k == 3) s.lod.max_lod_q8 = 256;
       samplers.push_back(s);
     }
+  for (SamplerDescriptor s : every_wrap_pair("LINEAR_MIPMAP_LINEAR", rng)) {  // every wrap pair, border pairs not taken
+    s.max_aniso = 2 + static_cast<int>(rng() % 15);
+    s.aniso_axes = rng() % 2 ? AnisoAxes::Ellipse : AnisoAxes::Screen;
+    samplers.push_back(s);
+  }
   for (const char* mode : {"LINEAR_MIPMAP_LINEAR", "NEAREST_MIPMAP_LINEAR", "EDGE_PRESERVING_MIPMAP_LINEAR"}) {
     SamplerDescriptor s;  // not taken: isotropic (the LINEAR quad path), NEAREST and edge probes
     s.mode = filter_mode_from_name(mode);
@@ -1086,7 +1093,7 @@ TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
   Trace tr;
   tr.mode = TraceMode::Quad;
   std::uniform_real_distribution<float> pos(-1.5f, 2.5f), len(0.001f, 0.03f), ratio(1.0f, 24.0f), angle(0.0f, 6.2831853f);
-  const int quads = test::iterations(700);
+  const int quads = test::iterations(900);
   int quads_taken = 0;
   for (int n = 0; n < quads; ++n) {
     TraceRequest r;
@@ -1114,7 +1121,7 @@ TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
       tr.requests.push_back(r);
     }
   }
-  EXPECT_GT(quads_taken, quads / 4);  // the first 32, then about 7/15 samplers x 3/4 textures of the quads
+  EXPECT_GT(quads_taken, quads / 4);  // the first 32, then about 16/31 samplers x 3/4 textures of the quads
   EXPECT_LT(quads_taken, quads);
   bind_requests(b, tr);
   // Every probe count occurs (the histogram of pixels per N; the first quads above).
