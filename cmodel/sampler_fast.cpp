@@ -373,7 +373,8 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
 // once and every lane blends with the same weight or none does; else each lane selects its own
 // levels, the second level's lerp runs when some lane blends, and a lane that does not blend takes
 // its level0 again with weight 0 (the blend unit then gives bilinear_lerp8's value, as
-// filter_levels). The lanes are 32-bit texel words and 8-bit fractions (dp::fast::Quad8).
+// filter_levels). The lanes are 32-bit texel words and 8-bit fractions (dp::fast::Quad8); with
+// SSE2 a full group whose requests share their levels builds them in registers (GroupLanes).
 namespace {
 // A group of m = 1..4 requests: lane k < m filled by tap(k); the other lanes zero.
 template <class F>
@@ -395,6 +396,38 @@ template <WrapMode kWs, WrapMode kWt>
   q = {};
   for (size_t k = 0; k < m; ++k) bilinear8_taps<kWs, kWt>(img, border, r[k].s, r[k].t, q, k);
 }
+#if defined(__SSE2__)
+// A full group's four footprints on one level as the 4-lane unit's inputs, built in registers (as
+// aniso_linear8's lanes: four 32-bit stores read back as one 128-bit load of a dp::fast::Quad8
+// cannot be forwarded and stall until the stores retire).
+struct GroupLanes {
+  __m128i a, b, c, d, fu, fv;
+};
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline GroupLanes group_lanes(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
+  const auto at = [&](size_t k) __attribute__((always_inline)) {  // lane k >= m masked: zero
+    return k < m ? lerp_lane<kWs, kWt>(img, border, texel_coord(r[k].s, img.width), texel_coord(r[k].t, img.height))
+                 : LerpLane{0, 0, 0, 0, 0, 0};
+  };
+  const LerpLane x0 = at(0), x1 = at(1), x2 = at(2), x3 = at(3);
+  const auto lanes = [&](uint32_t LerpLane::*field) {
+    const auto lane = [&](const LerpLane& x) { return static_cast<int32_t>(x.*field); };
+    return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
+  };
+  return {lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c), lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv)};
+}
+inline __m128i lerp_group(const GroupLanes& g) { return dp::fast::bilinear_lerp8x4_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv); }
+inline dp::fast::Lanes8q lerp_group_q8(const GroupLanes& g) {
+  return dp::fast::bilinear_lerp8x4q_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv);
+}
+// Stores the group's m result words of v (out has room for m words only).
+[[gnu::always_inline]] inline void store_group(size_t m, Rgba8* out, __m128i v) {
+  if (m == 4) return _mm_storeu_si128(reinterpret_cast<__m128i*>(out), v);
+  std::array<Rgba8, 4> r;
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(r.data()), v);
+  std::copy_n(r.begin(), m, out);
+}
+#endif
 // Stores the group's m results (out has room for m words only).
 template <class F>
 [[gnu::always_inline]] inline void store_lanes(size_t m, Rgba8* out, F&& unit) {
@@ -411,12 +444,16 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
   const Rgba8 border = sm.cfg_.border;
   if constexpr (!kV.mipmapped) {
     const LevelView img(sm.tex_.levels[0]);
-    dp::fast::Quad8 q;  // every used lane is written before each use, the others zeroed
     for (size_t i = 0; i < n; i += 4) {
       const size_t m = std::min<size_t>(4, n - i);
       const SampleRequest* r = req + i;
+#if defined(__SSE2__)
+      store_group(m, out + i, lerp_group(group_lanes<kV.ws, kV.wt>(m, img, border, r)));
+#else
+      dp::fast::Quad8 q;  // every used lane is written before its use, the others zeroed
       group_taps<kV.ws, kV.wt>(m, img, border, r, q);
       store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q, o); });
+#endif
     }
   } else {
     const Image* levels = sm.tex_.levels.data();
@@ -431,6 +468,18 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
       for (size_t k = 1; k < m; ++k) shared &= r[k].lambda_q8 == r[0].lambda_q8;
       if (shared) {  // one level pick for the group
         const LevelPick p = select_levels(lambda_bias_clamp(r[0].lambda_q8, lod), mip, top);
+#if defined(__SSE2__)
+        const GroupLanes g0 = group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r);
+        if (p.blend == 0) {
+          store_group(m, out + i, lerp_group(g0));
+          continue;
+        }
+        const dp::fast::Lanes8q x = lerp_group_q8(g0);
+        const dp::fast::Lanes8q y = lerp_group_q8(group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level1]), border, r));
+        const __m128i w = _mm_set1_epi32(static_cast<int32_t>((static_cast<uint32_t>(p.blend) << 16) | static_cast<uint32_t>(256 - p.blend)));
+        store_group(m, out + i, dp::fast::level_blend8x4_lanes(x, y, w, w));
+        continue;
+#else
         group_taps<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r, q0);
         if (p.blend == 0) {
           store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q0, o); });
@@ -440,6 +489,7 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
         const std::array<int, 4> f{p.blend, p.blend, p.blend, p.blend};
         store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_blend8x4(q0, q1, f, o); });
         continue;
+#endif
       }
       std::array<int, 4> blend{};
       int any = 0;

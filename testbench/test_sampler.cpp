@@ -482,7 +482,7 @@ TEST(Properties, BatchQuadsEqualPlainPath) {
           c.wrap_t = wt;
           c.border = {9, 99, 199, 49};
           const Sampler smp(t, c);
-          for (int round = 0; round < 6; ++round)
+          for (int round = 0; round < 24; ++round)
             for (size_t n = 1; n <= 8; ++n) {
               const bool quad_lambda = round % 2 == 0;  // one lambda per group of 4, else one per request
               std::vector<SampleRequest> req(n);
