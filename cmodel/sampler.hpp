@@ -82,7 +82,9 @@ class Sampler {
   // for bit (the renderer hands it the up to 4 covered pixels of a 2x2 quad). Software speed only:
   // the per-call dispatch is paid once per batch, the sampler's registers (level base, extent,
   // border) stay in machine registers, and LINEAR on 8-bit formats filters 4 requests at once in
-  // the 4-lane lerp unit (dp::fast::bilinear_lerp8x4). Array of structures, as the requests arrive.
+  // the 4-lane lerp unit (dp::fast::bilinear_lerp8x4_lanes), a group of 1..3 with masked lanes, and
+  // selects the levels once for a group that shares one lambda (Properties.BatchQuadsEqualPlainPath).
+  // Array of structures, as the requests arrive.
   void sample_batch(const SampleRequest* req, size_t n, Rgba8* out) const { batch_fn_(*this, req, n, out); }
   // The same in datapath channels (before encoding).
   Texel4 sample_channels(float s, float t, int32_t lambda_q8) const;

@@ -93,10 +93,6 @@ template <WrapMode kWs, WrapMode kWt>
   return dp::fast::bilinear_lerp8q(std::bit_cast<Rgba8>(l.a), std::bit_cast<Rgba8>(l.b), std::bit_cast<Rgba8>(l.c),
                                    std::bit_cast<Rgba8>(l.d), l.fu, l.fv);
 }
-template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline Rgba8 bilinear8(LevelView img, Rgba8 border, float s, float t) {
-  return bilinear8_at<kWs, kWt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height));
-}
 
 // CUBIC (4 x 4 taps) on one level of 8-bit texel words with memoized weights: filter_tiled_acc_n
 // with the wrap modes fixed, then the normalise stage.
@@ -367,64 +363,156 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
   return encode_texel(acc.result(), sm.tex_.format);
 }
 
-// sample<kV> over a batch, LINEAR on 8-bit formats: the sampler's registers are read once, and four
-// requests at a time share the 4-lane lerp unit (their address, wrap and texel fetch are
-// independent, so the core overlaps them). MIP-mapped, each lane selects its own levels; the
-// second level's lerp runs when some lane blends, and the blend unit only for those lanes (as
-// filter_levels). A remainder of 1..3 requests goes through the scalar units.
+// sample<kV> over a batch, LINEAR on 8-bit formats (plain twin: batch_plain, sample() per
+// request; tests: Properties.BatchEqualsSample, BatchPartialQuads, FastPathsEqualPlainPath): the
+// sampler's registers are read once, and four requests at a time share the 4-lane lerp unit (their
+// address, wrap and texel fetch are independent, so the core overlaps them). A last group of 1..3
+// requests takes the same unit with its missing lanes masked: their taps are zero words with zero
+// fractions (never fetched), their results not stored. MIP-mapped: when the group's requests share
+// one lambda (a quad's pixels: the LOD unit gives one lambda per quad), the levels are selected
+// once and every lane blends with the same weight or none does; else each lane selects its own
+// levels, the second level's lerp runs when some lane blends, and a lane that does not blend takes
+// its level0 again with weight 0 (the blend unit then gives bilinear_lerp8's value, as
+// filter_levels). The lanes are 32-bit texel words and 8-bit fractions (dp::fast::Quad8); with
+// SSE2 a full group whose requests share their levels builds them in registers (GroupLanes).
+namespace {
+// A group of m = 1..4 requests: lane k < m filled by tap(k); the other lanes zero.
+template <class F>
+[[gnu::always_inline]] inline void fill_lanes(size_t m, dp::fast::Quad8& q, F&& tap) {
+  if (m == 4) {
+    for (size_t k = 0; k < 4; ++k) tap(k);
+    return;
+  }
+  q = {};
+  for (size_t k = 0; k < m; ++k) tap(k);
+}
+// The same, each lane k < m the footprint of request r[k] on one level.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline void group_taps(size_t m, LevelView img, Rgba8 border, const SampleRequest* r, dp::fast::Quad8& q) {
+  if (m == 4) {
+    for (size_t k = 0; k < 4; ++k) bilinear8_taps<kWs, kWt>(img, border, r[k].s, r[k].t, q, k);
+    return;
+  }
+  q = {};
+  for (size_t k = 0; k < m; ++k) bilinear8_taps<kWs, kWt>(img, border, r[k].s, r[k].t, q, k);
+}
+#if defined(__SSE2__)
+// A full group's four footprints on one level as the 4-lane unit's inputs, built in registers (as
+// aniso_linear8's lanes: four 32-bit stores read back as one 128-bit load of a dp::fast::Quad8
+// cannot be forwarded and stall until the stores retire).
+struct GroupLanes {
+  __m128i a, b, c, d, fu, fv;
+};
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline GroupLanes group_lanes(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
+  const auto at = [&](size_t k) __attribute__((always_inline)) {  // lane k >= m masked: zero
+    return k < m ? lerp_lane<kWs, kWt>(img, border, texel_coord(r[k].s, img.width), texel_coord(r[k].t, img.height))
+                 : LerpLane{0, 0, 0, 0, 0, 0};
+  };
+  const LerpLane x0 = at(0), x1 = at(1), x2 = at(2), x3 = at(3);
+  const auto lanes = [&](uint32_t LerpLane::*field) {
+    const auto lane = [&](const LerpLane& x) { return static_cast<int32_t>(x.*field); };
+    return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
+  };
+  return {lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c), lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv)};
+}
+inline __m128i lerp_group(const GroupLanes& g) { return dp::fast::bilinear_lerp8x4_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv); }
+inline dp::fast::Lanes8q lerp_group_q8(const GroupLanes& g) {
+  return dp::fast::bilinear_lerp8x4q_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv);
+}
+// Stores the group's m result words of v (out has room for m words only).
+[[gnu::always_inline]] inline void store_group(size_t m, Rgba8* out, __m128i v) {
+  if (m == 4) return _mm_storeu_si128(reinterpret_cast<__m128i*>(out), v);
+  std::array<Rgba8, 4> r;
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(r.data()), v);
+  std::copy_n(r.begin(), m, out);
+}
+#endif
+// Stores the group's m results (out has room for m words only).
+template <class F>
+[[gnu::always_inline]] inline void store_lanes(size_t m, Rgba8* out, F&& unit) {
+  if (m == 4) return unit(out);
+  std::array<Rgba8, 4> r;
+  unit(r.data());
+  std::copy_n(r.begin(), m, out);
+}
+}  // namespace
+
 template <Sampler::FastPaths::Variant kV>
 void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size_t n, Rgba8* out) {
   static_assert(kV.path == Path::Linear8);
   const Rgba8 border = sm.cfg_.border;
-  size_t i = 0;
   if constexpr (!kV.mipmapped) {
     const LevelView img(sm.tex_.levels[0]);
-    dp::fast::Quad8 q;  // every lane is written before each use
-    for (; i + 4 <= n; i += 4) {
-      for (size_t k = 0; k < 4; ++k) bilinear8_taps<kV.ws, kV.wt>(img, border, req[i + k].s, req[i + k].t, q, k);
-      dp::fast::bilinear_lerp8x4(q, out + i);
+    for (size_t i = 0; i < n; i += 4) {
+      const size_t m = std::min<size_t>(4, n - i);
+      const SampleRequest* r = req + i;
+#if defined(__SSE2__)
+      store_group(m, out + i, lerp_group(group_lanes<kV.ws, kV.wt>(m, img, border, r)));
+#else
+      dp::fast::Quad8 q;  // every used lane is written before its use, the others zeroed
+      group_taps<kV.ws, kV.wt>(m, img, border, r, q);
+      store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q, o); });
+#endif
     }
-    for (; i < n; ++i) out[i] = bilinear8<kV.ws, kV.wt>(img, border, req[i].s, req[i].t);
   } else {
     const Image* levels = sm.tex_.levels.data();
     const LodParams lod = sm.cfg_.lod;
     const MipMode mip = sm.cfg_.mode.mip;
     const int top = sm.tex_.max_level();
     dp::fast::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
-    for (; i + 4 <= n; i += 4) {
-      std::array<int, 4> blend;
+    for (size_t i = 0; i < n; i += 4) {
+      const size_t m = std::min<size_t>(4, n - i);
+      const SampleRequest* r = req + i;
+      bool shared = true;
+      for (size_t k = 1; k < m; ++k) shared &= r[k].lambda_q8 == r[0].lambda_q8;
+      if (shared) {  // one level pick for the group
+        const LevelPick p = select_levels(lambda_bias_clamp(r[0].lambda_q8, lod), mip, top);
+#if defined(__SSE2__)
+        const GroupLanes g0 = group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r);
+        if (p.blend == 0) {
+          store_group(m, out + i, lerp_group(g0));
+          continue;
+        }
+        const dp::fast::Lanes8q x = lerp_group_q8(g0);
+        const dp::fast::Lanes8q y = lerp_group_q8(group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level1]), border, r));
+        const __m128i w = _mm_set1_epi32(static_cast<int32_t>((static_cast<uint32_t>(p.blend) << 16) | static_cast<uint32_t>(256 - p.blend)));
+        store_group(m, out + i, dp::fast::level_blend8x4_lanes(x, y, w, w));
+        continue;
+#else
+        group_taps<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r, q0);
+        if (p.blend == 0) {
+          store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q0, o); });
+          continue;
+        }
+        group_taps<kV.ws, kV.wt>(m, LevelView(levels[p.level1]), border, r, q1);
+        const std::array<int, 4> f{p.blend, p.blend, p.blend, p.blend};
+        store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_blend8x4(q0, q1, f, o); });
+        continue;
+#endif
+      }
+      std::array<int, 4> blend{};
       int any = 0;
-      for (size_t k = 0; k < 4; ++k) {
-        const SampleRequest& r = req[i + k];
-        const LevelPick p = select_levels(lambda_bias_clamp(r.lambda_q8, lod), mip, top);
-        bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level0]), border, r.s, r.t, q0, k);
-        if (p.blend != 0) bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level1]), border, r.s, r.t, q1, k);
+      fill_lanes(m, q0, [&](size_t k) {
+        const LevelPick p = select_levels(lambda_bias_clamp(r[k].lambda_q8, lod), mip, top);
+        bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level0]), border, r[k].s, r[k].t, q0, k);
+        if (p.blend != 0) bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level1]), border, r[k].s, r[k].t, q1, k);
         blend[k] = p.blend;
         any |= p.blend;
-      }
+      });
       if (any == 0) {
-        dp::fast::bilinear_lerp8x4(q0, out + i);
+        store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q0, o); });
         continue;
       }
-      for (size_t k = 0; k < 4; ++k)  // a lane that does not blend: its level0 again, with weight 0
+      for (size_t k = 0; k < 4; ++k)  // a lane that does not blend (or is masked): its level0 again, weight 0
         if (blend[k] == 0) {
           q1.a[k] = q0.a[k], q1.b[k] = q0.b[k], q1.c[k] = q0.c[k], q1.d[k] = q0.d[k];
           q1.fu[k] = q0.fu[k], q1.fv[k] = q0.fv[k];
         }
-      dp::fast::bilinear_blend8x4(q0, q1, blend, out + i);
-    }
-    for (; i < n; ++i) {
-      const float s = req[i].s, t = req[i].t;
-      out[i] = filter_levels(
-          req[i].lambda_q8, lod, mip, top, [&](int l) { return bilinear8<kV.ws, kV.wt>(LevelView(levels[l]), border, s, t); },
-          [&](int l) {
-            const LevelView img(levels[l]);
-            return bilinear8q_at<kV.ws, kV.wt>(img, border, texel_coord(s, img.width), texel_coord(t, img.height));
-          });
+      store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_blend8x4(q0, q1, blend, o); });
     }
   }
 }
-
 
 // sample<kV> for the 16 pairs of wrap modes, indexed by 4 wrap_s + wrap_t.
 template <Sampler::FastPaths::Path kP, bool kMip, size_t... k>

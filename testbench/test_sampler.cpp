@@ -12,6 +12,7 @@
 
 #include "cmodel/datapath.hpp"
 #include "cmodel/datapath_fast.hpp"
+#include "cmodel/lod.hpp"
 #include "cmodel/mipmap.hpp"
 #include "cmodel/sampler.hpp"
 
@@ -451,6 +452,63 @@ TEST(Properties, BatchEqualsSample) {
             }
           }
   }
+}
+
+// Sample_batch's LINEAR groups against the plain datapath (encode_texel of sample_channels), as the
+// renderer issues them: a quad's covered pixels, 1..4 requests sharing the quad's lambda (the
+// partial groups' masked lanes, the one level pick for a group), then groups of 4 + 1..4 and
+// requests with lambdas of their own (each lane's own levels, some blending and some not); every
+// MIP mode, all 16 wrap pairs, RGBA8 on a power-of-two extent, L8 on another, and SRGBA8 (no batch
+// fast path); lambdas across the magnification, blended and clamped ranges; coordinates including
+// random float bit patterns. Nothing past out[n - 1] is written.
+TEST(Properties, BatchQuadsEqualPlainPath) {
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<float> coord(-2.5f, 2.5f);
+  std::uniform_int_distribution<int32_t> lam(-512, 7 * 256);
+  const auto request_coord = [&] {
+    return rng() % 8 == 0 ? std::bit_cast<float>(static_cast<uint32_t>(rng())) : coord(rng);
+  };
+  const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge, WrapMode::ClampToBorder};
+  size_t blended = 0, partial = 0;
+  for (const auto& [w, h, f] : {std::tuple{32, 16, TexelFormat::RGBA8}, std::tuple{37, 21, TexelFormat::L8},
+                                std::tuple{16, 16, TexelFormat::SRGBA8}}) {
+    Texture t = random_texture(w, h, 35, f);
+    generate_mipmaps(t, MipMethod::Box);
+    for (MipMode m : {MipMode::None, MipMode::Nearest, MipMode::Linear})
+      for (WrapMode ws : wraps)
+        for (WrapMode wt : wraps) {
+          SamplerDescriptor c = cfg(BaseFilter::Linear, m);
+          c.wrap_s = ws;
+          c.wrap_t = wt;
+          c.border = {9, 99, 199, 49};
+          const Sampler smp(t, c);
+          for (int round = 0; round < 24; ++round)
+            for (size_t n = 1; n <= 8; ++n) {
+              const bool quad_lambda = round % 2 == 0;  // one lambda per group of 4, else one per request
+              std::vector<SampleRequest> req(n);
+              int32_t l = lam(rng);
+              for (size_t i = 0; i < n; ++i) {
+                if (!quad_lambda || i % 4 == 0) l = lam(rng);
+                req[i] = {request_coord(), request_coord(), l};
+              }
+              const Rgba8 sentinel{1, 2, 3, 4};
+              std::vector<Rgba8> out(n + 4, sentinel);
+              smp.sample_batch(req.data(), n, out.data());
+              for (size_t i = 0; i < n; ++i) {
+                ASSERT_EQ(out[i], encode_texel(smp.sample_channels(req[i].s, req[i].t, req[i].lambda_q8), f))
+                    << filter_mode_name(c.mode) << " " << wrap_mode_name(ws) << "/" << wrap_mode_name(wt) << " " << w
+                    << "x" << h << " batch " << n << " request " << i << " at (" << req[i].s << ", " << req[i].t
+                    << ", " << req[i].lambda_q8 << ")";
+                const LevelPick p = select_levels(lambda_bias_clamp(req[i].lambda_q8, c.lod), m, t.max_level());
+                blended += p.blend != 0;
+              }
+              partial += n % 4 != 0;
+              for (size_t i = n; i < out.size(); ++i) ASSERT_EQ(out[i], sentinel) << "wrote past the batch";
+            }
+        }
+  }
+  EXPECT_GT(blended, 1000u);  // the blend unit's lanes were exercised
+  EXPECT_GT(partial, 1000u);
 }
 
 // Every fast path of Sampler::sample (LINEAR, CUBIC and EDGE_PRESERVING, each specialized per pair
