@@ -125,7 +125,7 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
       out.clocked_secs = std::min(out.clocked_secs, c.cycle_seconds);
       out.clocked_ratio.push_back(c.cycle_seconds / c.golden_seconds);
     }
-    if (out.streamed) {  // as a plain `tfu sim` runs it: its wall clock, part by part
+    if (bench && out.streamed) {  // as a plain `tfu sim` runs it: its wall clock, part by part
       rtl::RenderedSceneSim p = rtl::render_and_simulate_scene(scene, plain_ro, unit, plain_so);
       if (p.sim.cycles != res.cycles || p.sim.image.texels != res.image.texels)
         throw CheckFailed("--bench: a run on the default threads gave other cycles or another image");
