@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include <time.h>
+
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
@@ -29,6 +31,12 @@ int checked_thread_count(const std::string& option, long long n, bool zero_means
     throw InputError(fmt::format("{} must be in {}..{}{}, got {}", option, lo, kMaxThreads,
                                  zero_means_all ? " (0: all hardware threads)" : "", n));
   return static_cast<int>(n);
+}
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 int hardware_threads() {

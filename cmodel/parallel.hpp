@@ -21,6 +21,9 @@ int checked_thread_count(const std::string& option, long long n, bool zero_means
 // The number of hardware threads, clamped to 1..kMaxThreads.
 int hardware_threads();
 
+// CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID): speed figures only.
+double thread_cpu_seconds();
+
 // Runs body(0) on the calling thread and body(1) .. body(workers - 1) on new threads (workers is
 // clamped to 1..kMaxThreads), then joins them. Returns how many workers ran (fewer than asked only
 // when the system refused a thread). The first exception a worker throws is rethrown after the join.

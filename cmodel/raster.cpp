@@ -624,9 +624,12 @@ void make_samplers(Context& ctx, RenderResult& result) {
 }
 
 // Runs every band on `threads` workers; bands are independent (disjoint rows). With a trace sink
-// (RenderOptions::sink) each band's trace is handed on, and freed, once it and every band above it
-// are done, in band order, by whichever worker completes that run of bands; a worker starts a band
-// only when fewer than 2 x threads bands lie between it and the next one to hand on.
+// (RenderOptions::sink) each band's trace is handed on once it and every band above it are done,
+// in band order, by whichever worker completes that run of bands; a worker starts a band only when
+// fewer than 2 x threads bands lie between it and the next one to hand on. A band handed on leaves
+// its emptied buffers (their capacity) to a band about to start, so no more buffers exist than
+// bands in flight (2 x threads), and a band grows into memory already touched instead of fresh
+// pages, each a page fault (a 720p band's trace is ~2 MB, 500 pages).
 void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
   const int bands = static_cast<int>(ctx.band_triangles.size());
   std::atomic<int> next{0};
@@ -639,6 +642,7 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
   int emitted = 0;  // bands handed on
   bool emitting = false, failed = false;
   std::vector<uint8_t> done(static_cast<size_t>(bands), 0);
+  std::vector<BandOutput> spare;  // emptied buffers of bands handed on (guarded by emit_mutex)
   const auto fail = [&](std::exception_ptr e) {
     {
       const std::lock_guard lock(error_mutex);
@@ -661,10 +665,15 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
       } catch (...) {
         fail(std::current_exception());
       }
-      std::vector<TraceRequest>().swap(b.trace);
-      std::vector<QuadTarget>().swap(b.targets);
-      std::vector<uint32_t>().swap(b.triangles);
+      BandOutput emptied;
+      emptied.trace.swap(b.trace);
+      emptied.targets.swap(b.targets);
+      emptied.triangles.swap(b.triangles);
+      emptied.trace.clear();
+      emptied.targets.clear();
+      emptied.triangles.clear();
       lock.lock();
+      spare.push_back(std::move(emptied));
       ++emitted;
       emit_cv.notify_all();
     }
@@ -676,6 +685,13 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
         std::unique_lock lock(emit_mutex);
         emit_cv.wait(lock, [&] { return failed || band < emitted + lookahead; });
         if (failed) return;
+        if (!spare.empty()) {
+          BandOutput& b = outputs[static_cast<size_t>(band)];
+          b.trace.swap(spare.back().trace);
+          b.targets.swap(spare.back().targets);
+          b.triangles.swap(spare.back().triangles);
+          spare.pop_back();
+        }
       }
       try {
         const int y0 = band * kBandRows, y1 = std::min(ctx.height, y0 + kBandRows);
@@ -692,7 +708,14 @@ void run_bands(Context& ctx, int threads, std::vector<BandOutput>& outputs) {
       if (sink != nullptr) hand_on(band);
     }
   };
-  run_workers(threads, [&](int) { worker(); });
+  std::mutex cpu_mutex;
+  run_workers(threads, [&](int) {
+    const double t0 = thread_cpu_seconds();
+    worker();
+    const double t = thread_cpu_seconds() - t0;
+    const std::lock_guard lock(cpu_mutex);
+    ctx.result->times.bands_cpu += t;
+  });
   if (error) std::rethrow_exception(error);
 }
 

@@ -162,9 +162,11 @@ struct QuadTarget {
 // clipping and triangle setup, the colour and depth buffers cleared, every band rasterized and
 // shaded on the render's threads, and the bands' outputs (trace, quad targets) gathered in order;
 // draw_cpu: the process's CPU seconds over the same span (std::clock: every thread's; on a loaded
-// machine the steadier figure).
+// machine the steadier figure); bands_cpu: the CPU seconds of the render's band workers alone
+// (each thread's, summed: rasterizing and shading, and with a trace sink the bands handed to it),
+// which with a sink (whose consumers run threads of their own) draw_cpu does not separate.
 struct RenderTimes {
-  double upload = 0, draw = 0, draw_cpu = 0;
+  double upload = 0, draw = 0, draw_cpu = 0, bands_cpu = 0;
 };
 
 // Receives a render's trace in its order, band by band (kBandRows rows; RenderOptions::sink), so

@@ -7,6 +7,8 @@
 //   RequestStream    the requests a unit takes, in order: a view of a whole trace, or a bounded
 //                    queue filled by a producer thread (the renderer) and emptied by the unit's
 //                    thread; the producer waits while the window is full, the unit while it is empty
+//   push_each        one producer feeding several units' streams (a band dealt to the units): it
+//                    waits only while every stream it still has requests for is full (RoomSignal)
 //
 // A unit on a stream retires its pixels in request order (rtl/response.hpp), so it hands them on
 // in chunks of kStreamChunk requests (rtl/tfu_unit.hpp, run_unit_stream): a chunk's requests,
@@ -57,6 +59,30 @@ class RequestRing {
   size_t mask_ = ~size_t{0};
 };
 
+// Tells a producer that feeds several streams (push_each) that one of them has freed room or
+// given up: the streams bump its generation, the producer waits for a generation it has not seen.
+class RoomSignal {
+ public:
+  uint64_t generation() {
+    const std::lock_guard lock(mutex_);
+    return generation_;
+  }
+  void bump() {
+    {
+      const std::lock_guard lock(mutex_);
+      ++generation_;
+    }
+    changed_.notify_all();
+  }
+  // Waits until the generation differs from `seen`; returns the wall seconds waited.
+  double wait_past(uint64_t seen);
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  uint64_t generation_ = 0;
+};
+
 class RequestStream {
  public:
   // A whole trace: every request available, nothing queued (the trace must outlive the stream).
@@ -68,9 +94,10 @@ class RequestStream {
         produced_(trace.requests.size()),
         closed_(true),
         whole_(true) {}
-  // A bounded queue of `capacity` requests (a power of two) in `mode`, filled by push().
-  RequestStream(TraceMode mode, size_t capacity)
-      : mode_(mode), ring_(capacity), data_(ring_.data()), mask_(capacity - 1), capacity_(capacity) {}
+  // A bounded queue of `capacity` requests (a power of two) in `mode`, filled by push() (or by
+  // push_each, with `room` the signal it waits on).
+  RequestStream(TraceMode mode, size_t capacity, RoomSignal* room = nullptr)
+      : mode_(mode), ring_(capacity), data_(ring_.data()), mask_(capacity - 1), capacity_(capacity), room_(room) {}
   RequestStream(const RequestStream&) = delete;
   RequestStream& operator=(const RequestStream&) = delete;
 
@@ -81,6 +108,9 @@ class RequestStream {
   // Producer: appends requests in order, waiting while the window is full. Returns false (and
   // drops them) once the unit has given up (abandon()).
   bool push(const TraceRequest* r, size_t n);
+  // Producer: appends as many of the n requests as the window has room for now, without waiting.
+  // Returns how many it took: pushed, or all n (dropped) once the unit has given up.
+  size_t offer(const TraceRequest* r, size_t n);
   // Producer: no more requests (also after a failure: the unit then ends with what it has).
   void close();
 
@@ -96,20 +126,46 @@ class RequestStream {
   void abandon();
   // Requests pushed so far (the total once closed).
   size_t produced() const { return produced_.load(std::memory_order_acquire); }
+  // Wall seconds the producer stood in push() waiting for room in the window, and the unit in
+  // has() waiting for requests (steady clock, measured only when a wait happens): where a streamed
+  // run's threads stand still. Speed figures only (no result depends on them); read them after the
+  // producer and the unit are done.
+  double producer_wait_seconds() const { return producer_wait_; }
+  double unit_wait_seconds() const { return unit_wait_; }
 
  private:
   bool wait_for(size_t i);
+  // Copies r[0, k) to ids [at, at + k) (free slots) outside the lock and publishes them.
+  void append(std::unique_lock<std::mutex>& lock, const TraceRequest* r, size_t k);
   TraceMode mode_;
   std::vector<TraceRequest> ring_;
   const TraceRequest* data_;
   size_t mask_;
   size_t capacity_ = 0;
+  RoomSignal* room_ = nullptr;
   size_t known_ = 0;  // the unit's thread: requests it has seen available
   std::atomic<size_t> produced_{0};
   size_t released_ = 0;  // guarded by mutex_
   bool closed_ = false, abandoned_ = false, whole_ = false;
+  double producer_wait_ = 0;  // the producer's, guarded by mutex_
+  double unit_wait_ = 0;      // the unit's thread's
   std::mutex mutex_;
   std::condition_variable changed_;
 };
+
+// One producer, several streams: appends parts[k].n requests from parts[k].requests to
+// parts[k].stream, each stream's in order, giving every stream what its window has room for and
+// waiting (on `room`, the signal all of them were built with) only while every stream it still has
+// requests for is full. So within one call (a band) one unit's full window does not hold back the
+// others' shares (push() stream after stream would: a unit waits for its share of the band while
+// the producer waits on another unit's window); the next call starts once this one is done, so a
+// unit far behind the others still holds them back by up to its window. What each stream receives,
+// and so every result, is the same as with push(). Returns the wall seconds waited.
+struct StreamPart {
+  RequestStream* stream = nullptr;
+  const TraceRequest* requests = nullptr;
+  size_t n = 0;
+};
+double push_each(RoomSignal& room, std::vector<StreamPart> parts);
 
 }  // namespace tfu::rtl

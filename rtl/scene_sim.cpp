@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <deque>
 #include <future>
 #include <mutex>
 #include <memory>
 #include <thread>
-
-#include <time.h>
 
 #include <fmt/format.h>
 
@@ -22,12 +21,6 @@
 
 namespace tfu::rtl {
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 namespace {
 
 // One unit's share of the frame: its quads' requests in trace order.
@@ -39,6 +32,7 @@ struct Job {
   UnitOutput out;
   std::string mismatch;
   double cycle_seconds = 0, golden_seconds = 0;
+  double thread_seconds = 0, wait_seconds = 0;  // a streamed unit's thread: CPU, and waiting for requests
 };
 
 // The shared memory system's counters per unit: the L2's (added to each unit's statistics, so that
@@ -250,7 +244,7 @@ class StreamedUnits final : public TraceSink {
     frame_ = &frame.frame;
     golden_ = std::make_unique<GoldenUnit>(*frame_);
     for (size_t k = 0; k < units_.size(); ++k) {
-      units_[k].stream = std::make_unique<RequestStream>(TraceMode::Quad, kStreamWindow);
+      units_[k].stream = std::make_unique<RequestStream>(TraceMode::Quad, kStreamWindow, &room_);
       units_[k].thread = std::thread([this, k] { run(k); });
     }
   }
@@ -265,6 +259,7 @@ class StreamedUnits final : public TraceSink {
       units_[k].requests.insert(units_[k].requests.end(), requests.begin() + static_cast<ptrdiff_t>(q * 4),
                                 requests.begin() + static_cast<ptrdiff_t>(q * 4 + 4));
     }
+    std::vector<StreamPart> parts;
     for (size_t k = 0; k < units_.size(); ++k) {
       StreamUnit& su = units_[k];
       if (su.requests.empty()) continue;
@@ -274,8 +269,10 @@ class StreamedUnits final : public TraceSink {
         const std::lock_guard lock(su.targets_mutex);
         su.targets.insert(su.targets.end(), dealt[k].begin(), dealt[k].end());
       }
-      su.stream->push(su.requests.data(), su.requests.size());  // waits while the unit's window is full
+      parts.push_back({su.stream.get(), su.requests.data(), su.requests.size()});
     }
+    // Every unit's share at once: waits only while all the units it still has requests for are full.
+    producer_wait_ += push_each(room_, std::move(parts));
   }
 
   // The end of the render (or its failure): the streams close, the units finish.
@@ -293,6 +290,7 @@ class StreamedUnits final : public TraceSink {
     return jobs_;
   }
   Image& image() { return image_; }
+  double handoff_wait() const { return producer_wait_; }
 
  private:
   struct StreamUnit {
@@ -324,8 +322,10 @@ class StreamedUnits final : public TraceSink {
         sink_total += thread_cpu_seconds() - g0;
       };
       job.out = run_unit_stream(*frame_, *su.stream, u_, sink);
-      job.cycle_seconds = thread_cpu_seconds() - t0 - sink_total;
+      job.thread_seconds = thread_cpu_seconds() - t0;
+      job.cycle_seconds = job.thread_seconds - sink_total;
       job.golden_seconds = golden;
+      job.wait_seconds = su.stream->unit_wait_seconds();
     } catch (...) {
       su.error = std::current_exception();
     }
@@ -362,6 +362,8 @@ class StreamedUnits final : public TraceSink {
   const Frame* frame_ = nullptr;
   std::unique_ptr<GoldenUnit> golden_;
   Image image_;
+  RoomSignal room_;  // the units' streams tell the producer of freed room
+  double producer_wait_ = 0;
   std::vector<StreamUnit> units_;
   std::vector<Job> jobs_;
 };
@@ -378,6 +380,7 @@ RenderedSceneSim render_and_simulate_scene(const Scene& scene, RenderOptions ro,
   }
   check_unit_tiles(opt);
   u.validate();
+  const auto t0 = std::chrono::steady_clock::now();
   StreamedUnits units(scene, u, opt);
   ro.sink = &units;
   try {
@@ -389,6 +392,12 @@ RenderedSceneSim render_and_simulate_scene(const Scene& scene, RenderOptions ro,
   units.stop();
   std::vector<Job>& jobs = units.jobs();
   r.streamed = true;
+  r.times.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.times.handoff_wait = units.handoff_wait();
+  for (const Job& job : jobs) {
+    r.times.unit_cpu.push_back(job.thread_seconds);
+    r.times.unit_wait.push_back(job.wait_seconds);
+  }
   r.sim.image = std::move(units.image());
   r.sim.requests = 0;
   for (const Job& job : jobs) r.sim.requests += job.requests;

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cmodel/parallel.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene.hpp"
 #include "rtl/tfu_unit.hpp"
@@ -60,8 +61,8 @@ struct SceneSimResult {
   double cycle_seconds = 0, golden_seconds = 0;
 };
 
-// CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID).
-double thread_cpu_seconds();
+// CPU seconds used so far by the calling thread (cmodel/parallel.hpp).
+using tfu::thread_cpu_seconds;
 
 // `render` must come from render_scene(scene, {trace = true, line_bytes = u.cache.line_bytes}).
 SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, const UnitConfig& u, const SceneSimOptions& opt);
@@ -75,10 +76,23 @@ SceneSimResult simulate_scene(const Scene& scene, const RenderResult& render, co
 // render, the units and the compare overlap. Otherwise: render_scene, then simulate_scene. The
 // results, statistics and image are the same either way (tested); a streamed render has no trace
 // (RenderResult::trace and quad_targets empty).
+// A streamed run's threads, for speed measurements only (no result depends on them; `tfu sim
+// --bench`): the wall seconds of the whole call (the render's upload, RenderTimes::upload,
+// included), the CPU seconds of each unit's thread (its cycle model, golden compare and image
+// chunks), and the wall seconds the threads stood waiting: each unit for requests, and the
+// render's hand-off (TraceSink::band) for room in the units' windows. The render's band workers'
+// CPU seconds are RenderTimes::bands_cpu.
+struct StreamTimes {
+  double wall = 0;
+  std::vector<double> unit_cpu, unit_wait;
+  double handoff_wait = 0;
+};
+
 struct RenderedSceneSim {
   RenderResult render;
   SceneSimResult sim;
   bool streamed = false;
+  StreamTimes times;  // a streamed run's
 };
 RenderedSceneSim render_and_simulate_scene(const Scene& scene, RenderOptions ro, const UnitConfig& u, const SceneSimOptions& opt);
 bool streams_scene(const RenderOptions& ro, const UnitConfig& u, const SceneSimOptions& opt);

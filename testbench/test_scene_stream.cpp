@@ -4,9 +4,11 @@
 // Its results must be those of the whole-frame path byte for byte (image, cycles, every statistic)
 // for any number of units and threads, and those recorded from the whole-frame implementation
 // before streaming existed; and the request stream itself must hand over every request in order
-// through a window much smaller than the run, and never leave its producer waiting on a unit that
-// stopped.
+// through a window much smaller than the run, never leave its producer waiting on a unit that
+// stopped, and (push_each) never hold one unit's requests behind another unit's full window.
+#include <chrono>
 #include <cstdint>
+#include <future>
 #include <string>
 #include <thread>
 #include <vector>
@@ -190,6 +192,84 @@ TEST(SceneStream, TheStreamHandsOverEveryRequestInOrder) {
   stuck.abandon();
   waiting.join();
   EXPECT_EQ(stuck.produced(), 4u);
+}
+
+// push_each, one producer handing a band's shares of 5,000 requests each to two units' streams of
+// 16-request windows: unit A reads nothing until unit B has read all of its share, so B's requests
+// must get past A's full window (push() stream after stream would wait on A's window for ever: A
+// would wait out its 30 s and the first expectation fail). Both see every request in order; an
+// offer to a full window takes nothing, and one to a unit that gave up takes (drops) everything.
+TEST(SceneStream, PushEachFeedsEveryUnitPastAFullWindow) {
+  constexpr size_t kWindow = 16, kTotal = 5000;
+  RoomSignal room;
+  RequestStream a(TraceMode::Quad, kWindow, &room), b(TraceMode::Quad, kWindow, &room);
+  std::promise<void> b_done;
+  std::future<void> b_finished = b_done.get_future();
+  std::vector<TraceRequest> for_a(kTotal), for_b(kTotal);
+  for (size_t i = 0; i < kTotal; ++i) {
+    for_a[i].s = for_b[i].s = static_cast<float>(i);
+    for_b[i].t = 1;
+  }
+  std::thread producer([&] {
+    push_each(room, {{&a, for_a.data(), for_a.size()}, {&b, for_b.data(), for_b.size()}});
+    a.close();
+    b.close();
+  });
+  // Reads the kTotal requests (the stream closes only once both shares are in).
+  const auto read_all = [](RequestStream& st, float unit) {
+    size_t seen = 0;
+    for (size_t i = 0; i < kTotal && st.has(i); ++i) {
+      EXPECT_EQ(st[i].s, static_cast<float>(i));
+      EXPECT_EQ(st[i].t, unit);
+      ++seen;
+      if ((i + 1) % 4 == 0) st.release(i + 1);
+    }
+    return seen;
+  };
+  size_t seen_a = 0;
+  std::thread unit_a([&] {
+    EXPECT_EQ(b_finished.wait_for(std::chrono::seconds(30)), std::future_status::ready)
+        << "unit B's requests were held behind unit A's full window";
+    seen_a = read_all(a, 0);
+  });
+  EXPECT_EQ(read_all(b, 1), kTotal);
+  b_done.set_value();
+  unit_a.join();
+  producer.join();
+  EXPECT_EQ(seen_a, kTotal);
+  EXPECT_FALSE(a.has(kTotal));  // closed after the last
+  EXPECT_FALSE(b.has(kTotal));
+  EXPECT_EQ(a.produced(), kTotal);
+  EXPECT_EQ(b.produced(), kTotal);
+
+  RequestStream full(TraceMode::Quad, 4, &room);
+  const std::vector<TraceRequest> six(6);
+  EXPECT_EQ(full.offer(six.data(), six.size()), 4u);  // room for 4
+  EXPECT_EQ(full.offer(six.data(), six.size()), 0u);  // none left: takes nothing, does not wait
+  const uint64_t before = room.generation();
+  full.release(2);  // frees 2 and tells the producer
+  EXPECT_GT(room.generation(), before);
+  EXPECT_EQ(full.offer(six.data(), six.size()), 2u);
+  full.abandon();
+  EXPECT_EQ(full.offer(six.data(), six.size()), 6u);  // dropped: the unit has given up
+  EXPECT_EQ(full.produced(), 6u);
+}
+
+// A streamed run's speed figures (StreamTimes, RenderTimes::bands_cpu; `tfu sim --bench`) are
+// there: one entry per unit, CPU seconds spent by the band workers and by every unit that drew
+// something, a wall clock at least the upload's, and no negative wait.
+TEST(SceneStream, StreamedRunReportsItsThreadsTimes) {
+  const RenderedSceneSim r = run_case({"lightmapped", 192, 144, nullptr, nullptr, nullptr}, 2, 2, false);
+  ASSERT_TRUE(r.streamed);
+  ASSERT_EQ(r.times.unit_cpu.size(), 2u);
+  ASSERT_EQ(r.times.unit_wait.size(), 2u);
+  EXPECT_GT(r.render.times.bands_cpu, 0.0);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_GT(r.times.unit_cpu[k], 0.0) << k;
+    EXPECT_GE(r.times.unit_wait[k], 0.0) << k;
+  }
+  EXPECT_GE(r.times.handoff_wait, 0.0);
+  EXPECT_GE(r.times.wall, r.render.times.upload);
 }
 
 }  // namespace

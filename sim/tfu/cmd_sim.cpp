@@ -281,7 +281,9 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
       throw InputError(fmt::format("--compress: {}", e.what()));
     }
   }
+  const auto load_start = std::chrono::steady_clock::now();
   const Scene scene = open_scene({name, o.width, o.height, o.game_dir}, compress);
+  const double load_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
   RenderOptions ro;
   ro.trace = true;
   ro.line_bytes = unit.cache.line_bytes;
@@ -310,6 +312,7 @@ sim::Stats run_scene(SimOptions& o, const CLI::App& cmd, const rtl::UnitConfig& 
   so.engine = o.unit_engine;
   so.compare_engines = o.compare_engines;
   SceneRun run = render_and_simulate(scene, ro, unit, so, o.bench);
+  run.load_wall = load_wall;
   const RenderResult& render = run.render;
   rtl::SceneSimResult& res = run.res;
   rec.scene = {name, o.width, o.height, o.game_dir};

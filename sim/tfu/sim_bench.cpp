@@ -2,15 +2,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
 #include "cmodel/error.hpp"
 #include "cmodel/golden_unit.hpp"
+#include "cmodel/parallel.hpp"
 #include "rtl/golden_compare.hpp"
 #include "rtl/tfu_unit.hpp"
 #include "rtl/unit_stats.hpp"
@@ -23,8 +28,42 @@ size_t peak_rss_bytes() {
   return static_cast<size_t>(ru.ru_maxrss) * 1024;  // Linux: kilobytes
 }
 
+double process_cpu_seconds() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(ru.ru_utime) + seconds(ru.ru_stime);
+}
+
+namespace {
+
+// The process's age: /proc/uptime (seconds since boot, to 10 ms) less /proc/self/stat's start
+// time (field 22, clock ticks since boot; the file's second field, the command, is in parentheses
+// and may hold spaces, so the fields are counted after its closing one). 0 where unreadable.
+double process_age_seconds() {
+  std::ifstream stat("/proc/self/stat"), uptime("/proc/uptime");
+  std::string line;
+  double up = 0;
+  if (!std::getline(stat, line) || !(uptime >> up)) return 0;
+  const size_t close = line.rfind(')');
+  if (close == std::string::npos) return 0;
+  std::istringstream fields(line.substr(close + 1));
+  std::string field;
+  for (int k = 3; k <= 22 && fields >> field; ++k)  // fields 3 (state) .. 22 (starttime)
+    if (k == 22) return std::max(0.0, up - std::stod(field) / static_cast<double>(sysconf(_SC_CLK_TCK)));
+  return 0;
+}
+
+const ProcessStart kAtStaticInit{process_age_seconds(), process_cpu_seconds()};
+
+}  // namespace
+
+const ProcessStart& process_start() { return kAtStaticInit; }
+
 SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::UnitConfig& unit, rtl::SceneSimOptions so,
                              bool bench) {
+  const RenderOptions plain_ro = ro;
+  const rtl::SceneSimOptions plain_so = so;
   if (bench) ro.threads = 1;  // the golden render's time, one thread, for the end-to-end ratio
   // --bench: the units one at a time, so that the CPU seconds are those of one core. Units sharing
   // a memory then take turns at their misses on that core, and their hand-overs are in the figure.
@@ -41,6 +80,7 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
   // --bench with the timing recurrences also times the clocked blocks on the same requests.
   out.clocked = bench && so.engine == rtl::UnitEngine::Recurrence;
   rtl::SceneSimResult& res = out.res;
+  out.plain.wall = 1e300;
   for (int run = 0; run < out.runs; ++run) {
     double render_secs = 0;
     double wall = 0;
@@ -85,11 +125,71 @@ SceneRun render_and_simulate(const Scene& scene, RenderOptions ro, const rtl::Un
       out.clocked_secs = std::min(out.clocked_secs, c.cycle_seconds);
       out.clocked_ratio.push_back(c.cycle_seconds / c.golden_seconds);
     }
+    if (bench && out.streamed) {  // as a plain `tfu sim` runs it: its wall clock, part by part
+      rtl::RenderedSceneSim p = rtl::render_and_simulate_scene(scene, plain_ro, unit, plain_so);
+      if (p.sim.cycles != res.cycles || p.sim.image.texels != res.image.texels)
+        throw CheckFailed("--bench: a run on the default threads gave other cycles or another image");
+      if (p.times.wall < out.plain.wall) {
+        out.plain = std::move(p.times);
+        out.plain_upload = p.render.times.upload;
+        out.plain_bands_cpu = p.render.times.bands_cpu;
+      }
+    }
   }
+  out.plain_render_threads = plain_ro.threads > 0 ? plain_ro.threads : hardware_threads();
   std::sort(out.pair_ratio.begin(), out.pair_ratio.end());
   std::sort(out.clocked_ratio.begin(), out.clocked_ratio.end());
   return out;
 }
+
+namespace {
+
+// The streamed run as a plain `tfu sim` makes it: its wall clock, the start-up before it, where the
+// threads' CPU seconds went, how long they waited, and which bound the wall clock sits at. On C
+// cores the streamed part takes at least max(work / C, the busiest unit's thread, the render's
+// workers' share of theirs); more units lower only the second, so --units N helps while a unit's
+// thread is the longest of the three.
+void print_streamed_wall(const SceneRun& run, int units) {
+  const rtl::StreamTimes& t = run.plain;
+  double unit_cpu = 0, unit_max = 0, unit_wait = 0;
+  for (size_t k = 0; k < t.unit_cpu.size(); ++k) {
+    unit_cpu += t.unit_cpu[k];
+    unit_max = std::max(unit_max, t.unit_cpu[k]);
+    unit_wait += t.unit_wait[k];
+  }
+  const int cores = hardware_threads();
+  const double streamed = t.wall - run.plain_upload;  // from the first band on
+  const double work = run.plain_bands_cpu + unit_cpu;
+  const double by_cores = work / cores, by_render = run.plain_bands_cpu / std::min(cores, run.plain_render_threads);
+  const double bound = std::max({by_cores, unit_max, by_render});
+  std::string limit;
+  if (bound == unit_max)
+    limit = fmt::format("the busiest unit's thread ({:.3f} s CPU): more units (up to {} cores) would split it", unit_max, cores);
+  else if (bound == by_cores)
+    limit = fmt::format("the CPU: {:.3f} s of work on {} core(s) (render {:.0f} %, units {:.0f} %); more units cannot "
+                        "lower it, less work can (the render's shading and golden sampler, the units' golden compare)",
+                        work, cores, 100 * run.plain_bands_cpu / work, 100 * unit_cpu / work);
+  else
+    limit = fmt::format("the render's band workers ({:.3f} s CPU on {} thread(s))", run.plain_bands_cpu,
+                        std::min(cores, run.plain_render_threads));
+  double load[1] = {0};
+  const bool has_load = getloadavg(load, 1) == 1;
+  const ProcessStart& ps = process_start();
+  std::cout << fmt::format(
+      "  wall clock as `tfu sim` runs it ({} render thread(s), {} unit thread(s), {} core(s); best of {} runs{}):\n"
+      "    start-up: {:.2f} s before main ({:.2f} s CPU: the dynamic loader and the shared libraries' initialisers), "
+      "level load {:.3f} s, texture upload {:.3f} s\n"
+      "    streamed part {:.3f} s (render, units and golden compare together; with the upload {:.3f} s)\n"
+      "    CPU: render band workers {:.3f} s, units {:.3f} s (busiest {:.3f} s): {:.3f} s, {:.2f} cores busy\n"
+      "    waits: units for requests {:.3f} s (summed), the render's hand-off for room in the units' windows {:.3f} s\n"
+      "    bound: {:.3f} s, set by {}\n",
+      run.plain_render_threads, units, cores, run.runs,
+      has_load ? fmt::format(", load average {:.2f}", load[0]) : std::string(), ps.age, ps.cpu, run.load_wall,
+      run.plain_upload, streamed, t.wall, run.plain_bands_cpu, unit_cpu, unit_max, work, work / streamed, unit_wait,
+      t.handoff_wait, bound, limit);
+}
+
+}  // namespace
 
 void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units) {
   const rtl::SceneSimResult& res = run.res;
@@ -114,6 +214,7 @@ void print_bench(const SceneRun& run, rtl::UnitEngine engine, int units) {
       "    wall {:.3f} s for {} unit(s) (first run: {})\n",
       run.render_secs, run.wall, units,
       run.streamed ? "render, cycle model and golden compare streamed together" : "cycle model + golden compare");
+  if (run.streamed) print_streamed_wall(run, units);
   // The process's peak resident set after the first run (before the clocked blocks' whole-frame
   // runs): the scene, its textures and the working set of the run (docs/cycle-model.md, "Streaming").
   std::cout << fmt::format("    peak RSS {:.1f} MB after the first run ({}), {:.1f} bytes per request\n",

@@ -32,7 +32,26 @@ struct SceneRun {
   bool streamed = false;             // the render and the units ran together (rtl::render_and_simulate_scene)
   size_t peak_rss_bytes = 0;         // the process's peak resident set after the first run
   std::vector<double> clocked_ratio; // their ratio of each run, sorted
+  // --bench of a streamed run: the run as a plain `tfu sim` makes it (the render on its default
+  // threads, every unit on a thread of its own), best of kBenchRuns by wall clock, alternating
+  // with the runs above; its render's upload, band workers' CPU and threads; and the start-up:
+  // the level's load (open_scene, set by the caller), the process's age and CPU seconds when the
+  // program's own initialisers ran (the dynamic loader and the shared libraries' initialisers).
+  rtl::StreamTimes plain;
+  double plain_upload = 0, plain_bands_cpu = 0;
+  int plain_render_threads = 0;
+  double load_wall = 0;
 };
+
+// The process's age (wall seconds since it was started) and CPU seconds (user + system, every
+// thread's) when the program's static initialisers ran, i.e. what the dynamic loader and the
+// shared libraries' initialisers took before them; the age to the kernel's clock tick (10 ms).
+struct ProcessStart {
+  double age = 0, cpu = 0;
+};
+const ProcessStart& process_start();
+// The process's CPU seconds so far (getrusage: user + system, every thread's).
+double process_cpu_seconds();
 
 // Renders the scene (`ro`, one thread with `bench`) and simulates its trace (`so`; one thread with `bench`),
 // streamed where the run allows (rtl::render_and_simulate_scene).
