@@ -17,6 +17,7 @@
 #include "cmodel/kernels.hpp"
 #include "cmodel/texture_memory.hpp"
 #include "rtl/texel_cache.hpp"
+#include "testbench/cache_pairs.hpp"
 #include "testbench/iterations.hpp"
 
 namespace tfu {
@@ -126,73 +127,41 @@ namespace {
 // order all matter).
 TEST(TexelCache, FullSquareInClosedFormEqualsGridAccess) {
   std::mt19937 rng(13);
-  constexpr int kLevels = 7;  // 72 x 40 down to 1 x 1
   int closed_form = 0;
-  for (const BankMapping mapping : {BankMapping::TexelParity, BankMapping::BlockParity})
-    for (const int banks : {1, 4})
-      for (const int line_bytes : {64, 256, 1024})
-        for (const int ways : {1, 4}) {
-          TexelCacheConfig cfg;
-          cfg.line_bytes = line_bytes;
-          cfg.ways = ways;
-          cfg.capacity_bytes = line_bytes * ways * 4;
-          cfg.banks = banks;
-          cfg.bank_mapping = mapping;
-          TextureMemory mem;
-          std::vector<TextureDescriptor> tex;
-          for (const MemoryLayout layout : {MemoryLayout::Tiled, MemoryLayout::Linear})
-            for (const TexelFormat format : {TexelFormat::RGBA8, TexelFormat::L8}) {
-              Texture t;
-              t.format = format;
-              t.layout = layout;
-              t.tile_bytes = line_bytes;
-              for (int l = 0; l < kLevels; ++l) t.levels.emplace_back(mip_extent(72, l), mip_extent(40, l));
-              tex.push_back(place_texture(mem, t, static_cast<uint64_t>(line_bytes)));
-            }
-          TexelCache fast(cfg, tex), plain(cfg, tex);
-          for (int n = 0; n < test::iterations(1500); ++n) {
-            const int t = static_cast<int>(rng() % tex.size()), level = static_cast<int>(rng() % kLevels);
-            const int w = tex[static_cast<size_t>(t)].level_width(level),
-                      h = tex[static_cast<size_t>(t)].level_height(level);
-            TapGrid g{};
-            const int kind = n % 8;  // 0-4: runs (cut below 4 texels); 5: wrapped or clamped; 6: unused cells; 7: 2x2
-            g.cols = g.rows = kind == 7 ? 2 : 4;
-            const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(std::max(1, w - 3)));
-            const int y0 = static_cast<int>(rng() % static_cast<uint32_t>(std::max(1, h - 3)));
-            const bool clamp = rng() % 2 == 0;
-            for (int i = 0; i < g.cols; ++i) {
-              const int x = kind == 5 ? x0 + w - 2 + i : x0 + i, y = kind == 5 ? y0 + h - 2 + i : y0 + i;
-              g.x[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(x, w - 1) : x % w);
-              g.y[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(y, h - 1) : y % h);
-            }
-            g.used = square_cells(g.cols, g.rows);
-            if (kind == 6) g.used = static_cast<uint16_t>(g.used & (rng() | 1u));
-            closed_form += g.cols == 4 && g.used == square_cells(4, 4) ? 1 : 0;
-            const FootprintResult want = plain.access(t, level, g);
-            const FootprintResult got = g.cols == 4 ? fast.access_square4(t, level, g) : fast.access(t, level, g);
-            const auto where = [&] {
-              return fmt::format("{} line {} ways {} banks {}: footprint {}", static_cast<int>(mapping), line_bytes,
-                                 ways, banks, n);
-            };
-            ASSERT_EQ(got.hits, want.hits) << where();
-            ASSERT_EQ(got.misses, want.misses) << where();
-            for (size_t m = 0; m < static_cast<size_t>(want.misses); ++m)
-              ASSERT_EQ(got.missed_lines[m], want.missed_lines[m]) << where();
-            ASSERT_EQ(got.sector_hits, want.sector_hits) << where();
-            ASSERT_EQ(got.sector_lookups, want.sector_lookups) << where();
-            ASSERT_EQ(got.cycles, want.cycles) << where();
-          }
-          for (int l = 0; l < kLevels; ++l) {
-            EXPECT_EQ(fast.level_hits(l), plain.level_hits(l));
-            EXPECT_EQ(fast.level_misses(l), plain.level_misses(l));
-          }
-          for (int t = 0; t < static_cast<int>(tex.size()); ++t) {
-            EXPECT_EQ(fast.texture_hits(t), plain.texture_hits(t));
-            EXPECT_EQ(fast.texture_misses(t), plain.texture_misses(t));
-          }
-          EXPECT_EQ(fast.sector_hits(), plain.sector_hits());
-          EXPECT_EQ(fast.sector_lookups(), plain.sector_lookups());
-        }
+  test::for_every_cache_pair([&](const TexelCacheConfig& cfg, const std::vector<TextureDescriptor>& tex,
+                                 TexelCache& fast, TexelCache& plain) {
+    for (int n = 0; n < test::iterations(1500); ++n) {
+      const int t = static_cast<int>(rng() % tex.size()), level = static_cast<int>(rng() % test::kCachePairLevels);
+      const int w = tex[static_cast<size_t>(t)].level_width(level), h = tex[static_cast<size_t>(t)].level_height(level);
+      TapGrid g{};
+      const int kind = n % 8;  // 0-4: runs (cut below 4 texels); 5: wrapped or clamped; 6: unused cells; 7: 2x2
+      g.cols = g.rows = kind == 7 ? 2 : 4;
+      const int x0 = static_cast<int>(rng() % static_cast<uint32_t>(std::max(1, w - 3)));
+      const int y0 = static_cast<int>(rng() % static_cast<uint32_t>(std::max(1, h - 3)));
+      const bool clamp = rng() % 2 == 0;
+      for (int i = 0; i < g.cols; ++i) {
+        const int x = kind == 5 ? x0 + w - 2 + i : x0 + i, y = kind == 5 ? y0 + h - 2 + i : y0 + i;
+        g.x[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(x, w - 1) : x % w);
+        g.y[static_cast<size_t>(i)] = static_cast<int16_t>(clamp ? std::min(y, h - 1) : y % h);
+      }
+      g.used = square_cells(g.cols, g.rows);
+      if (kind == 6) g.used = static_cast<uint16_t>(g.used & (rng() | 1u));
+      closed_form += g.cols == 4 && g.used == square_cells(4, 4) ? 1 : 0;
+      const FootprintResult want = plain.access(t, level, g);
+      const FootprintResult got = g.cols == 4 ? fast.access_square4(t, level, g) : fast.access(t, level, g);
+      const auto where = [&] {
+        return fmt::format("{} line {} cfg.ways {} cfg.banks {}: footprint {}", static_cast<int>(cfg.bank_mapping),
+                           cfg.line_bytes, cfg.ways, cfg.banks, n);
+      };
+      ASSERT_EQ(got.hits, want.hits) << where();
+      ASSERT_EQ(got.misses, want.misses) << where();
+      for (size_t m = 0; m < static_cast<size_t>(want.misses); ++m)
+        ASSERT_EQ(got.missed_lines[m], want.missed_lines[m]) << where();
+      ASSERT_EQ(got.sector_hits, want.sector_hits) << where();
+      ASSERT_EQ(got.sector_lookups, want.sector_lookups) << where();
+      ASSERT_EQ(got.cycles, want.cycles) << where();
+    }
+  });
   EXPECT_GT(closed_form, 24 * test::iterations(1500) / 2);  // 6 of 8 footprints (some kind-6 masks are full)
 }
 
