@@ -7,6 +7,7 @@
 // work completes with the same results (they never depend on the number of threads), only slower.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <string>
 
@@ -23,6 +24,11 @@ int hardware_threads();
 
 // CPU seconds used so far by the calling thread (CLOCK_THREAD_CPUTIME_ID): speed figures only.
 double thread_cpu_seconds();
+
+// Wall-clock seconds elapsed since `t0` (steady clock): speed figures only.
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // Runs body(0) on the calling thread and body(1) .. body(workers - 1) on new threads (workers is
 // clamped to 1..kMaxThreads), then joins them. Returns how many workers ran (fewer than asked only

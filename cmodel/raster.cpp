@@ -838,9 +838,6 @@ void render_scene(const Scene& scene, const RenderOptions& opts, RenderResult& r
   ctx.height = scene.height;
   ctx.result = &result;
   using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-  };
   const Clock::time_point t_upload = Clock::now();
   make_samplers(ctx, result);
   result.times.upload = seconds_since(t_upload);

@@ -3,13 +3,9 @@
 #include <algorithm>
 #include <chrono>
 
-namespace tfu::rtl {
+#include "cmodel/parallel.hpp"
 
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
+namespace tfu::rtl {
 
 double RoomSignal::wait_past(uint64_t seen) {
   std::unique_lock lock(mutex_);

@@ -10,6 +10,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/json_output.hpp"
 #include "cmodel/metrics.hpp"
+#include "cmodel/parallel.hpp"
 #include "cmodel/raster.hpp"
 #include "cmodel/scene_source.hpp"
 #include "rtl/cost_model.hpp"
@@ -21,10 +22,6 @@ namespace tfu::sweep {
 namespace {
 
 namespace fs = std::filesystem;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string scene_key(const Spec&, const Point& p) { return fmt::format("{}\n{}x{}", p.scene_path, p.width, p.height); }
 
