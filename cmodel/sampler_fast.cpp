@@ -6,6 +6,7 @@
 // the CLI's --plain): a Sampler built then dispatches to the plain datapath only.
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <utility>
 
 #include "cmodel/aniso_fast.hpp"
@@ -15,6 +16,7 @@
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/sampler.hpp"
 #include "cmodel/sampler_internal.hpp"
+#include "cmodel/texel_coord4.hpp"
 
 namespace tfu {
 
@@ -374,7 +376,10 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
 // levels, the second level's lerp runs when some lane blends, and a lane that does not blend takes
 // its level0 again with weight 0 (the blend unit then gives bilinear_lerp8's value, as
 // filter_levels). The lanes are 32-bit texel words and 8-bit fractions (dp::fast::Quad8); with
-// SSE2 a full group whose requests share their levels builds them in registers (GroupLanes).
+// SSE2 a group whose requests share their levels builds them in registers (GroupLanes), through
+// the 4-lane address stage (cmodel/texel_coord4.hpp: coordinates, wrap, texel indices for the four
+// lanes at once; its tests TexelCoord4.*) when every coordinate is one its coordinate unit takes and
+// the wrap modes are repeat on a power of two or the clamps, else lane by lane.
 namespace {
 // A group of m = 1..4 requests: lane k < m filled by tap(k); the other lanes zero.
 template <class F>
@@ -397,15 +402,16 @@ template <WrapMode kWs, WrapMode kWt>
   for (size_t k = 0; k < m; ++k) bilinear8_taps<kWs, kWt>(img, border, r[k].s, r[k].t, q, k);
 }
 #if defined(__SSE2__)
-// A full group's four footprints on one level as the 4-lane unit's inputs, built in registers (as
+// A group's four footprints on one level as the 4-lane unit's inputs, built in registers (as
 // aniso_linear8's lanes: four 32-bit stores read back as one 128-bit load of a dp::fast::Quad8
 // cannot be forwarded and stall until the stores retire).
 struct GroupLanes {
   __m128i a, b, c, d, fu, fv;
 };
+// Per lane: address, wrap and the four texel words of lerp_lane (lane k >= m masked: zero).
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline GroupLanes group_lanes(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
-  const auto at = [&](size_t k) __attribute__((always_inline)) {  // lane k >= m masked: zero
+[[gnu::always_inline]] inline GroupLanes group_lanes_per_lane(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
+  const auto at = [&](size_t k) __attribute__((always_inline)) {
     return k < m ? lerp_lane<kWs, kWt>(img, border, texel_coord(r[k].s, img.width), texel_coord(r[k].t, img.height))
                  : LerpLane{0, 0, 0, 0, 0, 0};
   };
@@ -415,6 +421,89 @@ template <WrapMode kWs, WrapMode kWt>
     return _mm_setr_epi32(lane(x0), lane(x1), lane(x2), lane(x3));
   };
   return {lanes(&LerpLane::a), lanes(&LerpLane::b), lanes(&LerpLane::c), lanes(&LerpLane::d), lanes(&LerpLane::fu), lanes(&LerpLane::fv)};
+}
+
+// The group's coordinates for the 4-lane address stage (cmodel/texel_coord4.hpp), formed once per
+// group: s and t of lanes 0..3 in binary64; a lane k >= m repeats request 0 (its footprint is
+// fetched, in range, and its result not stored). `unit`: every s and t is one the coordinate unit
+// takes (else the group takes group_lanes_per_lane).
+struct GroupCoords {
+  dp::fast::Coords4d s, t;
+  bool unit;
+};
+[[gnu::always_inline]] inline GroupCoords group_coords(size_t m, const SampleRequest* r) {
+  static_assert(offsetof(SampleRequest, s) == 0 && offsetof(SampleRequest, t) == 4);
+  const auto st = [&](size_t k) __attribute__((always_inline)) {  // (s, t) of lane k in the low half
+    return _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&r[k < m ? k : 0])));
+  };
+  const __m128 x01 = _mm_unpacklo_ps(st(0), st(1)), x23 = _mm_unpacklo_ps(st(2), st(3));  // s0 s1 t0 t1, s2 s3 t2 t3
+  const __m128 s = _mm_movelh_ps(x01, x23), t = _mm_movehl_ps(x23, x01);
+  return {dp::fast::widen4(s), dp::fast::widen4(t), (dp::fast::texel_coord4_lanes(s) & dp::fast::texel_coord4_lanes(t)) == 15};
+}
+
+// The four footprints on one level through the 4-lane address stage: coordinates
+// (dp::fast::texel_coord4), wrap (dp::fast::wrap2x4; the caller checks wrap2x4_takes), texel
+// indices y w + x, then the texel words: when every lane's taps i0 and i0 + 1 are next to each
+// other in a row (and no tap is a border tap), each row's two words of a lane in one 64-bit load;
+// else one load per tap, and the border word where x or y is -1. Lanes equal lerp_lane's.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline GroupLanes group_lanes4(LevelView img, Rgba8 border, const GroupCoords& g) {
+  const dp::fast::TexelCoords4 u = dp::fast::texel_coord4(g.s, img.width), v = dp::fast::texel_coord4(g.t, img.height);
+  __m128i x0, x1, y0, y1;
+  dp::fast::wrap2x4<kWs>(u.i0, img.width, x0, x1);
+  dp::fast::wrap2x4<kWt>(v.i0, img.height, y0, y1);
+  constexpr bool kB = kMayBorder<kWs, kWt>;
+  __m128i next = _mm_cmpeq_epi32(x1, _mm_add_epi32(x0, _mm_set1_epi32(1)));  // taps i0, i0 + 1 side by side
+  __m128i bx0{}, bx1{}, by0{}, by1{};  // border taps (-1): all ones
+  if constexpr (kB) {
+    bx0 = _mm_srai_epi32(x0, 31), bx1 = _mm_srai_epi32(x1, 31), by0 = _mm_srai_epi32(y0, 31), by1 = _mm_srai_epi32(y1, 31);
+    next = _mm_andnot_si128(_mm_or_si128(_mm_or_si128(bx0, bx1), _mm_or_si128(by0, by1)), next);
+    x0 = _mm_andnot_si128(bx0, x0), x1 = _mm_andnot_si128(bx1, x1);  // read texel 0 there, then the border word
+    y0 = _mm_andnot_si128(by0, y0), y1 = _mm_andnot_si128(by1, y1);
+  }
+  const __m128i w = _mm_set1_epi32(img.width);
+  const __m128i r0 = dp::fast::row_offset4(y0, w), r1 = dp::fast::row_offset4(y1, w);
+  const __m128i ia = _mm_add_epi32(r0, x0), ic = _mm_add_epi32(r1, x0);
+  const auto word = [&](int32_t i) __attribute__((always_inline)) {
+    return std::bit_cast<int32_t>(img.texels[static_cast<uint32_t>(i)]);
+  };
+  if (_mm_movemask_ps(_mm_castsi128_ps(next)) == 15) {
+    alignas(16) int32_t ix[8];
+    _mm_store_si128(reinterpret_cast<__m128i*>(ix), ia);
+    _mm_store_si128(reinterpret_cast<__m128i*>(ix + 4), ic);
+    const auto pair = [&](int32_t i) __attribute__((always_inline)) {  // words i, i + 1
+      return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(img.texels + static_cast<uint32_t>(i)));
+    };
+    const __m128i ab01 = _mm_unpacklo_epi32(pair(ix[0]), pair(ix[1])), ab23 = _mm_unpacklo_epi32(pair(ix[2]), pair(ix[3]));
+    const __m128i cd01 = _mm_unpacklo_epi32(pair(ix[4]), pair(ix[5])), cd23 = _mm_unpacklo_epi32(pair(ix[6]), pair(ix[7]));
+    return {_mm_unpacklo_epi64(ab01, ab23), _mm_unpackhi_epi64(ab01, ab23), _mm_unpacklo_epi64(cd01, cd23),
+            _mm_unpackhi_epi64(cd01, cd23), u.f, v.f};
+  }
+  alignas(16) int32_t ix[16];
+  _mm_store_si128(reinterpret_cast<__m128i*>(ix), ia);
+  _mm_store_si128(reinterpret_cast<__m128i*>(ix + 4), _mm_add_epi32(r0, x1));
+  _mm_store_si128(reinterpret_cast<__m128i*>(ix + 8), ic);
+  _mm_store_si128(reinterpret_cast<__m128i*>(ix + 12), _mm_add_epi32(r1, x1));
+  const auto gather = [&](const int32_t* i) __attribute__((always_inline)) {
+    return _mm_setr_epi32(word(i[0]), word(i[1]), word(i[2]), word(i[3]));
+  };
+  GroupLanes l{gather(ix), gather(ix + 4), gather(ix + 8), gather(ix + 12), u.f, v.f};
+  if constexpr (kB) {
+    const __m128i bw = _mm_set1_epi32(std::bit_cast<int32_t>(border));
+    const auto sel = [&](__m128i x, __m128i m) { return _mm_or_si128(_mm_andnot_si128(m, x), _mm_and_si128(m, bw)); };
+    l.a = sel(l.a, _mm_or_si128(bx0, by0)), l.b = sel(l.b, _mm_or_si128(bx1, by0));
+    l.c = sel(l.c, _mm_or_si128(bx0, by1)), l.d = sel(l.d, _mm_or_si128(bx1, by1));
+  }
+  return l;
+}
+// A group's footprints on one level: the 4-lane address stage where it takes the group, else per lane.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::always_inline]] inline GroupLanes group_lanes(size_t m, LevelView img, Rgba8 border, const SampleRequest* r,
+                                                     const GroupCoords& g) {
+  if constexpr (dp::fast::kWrap2x4<kWs> && dp::fast::kWrap2x4<kWt>)
+    if (g.unit && dp::fast::wrap2x4_takes<kWs>(img.width) && dp::fast::wrap2x4_takes<kWt>(img.height))
+      return group_lanes4<kWs, kWt>(img, border, g);
+  return group_lanes_per_lane<kWs, kWt>(m, img, border, r);
 }
 inline __m128i lerp_group(const GroupLanes& g) { return dp::fast::bilinear_lerp8x4_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv); }
 inline dp::fast::Lanes8q lerp_group_q8(const GroupLanes& g) {
@@ -448,7 +537,7 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
       const size_t m = std::min<size_t>(4, n - i);
       const SampleRequest* r = req + i;
 #if defined(__SSE2__)
-      store_group(m, out + i, lerp_group(group_lanes<kV.ws, kV.wt>(m, img, border, r)));
+      store_group(m, out + i, lerp_group(group_lanes<kV.ws, kV.wt>(m, img, border, r, group_coords(m, r))));
 #else
       dp::fast::Quad8 q;  // every used lane is written before its use, the others zeroed
       group_taps<kV.ws, kV.wt>(m, img, border, r, q);
@@ -469,13 +558,14 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
       if (shared) {  // one level pick for the group
         const LevelPick p = select_levels(lambda_bias_clamp(r[0].lambda_q8, lod), mip, top);
 #if defined(__SSE2__)
-        const GroupLanes g0 = group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r);
+        const GroupCoords g = group_coords(m, r);
+        const GroupLanes g0 = group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level0]), border, r, g);
         if (p.blend == 0) {
           store_group(m, out + i, lerp_group(g0));
           continue;
         }
         const dp::fast::Lanes8q x = lerp_group_q8(g0);
-        const dp::fast::Lanes8q y = lerp_group_q8(group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level1]), border, r));
+        const dp::fast::Lanes8q y = lerp_group_q8(group_lanes<kV.ws, kV.wt>(m, LevelView(levels[p.level1]), border, r, g));
         const __m128i w = _mm_set1_epi32(static_cast<int32_t>((static_cast<uint32_t>(p.blend) << 16) | static_cast<uint32_t>(256 - p.blend)));
         store_group(m, out + i, dp::fast::level_blend8x4_lanes(x, y, w, w));
         continue;

@@ -1,0 +1,120 @@
+// 4-lane address stage of the golden sampler's LINEAR batch (speed only, SSE2; sampler_fast.cpp,
+// Sampler::FastPaths::batch). Plain twins, which each lane must equal bit for bit:
+//   texel_coord4    dp::texel_coord (cmodel/datapath.hpp: float_to_fixed_fast, cmodel/fixed_coord.hpp)
+//   wrap2x4         dp::fast::wrap_taps<kW, 2> (datapath_fast.hpp; wrap_run, texture.hpp)
+// Equality tests: TexelCoord4.EqualsTexelCoordOnEveryExponent, TexelCoord4.WrapEqualsWrapTaps
+// (testbench/test_texel_coord4.cpp); through the batch, Properties.BatchQuadsEqualPlainPath and
+// BatchEqualsSample. Off with the fast-path switch (TFU_PLAIN=1) with the rest of the batch.
+//
+// The coordinate unit computes u = floor(x W 2^8) - 2^7 (then i0 = u >> 8, f = u & 255) for four
+// coordinates x on one extent W at once, in binary64: x (a 24-bit significand) times W 2^8 (W <=
+// 2^15, so at most 15 significant bits) has at most 39 significant bits and is exact; adding 1.5
+// 2^52 rounds it to an integer r (|x W 2^8| < 2^51) in whatever rounding mode is set, r > x W 2^8
+// moves it down by one (floor), and the integer is read from the sum's low bits (bits(sum) -
+// bits(1.5 2^52)). No value is rounded on the way, so the result is float_to_fixed's exact floor.
+// The unit takes a lane whose x is zero or normal with |x| < 2^15 (exponent field <= 141): then
+// |x W| < 2^30 and i0 fits 32 bits. NaN, infinities, denormals and |x| >= 2^15 are left to the
+// plain unit (texel_coord4_lanes gives which lanes the unit takes); denormals so that the result
+// does not depend on MXCSR's DAZ (denormal inputs read as zero), which the integer twin ignores.
+#pragma once
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+
+#include <bit>
+#include <cstdint>
+
+#include "cmodel/datapath.hpp"
+#include "cmodel/texture.hpp"
+
+namespace tfu::dp::fast {
+
+// Four coordinates as binary64 (exact), lanes 0-1 and 2-3: formed once per group, used per level.
+struct Coords4d {
+  __m128d lo, hi;
+};
+[[gnu::always_inline]] inline Coords4d widen4(__m128 x) { return {_mm_cvtps_pd(x), _mm_cvtps_pd(_mm_movehl_ps(x, x))}; }
+
+// Bit k set where lane k of x is one the unit takes (zero, or normal with exponent field <= 141).
+[[gnu::always_inline]] inline int texel_coord4_lanes(__m128 x) {
+  const __m128i a = _mm_and_si128(_mm_castps_si128(x), _mm_set1_epi32(0x7FFFFFFF));
+  const __m128i normal = _mm_and_si128(_mm_cmpgt_epi32(a, _mm_set1_epi32(0x007FFFFF)),
+                                       _mm_cmplt_epi32(a, _mm_set1_epi32(142 << 23)));
+  return _mm_movemask_ps(_mm_castsi128_ps(_mm_or_si128(normal, _mm_cmpeq_epi32(a, _mm_setzero_si128()))));
+}
+
+// i0 and f of dp::texel_coord in 32-bit lanes.
+struct TexelCoords4 {
+  __m128i i0, f;
+};
+// dp::texel_coord(x_k, size) for the four lanes (defined on the lanes texel_coord4_lanes takes).
+[[gnu::always_inline]] inline TexelCoords4 texel_coord4(const Coords4d& x, int size) {
+  static_assert(kSubTexelBits == 8);
+  const __m128d scale = _mm_set1_pd(static_cast<double>(size) * (1 << kSubTexelBits));
+  constexpr double kRound = 0x1.8p52;  // 1.5 2^52: the sum's low bits hold the integer
+  const __m128d c = _mm_set1_pd(kRound);
+  // bits(sum) - bits(1.5 2^52) - 2^7 = r - 2^7
+  const __m128i bias = _mm_set1_epi64x(std::bit_cast<int64_t>(kRound) + (int64_t{1} << (kSubTexelBits - 1)));
+  const auto u2 = [&](__m128d v) __attribute__((always_inline)) {  // floor(v W 2^8) - 2^7, 64-bit lanes
+    const __m128d t = _mm_mul_pd(v, scale);                           // exact
+    const __m128d y = _mm_add_pd(t, c);                               // r + 1.5 2^52, r an integer next to t
+    const __m128i above = _mm_castpd_si128(_mm_cmpgt_pd(_mm_sub_pd(y, c), t));  // r > t: -1
+    return _mm_add_epi64(_mm_sub_epi64(_mm_castpd_si128(y), bias), above);
+  };
+  const __m128i u01 = u2(x.lo), u23 = u2(x.hi);  // |u| < 2^39
+  const auto low32 = [](__m128i a, __m128i b) {  // the low 32 bits of the four 64-bit lanes
+    return _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(a), _mm_castsi128_ps(b), _MM_SHUFFLE(2, 0, 2, 0)));
+  };
+  // u >> 8 fits 32 bits, so its low 32 bits are the same for a logical and an arithmetic shift
+  return {low32(_mm_srli_epi64(u01, kSubTexelBits), _mm_srli_epi64(u23, kSubTexelBits)),
+          _mm_and_si128(low32(u01, u23), _mm_set1_epi32((1 << kSubTexelBits) - 1))};
+}
+
+// Whether wrap2x4 takes the mode (kWrap2x4) and, on this extent, the mode: repeat on a power of two,
+// the clamps (not mirrored repeat).
+template <WrapMode kW>
+inline constexpr bool kWrap2x4 = kW != WrapMode::MirroredRepeat;
+template <WrapMode kW>
+[[gnu::always_inline]] inline bool wrap2x4_takes(int size) {
+  if constexpr (kW == WrapMode::Repeat) return (size & (size - 1)) == 0;
+  return kWrap2x4<kW>;
+}
+// The wrap unit for taps i0 and i0 + 1 of four lanes (|i0| < 2^31 - 1): t0, t1 the wrapped taps as
+// wrap_taps<kW, 2> gives them (clamp to border: -1 outside).
+template <WrapMode kW>
+[[gnu::always_inline]] inline void wrap2x4(__m128i i0, int size, __m128i& t0, __m128i& t1) {
+  const __m128i i1 = _mm_add_epi32(i0, _mm_set1_epi32(1));
+  if constexpr (kW == WrapMode::Repeat) {
+    const __m128i m = _mm_set1_epi32(size - 1);
+    t0 = _mm_and_si128(i0, m);
+    t1 = _mm_and_si128(i1, m);
+  } else if constexpr (kW == WrapMode::ClampToEdge) {
+    const __m128i hi = _mm_set1_epi32(size - 1);
+    const auto clamp = [&](__m128i i) {  // max(0, min(i, size - 1)); |i - (size - 1)| < 2^31
+      const __m128i d = _mm_sub_epi32(i, hi);
+      const __m128i lo = _mm_add_epi32(hi, _mm_and_si128(d, _mm_srai_epi32(d, 31)));
+      return _mm_andnot_si128(_mm_srai_epi32(lo, 31), lo);
+    };
+    t0 = clamp(i0);
+    t1 = clamp(i1);
+  } else {
+    static_assert(kW == WrapMode::ClampToBorder);
+    const __m128i n = _mm_set1_epi32(size);
+    const auto inside = [&](__m128i i) {  // 0 <= i < size ? i : -1
+      const __m128i in = _mm_and_si128(_mm_cmpgt_epi32(i, _mm_set1_epi32(-1)), _mm_cmpgt_epi32(n, i));
+      return _mm_or_si128(i, _mm_xor_si128(in, _mm_set1_epi32(-1)));
+    };
+    t0 = inside(i0);
+    t1 = inside(i1);
+  }
+}
+
+// y w for four lanes 0 <= y < 2^15, 0 < w <= 2^15 (pmuludq on lanes 0, 2 and 1, 3).
+[[gnu::always_inline]] inline __m128i row_offset4(__m128i y, __m128i w) {
+  const __m128i even = _mm_mul_epu32(y, w), odd = _mm_mul_epu32(_mm_srli_epi64(y, 32), w);
+  return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(3, 1, 2, 0)), _mm_shuffle_epi32(odd, _MM_SHUFFLE(3, 1, 2, 0)));
+}
+
+}  // namespace tfu::dp::fast
+
+#endif
