@@ -334,6 +334,21 @@ class CacheStage : public sim::Module {
              lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ && miss_fifo.freed() <= t;
     }
     int64_t last_exit() const { return last_exit_; }
+    // The LINEAR quad path's lockstep footprint (software speed only; rtl/unit_recurrence.cpp,
+    // linear_quad, derives it from accept and exit above, which it must equal): takes_at(t) tells
+    // that a footprint visible at t is accepted at t without a stall (the previous one accepted
+    // before t, the tag port free at t, the miss FIFO room at t, the line buffer room without a
+    // look at the queue); hit(t) is accept and exit of such a footprint with one bank cycle and no
+    // misses whose output channel has room at its head: step(t), the port held one cycle.
+    bool takes_at(int64_t t, const ChannelTimes& miss_fifo) const {
+      return last_accept_ < t && last_accept_ + port_cycles_ <= t &&
+             lines_in_flight_ + kMaxFootprintLines <= b_->line_buffer_depth_ && miss_fifo.freed() <= t;
+    }
+    template <class Stalls>
+    [[gnu::always_inline]] int64_t hit(int64_t t, ChannelTimes& in, ChannelTimes& miss_fifo, Stalls& c) {
+      port_cycles_ = 1;
+      return step(t, in, miss_fifo, c);
+    }
     template <class Stalls>
     [[gnu::always_inline]] int64_t step(int64_t t, ChannelTimes& in, ChannelTimes& miss_fifo, Stalls& c) {
       ++c.footprints;

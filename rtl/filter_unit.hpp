@@ -80,6 +80,9 @@ class FilterUnit : public sim::Module {
     // from done above): the previous footprint left at t - 1; step(t) is done of a footprint of no
     // hold that completes no pixel, pushed at t - 1: it leaves `in` at t.
     bool in_step(int64_t t) const { return stage_.last == t - 1; }
+    // The LINEAR quad path's (the same with an output, the pixel's response): the cycle the
+    // previous footprint left (-1: none).
+    int64_t last() const { return stage_.last; }
     [[gnu::always_inline]] void step(int64_t t, ChannelTimes& in) {
       in.pop(t);
       stage_.last = t;

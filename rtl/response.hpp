@@ -68,6 +68,13 @@ class ResponseSink : public sim::Module {
     // The cycle a pixel pushed at `pushed` into the response channel `in` retires (and leaves `in`).
     [[gnu::always_inline]] int64_t retire_at(ChannelTimes& in, int64_t pushed) { return stage.move(pushed, in, nullptr); }
     int64_t last_retire() const { return stage.last; }  // -1: none yet
+    // The LINEAR quad path's lockstep footprint (rtl/unit_recurrence.cpp derives it from
+    // retire_at): a pixel pushed into `in` at t - 1, the previous one retired before t, retires
+    // at t.
+    [[gnu::always_inline]] void step(int64_t t, ChannelTimes& in) {
+      in.pop(t);
+      stage.last = t;
+    }
   } timing;
 
  private:

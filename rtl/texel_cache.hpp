@@ -156,8 +156,8 @@ class TexelCache {
       return access_quad(l, grid);
     return access_grid(l, grid);
   }
-  // access_square of `n` footprints in order (the recurrences' probe quad path: a pixel's level
-  // footprints), footprint j on level levels[j % nlevels] (nlevels 1 or 2) with grid grids[j]:
+  // access_square of `n` footprints in order (the recurrences' probe and LINEAR quad paths: a
+  // quad's level footprints), footprint j on level levels[j % nlevels] (nlevels 1 or 2) with grid grids[j]:
   // out[j] its bank cycles and misses, whose lines go to missed[first_miss ...] (`nmissed` the
   // list's length, advanced); counts[j % nlevels] summed. The per-level work once per batch
   // (rtl/texel_cache_probe_squares.cpp, software speed only; its plain twin is access_square).

@@ -1,5 +1,6 @@
-// The texel cache's lookup of a batch of 2 x 2 footprints whose four taps are all used (a pixel's
-// level footprints on the recurrences' probe quad path, rtl/unit_recurrence_probes.hpp). Software
+// The texel cache's lookup of a batch of 2 x 2 footprints whose four taps are all used (a quad's
+// level footprints on the recurrences' probe quad path, rtl/unit_recurrence_probes.hpp, and on
+// their LINEAR quad path, rtl/unit_recurrence_linear_quads.hpp). Software
 // speed only: the plain form is TexelCache::access_square (access_quad under block parity, else
 // access_grid, and tally), footprint by footprint; this one does the same lookups in the same
 // order (the tags, the LRU and the hints see the same sequence) with the per-level work (the
@@ -8,7 +9,7 @@
 // line and sector counts (TexelCache.ProbeSquaresEqualAccessSquare, testbench/test_tfu_unit.cpp:
 // random grids, wrapped and not, both bank mappings, 1 or 4 banks, tiled and linear levels,
 // 64- to 1024-byte lines). Off with the fast-path switch (cmodel/fast_paths.hpp: TFU_PLAIN=1, the
-// CLI's --plain), which turns the probe quad path off.
+// CLI's --plain), which turns the probe and LINEAR quad paths off.
 #include "rtl/texel_cache.hpp"
 
 namespace tfu::rtl {

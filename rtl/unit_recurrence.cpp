@@ -328,6 +328,94 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
       u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]},
                         static_cast<uint64_t>(quad_retire[k]));
   };
+  // The LINEAR quad path (rtl/unit_recurrence_linear_quads.hpp): one or two level footprints per
+  // pixel of `quad`, which lod_unit took at `quad_taken` (its levels from `lod`), timed footprint
+  // by footprint on register copies of the path's timing (LentTiming) as probe_quad's, the
+  // functions batched per quad. Out of line, as cubic_quad. (The level count is a template
+  // constant, so that the loop over levels unrolls.)
+  //
+  // The lockstep footprint (software speed only; its plain twin is the through_cache, done and
+  // retire_at below, which it equals; TfuUnit.LinearQuadPathEqualsThePlainBlocks). A level
+  // footprint that hits every line with one bank cycle and holds the filter no cycle (4 taps on 4
+  // lanes), with channels of depth D >= 2 and no filter pipeline registers. Let A be the earliest
+  // cycle address_gen may push it (the pixel's first: the cycle address_gen took the pixel; the
+  // level1 footprint: the level0 push + 1), E the cache's previous exit. Every channel's pop
+  // cycles increase strictly (every rule takes t >= its last + 1), so a channel's room() is at
+  // most its last pop - D + 2 <= its last pop. Then, when kernel_select's last cycle is at most A,
+  // the cache takes a footprint at A + 2 without a stall (takes_at: the previous accepted before
+  // A + 2, the port free by then, the miss FIFO and, at a glance, the line buffer room), the
+  // filter's last cycle is at most E + 1 and, when the footprint completes its pixel, the
+  // response's last retire at most E + 2:
+  //   address_gen   max(A, footprint.room() <= kernel_select's last <= A) = A
+  //   kernel_select max(A + 1, its last + 1 <= A + 1, shaped.room() <= last accept <= A + 1) = A + 1
+  //   accept        visible max(A + 2, last accept + 1 <= A + 2), port free <= A + 2, miss FIFO
+  //                 room <= A + 2, line buffer room: A + 2; no bank stall (min(t, port free) <=
+  //                 visible)
+  //   lines         one bank cycle, no misses: in at A + 2 (no memory reads, no slots)
+  //   exit          head e = max(A + 3, E + 1), ready A + 2 < e, texels.room() <= filter's last
+  //                 <= E + 1 <= e: e; no miss stall (min(ready, e) = ready < head), no
+  //                 back-pressure
+  //   filter        max(e + 1, its last + 1 <= E + 2 <= e + 1) + 0; completing the pixel also
+  //                 max(e + 1, response.room() <= last retire <= E + 2 <= e + 1): e + 1
+  //   response      (completing the pixel; no pipeline registers: passed at e + 1)
+  //                 max(e + 2, last retire + 1 <= E + 3 <= e + 2) = e + 2
+  // no stall counted (the footprint counted), no busy cycle, the same pops into the same
+  // channels. (Unlike the probe path's lockstep it does not ask the previous footprint to have
+  // moved in step: any earlier cycles leave these maxima unchanged.)
+  const bool linear_lockstep = lockstep_depths && u.filter_pipe.timing.regs.empty();
+  const auto linear_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
+    const size_t slot = stat_slot(quad.req);
+    const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
+      constexpr int kLevels = decltype(level_count)::value;
+      LentTiming p = lend();           // its members named as PathTiming's
+      CacheStage::StallCounts stalls;  // the quad's, in registers too
+      uint64_t busy = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
+        const int64_t pixel_taken = log.at(AddressGenTakesPixel, p.address_gen.take(pushed, ch.pixel));
+        for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
+          const bool emits = level + 1 == kLevels;
+          const int64_t a = level == 0 ? pixel_taken : p.address_gen.last_push + 1;  // A
+          if (linear_lockstep && linear.hits_in_one_cycle(k, level) && p.kernel_select.last <= a &&
+              p.cache.takes_at(a + 2, p.miss_fifo) && p.filter.last() <= p.cache.last_exit() + 1 &&
+              (!emits || p.response.last_retire() <= p.cache.last_exit() + 2)) {
+            p.address_gen.last_push = a;
+            p.footprint.pop(log.at(KernelSelectTakesFootprint, a + 1));
+            p.kernel_select.last = a + 1;
+            const int64_t e = log.at(
+                CacheEmitsFootprint,
+                p.cache.hit(log.at(CacheAcceptsFootprint, a + 2), p.shaped_footprint, p.miss_fifo, stalls));
+            p.filter.step(log.at(FilterFinishesFootprint, e + 1), p.texels);
+            if (emits) {
+              p.response.step(log.at(ResponseRetiresFilterPixel, e + 2), p.response_in);
+              quad_retire[static_cast<size_t>(k)] = e + 2;
+            }
+            continue;
+          }
+          const int64_t exit = through_cache(p, level == 0, pixel_taken, false, stalls,
+                                             [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
+                                               return linear.admit(k, level, now, bank_cycles);
+                                             });
+          const int64_t done =
+              log.at(FilterFinishesFootprint, p.filter.done(exit, 4, emits, p.texels, p.response_in, busy));
+          if (emits)
+            quad_retire[static_cast<size_t>(k)] =
+                retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
+        }
+      }
+      settle(p);
+      u.cache_stage.add_stalls(slot, stalls);
+      u.filter->busy_cycles(slot) += busy;
+    };
+    if (linear.address(quad, lod) == 1) {
+      footprint_times(std::integral_constant<int, 1>{});
+    } else {
+      footprint_times(std::integral_constant<int, 2>{});
+    }
+    linear.filter(quad_colour);
+    for (size_t k = 0; k < 4; ++k)
+      u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+  };
   // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
   const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
   sim::ProgressBar bar(retired, n);
@@ -351,37 +439,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
       return log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
     };
     if (linear.takes(quad)) {
-      // The LINEAR quad path: one or two level footprints per pixel, the functions batched per quad.
-      // (The level count is a template constant, so that the loop over levels unrolls.)
-      const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
-        constexpr int kLevels = decltype(level_count)::value;
-        const size_t slot = stat_slot(quad.req);
-        for (int k = 0; k < 4; ++k) {
-          const int64_t pixel_taken = pixel_taken_at(k);
-          for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
-            const auto quad_admit = [&](uint64_t now, int& bank_cycles) __attribute__((always_inline)) {
-              return linear.admit(k, level, now, bank_cycles);
-            };
-            const int64_t exit =
-                through_cache(unit_path, level == 0, pixel_taken, false, u.cache_stage.counters(slot), quad_admit);
-            const bool emits = level + 1 == kLevels;
-            const int64_t done =
-                log.at(FilterFinishesFootprint,
-                       u.filter->timing.done(exit, 4, emits, ch.texels, ch.response, u.filter->busy_cycles(slot)));
-            if (emits)
-              quad_retire[static_cast<size_t>(k)] =
-                  retire_at(u.response.timing, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
-          }
-        }
-      };
-      if (linear.address(quad, lod) == 1) {
-        footprint_times(std::integral_constant<int, 1>{});
-      } else {
-        footprint_times(std::integral_constant<int, 2>{});
-      }
-      linear.filter(quad_colour);
-      for (size_t k = 0; k < 4; ++k)
-        u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
+      linear_quad(quad_taken, lod);
       continue;
     }
     if (probes.takes(quad)) {

@@ -6,6 +6,7 @@ namespace tfu::rtl::detail {
 
 LinearQuadPath::LinearQuadPath(const Registers& regs, Unit& u, bool enabled)
     : regs_(regs), u_(u), sampler_ok_(regs.samplers.size(), false), texture_ok_(regs.textures.size(), false) {
+  for (TapGrid& g : grids_) g = TapGrid{{0, 0, 0, 0}, {0, 0, 0, 0}, 2, 2, square_cells(2, 2)};
   if (!enabled) return;
   for (size_t k = 0; k < regs.samplers.size(); ++k) sampler_ok_[k] = takes_sampler(regs.samplers[k]);
   for (size_t k = 0; k < regs.textures.size(); ++k) texture_ok_[k] = takes_texture(regs.textures[k]);
@@ -29,8 +30,26 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   }
   compressed_ = tex.compressed;
   srgb_ = tex.format == TexelFormat::SRGBA8;  // takes_texture: compressed
+  if (!compressed_) look_up(levels);
   u_.address_gen.count_isotropic_pixels(4, stat_slot(q.req));
   return levels;
+}
+
+void LinearQuadPath::look_up(int levels) {
+  const auto n = static_cast<size_t>(levels);
+  levels_ = levels;
+  for (size_t k = 0; k < 4; ++k)
+    for (size_t m = 0; m < n; ++m) {  // the columns and rows (2 x 2, every cell used: the rest as set up)
+      grids_[k * n + m].x = footprint_[m][k].grid.x;
+      grids_[k * n + m].y = footprint_[m][k].grid.y;
+    }
+  std::array<LineCounts, 2> sum{};  // per level
+  uint16_t missed = 0;
+  const std::array<int, 2> level{pick_.level0, levels == 2 ? pick_.level1 : pick_.level0};
+  u_.cache_stage.tags().access_squares(texture_, level, levels, grids_.data(), 4 * n, lookup_.data(), missed_.data(),
+                                       missed, sum);
+  const size_t slot = stat_slot(texture_, stage_);
+  for (size_t m = 0; m < n; ++m) u_.cache_stage.count_lines(slot, level[m], sum[m]);
 }
 
 uint64_t LinearQuadPath::admit_compressed(int k, int n, uint64_t now, int& bank_cycles) {

@@ -14,12 +14,19 @@
 //                 footprint's block coordinates (block_grid, rtl/address_gen_blocks.hpp, as
 //                 AddressGen::footprint forms them), and its pixel count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
-//   texel_cache   CacheStage::admit_lines per footprint, in the plain path's order (pixel by pixel,
-//                 level0 then level1: the tags, the LRU, the memory queue and the decoders see
-//                 the same sequence), then read_square_taps<2>; on a compressed texture
-//                 CacheStage::admit_block_square and read_block_squares
-//                 (rtl/cache_stage_block_squares.cpp), which take those block coordinates as the
-//                 plain blocks do;
+//   texel_cache   on an uncompressed texture admit_lines split in two, as the probe quad path
+//                 does (rtl/unit_recurrence_probes.hpp): the tags of the quad's footprints
+//                 (TexelCache::access_squares, rtl/texel_cache_probe_squares.cpp) at address time in
+//                 the plain path's order (pixel by pixel, level0 then level1: the tags, the LRU and
+//                 the hints see the same sequence; their state depends on the order of the lookups
+//                 only, and nothing else reads it during the quad), with the line counters
+//                 (CacheStage::count_lines, summed per level); then per footprint, at its accept
+//                 cycle in the timing, CacheStage::lines_ready (the bank cycles and the memory
+//                 reads of its missed lines: the memory queue sees the same sequence at the same
+//                 cycles); the read-out read_square_taps<2>; on a compressed texture
+//                 CacheStage::admit_block_square per footprint (the decoders' jobs need the accept
+//                 cycle) and read_block_squares (rtl/cache_stage_block_squares.cpp), which take
+//                 those block coordinates as the plain blocks do;
 //   filter        FilterUnit::filter_linear8x4: the 8-bit lerp of the four pixels in four lanes;
 //                 blending, FilterUnit::filter_blend_linear8x4: the Q.8 lerps of both levels, then
 //                 the blend unit per pixel. (The plain filter keeps a blending pixel's level0 Q.8
@@ -30,7 +37,9 @@
 //                 or dp::round_level, and encode_texel), per pixel: no 8-bit word lerps for this
 //                 format (docs/srgb.md).
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by
-// footprint. The plain path must give the same pixels, cycles and statistics: every test that
+// footprint (on register copies of the blocks' timing state, as the probe quad path's; a pixel's
+// hit in lockstep with its predecessor in one step, derived there). The plain path must give the
+// same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs
 // quads through both, and TfuUnit.LinearQuadPathEqualsThePlainBlocks compares this path with the
 // plain one; CompressedUnit.LinearQuadPathEqualsThePlainBlocks (testbench/test_compressed_unit.cpp)
@@ -69,12 +78,19 @@ class LinearQuadPath {
   // cycle `now`; the cycle its lines are all in, and the cycles it holds the tag port in
   // `bank_cycles`.
   // Inline in the recurrences' footprint loop, as admit_lines; the compressed branch out of line.
+  // (On an uncompressed texture its tags were looked up by address(): only the memory reads need
+  // `now`.)
   [[gnu::always_inline]] uint64_t admit(int k, int n, uint64_t now, int& bank_cycles) {
     if (compressed_) [[unlikely]]
       return admit_compressed(k, n, now, bank_cycles);
-    return u_.cache_stage.admit_square(texture_, stage_, n == 0 ? pick_.level0 : pick_.level1,
-                                       footprint_[static_cast<size_t>(n)][static_cast<size_t>(k)].grid, now,
-                                       bank_cycles);
+    const SquareLookup& l = lookup_[static_cast<size_t>(k * levels_ + n)];
+    return u_.cache_stage.lines_ready(texture_, l.cycles, l.misses, missed_.data() + l.first_miss, now, bank_cycles);
+  }
+  // Level footprint `n` of pixel k hits every line in one bank cycle (its tags, looked up by
+  // address(); false on a compressed texture, whose lookups wait for admit()).
+  bool hits_in_one_cycle(int k, int n) const {
+    const SquareLookup& l = lookup_[static_cast<size_t>(k * levels_ + n)];
+    return !compressed_ && l.misses == 0 && l.cycles <= 1;
   }
   // texel_cache read-out, filter and blend: the four pixels' colours.
   void filter(std::array<Rgba8, 4>& out) const;
@@ -92,6 +108,17 @@ class LinearQuadPath {
   std::array<std::array<FootprintReq, 4>, 2> footprint_{};
   // On a compressed texture, the same footprints in blocks (block_grid, rtl/address_gen_blocks.hpp).
   std::array<std::array<TapBlocks, 4>, 2> squares_{};
+  // On an uncompressed texture, the tags' answers (look_up(): TexelCache::access_squares) of level
+  // footprint n of pixel k at k levels_ + n (the plain order): the bank cycles, the missed lines
+  // (at most four of a 2 x 2 footprint) from missed_[first_miss]; look_up()'s batch of grids in
+  // the same order (2 x 2, every cell used: only the columns and rows change).
+  int levels_ = 1;
+  std::array<SquareLookup, 8> lookup_{};
+  std::array<TapGrid, 8> grids_{};
+  std::array<uint64_t, 8 * 4> missed_{};
+  // The tags of the quad's footprints (`levels` per pixel) in the plain path's order, and the
+  // cache stage's line counters (their sums per level).
+  void look_up(int levels);
   // admit() on a compressed texture: CacheStage::admit_block_square.
   [[gnu::noinline]] uint64_t admit_compressed(int k, int n, uint64_t now, int& bank_cycles);
   // Read-out of the four footprints on one level (`n`: 0 level0, 1 level1) as the lerp unit's

@@ -33,7 +33,6 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
 }
 
 void Unit::drain_to(size_t end, const UnitChunkSink* sink) {
-  UnitChunk chunk;
   if (sink != nullptr) {
     const size_t k = end - drained;
     chunk.first = drained;

@@ -118,6 +118,10 @@ struct Unit {
   RequestRing<uint64_t> exit_cycle;
   RetireStats retire_stats;
   size_t drained = 0;  // requests handed on (drain_to)
+  // drain_to's chunk, reused from chunk to chunk (software speed only: every field the sink reads is
+  // written for each chunk; the vectors keep their memory, which resize would otherwise clear for
+  // every chunk, and the process's fresh pages are expensive on this VM).
+  UnitChunk chunk;
   sim::Simulator sim;
   sim::Channel<QuadReq> c_quad{"quad", depth};
   sim::Channel<PixelReq> c_pixel{"pixel", depth};
