@@ -4,7 +4,9 @@
 #include <bit>
 #include <cmath>
 
+#include "cmodel/fast_paths.hpp"
 #include "cmodel/fixed_coord.hpp"
+#include "cmodel/lod_fast.hpp"
 
 namespace tfu {
 
@@ -47,6 +49,12 @@ int32_t lambda_from_derivatives(int64_t dudx, int64_t dvdx, int64_t dudy, int64_
 }
 
 TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
+  // The speed-only form (lod_fast.hpp, equal for every input: LodFast.*) unless the fast paths are off.
+  return fast_paths_enabled() ? lod_fast::derivatives_from_quad(s, t, width, height)
+                              : derivatives_from_quad_plain(s, t, width, height);
+}
+
+TexelDerivatives derivatives_from_quad_plain(const float s[4], const float t[4], int width, int height) {
   // Each of the three pixels' coordinates converted once (the out-of-line general case keeps the
   // compiler from merging repeated conversions).
   const auto w = static_cast<uint32_t>(width), h = static_cast<uint32_t>(height);

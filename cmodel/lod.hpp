@@ -44,7 +44,11 @@ struct LodParams {
 struct TexelDerivatives {
   int64_t dudx = 0, dvdx = 0, dudy = 0, dvdy = 0;
 };
+// derivatives_from_quad is the input stage of every model (the renderer, the cycle model's LOD unit,
+// rtl::golden_outputs): its speed-only form (lod_fast.hpp) unless the fast paths are off
+// (fast_paths.hpp), else its plain twin derivatives_from_quad_plain; equal for every input (LodFast.*).
 TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height);
+TexelDerivatives derivatives_from_quad_plain(const float s[4], const float t[4], int width, int height);
 TexelDerivatives derivatives_from_gradients(float dsdx, float dtdx, float dsdy, float dtdy, int width, int height);
 
 // |d| clamped to 2^31 - 1 (>= 2^15 texels in Q.16: beyond any level); 31 bits.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstring>
 #include <ctime>
 #include <exception>
 #include <limits>
@@ -26,6 +27,7 @@ namespace {
 
 constexpr int64_t kOne = int64_t{1} << kSubpixelBits;  // one pixel in Q.8
 constexpr int kTruthSamples = kTruthSamplesPerAxis * kTruthSamplesPerAxis;
+constexpr std::array<Rgba8, 4> kPrimaryQuad{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};
 
 int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -199,6 +201,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   // compiler would reload them through ctx after each.
   const bool ideal_path = ctx.opts->ideal, trace = ctx.opts->trace, keep_coords = ctx.opts->keep_coords;
   const bool track_winner = !ctx.winner.empty();
+  const bool plain_outputs = !ideal_path && !track_winner && !keep_coords;  // each drawn pixel: colour and depth only
   const auto triangle_index = static_cast<int32_t>(&tri - ctx.triangles.data());
   Rgba8* const image = res.image.texels.data();
   float* const depth = ctx.depth.data();
@@ -260,7 +263,8 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           mask |= 1u << k;
       }
       if (mask == 0) continue;
-      std::array<Rgba8, 4> colour{kPrimaryColour, kPrimaryColour, kPrimaryColour, kPrimaryColour};
+      std::array<Rgba8, 4> colour;
+      std::memcpy(colour.data(), kPrimaryQuad.data(), sizeof colour);  // one 16-byte copy, not 16 byte stores
       if (mesh.vertex_colour)
         for (size_t k = 0; k < 4; ++k)
           if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
@@ -308,7 +312,12 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
               if (mask >> k & 1u) colour[k] = combine_stage(colour[k], sampler.sample(s[k], t[k], lod), stage.combine);
           }
         } else {
-          const int32_t lambda = lambda_from_quad(s, t, tex.width(), tex.height());
+          // A sampler without MIP-mapping selects level 0 whatever lambda is (select_levels): the fast
+          // path then leaves lambda at 0 without the LOD unit, as the cycle model's LOD unit does
+          // (rtl/lod_unit.hpp); the plain path forms it (PlainPaths.* compare the two).
+          const int32_t lambda = fast && sampler.descriptor().mode.mip == MipMode::None
+                                     ? 0
+                                     : lambda_from_quad(s, t, tex.width(), tex.height());
           // The quad's covered pixels go to the filter unit together (its quad interface).
           std::array<SampleRequest, 4> reqs;
           std::array<Rgba8, 4> texel;
@@ -344,16 +353,22 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         }
       }
       if (fast && !ideal_path) texenv_quad::display_ramp(colour, display_shift);
-      for (int k = 0; k < 4; ++k) {
-        if (!(mask >> k & 1u)) continue;
-        const auto uk = static_cast<size_t>(k);
-        const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-        image[idx] = ideal_path ? to_rgba8(display_ramp_real(ideal[uk], display_shift))
-                     : fast     ? colour[uk]
-                                : display_ramp(colour[uk], display_shift);
-        depth[idx] = static_cast<float>(z[uk]);
-        if (track_winner) ctx.winner[idx] = triangle_index;
-        if (keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
+      if (fast && plain_outputs) {
+        // Only colour and depth kept: two pixels of a row at once (raster_quad_fast.hpp).
+        raster_fast::write_quad(mask, colour, z, static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx),
+                                static_cast<size_t>(W), image, depth);
+      } else {
+        for (int k = 0; k < 4; ++k) {
+          if (!(mask >> k & 1u)) continue;
+          const auto uk = static_cast<size_t>(k);
+          const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
+          image[idx] = ideal_path ? to_rgba8(display_ramp_real(ideal[uk], display_shift))
+                       : fast     ? colour[uk]
+                                  : display_ramp(colour[uk], display_shift);
+          depth[idx] = static_cast<float>(z[uk]);
+          if (track_winner) ctx.winner[idx] = triangle_index;
+          if (keep_coords) res.coords[idx] = {s0[uk], t0[uk]};
+        }
       }
       out.pixels += (mask & 1u) + (mask >> 1 & 1u) + (mask >> 2 & 1u) + (mask >> 3);  // std::popcount is a libgcc call without POPCNT
       ++out.quads;

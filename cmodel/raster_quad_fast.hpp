@@ -14,11 +14,15 @@
 // two pixels per SSE2 register (SSE2 is part of x86-64; packed double operations round each lane as
 // the scalar ones do). 1/w is formed once per pixel and shared by the stages, which the plain twin
 // recomputes per stage with the same operations. Elsewhere a portable per-lane loop stands in.
+// write_quad (the drawn pixels' colour and depth writes, two per row at once) has the per-pixel
+// write loop of shade_triangle as its plain twin; it is checked by the renders with the fast paths
+// on and off (PlainPaths.*, RasterQuadFast.WriteQuadEqualsThePerPixelWrites).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 
 #include "cmodel/raster.hpp"
 
@@ -112,6 +116,34 @@ inline void st(const QuadLanes& q, const RasterTriangle& tri, int set, float* s,
     t[k] = static_cast<float>(std::clamp(t_w / q.inv_w[k], -1e30, 1e30));
   }
 #endif
+}
+
+// The drawn pixels' writes of a quad: for each pixel k in `mask`, image[row k] = colour[k] and
+// depth[row k] = static_cast<float>(z[k]) (the plain twin: shade_triangle's per-pixel loop, which
+// this replaces when no other per-pixel output is kept). A row of the quad with both pixels drawn
+// takes one 8-byte store of two colours and one of two depths; cvtpd2ps rounds each lane to FP32 as
+// cvtsd2ss does (the same rounding mode, MXCSR), so the depths are the same bits. `idx0` is the
+// index of the quad's pixel (0, 0), `row` the image width.
+inline void write_quad(unsigned mask, const std::array<Rgba8, 4>& colour, const std::array<double, 4>& z, size_t idx0,
+                       size_t row, Rgba8* image, float* depth) {
+  for (size_t r = 0; r < 2; ++r) {
+    const unsigned m = mask >> (2 * r) & 3u;
+    if (m == 0) continue;
+    const size_t idx = idx0 + r * row;
+    if (m == 3u) {
+      std::memcpy(&image[idx], &colour[2 * r], 2 * sizeof(Rgba8));
+#if TFU_RASTER_QUAD_SSE2
+      _mm_storel_pi(reinterpret_cast<__m64*>(&depth[idx]), _mm_cvtpd_ps(_mm_loadu_pd(&z[2 * r])));
+#else
+      depth[idx] = static_cast<float>(z[2 * r]);
+      depth[idx + 1] = static_cast<float>(z[2 * r + 1]);
+#endif
+    } else {
+      const size_t k = m == 1u ? 0 : 1;
+      image[idx + k] = colour[2 * r + k];
+      depth[idx + k] = static_cast<float>(z[2 * r + k]);
+    }
+  }
 }
 
 }  // namespace tfu::raster_fast

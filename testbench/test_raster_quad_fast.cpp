@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "cmodel/raster.hpp"
 #include "cmodel/raster_quad_fast.hpp"
@@ -109,6 +111,38 @@ TEST(RasterQuadFast, ReusedResultEqualsAFreshRender) {
   EXPECT_GT(empty, 0);
   EXPECT_EQ(drawn + empty, 96 * 64);
   EXPECT_LE(drawn, fresh.stats.pixels);
+}
+
+TEST(RasterQuadFast, WriteQuadEqualsThePerPixelWrites) {
+  // Every mask, quads at every position of a 5 x 4 image (odd width: rows not 8-byte aligned),
+  // depths of every kind (rounding to FP32 up and down, ties, tiny, huge, infinite, NaN).
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<uint32_t> word;
+  const double depths[] = {0.1, 1.0 / 3.0, 0.5 + 0x1p-25, 0.5 + 0x1p-24 + 0x1p-25, 1e-300, 1e300, -0.0,
+                           std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  const size_t w = 5, h = 4;
+  for (int trial = 0; trial < 2000; ++trial)
+    for (unsigned mask = 0; mask < 16; ++mask) {
+      const size_t qx = static_cast<size_t>(trial) % (w - 1), qy = static_cast<size_t>(trial / 4) % (h - 1);
+      std::array<Rgba8, 4> colour;
+      std::array<double, 4> z;
+      for (size_t k = 0; k < 4; ++k) {
+        const uint32_t c = word(rng);
+        colour[k] = {static_cast<uint8_t>(c), static_cast<uint8_t>(c >> 8), static_cast<uint8_t>(c >> 16), static_cast<uint8_t>(c >> 24)};
+        z[k] = trial % 3 == 0 ? depths[word(rng) % 9] : std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+      }
+      std::vector<Rgba8> image_fast(w * h, Rgba8{1, 2, 3, 4}), image_plain = image_fast;
+      std::vector<float> depth_fast(w * h, 7.0f), depth_plain = depth_fast;
+      raster_fast::write_quad(mask, colour, z, qy * w + qx, w, image_fast.data(), depth_fast.data());
+      for (size_t k = 0; k < 4; ++k) {
+        if (!(mask >> k & 1u)) continue;
+        const size_t idx = (qy + (k >> 1)) * w + qx + (k & 1);
+        image_plain[idx] = colour[k];
+        depth_plain[idx] = static_cast<float>(z[k]);
+      }
+      ASSERT_EQ(std::memcmp(image_fast.data(), image_plain.data(), w * h * sizeof(Rgba8)), 0) << trial << " " << mask;
+      ASSERT_EQ(std::memcmp(depth_fast.data(), depth_plain.data(), w * h * sizeof(float)), 0) << trial << " " << mask;
+    }
 }
 
 }  // namespace
