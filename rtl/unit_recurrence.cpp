@@ -204,6 +204,14 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     const int64_t passed = pipe.timing.pass(pushed, in);
     return log.at(e, response.retire_at(pipe.timing.last(in), passed));
   };
+  // The end of a quad on lent timing (probe_quad, linear_quad): the timing back into the blocks,
+  // the quad's stalls and busy cycles into its statistics slot.
+  const auto settle_quad = [&](const LentTiming& p, size_t slot, const CacheStage::StallCounts& stalls, uint64_t busy)
+                               __attribute__((always_inline)) {
+    settle(p);
+    u.cache_stage.add_stalls(slot, stalls);
+    u.filter->busy_cycles(slot) += busy;
+  };
   const auto retire = [&](const Response& r, PipelineRegisters<Response>& pipe, ChannelTimes& in, int64_t pushed,
                           UnitEvent e) {
     u.response.retire(r, static_cast<uint64_t>(retire_at(u.response.timing, pipe, in, pushed, e)));
@@ -321,9 +329,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
               retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
       }
     }
-    settle(p);
-    u.cache_stage.add_stalls(slot, stalls);
-    u.filter->busy_cycles(slot) += busy;
+    settle_quad(p, slot, stalls, busy);
     for (size_t k = 0; k < 4; ++k)
       u.response.retire({quad.id + static_cast<uint32_t>(k), probes.colours()[k]},
                         static_cast<uint64_t>(quad_retire[k]));
@@ -403,9 +409,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
                 retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
         }
       }
-      settle(p);
-      u.cache_stage.add_stalls(slot, stalls);
-      u.filter->busy_cycles(slot) += busy;
+      settle_quad(p, slot, stalls, busy);
     };
     if (linear.address(quad, lod) == 1) {
       footprint_times(std::integral_constant<int, 1>{});
