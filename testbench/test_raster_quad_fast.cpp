@@ -113,6 +113,36 @@ TEST(RasterQuadFast, ReusedResultEqualsAFreshRender) {
   EXPECT_LE(drawn, fresh.stats.pixels);
 }
 
+// Each band's worker clears its own rows (clear_band): every pixel of a reused result's buffers is
+// cleared, whatever the previous frame held, its size (smaller, larger) and the number of workers,
+// also for a height that is not a multiple of the band's 16 rows.
+TEST(RasterQuadFast, BandClearsEqualAFreshRender) {
+  Scene ground = load_scene("ground_plane");
+  ground.width = 96, ground.height = 64;
+  Scene tunnel = load_scene("tunnel");
+  tunnel.width = 130, tunnel.height = 75;  // its last band: rows 64..74
+  Scene large = tunnel;
+  large.width = 160, large.height = 90;
+  for (const int threads : {1, 2}) {
+    RenderOptions o;
+    o.threads = threads;
+    const RenderResult fresh_tunnel = render_scene(tunnel, o), fresh_ground = render_scene(ground, o);
+    // A larger frame first: every element the tunnel's buffers keep held the large frame's colour
+    // or depth (drawn depths in [0, 1], +inf elsewhere); a row left uncleared keeps it, and the
+    // fresh render's zero-initialized buffers would not.
+    RenderResult reused = render_scene(large, o);
+    render_scene(tunnel, o, reused);
+    EXPECT_EQ(reused.image.texels, fresh_tunnel.image.texels);
+    EXPECT_EQ(reused.depth, fresh_tunnel.depth);
+    render_scene(ground, o, reused);  // smaller
+    EXPECT_EQ(reused.image.texels, fresh_ground.image.texels);
+    EXPECT_EQ(reused.depth, fresh_ground.depth);
+    render_scene(tunnel, o, reused);  // larger again: the buffers grow
+    EXPECT_EQ(reused.image.texels, fresh_tunnel.image.texels);
+    EXPECT_EQ(reused.depth, fresh_tunnel.depth);
+  }
+}
+
 TEST(RasterQuadFast, WriteQuadEqualsThePerPixelWrites) {
   // Every mask, quads at every position of a 5 x 4 image (odd width: rows not 8-byte aligned),
   // depths of every kind (rounding to FP32 up and down, ties, tiny, huge, infinite, NaN).
