@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstddef>
+#include <cstring>
 #include <utility>
 
 #include "cmodel/aniso_fast.hpp"
@@ -379,7 +380,7 @@ Rgba8 Sampler::FastPaths::aniso(const Sampler& sm, float s, float t, const Aniso
 // SSE2 a group whose requests share their levels builds them in registers (GroupLanes), through
 // the 4-lane address stage (cmodel/texel_coord4.hpp: coordinates, wrap, texel indices for the four
 // lanes at once; its tests TexelCoord4.*) when every coordinate is one its coordinate unit takes and
-// the wrap modes are repeat on a power of two or the clamps, else lane by lane.
+// the wrap modes are repeat (any extent) or the clamps, else lane by lane.
 namespace {
 // A group of m = 1..4 requests: lane k < m filled by tap(k); the other lanes zero.
 template <class F>
@@ -408,9 +409,12 @@ template <WrapMode kWs, WrapMode kWt>
 struct GroupLanes {
   __m128i a, b, c, d, fu, fv;
 };
-// Per lane: address, wrap and the four texel words of lerp_lane (lane k >= m masked: zero).
+// Per lane: address, wrap and the four texel words of lerp_lane (lane k >= m masked: zero). Out of
+// line and cold: the renderer's groups take group_lanes4 (coordinates the coordinate unit takes,
+// repeat or the clamps), and inlined this path's spills and frame were paid by
+// every call of the batch.
 template <WrapMode kWs, WrapMode kWt>
-[[gnu::always_inline]] inline GroupLanes group_lanes_per_lane(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
+[[gnu::noinline, gnu::cold]] GroupLanes group_lanes_per_lane(size_t m, LevelView img, Rgba8 border, const SampleRequest* r) {
   const auto at = [&](size_t k) __attribute__((always_inline)) {
     return k < m ? lerp_lane<kWs, kWt>(img, border, texel_coord(r[k].s, img.width), texel_coord(r[k].t, img.height))
                  : LerpLane{0, 0, 0, 0, 0, 0};
@@ -509,12 +513,17 @@ inline __m128i lerp_group(const GroupLanes& g) { return dp::fast::bilinear_lerp8
 inline dp::fast::Lanes8q lerp_group_q8(const GroupLanes& g) {
   return dp::fast::bilinear_lerp8x4q_lanes(g.a, g.b, g.c, g.d, g.fu, g.fv);
 }
-// Stores the group's m result words of v (out has room for m words only).
+// Stores the group's m result words of v (out has room for m words only): lanes 0-1 as one 64-bit
+// store, lane 0 or 2 as one 32-bit store (no staging array and no copy loop for a partial group).
 [[gnu::always_inline]] inline void store_group(size_t m, Rgba8* out, __m128i v) {
   if (m == 4) return _mm_storeu_si128(reinterpret_cast<__m128i*>(out), v);
-  std::array<Rgba8, 4> r;
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(r.data()), v);
-  std::copy_n(r.begin(), m, out);
+  const auto word = [](Rgba8* o, __m128i x) __attribute__((always_inline)) {  // lane 0 of x
+    const int32_t w = _mm_cvtsi128_si32(x);
+    std::memcpy(static_cast<void*>(o), &w, sizeof w);
+  };
+  if (m == 1) return word(out, v);
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(out), v);
+  if (m == 3) word(out + 2, _mm_unpackhi_epi64(v, v));
 }
 #endif
 // Stores the group's m results (out has room for m words only).
@@ -524,6 +533,35 @@ template <class F>
   std::array<Rgba8, 4> r;
   unit(r.data());
   std::copy_n(r.begin(), m, out);
+}
+}  // namespace
+
+namespace {
+// A group of m = 1..4 requests whose lambdas differ (never from the renderer, whose quads share the
+// LOD unit's one lambda): each lane selects its own levels, the second level's lerp runs when some
+// lane blends, and a lane that does not blend (or is masked) takes its level0 again with weight 0.
+// Out of line and cold, so that its two dp::fast::Quad8 and their zeroing are not part of every
+// call's frame.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::noinline, gnu::cold]] void group_own_lambdas(size_t m, const Image* levels, Rgba8 border, const LodParams& lod,
+                                                    MipMode mip, int top, const SampleRequest* r, Rgba8* out) {
+  dp::fast::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
+  std::array<int, 4> blend{};
+  int any = 0;
+  fill_lanes(m, q0, [&](size_t k) {
+    const LevelPick p = select_levels(lambda_bias_clamp(r[k].lambda_q8, lod), mip, top);
+    bilinear8_taps<kWs, kWt>(LevelView(levels[p.level0]), border, r[k].s, r[k].t, q0, k);
+    if (p.blend != 0) bilinear8_taps<kWs, kWt>(LevelView(levels[p.level1]), border, r[k].s, r[k].t, q1, k);
+    blend[k] = p.blend;
+    any |= p.blend;
+  });
+  if (any == 0) return store_lanes(m, out, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q0, o); });
+  for (size_t k = 0; k < 4; ++k)  // a lane that does not blend (or is masked): its level0 again, weight 0
+    if (blend[k] == 0) {
+      q1.a[k] = q0.a[k], q1.b[k] = q0.b[k], q1.c[k] = q0.c[k], q1.d[k] = q0.d[k];
+      q1.fu[k] = q0.fu[k], q1.fv[k] = q0.fv[k];
+    }
+  store_lanes(m, out, [&](Rgba8* o) { dp::fast::bilinear_blend8x4(q0, q1, blend, o); });
 }
 }  // namespace
 
@@ -549,7 +587,9 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
     const LodParams lod = sm.cfg_.lod;
     const MipMode mip = sm.cfg_.mode.mip;
     const int top = sm.tex_.max_level();
+#if !defined(__SSE2__)
     dp::fast::Quad8 q0, q1;  // level0 and level1 taps; q1's lanes are used only where the lane blends
+#endif
     for (size_t i = 0; i < n; i += 4) {
       const size_t m = std::min<size_t>(4, n - i);
       const SampleRequest* r = req + i;
@@ -581,25 +621,7 @@ void Sampler::FastPaths::batch(const Sampler& sm, const SampleRequest* req, size
         continue;
 #endif
       }
-      std::array<int, 4> blend{};
-      int any = 0;
-      fill_lanes(m, q0, [&](size_t k) {
-        const LevelPick p = select_levels(lambda_bias_clamp(r[k].lambda_q8, lod), mip, top);
-        bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level0]), border, r[k].s, r[k].t, q0, k);
-        if (p.blend != 0) bilinear8_taps<kV.ws, kV.wt>(LevelView(levels[p.level1]), border, r[k].s, r[k].t, q1, k);
-        blend[k] = p.blend;
-        any |= p.blend;
-      });
-      if (any == 0) {
-        store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_lerp8x4(q0, o); });
-        continue;
-      }
-      for (size_t k = 0; k < 4; ++k)  // a lane that does not blend (or is masked): its level0 again, weight 0
-        if (blend[k] == 0) {
-          q1.a[k] = q0.a[k], q1.b[k] = q0.b[k], q1.c[k] = q0.c[k], q1.d[k] = q0.d[k];
-          q1.fu[k] = q0.fu[k], q1.fv[k] = q0.fv[k];
-        }
-      store_lanes(m, out + i, [&](Rgba8* o) { dp::fast::bilinear_blend8x4(q0, q1, blend, o); });
+      group_own_lambdas<kV.ws, kV.wt>(m, levels, border, lod, mip, top, r, out + i);
     }
   }
 }

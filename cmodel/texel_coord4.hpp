@@ -1,8 +1,10 @@
 // 4-lane address stage of the golden sampler's LINEAR batch (speed only, SSE2; sampler_fast.cpp,
 // Sampler::FastPaths::batch). Plain twins, which each lane must equal bit for bit:
 //   texel_coord4    dp::texel_coord (cmodel/datapath.hpp: float_to_fixed_fast, cmodel/fixed_coord.hpp)
-//   wrap2x4         dp::fast::wrap_taps<kW, 2> (datapath_fast.hpp; wrap_run, texture.hpp)
-// Equality tests: TexelCoord4.EqualsTexelCoordOnEveryExponent, TexelCoord4.WrapEqualsWrapTaps
+//   wrap2x4         dp::fast::wrap_taps<kW, 2> (datapath_fast.hpp; wrap_run, texture.hpp); on repeat
+//                   over an extent other than a power of two, repeat_remainder4 (wrap_index's floor mod)
+// Equality tests: TexelCoord4.EqualsTexelCoordOnEveryExponent, TexelCoord4.WrapEqualsWrapTaps,
+// TexelCoord4.RepeatRemainderEqualsWrapIndex
 // (testbench/test_texel_coord4.cpp); through the batch, Properties.BatchQuadsEqualPlainPath and
 // BatchEqualsSample. Off with the fast-path switch (TFU_PLAIN=1) with the rest of the batch.
 //
@@ -70,14 +72,33 @@ struct TexelCoords4 {
           _mm_and_si128(low32(u01, u23), _mm_set1_epi32((1 << kSubTexelBits) - 1))};
 }
 
-// Whether wrap2x4 takes the mode (kWrap2x4) and, on this extent, the mode: repeat on a power of two,
-// the clamps (not mirrored repeat).
+// Whether wrap2x4 takes the mode (kWrap2x4) and, on this extent, the mode: repeat (on any extent
+// from 1 to 2^15), the clamps (not mirrored repeat).
 template <WrapMode kW>
 inline constexpr bool kWrap2x4 = kW != WrapMode::MirroredRepeat;
 template <WrapMode kW>
-[[gnu::always_inline]] inline bool wrap2x4_takes(int size) {
-  if constexpr (kW == WrapMode::Repeat) return (size & (size - 1)) == 0;
+[[gnu::always_inline]] inline bool wrap2x4_takes(int) {
   return kWrap2x4<kW>;
+}
+// i mod size (the floor remainder, 0 <= r < size) for four lanes of any 32-bit i, 1 <= size <= 2^15:
+// the remainder unit of repeat on an extent other than a power of two (wrap_index). In binary64:
+// q, an integer within one of i / size (i times the rounded 1 / size, |error| < 2^-20, made an
+// integer by adding and subtracting 1.5 2^52 in whatever rounding mode is set), then r = i - q size,
+// exact (integers below 2^33 in magnitude), so -size <= r <= size; one add of size where r < 0 and
+// one subtract where r = size bring it into 0..size - 1. No value depends on the rounding mode's
+// choice of q, FTZ or DAZ (no denormal arises).
+[[gnu::always_inline]] inline __m128i repeat_remainder4(__m128i i, int size) {
+  const __m128d inv = _mm_set1_pd(1.0 / static_cast<double>(size)), w = _mm_set1_pd(static_cast<double>(size));
+  const __m128d c = _mm_set1_pd(0x1.8p52);
+  const auto half = [&](__m128d d) __attribute__((always_inline)) {
+    const __m128d q = _mm_sub_pd(_mm_add_pd(_mm_mul_pd(d, inv), c), c);
+    return _mm_cvttpd_epi32(_mm_sub_pd(d, _mm_mul_pd(q, w)));  // exact integers, |r| <= size
+  };
+  const __m128i r01 = half(_mm_cvtepi32_pd(i)), r23 = half(_mm_cvtepi32_pd(_mm_shuffle_epi32(i, _MM_SHUFFLE(1, 0, 3, 2))));
+  const __m128i n = _mm_set1_epi32(size);
+  __m128i r = _mm_unpacklo_epi64(r01, r23);
+  r = _mm_add_epi32(r, _mm_and_si128(_mm_srai_epi32(r, 31), n));   // -size..-1: + size
+  return _mm_andnot_si128(_mm_cmpeq_epi32(r, n), r);              // size: 0
 }
 // The wrap unit for taps i0 and i0 + 1 of four lanes (|i0| < 2^31 - 1): t0, t1 the wrapped taps as
 // wrap_taps<kW, 2> gives them (clamp to border: -1 outside).
@@ -85,9 +106,15 @@ template <WrapMode kW>
 [[gnu::always_inline]] inline void wrap2x4(__m128i i0, int size, __m128i& t0, __m128i& t1) {
   const __m128i i1 = _mm_add_epi32(i0, _mm_set1_epi32(1));
   if constexpr (kW == WrapMode::Repeat) {
-    const __m128i m = _mm_set1_epi32(size - 1);
-    t0 = _mm_and_si128(i0, m);
-    t1 = _mm_and_si128(i1, m);
+    if ((size & (size - 1)) == 0) {  // a power of two: the low bits
+      const __m128i m = _mm_set1_epi32(size - 1);
+      t0 = _mm_and_si128(i0, m);
+      t1 = _mm_and_si128(i1, m);
+    } else {  // the remainder of i0, then the next tap as wrap_run steps it: t0 + 1, or 0 at the extent
+      t0 = repeat_remainder4(i0, size);
+      const __m128i next = _mm_add_epi32(t0, _mm_set1_epi32(1));
+      t1 = _mm_andnot_si128(_mm_cmpeq_epi32(next, _mm_set1_epi32(size)), next);
+    }
   } else if constexpr (kW == WrapMode::ClampToEdge) {
     const __m128i hi = _mm_set1_epi32(size - 1);
     const auto clamp = [&](__m128i i) {  // max(0, min(i, size - 1)); |i - (size - 1)| < 2^31

@@ -1,6 +1,6 @@
 // The 4-lane address stage of the sampler's batch (cmodel/texel_coord4.hpp) against its plain
-// twins: dp::texel_coord (float_to_fixed_fast) per lane, dp::fast::wrap_taps<kW, 2> per lane, and
-// y w. SSE2 only (the unit does not exist elsewhere).
+// twins: dp::texel_coord (float_to_fixed_fast) per lane, dp::fast::wrap_taps<kW, 2> per lane
+// (wrap_index for repeat's remainder unit), and y w. SSE2 only (the unit does not exist elsewhere).
 #if defined(__SSE2__)
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
@@ -9,6 +9,7 @@
 #include <bit>
 #include <cfenv>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -102,7 +103,7 @@ TEST(TexelCoord4, EqualsTexelCoordOnEveryExponent) {
   EXPECT_GT(left, 100'000u);  // the lanes left to the plain unit were seen
 }
 
-// The wrap unit of the batch (repeat on a power of two, clamp to edge, clamp to border) against
+// The wrap unit of the batch (repeat on any extent, clamp to edge, clamp to border) against
 // wrap_taps<kW, 2> on taps around and far outside every extent.
 template <WrapMode kW>
 void check_wrap(int size, const std::vector<int32_t>& starts) {
@@ -129,17 +130,60 @@ TEST(TexelCoord4, WrapEqualsWrapTaps) {
     for (int32_t i : {-(1 << 30) - 1, -(1 << 30), -65536, -1, 0, 1 << 30, (1 << 30) - 1, size - 2, size - 1, size}) starts.push_back(i);
     std::uniform_int_distribution<int32_t> any(-(1 << 30) - 1, 1 << 30);
     while (starts.size() % 4 != 0 || starts.size() < 8000) starts.push_back(any(rng));
-    if ((size & (size - 1)) == 0) {
-      ASSERT_TRUE(dp::fast::wrap2x4_takes<WrapMode::Repeat>(size));
-      check_wrap<WrapMode::Repeat>(size, starts);
-    } else {
-      ASSERT_FALSE(dp::fast::wrap2x4_takes<WrapMode::Repeat>(size));
-    }
+    ASSERT_TRUE(dp::fast::wrap2x4_takes<WrapMode::Repeat>(size));  // any extent (the remainder unit off powers of two)
+    check_wrap<WrapMode::Repeat>(size, starts);
     check_wrap<WrapMode::ClampToEdge>(size, starts);
     check_wrap<WrapMode::ClampToBorder>(size, starts);
     ASSERT_FALSE(HasFatalFailure());
   }
   EXPECT_FALSE(dp::fast::wrap2x4_takes<WrapMode::MirroredRepeat>(16));
+}
+
+// The remainder unit of repeat off powers of two (repeat_remainder4) against wrap_index on every
+// extent 1..2^15: taps around 0 and the extent, around multiples of the extent near +-2^31 (where
+// the binary64 quotient is least exact), INT32_MIN and INT32_MAX, random ones; on a sample of the
+// extents again under the three other IEEE rounding modes and with FTZ and DAZ set.
+TEST(TexelCoord4, RepeatRemainderEqualsWrapIndex) {
+  std::mt19937 rng(44);
+  std::uniform_int_distribution<int32_t> any(std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max());
+  const int modes[] = {FE_TONEAREST, FE_DOWNWARD, FE_UPWARD, FE_TOWARDZERO};
+  size_t compared = 0;
+  for (int mode = 0; mode < 5; ++mode) {
+    const unsigned csr = _mm_getcsr();
+    if (mode < 4) {
+      ASSERT_EQ(std::fesetround(modes[mode]), 0);
+    } else {
+      _mm_setcsr(csr | 0x8040u);  // FTZ and DAZ
+    }
+    for (int size = 1; size <= 32768; size += mode == 0 ? 1 : 97) {
+      std::vector<int32_t> xs;
+      for (int32_t k = -3; k <= 3; ++k) xs.push_back(k), xs.push_back(size + k), xs.push_back(-size + k);
+      const int64_t top = (int64_t{std::numeric_limits<int32_t>::max()} / size) * size;  // multiples near +-2^31
+      for (int64_t m : {top, -top, top - size, -top + size})
+        for (int64_t k : {-1, 0, 1})
+          if (m + k >= std::numeric_limits<int32_t>::min() && m + k <= std::numeric_limits<int32_t>::max())
+            xs.push_back(static_cast<int32_t>(m + k));
+      xs.push_back(std::numeric_limits<int32_t>::min()), xs.push_back(std::numeric_limits<int32_t>::max());
+      while (xs.size() % 4 != 0 || xs.size() < 48) xs.push_back(any(rng));
+      for (size_t i = 0; i < xs.size(); i += 4) {
+        alignas(16) std::array<int32_t, 4> r{};
+        _mm_store_si128(reinterpret_cast<__m128i*>(r.data()),
+                        dp::fast::repeat_remainder4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&xs[i])), size));
+        for (size_t k = 0; k < 4; ++k) {
+          const int want = wrap_index(WrapMode::Repeat, xs[i + k], size);
+          if (r[k] != want) {
+            std::fesetround(FE_TONEAREST);
+            _mm_setcsr(csr);
+            FAIL() << "size " << size << " i " << xs[i + k] << " mode " << mode << ": " << r[k] << " != " << want;
+          }
+          ++compared;
+        }
+      }
+    }
+    std::fesetround(FE_TONEAREST);
+    _mm_setcsr(csr);
+  }
+  EXPECT_GT(compared, 1'500'000u);
 }
 
 // Row offsets y w for 0 <= y < 2^15, 0 < w <= 2^15.
