@@ -271,7 +271,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         raster_fast::barycentrics(qe, area, tri, lanes);
         z = raster_fast::depth(lanes, tri);
         mask = raster_fast::depth_test(covered, z, depth, static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx),
-                                       static_cast<size_t>(W));
+                                       static_cast<size_t>(W), qx + 1 < W && rows_in == 0xFu);
         if (mesh.vertex_colour)
           for (size_t k = 0; k < 4; ++k) b[k] = {lanes.b[0][k], lanes.b[1][k], lanes.b[2][k]};
       }

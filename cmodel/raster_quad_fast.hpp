@@ -86,20 +86,30 @@ inline void step(QuadEdges& q, const std::array<int64_t, 3>& step) {
 
 // The depth test of the covered pixels: bit k set where `covered` has it and z[k] < depth[pixel k]
 // (the float widened to double, exactly as the plain comparison promotes it; NaN compares false in
-// both). Pixel k is depth[idx0 + (k >> 1) row + (k & 1)]; an uncovered pixel's depth is not read
-// there (it may lie outside the image): its lane reads pixel 0's, which always exists, and is masked.
-inline unsigned depth_test(unsigned covered, const std::array<double, 4>& z, const float* depth, size_t idx0, size_t row) {
-  std::array<float, 4> d;
-  for (size_t k = 0; k < 4; ++k) {
-    const size_t idx = idx0 + (k >> 1) * row + (k & 1);
-    d[k] = depth[(covered >> k & 1u) ? idx : idx0];
-  }
+// both). Pixel k is depth[idx0 + (k >> 1) row + (k & 1)]. `inside`: the whole quad lies in the image,
+// and each row's two depths are one 8-byte load (an uncovered pixel's is read and masked: it is in
+// the image, in the caller's band). Else an uncovered pixel's depth is not read (it may lie outside
+// the image): its lane reads pixel 0's, which always exists, and is masked.
+inline unsigned depth_test(unsigned covered, const std::array<double, 4>& z, const float* depth, size_t idx0, size_t row,
+                           bool inside) {
 #if TFU_RASTER_QUAD_SSE2
-  const __m128 dv = _mm_loadu_ps(d.data());
-  const __m128d lo = _mm_cmplt_pd(_mm_loadu_pd(&z[0]), _mm_cvtps_pd(dv));
-  const __m128d hi = _mm_cmplt_pd(_mm_loadu_pd(&z[2]), _mm_cvtps_pd(_mm_movehl_ps(dv, dv)));
+  __m128 d01, d23;
+  if (inside) {
+    d01 = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&depth[idx0])));
+    d23 = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&depth[idx0 + row])));
+  } else {
+    alignas(16) std::array<float, 4> d;
+    for (size_t k = 0; k < 4; ++k) d[k] = depth[(covered >> k & 1u) ? idx0 + (k >> 1) * row + (k & 1) : idx0];
+    d01 = _mm_load_ps(d.data());
+    d23 = _mm_movehl_ps(d01, d01);
+  }
+  const __m128d lo = _mm_cmplt_pd(_mm_loadu_pd(&z[0]), _mm_cvtps_pd(d01));
+  const __m128d hi = _mm_cmplt_pd(_mm_loadu_pd(&z[2]), _mm_cvtps_pd(d23));
   const auto less = static_cast<unsigned>(_mm_movemask_pd(lo) | _mm_movemask_pd(hi) << 2);
 #else
+  (void)inside;
+  std::array<float, 4> d;
+  for (size_t k = 0; k < 4; ++k) d[k] = depth[(covered >> k & 1u) ? idx0 + (k >> 1) * row + (k & 1) : idx0];
   unsigned less = 0;
   for (size_t k = 0; k < 4; ++k) less |= static_cast<unsigned>(z[k] < d[k]) << k;
 #endif

@@ -188,8 +188,8 @@ TEST(RasterQuadFast, StepEqualsTheEdgeFunctions) {
 
 TEST(RasterQuadFast, DepthTestEqualsThePerPixelTest) {
   // Depths at, just above and below the float stored, NaN and infinities on both sides; every
-  // covered mask; quads at every position of a 5 x 3 buffer (the last column and row outside a
-  // quad's reach are only read for covered pixels).
+  // covered mask; quads at every position of a 5 x 3 buffer, each through both loads (the quad
+  // inside the image: two 8-byte loads; else only covered pixels read).
   std::mt19937_64 rng(9);
   const float stored[] = {0.25f, 1.0f / 3.0f, 0.0f, -0.0f, 1.0f, std::numeric_limits<float>::infinity(),
                           std::numeric_limits<float>::quiet_NaN(), 1e-40f};
@@ -215,7 +215,8 @@ TEST(RasterQuadFast, DepthTestEqualsThePerPixelTest) {
       unsigned plain = 0;
       for (size_t k = 0; k < 4; ++k)
         if ((covered >> k & 1u) && z[k] < depth[(qy + (k >> 1)) * w + qx + (k & 1)]) plain |= 1u << k;
-      ASSERT_EQ(raster_fast::depth_test(covered, z, depth.data(), qy * w + qx, w), plain) << trial << " " << covered;
+      ASSERT_EQ(raster_fast::depth_test(covered, z, depth.data(), qy * w + qx, w, false), plain) << trial << " " << covered;
+      ASSERT_EQ(raster_fast::depth_test(covered, z, depth.data(), qy * w + qx, w, true), plain) << trial << " " << covered;
       for (size_t k = 0; k < 4; ++k)
         if (covered >> k & 1u) (plain >> k & 1u ? passed : failed) += 1;
     }
