@@ -121,6 +121,10 @@ inline unsigned depth_test(unsigned covered, const std::array<double, 4>& z, con
 // pixel not drawn is overwritten by the next drawn one or left beyond n (unread). n <= k at pixel k,
 // so nothing is written beyond reqs[3].
 inline size_t gather_requests(unsigned mask, const float* s, const float* t, int32_t lambda, SampleRequest* reqs) {
+  if (mask == 0xFu) {  // every pixel drawn (most quads): request k is pixel k's, no index to form
+    for (size_t k = 0; k < 4; ++k) reqs[k] = {s[k], t[k], lambda};
+    return 4;
+  }
   size_t n = 0;
   for (size_t k = 0; k < 4; ++k) {
     reqs[n] = {s[k], t[k], lambda};
