@@ -192,8 +192,8 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   // (x + 1, y) is edge i at (x, y) minus (Y[b] - Y[a]) one pixel, exactly RasterTriangle::edge of
   // each centre (the same integers; setup bounds them below 2^58). Coverage is decided on them
   // before any barycentric is formed: a quad none of whose centres is covered costs no division.
-  std::array<int64_t, 3> step_x{};
-  for (size_t i = 0; i < 3; ++i) step_x[i] = -(tri.Y[(i + 2) % 3] - tri.Y[(i + 1) % 3]) * kOne;
+  std::array<int64_t, 3> step_x{}, step_quad{};
+  for (size_t i = 0; i < 3; ++i) step_x[i] = -(tri.Y[(i + 2) % 3] - tri.Y[(i + 1) % 3]) * kOne, step_quad[i] = 2 * step_x[i];
   const auto area = static_cast<double>(tri.area);
   // The fast paths (raster_quad_fast.hpp, texenv_quad.hpp: four pixels at once) or their plain twins.
   const bool fast = fast_paths_enabled();
@@ -211,6 +211,22 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   raster_fast::QuadLanes lanes{};                 // the fast path's interpolation
   std::array<std::array<double, 4>, 4> ideal{};   // the ideal path's colours
   std::array<float, 4> s0{}, t0{};                // UV set of stage 0 (kept coordinates)
+  // What each stage reads per quad, the same for every quad of the triangle: looked up once here
+  // (the first kMaxStages stages; a mesh has no more, scene.cpp).
+  struct StageState {
+    const TextureStage* stage;
+    const Sampler* sampler;
+    int width, height, uv_set;
+    bool aniso, mip_none;
+  };
+  const size_t stage_count = mesh.stages.size();
+  const auto make_state = [&](size_t st) {
+    const Sampler& sampler = *samplers[st];
+    return StageState{&mesh.stages[st], &sampler, sampler.texture().width(), sampler.texture().height(), mesh.stages[st].uv_set,
+                      sampler.descriptor().anisotropic(), sampler.descriptor().mode.mip == MipMode::None};
+  };
+  std::array<StageState, kMaxStages> stage_state{};
+  for (size_t st = 0; st < std::min(stage_count, stage_state.size()); ++st) stage_state[st] = make_state(st);
   for (int qy = qy_first; qy <= qy_last; qy += 2) {
     // The quads of this row that can hold a covered centre: the union of the covered intervals of
     // its two pixel rows; the quads outside it have no covered centre (what the test below would
@@ -222,21 +238,30 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
     }
     if (x_lo > x_hi) continue;
     const int qx_first = x_lo & ~1, qx_last = x_hi;
-    std::array<std::array<int64_t, 3>, 4> e;  // e[k][i]: edge i at pixel k of the quad
+    raster_fast::QuadEdges qe;  // qe.e[i][k]: edge i at pixel k of the quad
+    auto& e = qe.e;
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i)
-        e[static_cast<size_t>(k)][static_cast<size_t>(i)] =
+        e[static_cast<size_t>(i)][static_cast<size_t>(k)] =
             tri.edge(i, RasterTriangle::centre(qx_first + (k & 1)), RasterTriangle::centre(qy + (k >> 1)));
+    // The image bounds: qx <= xmax < W and qy <= ymax < H, so only the quad's second column or row
+    // can lie outside.
+    const unsigned rows_in = qy + 1 < H ? 0xFu : 0x3u;
     for (int qx = qx_first; qx <= qx_last; qx += 2) {
-      if (qx != qx_first)
-        for (auto& ek : e)
-          for (size_t i = 0; i < 3; ++i) ek[i] += 2 * step_x[i];
       unsigned covered = 0;
-      for (int k = 0; k < 4; ++k) {
-        const int px = qx + (k & 1), py = qy + (k >> 1);
-        const auto& ek = e[static_cast<size_t>(k)];
-        if (px < W && py < H && ek[0] + tri.bias[0] >= 0 && ek[1] + tri.bias[1] >= 0 && ek[2] + tri.bias[2] >= 0)
-          covered |= 1u << k;
+      if (fast) {
+        if (qx != qx_first) raster_fast::step(qe, step_quad);
+        covered = raster_fast::coverage(qe, tri.bias) & (qx + 1 < W ? rows_in : rows_in & 0x5u);
+      } else {
+        if (qx != qx_first)
+          for (size_t i = 0; i < 3; ++i)
+            for (auto& v : e[i]) v += 2 * step_x[i];
+        for (int k = 0; k < 4; ++k) {
+          const int px = qx + (k & 1), py = qy + (k >> 1);
+          const auto uk = static_cast<size_t>(k);
+          if (px < W && py < H && e[0][uk] + tri.bias[0] >= 0 && e[1][uk] + tri.bias[1] >= 0 && e[2][uk] + tri.bias[2] >= 0)
+            covered |= 1u << k;
+        }
       }
       if (covered == 0) continue;
       // RasterTriangle::barycentric of each centre (helper pixels extrapolate), then depth.
@@ -244,19 +269,17 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       std::array<double, 4> z{};
       unsigned mask = 0;
       if (fast) {
-        raster_fast::barycentrics(e, area, tri, lanes);
+        raster_fast::barycentrics(qe, area, tri, lanes);
         z = raster_fast::depth(lanes, tri);
-        for (int k = 0; k < 4; ++k) {
-          const size_t idx = static_cast<size_t>(qy + (k >> 1)) * static_cast<size_t>(W) + static_cast<size_t>(qx + (k & 1));
-          if ((covered >> k & 1u) && z[static_cast<size_t>(k)] < depth[idx]) mask |= 1u << k;
-        }
+        mask = raster_fast::depth_test(covered, z, depth, static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx),
+                                       static_cast<size_t>(W), qx + 1 < W && rows_in == 0xFu);
         if (mesh.vertex_colour)
           for (size_t k = 0; k < 4; ++k) b[k] = {lanes.b[0][k], lanes.b[1][k], lanes.b[2][k]};
       }
       for (int k = 0; k < 4 && !fast; ++k) {
         const auto uk = static_cast<size_t>(k);
-        b[uk] = {static_cast<double>(e[uk][0]) / area, static_cast<double>(e[uk][1]) / area,
-                 static_cast<double>(e[uk][2]) / area};
+        b[uk] = {static_cast<double>(e[0][uk]) / area, static_cast<double>(e[1][uk]) / area,
+                 static_cast<double>(e[2][uk]) / area};
         if (!(covered >> k & 1u)) continue;
         const int px = qx + (k & 1), py = qy + (k >> 1);
         z[uk] = interpolate_z(tri, b[uk]);
@@ -269,17 +292,20 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       if (mesh.vertex_colour)
         for (size_t k = 0; k < 4; ++k)
           if (mask >> k & 1u) colour[k] = primary_colour(tri, b[k]);
-      const std::array<Rgba8, 4> primary = colour;
+      // Stage 0's primary colour for the trace's quad targets, copied only when a trace is kept (the
+      // compiler copied it byte by byte, 50 instructions a quad, whether or not it was used).
+      alignas(16) std::array<Rgba8, 4> primary{};
+      if (trace) std::memcpy(primary.data(), colour.data(), sizeof primary);
       if (ideal_path)
         for (size_t k = 0; k < 4; ++k)
           ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
-      for (size_t st = 0; st < mesh.stages.size(); ++st) {
-        const TextureStage& stage = mesh.stages[st];
-        const Sampler& sampler = *samplers[st];
-        const Texture& tex = sampler.texture();
+      for (size_t st = 0; st < stage_count; ++st) {
+        const StageState ss = st < stage_state.size() ? stage_state[st] : make_state(st);
+        const TextureStage& stage = *ss.stage;
+        const Sampler& sampler = *ss.sampler;
         float s[4], t[4];
         if (fast)
-          raster_fast::st(lanes, tri, stage.uv_set, s, t);
+          raster_fast::st(lanes, tri, ss.uv_set, s, t);
         else
           for (size_t k = 0; k < 4; ++k) {
             const glm::dvec2 uv = interpolate_st(tri, b[k], stage.uv_set);
@@ -287,14 +313,14 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
             t[k] = to_float_coord(uv.y);
           }
         if (st == 0 && keep_coords) std::copy(s, s + 4, s0.begin()), std::copy(t, t + 4, t0.begin());
-        const bool aniso = sampler.descriptor().anisotropic();
+        const bool aniso = ss.aniso;
         if (ideal_path) {
           // The ideal path sees the same FP32 interface coordinates as the datapath, so that fixed vs
           // ideal isolates the datapath's own quantization; it differs only in exact arithmetic.
           std::array<glm::dvec2, 4> st_if;
           for (size_t k = 0; k < 4; ++k) st_if[k] = {s[k], t[k]};
-          const double lambda_ideal = ideal_lambda(st_if, tex.width(), tex.height());
-          const std::array<double, 4> d = ideal_derivatives(st_if, tex.width(), tex.height());
+          const double lambda_ideal = ideal_lambda(st_if, ss.width, ss.height);
+          const std::array<double, 4> d = ideal_derivatives(st_if, ss.width, ss.height);
           for (size_t k = 0; k < 4; ++k)
             if (mask >> k & 1u)
               ideal[k] = combine_stage(ideal[k], aniso ? sampler.sample_ideal_aniso(s[k], t[k], d) : sampler.sample_ideal(s[k], t[k], lambda_ideal),
@@ -302,7 +328,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         } else if (aniso) {
           // Anisotropic: the LOD unit's whole result for the quad (N, lambda, major axis), then the
           // covered pixels' probes.
-          const AnisoLod lod = aniso_lod(derivatives_from_quad(s, t, tex.width(), tex.height()), sampler.descriptor().aniso());
+          const AnisoLod lod = aniso_lod(derivatives_from_quad(s, t, ss.width, ss.height), sampler.descriptor().aniso());
           if (fast) {
             texenv_quad::Quad texel{};  // the pixels not drawn combine with 0, unused
             for (size_t k = 0; k < 4; ++k)
@@ -316,20 +342,20 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           // A sampler without MIP-mapping selects level 0 whatever lambda is (select_levels): the fast
           // path then leaves lambda at 0 without the LOD unit, as the cycle model's LOD unit does
           // (rtl/lod_unit.hpp); the plain path forms it (PlainPaths.* compare the two).
-          const int32_t lambda = fast && sampler.descriptor().mode.mip == MipMode::None
-                                     ? 0
-                                     : lambda_from_quad(s, t, tex.width(), tex.height());
+          const int32_t lambda = fast && ss.mip_none ? 0 : lambda_from_quad(s, t, ss.width, ss.height);
           // The quad's covered pixels go to the filter unit together (its quad interface).
           std::array<SampleRequest, 4> reqs;
           std::array<Rgba8, 4> texel;
           size_t n = 0;
-          for (size_t k = 0; k < 4; ++k)
-            if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
+          if (fast)
+            n = raster_fast::gather_requests(mask, s, t, lambda, reqs.data());
+          else
+            for (size_t k = 0; k < 4; ++k)
+              if (mask >> k & 1u) reqs[n++] = {s[k], t[k], lambda};
           sampler.sample_batch(reqs.data(), n, texel.data());
           if (fast) {
-            if (n < 4) {  // the covered pixels' texels back to their lanes; the others 0, unused
-              for (size_t k = 4; k-- > 0;) texel[k] = mask >> k & 1u ? texel[--n] : Rgba8{};
-            }
+            // The covered pixels' texels back to their lanes; the others 0, unused.
+            if (n < 4) raster_fast::spread_texels(mask, texel);
             texenv_quad::combine(colour, texel, stage.combine);
           } else {
             size_t next = 0;

@@ -4,11 +4,15 @@
 // +-1e30 and the rounding to float of raster.cpp's to_float_coord), on random triangles of every
 // shape and size and quads inside, on and beyond their edges (helper pixels extrapolate, some beyond
 // the horizon where 1/w turns negative). And a render into a reused result equals a fresh one.
+// The packed coverage and depth tests, the stepped edges and the batch's request gather and texel
+// spread against their per-pixel plain twins (shade_triangle's loops with the fast paths off).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
+#include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -49,11 +53,11 @@ TEST(RasterQuadFast, InterpolationEqualsThePlainTwinBitForBit) {
     for (int trial = 0; trial < 24; ++trial) {
       const int qx = (std::uniform_int_distribution<int>(tri->xmin - 6, tri->xmax + 6)(rng)) & ~1;
       const int qy = (std::uniform_int_distribution<int>(tri->ymin - 6, tri->ymax + 6)(rng)) & ~1;
-      std::array<std::array<int64_t, 3>, 4> e;
+      raster_fast::QuadEdges e;
       for (size_t k = 0; k < 4; ++k)
         for (int i = 0; i < 3; ++i)
-          e[k][static_cast<size_t>(i)] = tri->edge(i, RasterTriangle::centre(qx + static_cast<int>(k & 1)),
-                                                   RasterTriangle::centre(qy + static_cast<int>(k >> 1)));
+          e.e[static_cast<size_t>(i)][k] = tri->edge(i, RasterTriangle::centre(qx + static_cast<int>(k & 1)),
+                                                     RasterTriangle::centre(qy + static_cast<int>(k >> 1)));
       raster_fast::QuadLanes lanes;
       raster_fast::barycentrics(e, static_cast<double>(tri->area), *tri, lanes);
       const std::array<double, 4> z = raster_fast::depth(lanes, *tri);
@@ -140,6 +144,136 @@ TEST(RasterQuadFast, BandClearsEqualAFreshRender) {
     render_scene(tunnel, o, reused);  // larger again: the buffers grow
     EXPECT_EQ(reused.image.texels, fresh_tunnel.image.texels);
     EXPECT_EQ(reused.depth, fresh_tunnel.depth);
+  }
+}
+
+// Random triangles of every size, up to the screen-coordinate limit of setup (2^20 pixels: edge
+// functions near 2^58), and thin slivers; quads in and around each bounding box. The packed
+// coverage test equals the fill-rule test e_i + bias_i >= 0 per pixel and RasterTriangle::covers_pixel,
+// and the edges stepped quad by quad equal RasterTriangle::edge at each quad.
+raster_fast::QuadEdges edges_at(const RasterTriangle& tri, int qx, int qy) {
+  raster_fast::QuadEdges q;
+  for (size_t k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i)
+      q.e[static_cast<size_t>(i)][k] = tri.edge(i, RasterTriangle::centre(qx + static_cast<int>(k & 1)),
+                                                RasterTriangle::centre(qy + static_cast<int>(k >> 1)));
+  return q;
+}
+
+std::optional<RasterTriangle> random_triangle(std::mt19937_64& rng, int n) {
+  const double span = n % 4 == 0 ? 1e6 : n % 4 == 1 ? 3.0 : n % 4 == 2 ? 300.0 : 40.0;
+  std::uniform_real_distribution<double> pos(-span, span);
+  std::array<ScreenVertex, 3> v;
+  for (auto& sv : v) sv.x = 100 + pos(rng), sv.y = 80 + pos(rng);
+  if (n % 5 == 0) v[2].x = v[1].x + 0.01, v[2].y = v[1].y + 0.5 * span;  // a sliver
+  if (n % 7 == 0) v[2].y = v[1].y;                                       // a horizontal edge
+  if (n % 11 == 0) v[2].x = v[0].x;                                      // a vertical edge
+  if (n % 13 == 0)  // vertices on pixel centres: centres on the edges, the fill rule decides
+    for (auto& sv : v) sv.x = std::floor(sv.x) + 0.5, sv.y = std::floor(sv.y) + 0.5;
+  return setup_triangle(v, 200, 160);
+}
+
+TEST(RasterQuadFast, CoverageEqualsThePerPixelTest) {
+  std::mt19937_64 rng(20261208);
+  const int triangles = test::iterations(20000);
+  int64_t covered_pixels = 0, uncovered_pixels = 0;
+  for (int n = 0; n < triangles; ++n) {
+    const auto tri = random_triangle(rng, n);
+    if (!tri) continue;
+    for (int trial = 0; trial < 16; ++trial) {
+      const int qx = std::uniform_int_distribution<int>(tri->xmin - 4, tri->xmax + 4)(rng) & ~1;
+      const int qy = std::uniform_int_distribution<int>(tri->ymin - 4, tri->ymax + 4)(rng) & ~1;
+      const raster_fast::QuadEdges q = edges_at(*tri, qx, qy);
+      unsigned plain = 0;
+      for (size_t k = 0; k < 4; ++k) {
+        if (q.e[0][k] + tri->bias[0] >= 0 && q.e[1][k] + tri->bias[1] >= 0 && q.e[2][k] + tri->bias[2] >= 0) plain |= 1u << k;
+        ASSERT_EQ((plain >> k & 1u) != 0, tri->covers_pixel(qx + static_cast<int>(k & 1), qy + static_cast<int>(k >> 1)));
+      }
+      ASSERT_EQ(raster_fast::coverage(q, tri->bias), plain) << n << " " << qx << " " << qy;
+      for (size_t k = 0; k < 4; ++k) (plain >> k & 1u ? covered_pixels : uncovered_pixels) += 1;
+    }
+  }
+  EXPECT_GT(covered_pixels, 1000);
+  EXPECT_GT(uncovered_pixels, 1000);
+}
+
+TEST(RasterQuadFast, StepEqualsTheEdgeFunctions) {
+  std::mt19937_64 rng(77);
+  const int triangles = test::iterations(3000);
+  for (int n = 0; n < triangles; ++n) {
+    const auto tri = random_triangle(rng, n);
+    if (!tri) continue;
+    std::array<int64_t, 3> step{};
+    for (size_t i = 0; i < 3; ++i) step[i] = -2 * (tri->Y[(i + 2) % 3] - tri->Y[(i + 1) % 3]) * 256;
+    const int qy = std::uniform_int_distribution<int>(tri->ymin, tri->ymax)(rng) & ~1;
+    const int qx0 = (tri->xmin & ~1) - 8;
+    raster_fast::QuadEdges q = edges_at(*tri, qx0, qy);
+    for (int qx = qx0 + 2; qx <= qx0 + 40; qx += 2) {
+      raster_fast::step(q, step);
+      const raster_fast::QuadEdges want = edges_at(*tri, qx, qy);
+      ASSERT_EQ(q.e, want.e) << n << " " << qx;
+    }
+  }
+}
+
+TEST(RasterQuadFast, DepthTestEqualsThePerPixelTest) {
+  // Depths at, just above and below the float stored, NaN and infinities on both sides; every
+  // covered mask; quads at every position of a 5 x 3 buffer, each through both loads (the quad
+  // inside the image: two 8-byte loads; else only covered pixels read).
+  std::mt19937_64 rng(9);
+  const float stored[] = {0.25f, 1.0f / 3.0f, 0.0f, -0.0f, 1.0f, std::numeric_limits<float>::infinity(),
+                          std::numeric_limits<float>::quiet_NaN(), 1e-40f};
+  const size_t w = 5, h = 3;
+  int64_t passed = 0, failed = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    std::vector<float> depth(w * h);
+    for (float& d : depth) d = stored[rng() % 8];
+    const size_t qx = rng() % (w - 1), qy = rng() % (h - 1);
+    std::array<double, 4> z;
+    for (size_t k = 0; k < 4; ++k) {
+      const double d = depth[(qy + (k >> 1)) * w + qx + (k & 1)];
+      switch (rng() % 6) {
+        case 0: z[k] = d; break;
+        case 1: z[k] = std::nextafter(d, 2.0); break;
+        case 2: z[k] = std::nextafter(d, -2.0); break;
+        case 3: z[k] = std::numeric_limits<double>::quiet_NaN(); break;
+        case 4: z[k] = rng() % 2 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity(); break;
+        default: z[k] = std::uniform_real_distribution<double>(-0.5, 1.5)(rng); break;
+      }
+    }
+    for (unsigned covered = 0; covered < 16; ++covered) {
+      unsigned plain = 0;
+      for (size_t k = 0; k < 4; ++k)
+        if ((covered >> k & 1u) && z[k] < depth[(qy + (k >> 1)) * w + qx + (k & 1)]) plain |= 1u << k;
+      ASSERT_EQ(raster_fast::depth_test(covered, z, depth.data(), qy * w + qx, w, false), plain) << trial << " " << covered;
+      ASSERT_EQ(raster_fast::depth_test(covered, z, depth.data(), qy * w + qx, w, true), plain) << trial << " " << covered;
+      for (size_t k = 0; k < 4; ++k)
+        if (covered >> k & 1u) (plain >> k & 1u ? passed : failed) += 1;
+    }
+  }
+  EXPECT_GT(passed, 1000);
+  EXPECT_GT(failed, 1000);
+}
+
+TEST(RasterQuadFast, GatherAndSpreadEqualThePerPixelLoops) {
+  const float s[4] = {0.5f, -1.25f, 3.0f, 1e-3f}, t[4] = {7.0f, 0.125f, -2.0f, 1e9f};
+  for (unsigned mask = 0; mask < 16; ++mask) {
+    std::array<SampleRequest, 4> fast{}, plain{};
+    size_t n_plain = 0;
+    for (size_t k = 0; k < 4; ++k)
+      if (mask >> k & 1u) plain[n_plain++] = {s[k], t[k], -77};
+    const size_t n = raster_fast::gather_requests(mask, s, t, -77, fast.data());
+    ASSERT_EQ(n, n_plain) << mask;
+    for (size_t j = 0; j < n; ++j) {
+      EXPECT_EQ(std::memcmp(&fast[j], &plain[j], sizeof(SampleRequest)), 0) << mask << " " << j;
+    }
+    // The batch's texels of the drawn pixels, in order, then spread back to their lanes.
+    std::array<Rgba8, 4> texel_fast, texel_plain;
+    for (size_t j = 0; j < 4; ++j) texel_fast[j] = texel_plain[j] = Rgba8{static_cast<uint8_t>(10 + j), 20, 30, static_cast<uint8_t>(40 + j)};
+    size_t m = n_plain;
+    for (size_t k = 4; k-- > 0;) texel_plain[k] = mask >> k & 1u ? texel_plain[--m] : Rgba8{};
+    raster_fast::spread_texels(mask, texel_fast);
+    EXPECT_EQ(std::memcmp(texel_fast.data(), texel_plain.data(), sizeof texel_fast), 0) << mask;
   }
 }
 
