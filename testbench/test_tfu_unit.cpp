@@ -767,6 +767,32 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   EXPECT_LT(quads_taken, 1100);
   bind_requests(b, tr);
   expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 16);
+  // Long runs of the path's quads (linear_run: one lent copy of the timing per run), seven of eight
+  // quads taken, the statistics slot (the stage) changing within a run.
+  FrameBuilder b2(64);
+  for (const auto& t : textures) b2.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b2.add_sampler(s, false);
+  Trace runs;
+  runs.mode = TraceMode::Quad;
+  int runs_taken = 0;
+  for (int n = 0; n < 1200; ++n) {
+    TraceRequest r;
+    do {
+      r.texture = static_cast<uint16_t>(rng() % textures.size());
+      r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+    } while (!taken(r) && rng() % 8 != 0);
+    r.stage = static_cast<uint8_t>(rng() % 8 == 0 ? 1 : 0);
+    runs_taken += taken(r) ? 1 : 0;
+    const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+    for (size_t k = 0; k < 4; ++k) {
+      r.s = s0 + static_cast<float>(k & 1) * step;
+      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+      runs.requests.push_back(r);
+    }
+  }
+  EXPECT_GT(runs_taken, 1000);
+  bind_requests(b2, runs);
+  expect_quad_paths_equal_the_plain_blocks(b2.finish(), runs, rng, 6);
 }
 
 // The timing recurrences' CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp: isotropic CUBIC,
