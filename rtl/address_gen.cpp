@@ -20,13 +20,15 @@ AddressGen::AddressGen(sim::Simulator& s, sim::Channel<PixelReq>& i, sim::Channe
     const SamplerDescriptor& c = regs.samplers[k];
     const TileWeightRom* rom = roms.rom(static_cast<int>(k));
     GridFn grid = &grid_any;
+    QuadGridFn quad_grid = nullptr;
     const bool fast = fast_paths_enabled();  // off (TFU_PLAIN=1, --plain): grid_any, the plain twin
     if (fast && (c.mode.base == BaseFilter::Linear || c.mode.base == BaseFilter::EdgePreserving))
       grid = fixed_wrap_grid(c.mode.base == BaseFilter::EdgePreserving ? FixedGrid::Cross : FixedGrid::Linear, c.wrap_s,
                              c.wrap_t);
+    if (fast && c.mode.base == BaseFilter::Linear) quad_grid = linear_quad_grid(c.wrap_s, c.wrap_t);
     if (fast && c.mode.base == BaseFilter::Cubic && rom->taps() == 4)
       grid = fixed_wrap_grid(FixedGrid::Cubic4, c.wrap_s, c.wrap_t);
-    decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0});
+    decoded_.push_back({grid, rom ? rom->taps() : 0, rom ? rom->first_tap() : 0, quad_grid});
   }
 }
 

@@ -88,6 +88,15 @@ class AddressGen : public sim::Module {
   static void grid_any(const SamplerDescriptor& c, int taps, int first_tap, FootprintReq& f, int w, int h, float s, float t,
                        const ProbeLevelOffset* o);
   GridFn grid_function(size_t sampler) const { return decoded_[sampler].grid; }
+  // LINEAR's grid of the four pixels of a quad at once, f[k] at (s[k], t[k]) on a level of w x h
+  // texels, no probe offset (the LINEAR quad path, rtl/unit_recurrence_linear_quads.cpp). Software
+  // speed only: its plain twin is the sampler's grid function (grid_fixed, and grid_any under
+  // TFU_PLAIN=1 / --plain, when the quad path is off), called four times, which it equals by
+  // construction (the same function, inlined: one call instead of four, the probe offset's tests
+  // folded away); TfuUnit.FixedWrapGridsEqualThePlainAddressUnit compares it with grid_any over
+  // every wrap pair. Null for a sampler whose grid function is not LINEAR's per-wrap-pair one.
+  using QuadGridFn = void (*)(FootprintReq* f, int w, int h, const float* s, const float* t);
+  QuadGridFn quad_grid_function(size_t sampler) const { return decoded_[sampler].quad_grid; }
 
  private:
   sim::Channel<PixelReq>& in_;
@@ -101,11 +110,17 @@ class AddressGen : public sim::Module {
                          const ProbeLevelOffset* o);
   template <FixedGrid kShape, size_t... k>
   static GridFn fixed_grid(size_t wrap_pair, std::index_sequence<k...>);
+  static QuadGridFn linear_quad_grid(WrapMode wrap_s, WrapMode wrap_t);
+  template <WrapMode kWs, WrapMode kWt>
+  static void grid_linear_quad(FootprintReq* f, int w, int h, const float* s, const float* t);
+  template <size_t... k>
+  static QuadGridFn linear_quad_grid(size_t wrap_pair, std::index_sequence<k...>);
   // The decoded registers of each sampler descriptor (at reset): the grid function of its filter
   // and wrap modes, the weight ROM's tap count and first tap (CUBIC).
   struct SamplerDecode {
     GridFn grid;
     int taps, first_tap;
+    QuadGridFn quad_grid;  // LINEAR with a per-wrap-pair grid: its quad form; else null
   };
   std::vector<SamplerDecode> decoded_;
   bool holding_ = false;

@@ -48,6 +48,25 @@ AddressGen::GridFn AddressGen::fixed_grid(size_t wrap_pair, std::index_sequence<
   return kTable[wrap_pair];
 }
 
+// The LINEAR quad path's four grids (AddressGen::quad_grid_function): grid_fixed's Linear shape,
+// inlined four times (flatten) with no probe offset.
+template <WrapMode kWs, WrapMode kWt>
+[[gnu::flatten]] void AddressGen::grid_linear_quad(FootprintReq* f, int w, int h, const float* s, const float* t) {
+  const SamplerDescriptor unused{};  // grid_fixed's Linear shape reads no descriptor field
+  for (size_t k = 0; k < 4; ++k) grid_fixed<kWs, kWt, FixedGrid::Linear>(unused, 2, 0, f[k], w, h, s[k], t[k], nullptr);
+}
+
+template <size_t... k>
+AddressGen::QuadGridFn AddressGen::linear_quad_grid(size_t wrap_pair, std::index_sequence<k...>) {
+  static constexpr QuadGridFn kTable[] = {&grid_linear_quad<static_cast<WrapMode>(k / 4), static_cast<WrapMode>(k % 4)>...};
+  return kTable[wrap_pair];
+}
+
+AddressGen::QuadGridFn AddressGen::linear_quad_grid(WrapMode wrap_s, WrapMode wrap_t) {
+  const auto pair = static_cast<size_t>(4 * static_cast<int>(wrap_s) + static_cast<int>(wrap_t));
+  return linear_quad_grid(pair, std::make_index_sequence<16>());
+}
+
 AddressGen::GridFn AddressGen::fixed_wrap_grid(FixedGrid shape, WrapMode wrap_s, WrapMode wrap_t) {
   const auto pair = static_cast<size_t>(4 * static_cast<int>(wrap_s) + static_cast<int>(wrap_t));
   switch (shape) {

@@ -335,7 +335,7 @@ class CacheStage : public sim::Module {
     }
     int64_t last_exit() const { return last_exit_; }
     // The LINEAR quad path's lockstep footprint (software speed only; rtl/unit_recurrence.cpp,
-    // linear_quad, derives it from accept and exit above, which it must equal): takes_at(t) tells
+    // linear_run, derives it from accept and exit above, which it must equal): takes_at(t) tells
     // that a footprint visible at t is accepted at t without a stall (the previous one accepted
     // before t, the tag port free at t, the miss FIFO room at t, the line buffer room without a
     // look at the queue); hit(t) is accept and exit of such a footprint with one bank cycle and no

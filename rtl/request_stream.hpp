@@ -18,6 +18,7 @@
 // a quad can never leave the producer waiting on a unit that waits on it.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
@@ -36,6 +37,17 @@ inline constexpr size_t kStreamChunk = size_t{1} << 14;
 inline constexpr size_t kStreamWindow = size_t{1} << 16;
 static_assert(kStreamWindow >= 2 * kStreamChunk && (kStreamWindow & (kStreamWindow - 1)) == 0);
 
+// Entries [first, first + n) of storage `v` indexed by id & mask (mask ~0: the whole trace; else a
+// power-of-two window, n at most its size) to out[0, n), in at most two runs.
+template <typename T>
+void copy_runs(const T* v, size_t mask, size_t first, size_t n, T* out) {
+  if (n == 0) return;
+  const size_t at = first & mask;
+  const size_t head = std::min(n - 1, mask - at) + 1;  // to the storage's end (mask ~0: n, no wrap)
+  std::copy(v + at, v + at + head, out);
+  std::copy(v, v + (n - head), out + head);
+}
+
 // Per-request storage: every id of a trace, or a power-of-two window of ids.
 template <typename T>
 class RequestRing {
@@ -51,6 +63,13 @@ class RequestRing {
   T& operator[](size_t id) { return v_[id & mask_]; }
   const T& operator[](size_t id) const { return v_[id & mask_]; }
   bool empty() const { return v_.empty(); }
+  // Entries of ids [first, first + n) to out[0, n): at most two runs of the storage (a window wraps
+  // once at most: n <= its capacity).
+  void copy_out(size_t first, size_t n, T* out) const { copy_runs(v_.data(), mask_, first, n, out); }
+  // The storage and its mask (entry id at data()[id & mask()]): for a loop over many ids with the two in
+  // registers (software speed only: a store of a T could otherwise alias them).
+  const T* data() const { return v_.data(); }
+  size_t mask() const { return mask_; }
   // The storage of a whole-trace ring (one entry per request), moved out after the run.
   std::vector<T> take() { return std::move(v_); }
 
@@ -104,6 +123,10 @@ class RequestStream {
   TraceMode mode() const { return mode_; }
   bool whole() const { return whole_; }  // a view of a whole trace
   const TraceRequest& operator[](size_t i) const { return data_[i & mask_]; }
+  // Requests [first, first + n) to out[0, n) (available ones: has(first + n - 1)).
+  void copy_out(size_t first, size_t n, TraceRequest* out) const { copy_runs(data_, mask_, first, n, out); }
+  const TraceRequest* data() const { return data_; }  // request i at data()[i & mask()], as RequestRing's
+  size_t mask() const { return mask_; }
 
   // Producer: appends requests in order, waiting while the window is full. Returns false (and
   // drops them) once the unit has given up (abandon()).

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "cmodel/error.hpp"
@@ -53,6 +54,26 @@ class ResponseSink : public sim::Module {
       latency.resize(lat + 1);
     ++latency[lat];
     ++retired_;
+  }
+  // retire() of the four pixels id .. id + 3 of a quad at cycles now[0..3] (the LINEAR quad path):
+  // one look at the trace's length for the four (an atomic load, after which the compiler reloads
+  // every record's storage), the same records. Software speed only.
+  [[gnu::always_inline]] void retire_quad(uint32_t id, const std::array<Rgba8, 4>& rgba,
+                                          const std::array<int64_t, 4>& now) {
+    if (id + 3 >= trace_.produced()) [[unlikely]] {
+      for (uint32_t k = 0; k < 4; ++k) retire({id + k, rgba[k]}, static_cast<uint64_t>(now[k]));
+      return;
+    }
+    for (uint32_t k = 0; k < 4; ++k) {
+      const auto t = static_cast<uint64_t>(now[k]);
+      pixels_[id + k] = rgba[k];
+      exit_[id + k] = t;
+      const uint64_t lat = t - accept_[id + k];
+      if (lat >= latency.size()) [[unlikely]]
+        latency.resize(lat + 1);
+      ++latency[lat];
+    }
+    retired_ += 4;
   }
   std::string state() const override { return fmt::format("{}, {}, next {}", filter_.state(), edge_.state(), retired_); }
   size_t retired() const { return retired_; }  // pixels out so far (ids 0 .. retired - 1)

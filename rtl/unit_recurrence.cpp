@@ -37,7 +37,8 @@
 // ChannelTimes: the cycles at which its items left it. The run ends the cycle after the last
 // retire. The blocks' functions are called per footprint (the plain path), or, for quads of
 // isotropic LINEAR-family samplers on 8-bit textures, batched per quad by the LINEAR quad path
-// (rtl/unit_recurrence_linear_quads.hpp, software speed only), for quads of anisotropic ones on
+// (rtl/unit_recurrence_linear_quads.hpp, software speed only; a run of such quads on one lent
+// copy of the blocks' timing, below: linear_run), for quads of anisotropic ones on
 // uncompressed 8-bit textures by the probe quad path (rtl/unit_recurrence_probes.hpp, likewise),
 // and for those of isotropic CUBIC-family samplers by the CUBIC quad path
 // (rtl/unit_recurrence_cubic_quads.hpp, likewise), with the same timing functions.
@@ -204,7 +205,7 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     const int64_t passed = pipe.timing.pass(pushed, in);
     return log.at(e, response.retire_at(pipe.timing.last(in), passed));
   };
-  // The end of a quad on lent timing (probe_quad, linear_quad): the timing back into the blocks,
+  // The end of a quad on lent timing (probe_quad; linear_run, a run of quads): the timing back into the blocks,
   // the quad's stalls and busy cycles into its statistics slot.
   const auto settle_quad = [&](const LentTiming& p, size_t slot, const CacheStage::StallCounts& stalls, uint64_t busy)
                                __attribute__((always_inline)) {
@@ -369,16 +370,57 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // channels. (Unlike the probe path's lockstep it does not ask the previous footprint to have
   // moved in step: any earlier cycles leave these maxima unchanged.)
   const bool linear_lockstep = lockstep_depths && u.filter_pipe.timing.regs.empty();
-  const auto linear_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
-    const size_t slot = stat_slot(quad.req);
+  // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
+  const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
+  sim::ProgressBar bar(retired, n);
+  const size_t last_pixel = trace.mode() == TraceMode::Quad ? 3 : 0;  // of a quad, after its first
+  // The start of quad number `quads_in` at request `first`, every path's: the progress bar
+  // (`last_retire`: the response's last retire cycle, of the unit's timing or of a lent copy), a
+  // stream's complete chunk handed on (every request before `first` has retired), request_fifo ->
+  // lod_unit (`lod_timing`: lod_unit's timing, or a lent copy); `first` moves past the quad. Returns
+  // the cycle lod_unit takes it; its levels in `lod`.
+  const auto begin_quad = [&](size_t& first, size_t quads_in, int64_t last_retire, AnisoLod& lod,
+                              SequencerTiming& lod_timing) __attribute__((always_inline)) {
+    if ((quads_in & 0xFFFu) == 0) bar.update(static_cast<uint64_t>(std::max<int64_t>(last_retire, 0)));
+    if (sink != nullptr && first - u.drained >= kStreamChunk) u.drain_to(u.drained + kStreamChunk, sink);
+    RequestFifo::form_quad(trace, first, quad);
+    const int64_t quad_pushed = log.at(RequestFifoPushesQuad, u.request_fifo.timing.push(ch.quad));
+    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k)
+      u.accept[first + k] = static_cast<uint64_t>(quad_pushed);
+    first += static_cast<size_t>(quad.npix);
+    const int64_t quad_taken = log.at(LodUnitTakesQuad, lod_timing.take(quad_pushed, ch.quad));
+    lod = u.lod_unit.quad_lod(quad);
+    return quad_taken;
+  };
+  // The LINEAR quad path's run (software speed only; its plain twin is the plain path at the end of
+  // the loop below, each quad's footprints through the blocks' own timing, as TFU_PLAIN=1 runs
+  // every quad; TfuUnit.LinearQuadPathEqualsThePlainBlocks compares the two on quads interleaved
+  // with quads of the other paths and of other statistics slots, so on runs of every length):
+  // `quad` (begun, lod_unit took it at `quad_taken`, its levels `lod`) and the LINEAR quads that
+  // follow it, begun here (begin_quad) while they go this way, on one lent copy of the path's
+  // timing (LentTiming) from the run's first quad to its last, where the probe quad path lends and
+  // settles per quad. The same: between two quads only request_fifo, lod_unit, the chunk hand-over
+  // (which reads the retired requests' records, no timing) and the progress bar run, and none of
+  // them touches a lent block or channel; the bar reads the lent response's last retire. lod_unit's
+  // timing and the pixel channel are lent too, lod_unit taking the run's quads on the copy
+  // (begin_quad): nothing else reads them between its quads. The quads' stalls and busy cycles are
+  // summed while their statistics slot stays the same (sums). Returns true when it stopped at a
+  // quad it has begun that does not go this way (in `quad`, with `quad_taken` and `lod`), false at
+  // the end of the requests. Out of line, as cubic_quad.
+  const auto linear_run = [&](size_t& first, size_t& quads_in, int64_t& quad_taken, AnisoLod& lod)
+                              __attribute__((noinline)) {
+    LentTiming p = lend();           // its members named as PathTiming's
+    CacheStage::StallCounts stalls;  // the slot's, in registers too
+    uint64_t busy = 0;
+    size_t slot = stat_slot(quad.req);
+    // lod_unit's timing and the pixel channel lent too (begin_quad takes the quads with it).
+    SequencerTiming lod_timing = u.lod_unit.timing;
+    ChannelTimes pixel = ch.pixel.lend();
     const auto footprint_times = [&](auto level_count) __attribute__((always_inline)) {
       constexpr int kLevels = decltype(level_count)::value;
-      LentTiming p = lend();           // its members named as PathTiming's
-      CacheStage::StallCounts stalls;  // the quad's, in registers too
-      uint64_t busy = 0;
       for (int k = 0; k < 4; ++k) {
-        const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
-        const int64_t pixel_taken = log.at(AddressGenTakesPixel, p.address_gen.take(pushed, ch.pixel));
+        const int64_t pushed = lod_timing.push(k == 0, quad_taken, pixel);
+        const int64_t pixel_taken = log.at(AddressGenTakesPixel, p.address_gen.take(pushed, pixel));
         for (int level = 0; level < kLevels; ++level) {  // level0, then level1 when blending
           const bool emits = level + 1 == kLevels;
           const int64_t a = level == 0 ? pixel_taken : p.address_gen.last_push + 1;  // A
@@ -409,41 +451,49 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
                 retire_at(p.response, u.filter_pipe, p.response_in, done, ResponseRetiresFilterPixel);
         }
       }
-      settle_quad(p, slot, stalls, busy);
     };
-    if (linear.address(quad, lod) == 1) {
-      footprint_times(std::integral_constant<int, 1>{});
-    } else {
-      footprint_times(std::integral_constant<int, 2>{});
+    for (;;) {
+      const size_t quad_slot = stat_slot(quad.req);
+      if (quad_slot != slot) {
+        u.cache_stage.add_stalls(slot, stalls);
+        u.filter->busy_cycles(slot) += busy;
+        stalls = {};
+        busy = 0;
+        slot = quad_slot;
+      }
+      if (linear.address(quad, lod) == 1) {
+        footprint_times(std::integral_constant<int, 1>{});
+      } else {
+        footprint_times(std::integral_constant<int, 2>{});
+      }
+      linear.filter(quad_colour);
+      u.response.retire_quad(quad.id, quad_colour, quad_retire);
+      // The next quad, begun as the recurrences' loop begins it (`quads_in`: the quads begun).
+      const bool more = trace.has(first + last_pixel);
+      if (more) quad_taken = begin_quad(first, quads_in++, p.response.last_retire(), lod, lod_timing);
+      if (!more || !linear.takes(quad)) {
+        settle_quad(p, slot, stalls, busy);
+        u.lod_unit.timing = lod_timing;
+        ch.pixel.settle(pixel);
+        return more;
+      }
     }
-    linear.filter(quad_colour);
-    for (size_t k = 0; k < 4; ++k)
-      u.response.retire({quad.id + static_cast<uint32_t>(k), quad_colour[k]}, static_cast<uint64_t>(quad_retire[k]));
   };
-  // The progress bar of a long run (as the clocked run's): requests retired, every 4096 quads.
-  const std::function<uint64_t()> retired = [&u] { return static_cast<uint64_t>(u.response.retired()); };
-  sim::ProgressBar bar(retired, n);
-  const size_t last_pixel = trace.mode() == TraceMode::Quad ? 3 : 0;  // of a quad, after its first
-  for (size_t first = 0, quads_in = 0; trace.has(first + last_pixel); ++quads_in) {
-    if ((quads_in & 0xFFFu) == 0)
-      bar.update(static_cast<uint64_t>(std::max<int64_t>(u.response.timing.last_retire(), 0)));
-    // A stream: every request before `first` has retired; hand on a chunk when one is complete.
-    if (sink != nullptr && first - u.drained >= kStreamChunk) u.drain_to(u.drained + kStreamChunk, sink);
-    // request_fifo -> lod_unit
-    RequestFifo::form_quad(trace, first, quad);
-    const int64_t quad_pushed = log.at(RequestFifoPushesQuad, u.request_fifo.timing.push(ch.quad));
-    for (size_t k = 0; k < static_cast<size_t>(quad.npix); ++k)
-      u.accept[first + k] = static_cast<uint64_t>(quad_pushed);
-    first += static_cast<size_t>(quad.npix);
-    const int64_t quad_taken = log.at(LodUnitTakesQuad, u.lod_unit.timing.take(quad_pushed, ch.quad));
-    const AnisoLod lod = u.lod_unit.quad_lod(quad);
+  // The loop over the quads (`quads_in`: those begun). `begun`: the quad in `quad` was begun by the
+  // LINEAR quad path's run.
+  bool begun = false;
+  int64_t quad_taken = 0;
+  AnisoLod lod{};
+  for (size_t first = 0, quads_in = 0; begun || trace.has(first + last_pixel);) {
+    if (!begun) quad_taken = begin_quad(first, quads_in++, u.response.timing.last_retire(), lod, u.lod_unit.timing);
+    begun = false;
     // lod_unit -> address_gen: the cycle address_gen takes pixel k.
     const auto pixel_taken_at = [&](int k) {
       const int64_t pushed = u.lod_unit.timing.push(k == 0, quad_taken, ch.pixel);
       return log.at(AddressGenTakesPixel, u.address_gen.timing.take(pushed, ch.pixel));
     };
     if (linear.takes(quad)) {
-      linear_quad(quad_taken, lod);
+      begun = linear_run(first, quads_in, quad_taken, lod);
       continue;
     }
     if (probes.takes(quad)) {

@@ -20,11 +20,16 @@ int LinearQuadPath::address(const QuadReq& q, const AnisoLod& lod) {
   const SamplerDescriptor& c = regs_.samplers[q.req.sampler];
   const TextureDescriptor& tex = regs_.textures[q.req.texture];
   const AddressGen::GridFn grid = u_.address_gen.grid_function(q.req.sampler);
+  const AddressGen::QuadGridFn quad_grid = u_.address_gen.quad_grid_function(q.req.sampler);
   for (int n = 0; n < levels; ++n) {
     const int level = n == 0 ? pick_.level0 : pick_.level1;
     const int w = tex.level_width(level), h = tex.level_height(level);
     std::array<FootprintReq, 4>& f = footprint_[static_cast<size_t>(n)];
-    for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
+    if (quad_grid != nullptr) {  // the four at once (AddressGen::quad_grid_function; its twin: the loop below)
+      quad_grid(f.data(), w, h, q.s.data(), q.t.data());
+    } else {
+      for (size_t k = 0; k < 4; ++k) grid(c, 2, 0, f[k], w, h, q.s[k], q.t[k], nullptr);  // grid, fu, fv
+    }
     if (tex.compressed)
       for (size_t k = 0; k < 4; ++k) block_grid(tex.block(), f[k].grid, squares_[static_cast<size_t>(n)][k]);
   }

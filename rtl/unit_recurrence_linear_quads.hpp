@@ -10,7 +10,8 @@
 // quad instead of per pixel:
 //   lod_unit      LodUnit::quad_lod, as the plain path (called by the recurrences);
 //   address_gen   its level selection (AddressGen::pick_levels), its per-wrap-pair grid function
-//                 (AddressGen::grid_function) per pixel and level, on a compressed texture the
+//                 (AddressGen::grid_function) per pixel and level, in its quad form
+//                 (AddressGen::quad_grid_function: the four pixels in one call), on a compressed texture the
 //                 footprint's block coordinates (block_grid, rtl/address_gen_blocks.hpp, as
 //                 AddressGen::footprint forms them), and its pixel count;
 //   kernel_select nothing (it passes non-edge footprints unchanged);
@@ -37,7 +38,8 @@
 //                 or dp::round_level, and encode_texel), per pixel: no 8-bit word lerps for this
 //                 format (docs/srgb.md).
 // The timing stays in rtl/unit_recurrence.cpp, shared with the plain path, footprint by
-// footprint (on register copies of the blocks' timing state, as the probe quad path's; a pixel's
+// footprint (on register copies of the blocks' timing state, as the probe quad path's, lent over a
+// run of consecutive quads of this path: linear_run; a pixel's
 // hit in lockstep with its predecessor in one step, derived there). The plain path must give the
 // same pixels, cycles and statistics: every test that
 // compares the recurrences with the clocked blocks (TfuUnit.*, the differential fuzz target) runs

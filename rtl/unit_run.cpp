@@ -33,6 +33,8 @@ void check_inputs(const Frame& frame, const Trace& trace, const UnitConfig& u) {
 }
 
 void Unit::drain_to(size_t end, const UnitChunkSink* sink) {
+  // The statistics, then the chunk's copies (each a run or two of its ring: software speed only).
+  retire_stats.add_range(source, exit_cycle, accept, drained, end);
   if (sink != nullptr) {
     const size_t k = end - drained;
     chunk.first = drained;
@@ -40,17 +42,15 @@ void Unit::drain_to(size_t end, const UnitChunkSink* sink) {
     chunk.trace.requests.resize(k);
     chunk.out.pixels.resize(k);
     chunk.out.response_cycle.resize(k);
-    if (cache_stage.records_shapes()) chunk.out.edge_shapes.resize(k);
-  }
-  for (size_t i = drained, j = 0; i < end; ++i, ++j) {
-    retire_stats.add(source[i], exit_cycle[i], accept[i]);
-    if (sink == nullptr) continue;
-    chunk.trace.requests[j] = source[i];
-    chunk.out.pixels[j] = pixels[i];
-    chunk.out.response_cycle[j] = exit_cycle[i];
+    source.copy_out(drained, k, chunk.trace.requests.data());
+    pixels.copy_out(drained, k, chunk.out.pixels.data());
+    exit_cycle.copy_out(drained, k, chunk.out.response_cycle.data());
     if (cache_stage.records_shapes()) {
-      chunk.out.edge_shapes[j] = cache_stage.shapes[i];
-      cache_stage.shapes[i] = ProbeShapes{};  // the slot's next request starts from no shape
+      chunk.out.edge_shapes.resize(k);
+      for (size_t i = drained, j = 0; i < end; ++i, ++j) {
+        chunk.out.edge_shapes[j] = cache_stage.shapes[i];
+        cache_stage.shapes[i] = ProbeShapes{};  // the slot's next request starts from no shape
+      }
     }
   }
   drained = end;

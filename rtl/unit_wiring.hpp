@@ -56,6 +56,33 @@ struct RetireStats {
     ++tex_requests[r.texture];
     ++requests;
   }
+  // add() for requests [first, end) of `source`, with their `exit` and `accept` cycles: the same
+  // sums, the rings' storage and the running sums in registers (software speed only).
+  void add_range(const RequestStream& source, const RequestRing<uint64_t>& exit, const RequestRing<uint64_t>& accept,
+                 size_t first, size_t end) {
+    const TraceRequest* req = source.data();
+    const uint64_t *ex = exit.data(), *ac = accept.data();
+    const size_t req_mask = source.mask(), ex_mask = exit.mask(), ac_mask = accept.mask();
+    uint64_t *sr = slot_requests.data(), *sc = slot_cycles.data(), *tr = tex_requests.data();
+    std::vector<uint64_t>* sl = slot_latency.data();
+    uint64_t by = retired_by;
+    for (size_t i = first; i < end; ++i) {
+      const TraceRequest& r = req[i & req_mask];
+      const uint64_t e = ex[i & ex_mask];
+      const size_t k = stat_slot(r.texture, r.stage);
+      ++sr[k];
+      sc[k] += e + 1 - by;
+      by = e + 1;
+      const uint64_t lat = e - ac[i & ac_mask];
+      std::vector<uint64_t>& h = sl[k];
+      if (h.size() <= lat) [[unlikely]]
+        h.resize(lat + 1);
+      ++h[lat];
+      ++tr[r.texture];
+    }
+    retired_by = by;
+    requests += end - first;
+  }
   std::vector<uint64_t> slot_requests, slot_cycles;
   std::vector<std::vector<uint64_t>> slot_latency;
   std::vector<uint64_t> tex_requests;

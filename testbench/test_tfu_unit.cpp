@@ -398,7 +398,7 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
 // The address generator's per-wrap-pair grid functions (LINEAR, the edge cross, CUBIC of a 4-tap
 // ROM) form the grids of the plain unit, grid_any, for every pair of wrap modes, power-of-two and
 // other level sizes, coordinates inside and outside [0, 1], with and without an anisotropic probe
-// offset.
+// offset; and LINEAR's quad form (AddressGen::quad_grid_function, four pixels at once) likewise.
 TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
   Registers regs;
   for (const char* mode : {"LINEAR", "EDGE_PRESERVING", "CUBIC"})  // CUBIC: a 4-tap ROM (catmull-rom)
@@ -417,7 +417,7 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> coord(-2.5f, 3.5f);
   std::uniform_int_distribution<int64_t> offset(-3000, 3000);
-  int compared = 0;
+  int compared = 0, compared_quad = 0;
   for (int it = 0; it < test::iterations(4000); ++it)
     for (size_t k = 0; k < regs.samplers.size(); ++k) {
       const SamplerDescriptor& c = regs.samplers[k];
@@ -441,8 +441,34 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
       for (size_t i = 0; i < static_cast<size_t>(want.grid.cols); ++i) ASSERT_EQ(got.grid.x[i], want.grid.x[i]) << where();
       for (size_t j = 0; j < static_cast<size_t>(want.grid.rows); ++j) ASSERT_EQ(got.grid.y[j], want.grid.y[j]) << where();
       ++compared;
+      // LINEAR's quad form (the LINEAR quad path's), four pixels at once without a probe offset.
+      if (c.mode.base != BaseFilter::Linear || o != nullptr) continue;
+      ASSERT_NE(gen.quad_grid_function(k), nullptr);
+      std::array<float, 4> s4{}, t4{};
+      for (size_t p = 0; p < 4; ++p) {
+        s4[p] = coord(rng);
+        t4[p] = coord(rng);
+      }
+      std::array<FootprintReq, 4> got4{};
+      gen.quad_grid_function(k)(got4.data(), w, h, s4.data(), t4.data());
+      for (size_t p = 0; p < 4; ++p) {
+        FootprintReq want1{};
+        AddressGen::grid_any(c, 0, 0, want1, w, h, s4[p], t4[p], nullptr);
+        const FootprintReq& g = got4[p];
+        const auto where4 = [&] { return fmt::format("quad, {} wraps {} {}, {}x{}, pixel {} s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s), static_cast<int>(c.wrap_t), w, h, p, s4[p], t4[p]); };
+        ASSERT_EQ(g.tag.fu, want1.tag.fu) << where4();
+        ASSERT_EQ(g.tag.fv, want1.tag.fv) << where4();
+        ASSERT_EQ(g.cross, want1.cross) << where4();
+        ASSERT_EQ(g.grid.cols, want1.grid.cols) << where4();
+        ASSERT_EQ(g.grid.rows, want1.grid.rows) << where4();
+        ASSERT_EQ(g.grid.used, want1.grid.used) << where4();
+        for (size_t i = 0; i < 2; ++i) ASSERT_EQ(g.grid.x[i], want1.grid.x[i]) << where4();
+        for (size_t j = 0; j < 2; ++j) ASSERT_EQ(g.grid.y[j], want1.grid.y[j]) << where4();
+        ++compared_quad;
+      }
     }
   EXPECT_EQ(compared, test::iterations(4000) * 48);
+  EXPECT_GT(compared_quad, test::iterations(4000) * 16 * 4 / 2);  // LINEAR's 16 wrap pairs, 2/3 of the iterations
 }
 
 // A 32 x 32 checkerboard in L8 texels, linear rows, no MIP chain yet.
@@ -741,6 +767,32 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   EXPECT_LT(quads_taken, 1100);
   bind_requests(b, tr);
   expect_quad_paths_equal_the_plain_blocks(b.finish(), tr, rng, 16);
+  // Long runs of the path's quads (linear_run: one lent copy of the timing per run), seven of eight
+  // quads taken, the statistics slot (the stage) changing within a run.
+  FrameBuilder b2(64);
+  for (const auto& t : textures) b2.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b2.add_sampler(s, false);
+  Trace runs;
+  runs.mode = TraceMode::Quad;
+  int runs_taken = 0;
+  for (int n = 0; n < 1200; ++n) {
+    TraceRequest r;
+    do {
+      r.texture = static_cast<uint16_t>(rng() % textures.size());
+      r.sampler = static_cast<uint8_t>(rng() % samplers.size());
+    } while (!taken(r) && rng() % 8 != 0);
+    r.stage = static_cast<uint8_t>(rng() % 8 == 0 ? 1 : 0);
+    runs_taken += taken(r) ? 1 : 0;
+    const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
+    for (size_t k = 0; k < 4; ++k) {
+      r.s = s0 + static_cast<float>(k & 1) * step;
+      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+      runs.requests.push_back(r);
+    }
+  }
+  EXPECT_GT(runs_taken, 1000);
+  bind_requests(b2, runs);
+  expect_quad_paths_equal_the_plain_blocks(b2.finish(), runs, rng, 6);
 }
 
 // The timing recurrences' CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp: isotropic CUBIC,
