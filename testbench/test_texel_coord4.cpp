@@ -54,6 +54,33 @@ void check4(const std::array<float, 4>& x, int size, size_t& compared) {
   }
 }
 
+// The floating-point environments the tests run under, one by one: the four IEEE rounding modes
+// (round to nearest first), then round to nearest with MXCSR's flush-to-zero and
+// denormals-are-zero set. The previous environment comes back when the guard leaves scope, also on
+// a failed assertion's return.
+class FpEnvironment {
+ public:
+  static constexpr int kCount = 5;
+  explicit FpEnvironment(int mode) : csr_(_mm_getcsr()) {
+    static constexpr int kRounding[] = {FE_TONEAREST, FE_DOWNWARD, FE_UPWARD, FE_TOWARDZERO};
+    if (mode < 4)
+      set_ = std::fesetround(kRounding[mode]) == 0;
+    else
+      _mm_setcsr(csr_ | 0x8040u);  // FTZ and DAZ
+  }
+  ~FpEnvironment() {
+    std::fesetround(FE_TONEAREST);
+    _mm_setcsr(csr_);
+  }
+  FpEnvironment(const FpEnvironment&) = delete;
+  FpEnvironment& operator=(const FpEnvironment&) = delete;
+  bool set() const { return set_; }
+
+ private:
+  unsigned csr_;
+  bool set_ = true;
+};
+
 // Every exponent field 0..255, both signs, the boundary mantissas (0, 1, half, all ones) and random
 // ones, on every extent of extents(): NaN, infinities, denormals, zeros and huge values are among
 // them (exponents 0 and 255, and >= 142, which the unit must leave to the plain unit); also under
@@ -62,15 +89,10 @@ TEST(TexelCoord4, EqualsTexelCoordOnEveryExponent) {
   std::mt19937 rng(41);
   std::uniform_int_distribution<uint32_t> mant(0, 0x7FFFFF);
   const std::vector<int> sizes = extents(rng);
-  const int modes[] = {FE_TONEAREST, FE_DOWNWARD, FE_UPWARD, FE_TOWARDZERO};
   size_t compared = 0, left = 0;
-  for (int mode = 0; mode < 5; ++mode) {
-    const unsigned csr = _mm_getcsr();
-    if (mode < 4) {
-      ASSERT_EQ(std::fesetround(modes[mode]), 0);
-    } else {
-      _mm_setcsr(csr | 0x8040u);  // FTZ and DAZ
-    }
+  for (int mode = 0; mode < FpEnvironment::kCount; ++mode) {
+    const FpEnvironment env(mode);
+    ASSERT_TRUE(env.set()) << mode;
     const int per = mode == 0 ? 64 : 8;  // random mantissas per (exponent, sign) and extent
     for (uint32_t exp = 0; exp < 256; ++exp)
       for (uint32_t sign = 0; sign < 2; ++sign)
@@ -81,16 +103,10 @@ TEST(TexelCoord4, EqualsTexelCoordOnEveryExponent) {
           while (xs.size() % 4 != 0) xs.push_back(0.5f);
           for (size_t i = 0; i < xs.size(); i += 4) {
             check4({xs[i], xs[i + 1], xs[i + 2], xs[i + 3]}, size, compared);
-            if (HasFatalFailure()) {
-              std::fesetround(FE_TONEAREST);
-              _mm_setcsr(csr);
-              return;
-            }
+            if (HasFatalFailure()) return;
             for (size_t k = 0; k < 4; ++k) left += !taken(xs[i + k]);
           }
         }
-    std::fesetround(FE_TONEAREST);
-    _mm_setcsr(csr);
   }
   // Coordinates of texture space: every float in [-4, 4) of some exponents, lanes in every order.
   for (int size : {1, 16, 37, 1024, 32768})
@@ -146,15 +162,10 @@ TEST(TexelCoord4, WrapEqualsWrapTaps) {
 TEST(TexelCoord4, RepeatRemainderEqualsWrapIndex) {
   std::mt19937 rng(44);
   std::uniform_int_distribution<int32_t> any(std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max());
-  const int modes[] = {FE_TONEAREST, FE_DOWNWARD, FE_UPWARD, FE_TOWARDZERO};
   size_t compared = 0;
-  for (int mode = 0; mode < 5; ++mode) {
-    const unsigned csr = _mm_getcsr();
-    if (mode < 4) {
-      ASSERT_EQ(std::fesetround(modes[mode]), 0);
-    } else {
-      _mm_setcsr(csr | 0x8040u);  // FTZ and DAZ
-    }
+  for (int mode = 0; mode < FpEnvironment::kCount; ++mode) {
+    const FpEnvironment env(mode);
+    ASSERT_TRUE(env.set()) << mode;
     for (int size = 1; size <= 32768; size += mode == 0 ? 1 : 97) {
       std::vector<int32_t> xs;
       for (int32_t k = -3; k <= 3; ++k) xs.push_back(k), xs.push_back(size + k), xs.push_back(-size + k);
@@ -171,17 +182,11 @@ TEST(TexelCoord4, RepeatRemainderEqualsWrapIndex) {
                         dp::fast::repeat_remainder4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&xs[i])), size));
         for (size_t k = 0; k < 4; ++k) {
           const int want = wrap_index(WrapMode::Repeat, xs[i + k], size);
-          if (r[k] != want) {
-            std::fesetround(FE_TONEAREST);
-            _mm_setcsr(csr);
-            FAIL() << "size " << size << " i " << xs[i + k] << " mode " << mode << ": " << r[k] << " != " << want;
-          }
+          if (r[k] != want) FAIL() << "size " << size << " i " << xs[i + k] << " mode " << mode << ": " << r[k] << " != " << want;
           ++compared;
         }
       }
     }
-    std::fesetround(FE_TONEAREST);
-    _mm_setcsr(csr);
   }
   EXPECT_GT(compared, 1'500'000u);
 }

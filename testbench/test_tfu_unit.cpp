@@ -395,6 +395,25 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
   }
 }
 
+// The grid fields of two footprint requests the same (sub-texel fractions, edge cross, the grid's
+// columns, rows, used taps and coordinates); the first difference named otherwise.
+::testing::AssertionResult same_grid(const FootprintReq& got, const FootprintReq& want) {
+  const auto differs = [](const char* field, auto g, auto w) {
+    return ::testing::AssertionFailure() << field << " " << g << " != " << w;
+  };
+  if (got.tag.fu != want.tag.fu) return differs("fu", got.tag.fu, want.tag.fu);
+  if (got.tag.fv != want.tag.fv) return differs("fv", got.tag.fv, want.tag.fv);
+  if (got.cross != want.cross) return differs("cross", got.cross, want.cross);
+  if (got.grid.cols != want.grid.cols) return differs("cols", got.grid.cols, want.grid.cols);
+  if (got.grid.rows != want.grid.rows) return differs("rows", got.grid.rows, want.grid.rows);
+  if (got.grid.used != want.grid.used) return differs("used", got.grid.used, want.grid.used);
+  for (size_t i = 0; i < static_cast<size_t>(want.grid.cols); ++i)
+    if (got.grid.x[i] != want.grid.x[i]) return differs("x", got.grid.x[i], want.grid.x[i]) << " at column " << i;
+  for (size_t j = 0; j < static_cast<size_t>(want.grid.rows); ++j)
+    if (got.grid.y[j] != want.grid.y[j]) return differs("y", got.grid.y[j], want.grid.y[j]) << " at row " << j;
+  return ::testing::AssertionSuccess();
+}
+
 // The address generator's per-wrap-pair grid functions (LINEAR, the edge cross, CUBIC of a 4-tap
 // ROM) form the grids of the plain unit, grid_any, for every pair of wrap modes, power-of-two and
 // other level sizes, coordinates inside and outside [0, 1], with and without an anisotropic probe
@@ -432,14 +451,7 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
       gen.grid_function(k)(c, taps, first_tap, got, w, h, s, t, o);
       ASSERT_NE(gen.grid_function(k), &AddressGen::grid_any);
       const auto where = [&] { return fmt::format("{} wraps {} {}, {}x{}, s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s), static_cast<int>(c.wrap_t), w, h, s, t); };
-      ASSERT_EQ(got.tag.fu, want.tag.fu) << where();
-      ASSERT_EQ(got.tag.fv, want.tag.fv) << where();
-      ASSERT_EQ(got.cross, want.cross) << where();
-      ASSERT_EQ(got.grid.cols, want.grid.cols) << where();
-      ASSERT_EQ(got.grid.rows, want.grid.rows) << where();
-      ASSERT_EQ(got.grid.used, want.grid.used) << where();
-      for (size_t i = 0; i < static_cast<size_t>(want.grid.cols); ++i) ASSERT_EQ(got.grid.x[i], want.grid.x[i]) << where();
-      for (size_t j = 0; j < static_cast<size_t>(want.grid.rows); ++j) ASSERT_EQ(got.grid.y[j], want.grid.y[j]) << where();
+      ASSERT_TRUE(same_grid(got, want)) << where();
       ++compared;
       // LINEAR's quad form (the LINEAR quad path's), four pixels at once without a probe offset.
       if (c.mode.base != BaseFilter::Linear || o != nullptr) continue;
@@ -454,16 +466,9 @@ TEST(TfuUnit, FixedWrapGridsEqualThePlainAddressUnit) {
       for (size_t p = 0; p < 4; ++p) {
         FootprintReq want1{};
         AddressGen::grid_any(c, 0, 0, want1, w, h, s4[p], t4[p], nullptr);
-        const FootprintReq& g = got4[p];
-        const auto where4 = [&] { return fmt::format("quad, {} wraps {} {}, {}x{}, pixel {} s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s), static_cast<int>(c.wrap_t), w, h, p, s4[p], t4[p]); };
-        ASSERT_EQ(g.tag.fu, want1.tag.fu) << where4();
-        ASSERT_EQ(g.tag.fv, want1.tag.fv) << where4();
-        ASSERT_EQ(g.cross, want1.cross) << where4();
-        ASSERT_EQ(g.grid.cols, want1.grid.cols) << where4();
-        ASSERT_EQ(g.grid.rows, want1.grid.rows) << where4();
-        ASSERT_EQ(g.grid.used, want1.grid.used) << where4();
-        for (size_t i = 0; i < 2; ++i) ASSERT_EQ(g.grid.x[i], want1.grid.x[i]) << where4();
-        for (size_t j = 0; j < 2; ++j) ASSERT_EQ(g.grid.y[j], want1.grid.y[j]) << where4();
+        ASSERT_TRUE(same_grid(got4[p], want1))
+            << fmt::format("quad, {} wraps {} {}, {}x{}, pixel {} s {} t {}", filter_mode_name(c.mode), static_cast<int>(c.wrap_s),
+                           static_cast<int>(c.wrap_t), w, h, p, s4[p], t4[p]);
         ++compared_quad;
       }
     }
@@ -506,6 +511,23 @@ UnitConfig random_unit_config(std::mt19937& rng, const UnitConfig& base, Clocked
   // Now and then the datapaths at the SV tops' deeper pipelines (filter.edge_stages, bilinear_stages).
   if (rng() % 3 == 0) c.filter = {pick({3, 8}), pick({2, 3, 4})};
   return c;
+}
+
+// Every texture and sampler of a test frame into `b`, in order (the trace's texture and sampler
+// indices).
+void add_frame(FrameBuilder& b, const std::vector<std::shared_ptr<Texture>>& textures, const std::vector<SamplerDescriptor>& samplers) {
+  for (const auto& t : textures) b.add_texture(t, {"test", {}});
+  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+}
+
+// A quad's four requests (r's texture, sampler and stage): pixel k at (s0, t0) + ((k & 1) step,
+// (k >> 1) step / 2).
+void push_quad(Trace& tr, TraceRequest r, float s0, float t0, float step) {
+  for (size_t k = 0; k < 4; ++k) {
+    r.s = s0 + static_cast<float>(k & 1) * step;
+    r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
+    tr.requests.push_back(r);
+  }
 }
 
 // Requests to textures of every format and both layouts, through samplers of all 12 modes (and
@@ -570,8 +592,7 @@ TEST(TfuUnit, InterleavedTexturesFormatsLayoutsAndSamplers) {
   for (const int line : {64, 256})
     for (const TraceMode mode : {TraceMode::Quad, TraceMode::Lod, TraceMode::Grad}) {
       FrameBuilder b(line);
-      for (const auto& t : textures) b.add_texture(t, {"test", {}});
-      for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+      add_frame(b, textures, samplers);
       Trace tr;
       tr.mode = mode;
       std::uniform_real_distribution<float> uni(-0.25f, 1.25f), lod(-2.0f, 7.0f), d(-0.08f, 0.08f);
@@ -744,8 +765,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
            s.wrap_t != WrapMode::ClampToBorder && textures[r.texture]->format != TexelFormat::VS16X2;
   };
   FrameBuilder b(64);
-  for (const auto& t : textures) b.add_texture(t, {"test", {}});
-  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  add_frame(b, textures, samplers);
   Trace tr;
   tr.mode = TraceMode::Quad;
   std::uniform_real_distribution<float> uni(-1.5f, 2.5f), d(-0.08f, 0.08f);
@@ -757,11 +777,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
     r.stage = static_cast<uint8_t>(rng() % 2);
     quads_taken += taken(r) ? 1 : 0;
     const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
-    for (size_t k = 0; k < 4; ++k) {
-      r.s = s0 + static_cast<float>(k & 1) * step;
-      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
-      tr.requests.push_back(r);
-    }
+    push_quad(tr, r, s0, t0, step);
   }
   EXPECT_GT(quads_taken, 650);  // the path carries about half of the quads (17/27 samplers x 3/4 textures)
   EXPECT_LT(quads_taken, 1100);
@@ -770,8 +786,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
   // Long runs of the path's quads (linear_run: one lent copy of the timing per run), seven of eight
   // quads taken, the statistics slot (the stage) changing within a run.
   FrameBuilder b2(64);
-  for (const auto& t : textures) b2.add_texture(t, {"test", {}});
-  for (const SamplerDescriptor& s : samplers) b2.add_sampler(s, false);
+  add_frame(b2, textures, samplers);
   Trace runs;
   runs.mode = TraceMode::Quad;
   int runs_taken = 0;
@@ -784,11 +799,7 @@ TEST(TfuUnit, LinearQuadPathEqualsThePlainBlocks) {
     r.stage = static_cast<uint8_t>(rng() % 8 == 0 ? 1 : 0);
     runs_taken += taken(r) ? 1 : 0;
     const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
-    for (size_t k = 0; k < 4; ++k) {
-      r.s = s0 + static_cast<float>(k & 1) * step;
-      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
-      runs.requests.push_back(r);
-    }
+    push_quad(runs, r, s0, t0, step);
   }
   EXPECT_GT(runs_taken, 1000);
   bind_requests(b2, runs);
@@ -847,8 +858,7 @@ TEST(TfuUnit, CubicQuadPathEqualsThePlainBlocks) {
            textures[r.texture]->format != TexelFormat::VS16X2;
   };
   FrameBuilder b(64);
-  for (const auto& t : textures) b.add_texture(t, {"test", {}});
-  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  add_frame(b, textures, samplers);
   Trace tr;
   tr.mode = TraceMode::Quad;
   std::uniform_real_distribution<float> uni(-1.5f, 2.5f), d(-0.08f, 0.08f);
@@ -862,11 +872,7 @@ TEST(TfuUnit, CubicQuadPathEqualsThePlainBlocks) {
     r.stage = static_cast<uint8_t>(rng() % 2);
     quads_taken += taken(r) ? 1 : 0;
     const float s0 = uni(rng), t0 = uni(rng), step = std::abs(d(rng));
-    for (size_t k = 0; k < 4; ++k) {
-      r.s = s0 + static_cast<float>(k & 1) * step;
-      r.t = t0 + static_cast<float>(k >> 1) * step * 0.5f;
-      tr.requests.push_back(r);
-    }
+    push_quad(tr, r, s0, t0, step);
   }
   EXPECT_GT(quads_taken, 600);  // the path carries about half of the quads (22/34 samplers x 3/4 textures)
   EXPECT_LT(quads_taken, 1050);
@@ -1142,8 +1148,7 @@ TEST(TfuUnit, ProbeQuadPathEqualsThePlainBlocks) {
            s.wrap_t != WrapMode::ClampToBorder && textures[r.texture]->format != TexelFormat::VS16X2;
   };
   FrameBuilder b(64);
-  for (const auto& t : textures) b.add_texture(t, {"test", {}});
-  for (const SamplerDescriptor& s : samplers) b.add_sampler(s, false);
+  add_frame(b, textures, samplers);
   Trace tr;
   tr.mode = TraceMode::Quad;
   std::uniform_real_distribution<float> pos(-1.5f, 2.5f), len(0.001f, 0.03f), ratio(1.0f, 24.0f), angle(0.0f, 6.2831853f);
