@@ -273,10 +273,11 @@ FootprintResult TexelCache::access_grid(size_t l, const TapGrid& g) {
   LineSet s;
   if (cfg_.bank_mapping == BankMapping::TexelParity) {
     cell_lines(l, g, s);
+    line_sectors(l, g, s);
   } else if (g.cols != 4 || g.rows != 4 || !block_runs_ || !block_run_lines(l, g, s)) {
     group_lines(l, g, s);
-  }
-  line_sectors(l, g, s);
+    line_sectors(l, g, s);
+  }  // else block_run_lines formed the sectors too
   FootprintResult r;
   for (size_t i = 0; i < s.n; ++i) probe(s.lines[i], s.sectors[i], r);
   r.cycles = std::max(std::max(1, s.nbank[0]), std::max(std::max(s.nbank[1], s.nbank[2]), s.nbank[3]));

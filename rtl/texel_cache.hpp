@@ -254,8 +254,9 @@ class TexelCache {
     std::array<int, 4> nbank{};
   };
   void group_lines(size_t l, const TapGrid& g, LineSet& s) const;
-  // group_lines for a 4 x 4 grid of column and row runs in at most two lines per axis (software
-  // speed only, rtl/texel_cache_block_runs.cpp); false (nothing written) for any other grid.
+  // group_lines and line_sectors for a 4 x 4 grid of column and row runs in at most two lines per
+  // axis (software speed only, rtl/texel_cache_block_runs.cpp); false (nothing written) for any
+  // other grid.
   bool block_run_lines(size_t l, const TapGrid& g, LineSet& s) const;
   void cell_lines(size_t l, const TapGrid& g, LineSet& s) const;
   void line_sectors(size_t l, const TapGrid& g, LineSet& s) const;
