@@ -126,7 +126,10 @@ void EdgeMerge::evaluate() {
 
 bool EdgeMerge::merge(const EdgeDirectionOut& s, Response& out) {
   const LevelTag& tag = s.median.tag;
-  Texel4 c = lee_jen::edge_merge(s.median.c, s.median.low, s.direction, tag.fu, tag.fv, tag.format);
+  return finish(tag, lee_jen::edge_merge(s.median.c, s.median.low, s.direction, tag.fu, tag.fv, tag.format), out);
+}
+
+bool EdgeMerge::finish(const LevelTag& tag, Texel4 c, Response& out) {
   if (tag.holds()) {
     first_ = c;
     return false;
@@ -135,6 +138,19 @@ bool EdgeMerge::merge(const EdgeDirectionOut& s, Response& out) {
   if (!probes_.add(tag, c)) return false;
   out = {tag.id, encode_texel(c, tag.format)};
   return true;
+}
+
+// edge_stages_fused (software speed only): its plain twin and equality test are named in
+// rtl/edge_datapath.hpp.
+bool edge_stages_fused(const FilterReq& r, EdgeDirection& direction, EdgeMerge& merge, Response& out) {
+  const LevelTag& tag = r.tag;
+  const TexelFormat fmt = tag.format;
+  std::array<Texel4, lee_jen::kTexels> c;
+  for (size_t k = 0; k < c.size(); ++k) c[k] = decode_texel(r.texels[k], fmt);
+  const lee_jen::LowIndex low = lee_jen::median_low_pass(lee_jen::luma_keys(c, tag.shape, fmt), tag.shape);
+  const int d = lee_jen::select_direction(c, low, tag.shape, tag.fu, tag.fv, fmt).direction;
+  ++direction.chosen[stat_slot(tag.req)][static_cast<size_t>(d)];
+  return merge.finish(tag, lee_jen::edge_merge(c, low, d, tag.fu, tag.fv, fmt), out);
 }
 
 }  // namespace tfu::rtl

@@ -87,6 +87,9 @@ class EdgeMerge : public sim::Module {
   // The stage's datapath: true with the pixel's response in `out` when the footprint completes one
   // (LevelTag::emits()).
   bool merge(const EdgeDirectionOut& s, Response& out);
+  // Its tail, once the footprint's texel `c` is merged (Eq. 6): the level register, the trilinear
+  // blend, the probe accumulator, encode (merge() and edge_stages_fused()).
+  bool finish(const LevelTag& tag, Texel4 c, Response& out);
   // The stage's timing for the recurrence engine, beside evaluate(), which takes its input's head,
   // one per cycle, when the response channel has room if the footprint completes a pixel (and at
   // once if not): an InOrderTiming (rtl/timing.hpp) without an output for the others. Both change
@@ -99,5 +102,15 @@ class EdgeMerge : public sim::Module {
   Texel4 first_{};  // level0 result of a blending pixel (register)
   ProbeAccumulator probes_;  // the probes of an anisotropic pixel (probe_accumulator.hpp)
 };
+
+// The three stages' combinational parts in one call (software speed only: the recurrences' edge
+// footprints, rtl/unit_recurrence.cpp, unless TFU_PLAIN=1 / --plain): the texels decoded once, the
+// medians by lee_jen::median_low_pass and the direction by lee_jen::select_direction (the golden
+// model's forms of median_network_eval and direction_select, which equal them:
+// MedianNetwork.RandomKeysAllShapesAllOutputs, TfuUnit.DirectionSelectTreeEqualsTheGoldenArgmin),
+// the direction histogram and EdgeMerge::finish, with no stage registers copied. Its plain twin:
+// EdgeMedian::stage, EdgeDirection::stage, EdgeMerge::merge in turn; its equality test:
+// TfuUnit.EdgeFusedStagesEqualThePlainStages. True with the pixel's response in `out` as merge().
+bool edge_stages_fused(const FilterReq& r, EdgeDirection& direction, EdgeMerge& merge, Response& out);
 
 }  // namespace tfu::rtl

@@ -226,21 +226,30 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
     Response r;
     if (u.filter->filter(texel_words, r)) retire(r, u.filter_pipe, ch.response, done, ResponseRetiresFilterPixel);
   };
-  // edge_median -> edge_direction -> edge_merge -> response: the same for an edge footprint.
+  // edge_median -> edge_direction -> edge_merge -> response: the same for an edge footprint. The
+  // stages' combinational parts in one call (edge_stages_fused, software speed only: the same
+  // functions of the same inputs in the same order, which no timing reads) unless the fast paths
+  // are off; then each stage's own, as the clocked blocks call them.
+  const bool edge_fused = quad_paths && fast_paths_enabled();
   const auto through_edge_stages = [&](int64_t exit) {
     const bool emits = texel_words.tag.emits();
+    Response r;
+    bool retires = false;
+    if (edge_fused) {
+      retires = edge_stages_fused(texel_words, *u.edge_direction, *u.edge_merge, r);
+    } else {
+      EdgeMedian::stage(texel_words, median_out);
+      u.edge_direction->stage(median_out, direction_out);
+      retires = u.edge_merge->merge(direction_out, r);
+    }
     const int64_t median =
         log.at(EdgeMedianTakesFootprint, u.edge_median->timing.move(exit, ch.edge_texels, &ch.edge_median_out));
-    EdgeMedian::stage(texel_words, median_out);
     const int64_t direction = log.at(EdgeDirectionTakesFootprint,
                                      u.edge_direction->timing.move(median, ch.edge_median_out, &ch.edge_direction_out));
-    u.edge_direction->stage(median_out, direction_out);
     const int64_t merged =
         log.at(EdgeMergeTakesFootprint,
                u.edge_merge->timing.move(direction, ch.edge_direction_out, emits ? &ch.edge_response : nullptr));
-    Response r;
-    if (u.edge_merge->merge(direction_out, r))
-      retire(r, u.edge_pipe, ch.edge_response, merged, ResponseRetiresEdgePixel);
+    if (retires) retire(r, u.edge_pipe, ch.edge_response, merged, ResponseRetiresEdgePixel);
   };
   // The CUBIC quad path (rtl/unit_recurrence_cubic_quads.hpp): one or two level footprints of 4 x 4
   // taps per pixel of `quad`, which lod_unit took at `quad_taken` (its levels from `lod`), timed

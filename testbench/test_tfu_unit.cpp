@@ -395,6 +395,76 @@ TEST(TfuUnit, DirectionSelectTreeEqualsTheGoldenArgmin) {
   }
 }
 
+// The edge datapath's three stages in one call (edge_stages_fused: the recurrences' edge
+// footprints unless TFU_PLAIN=1) equal the stages' own combinational parts in turn
+// (EdgeMedian::stage, EdgeDirection::stage, EdgeMerge::merge, as the clocked blocks call them):
+// random footprints in sequences of pixels (one level, blending pairs, anisotropic probes of one
+// or two levels), every kernel shape, RGBA8, L8 and VS16X2 words, fractions and blend weights,
+// four statistics slots, texels drawn from a few values (ties for the medians and the
+// direction costs) or from all; the pixels retired, their responses, and the direction histograms.
+TEST(TfuUnit, EdgeFusedStagesEqualThePlainStages) {
+  sim::Simulator sim;
+  sim::Channel<EdgeMedianOut> median_out("edge_median_out", 2);
+  sim::Channel<EdgeDirectionOut> direction_out("edge_direction_out", 2);
+  sim::Channel<Response> response("edge_response", 2);
+  EdgeDirection plain_direction(sim, median_out, direction_out, 1), fused_direction(sim, median_out, direction_out, 1);
+  EdgeMerge plain_merge(sim, direction_out, response), fused_merge(sim, direction_out, response);
+  const std::vector<lee_jen::KernelShape>& shapes = lee_jen::kernel_shapes();
+  std::mt19937 rng(29);
+  int retired = 0;
+  for (int pixel = 0; pixel < test::iterations(20000); ++pixel) {
+    const TexelFormat fmt = std::array{TexelFormat::RGBA8, TexelFormat::L8, TexelFormat::VS16X2}[rng() % 3];
+    const uint32_t range = pixel % 2 == 0 ? 3 : 256;
+    const int probes = pixel % 5 == 0 ? 1 + static_cast<int>(rng() % 4) : 1;
+    const bool blends = rng() % 2 == 0;
+    const int blend = static_cast<int>(rng() % 256);
+    for (int probe = 0; probe < probes; ++probe)
+      for (int level = 0; level < (blends ? 2 : 1); ++level) {
+        FilterReq r{};
+        r.tag.id = static_cast<uint32_t>(pixel);
+        r.tag.req.stage = static_cast<uint8_t>(rng() % kStatStages);
+        r.tag.base = BaseFilter::EdgePreserving;
+        r.tag.format = fmt;
+        r.tag.fu = rng() % 256;
+        r.tag.fv = rng() % 256;
+        r.tag.blends = blends;
+        r.tag.is_level1 = level == 1;
+        r.tag.blend = blend;
+        r.tag.probes = static_cast<uint8_t>(probes);
+        r.tag.probe = static_cast<uint8_t>(probe);
+        r.tag.shape = shapes[rng() % shapes.size()].mask;
+        r.ntaps = lee_jen::kTexels;
+        for (size_t k = 0; k < lee_jen::kTexels; ++k) {
+          const auto v = [&] { return static_cast<uint8_t>(rng() % range * (range == 3 ? 100 : 1)); };
+          r.texels[k] = ((r.tag.shape >> k) & 1u) ? Rgba8{v(), v(), v(), v()} : Rgba8{0, 0, 0, 0};
+        }
+        EdgeMedianOut m;
+        EdgeDirectionOut d;
+        EdgeMedian::stage(r, m);
+        plain_direction.stage(m, d);
+        Response want{}, got{};
+        const bool plain_retires = plain_merge.merge(d, want);
+        const bool fused_retires = edge_stages_fused(r, fused_direction, fused_merge, got);
+        ASSERT_EQ(fused_retires, plain_retires) << pixel;
+        ASSERT_EQ(fused_retires, r.tag.emits()) << pixel;
+        if (!plain_retires) continue;
+        ASSERT_EQ(got.id, want.id) << pixel;
+        ASSERT_EQ(got.rgba, want.rgba) << pixel << " format " << static_cast<int>(fmt);
+        ++retired;
+      }
+  }
+  EXPECT_EQ(retired, test::iterations(20000));
+  EXPECT_EQ(fused_direction.chosen, plain_direction.chosen);
+  uint64_t chosen = 0, directions_used = 0;
+  for (const auto& slot : plain_direction.chosen)
+    for (const uint64_t n : slot) {
+      chosen += n;
+      directions_used += n != 0;
+    }
+  EXPECT_GT(chosen, static_cast<uint64_t>(test::iterations(20000)));
+  EXPECT_GT(directions_used, 40u);  // most of the 22 directions, in more than one slot
+}
+
 // The grid fields of two footprint requests the same (sub-texel fractions, edge cross, the grid's
 // columns, rows, used taps and coordinates); the first difference named otherwise.
 ::testing::AssertionResult same_grid(const FootprintReq& got, const FootprintReq& want) {
