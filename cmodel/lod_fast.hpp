@@ -25,6 +25,7 @@
 // the scalar ones do); elsewhere the plain twin stands in.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "cmodel/lod.hpp"
@@ -81,11 +82,35 @@ inline TexelDerivatives derivatives_from_quad(const float s[4], const float t[4]
   _mm_storeu_si128(reinterpret_cast<__m128i*>(&d.dudy), to_int64(_mm_sub_pd(p2, p0)));
   return d;
 }
-#else
+#endif
+
+#if !TFU_LOD_FAST_SSE2
 inline int64_t to_fixed_q16(float x, uint32_t scale) { return float_to_fixed(x, scale, 16); }
 inline TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
   return derivatives_from_quad_plain(s, t, width, height);
 }
 #endif
+
+// The renderer's lambda of a quad, inline (fast path; plain twin lambda_from_quad of lod.cpp with
+// the fast paths off: lambda_from_derivatives(derivatives_from_quad_plain(...)); equality tests
+// LodFast.LambdaFromLengthEqualsThePlainUnit, LodFast.LambdaFromQuadEqualsThePlainTwin). The same
+// operations as lambda_from_length_sq and log2_q8 (lod.cpp) on the largest squared length, written
+// here so that a caller holding the fast-path switch (cmodel/raster.cpp) pays no call, no read of
+// the switch and no call of log2_rom() per quad; the ROM's address is read once (a local static).
+inline int32_t lambda_from_length_sq(uint64_t rho2_q32) {
+  if (rho2_q32 == 0) return kLodMinusInfinity;
+  static const uint16_t* const rom = log2_rom().data();
+  const int e = 63 - std::countl_zero(rho2_q32);  // leading-one detector
+  const auto index = static_cast<uint32_t>(
+      (e >= kLog2RomIndexBits ? rho2_q32 >> (e - kLog2RomIndexBits) : rho2_q32 << (kLog2RomIndexBits - e)) &
+      ((1u << kLog2RomIndexBits) - 1));
+  const int32_t l2 = (e << kLodFracBits) + rom[index] - (32 << kLodFracBits);  // log2(rho^2), Q.8
+  return (l2 + 1) >> 1;                                                          // halve, round half up
+}
+inline int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
+  const TexelDerivatives d = derivatives_from_quad(s, t, width, height);
+  const uint64_t lx = derivative_length_sq(d.dudx, d.dvdx), ly = derivative_length_sq(d.dudy, d.dvdy);
+  return lambda_from_length_sq(lx > ly ? lx : ly);
+}
 
 }  // namespace tfu::lod_fast
