@@ -27,6 +27,7 @@
 #include <emmintrin.h>
 
 #include <bit>
+#include <climits>
 #include <cstdint>
 
 #include "cmodel/datapath.hpp"
@@ -146,8 +147,14 @@ template <WrapMode kW>
       const __m128i lo = _mm_add_epi32(hi, _mm_and_si128(d, _mm_srai_epi32(d, 31)));
       return _mm_andnot_si128(_mm_srai_epi32(lo, 31), lo);
     };
+    // The second tap from the first: clamp(i0 + 1) = clamp(i0) + 1 where 0 <= i0 < size - 1 (an
+    // unsigned compare: signed after flipping the sign bits), else clamp(i0) (both 0 below the
+    // extent, both size - 1 at and above its last texel).
+    const __m128i sign = _mm_set1_epi32(INT32_MIN);
+    const __m128i inside = _mm_cmpgt_epi32(_mm_xor_si128(hi, sign), _mm_xor_si128(i0, sign));  // -1 where 0 <= i0 < size - 1
     t0 = clamp(i0);
-    t1 = clamp(i1);
+    t1 = _mm_sub_epi32(t0, inside);
+    (void)i1;
   } else {
     static_assert(kW == WrapMode::ClampToBorder);
     const __m128i n = _mm_set1_epi32(size);
