@@ -25,6 +25,7 @@
 // the scalar ones do); elsewhere the plain twin stands in.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "cmodel/lod.hpp"
@@ -81,11 +82,56 @@ inline TexelDerivatives derivatives_from_quad(const float s[4], const float t[4]
   _mm_storeu_si128(reinterpret_cast<__m128i*>(&d.dudy), to_int64(_mm_sub_pd(p2, p0)));
   return d;
 }
-#else
+#endif
+
+#if !TFU_LOD_FAST_SSE2
 inline int64_t to_fixed_q16(float x, uint32_t scale) { return float_to_fixed(x, scale, 16); }
 inline TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
   return derivatives_from_quad_plain(s, t, width, height);
 }
 #endif
+
+// The renderer's lambda of a quad, inline (fast path; plain twin lambda_from_quad of lod.cpp with
+// the fast paths off: lambda_from_derivatives(derivatives_from_quad_plain(...)); equality tests
+// LodFast.LambdaFromLengthEqualsThePlainUnit, LodFast.LambdaFromQuadEqualsThePlainTwin). The same
+// operations as lambda_from_length_sq and log2_q8 (lod.cpp) on the largest squared length, written
+// here so that a caller holding the fast-path switch (cmodel/raster.cpp) pays no call, no read of
+// the switch and no call of log2_rom() per quad; the ROM's address is read once (a local static).
+inline int32_t lambda_from_length_sq(uint64_t rho2_q32) {
+  if (rho2_q32 == 0) return kLodMinusInfinity;
+  static const uint16_t* const rom = log2_rom().data();
+  const int e = 63 - std::countl_zero(rho2_q32);  // leading-one detector
+  const auto index = static_cast<uint32_t>(
+      (e >= kLog2RomIndexBits ? rho2_q32 >> (e - kLog2RomIndexBits) : rho2_q32 << (kLog2RomIndexBits - e)) &
+      ((1u << kLog2RomIndexBits) - 1));
+  const int32_t l2 = (e << kLodFracBits) + rom[index] - (32 << kLodFracBits);  // log2(rho^2), Q.8
+  return (l2 + 1) >> 1;                                                          // halve, round half up
+}
+// The squared lengths in SSE2 as well: the derivatives are the integer-valued doubles of
+// derivatives_from_quad (|d| <= 2^47, exact), |d| clamped to 2^31 - 1 (andpd, minpd: exact) and
+// converted to 32-bit integers (cvttpd2dq: exact), squared and summed in 64-bit lanes (pmuludq,
+// paddq: |du|^2 + |dv|^2 < 2^63), as derivative_magnitude and derivative_length_sq.
+inline int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
+#if TFU_LOD_FAST_SSE2
+  using namespace detail;
+  const __m128 sv = _mm_loadu_ps(s), tv = _mm_loadu_ps(t);
+  const __m128 st01 = _mm_unpacklo_ps(sv, tv), st23 = _mm_unpackhi_ps(sv, tv);  // s0 t0 s1 t1, s2 t2 s3 t3
+  const __m128d scale = _mm_set_pd(static_cast<double>(height) * 65536.0, static_cast<double>(width) * 65536.0);
+  const __m128d p0 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st01), scale));                      // u0 v0
+  const __m128d p1 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(st01, st01)), scale));  // u1 v1
+  const __m128d p2 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st23), scale));                      // u2 v2
+  const __m128d abs = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX)), clamp = _mm_set1_pd(kDerivativeClamp);
+  const auto magnitude = [&](__m128d d) __attribute__((always_inline)) {  // two 32-bit lanes, low half
+    return _mm_cvttpd_epi32(_mm_min_pd(_mm_and_pd(d, abs), clamp));
+  };
+  const __m128i m = _mm_unpacklo_epi64(magnitude(_mm_sub_pd(p1, p0)), magnitude(_mm_sub_pd(p2, p0)));  // |dudx| |dvdx| |dudy| |dvdy|
+  const __m128i sq = _mm_add_epi64(_mm_mul_epu32(m, m), _mm_mul_epu32(_mm_srli_epi64(m, 32), _mm_srli_epi64(m, 32)));
+  const auto lx = static_cast<uint64_t>(_mm_cvtsi128_si64(sq)), ly = static_cast<uint64_t>(_mm_cvtsi128_si64(_mm_unpackhi_epi64(sq, sq)));
+#else
+  const TexelDerivatives d = derivatives_from_quad(s, t, width, height);
+  const uint64_t lx = derivative_length_sq(d.dudx, d.dvdx), ly = derivative_length_sq(d.dudy, d.dvdy);
+#endif
+  return lambda_from_length_sq(lx > ly ? lx : ly);
+}
 
 }  // namespace tfu::lod_fast

@@ -17,6 +17,7 @@
 
 #include "cmodel/error.hpp"
 #include "cmodel/fast_paths.hpp"
+#include "cmodel/lod_fast.hpp"
 #include "cmodel/parallel.hpp"
 #include "cmodel/raster_quad_fast.hpp"
 #include "cmodel/texenv.hpp"
@@ -342,7 +343,11 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
           // A sampler without MIP-mapping selects level 0 whatever lambda is (select_levels): the fast
           // path then leaves lambda at 0 without the LOD unit, as the cycle model's LOD unit does
           // (rtl/lod_unit.hpp); the plain path forms it (PlainPaths.* compare the two).
-          const int32_t lambda = fast && ss.mip_none ? 0 : lambda_from_quad(s, t, ss.width, ss.height);
+          // With the fast paths on, the LOD unit's inline form (lod_fast::lambda_from_quad: no call and
+          // no read of the switch per quad; LodFast.LambdaFromQuadEqualsThePlainTwin).
+          const int32_t lambda = !fast         ? lambda_from_quad(s, t, ss.width, ss.height)
+                                 : ss.mip_none ? 0
+                                               : lod_fast::lambda_from_quad(s, t, ss.width, ss.height);
           // The quad's covered pixels go to the filter unit together (its quad interface).
           std::array<SampleRequest, 4> reqs;
           std::array<Rgba8, 4> texel;

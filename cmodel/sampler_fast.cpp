@@ -428,13 +428,22 @@ template <WrapMode kWs, WrapMode kWt>
 }
 
 // The group's coordinates for the 4-lane address stage (cmodel/texel_coord4.hpp), formed once per
-// group: s and t of lanes 0..3 in binary64; a lane k >= m repeats request 0 (its footprint is
-// fetched, in range, and its result not stored). `unit`: every s and t is one the coordinate unit
-// takes (else the group takes group_lanes_per_lane).
+// group: s and t of lanes 0..3 (binary32; widened to binary64 on a level whose extent is not a power
+// of two); a lane k >= m repeats request 0 (its footprint is fetched, in range, and its result not
+// stored). `unit`: every s and t is one the coordinate unit takes (else the group takes
+// group_lanes_per_lane).
 struct GroupCoords {
-  dp::fast::Coords4d s, t;
+  __m128 s, t;
   bool unit;
 };
+// The coordinate unit on one axis of a level: on a power-of-two extent the binary32 form
+// (dp::fast::texel_coord4_pow2, four lanes a register) where it takes the group, else the binary64
+// form (dp::fast::texel_coord4); both equal dp::texel_coord per lane (TexelCoord4.*).
+[[gnu::always_inline]] inline dp::fast::TexelCoords4 axis_coords(__m128 x, int size) {
+  dp::fast::TexelCoords4 c;
+  if ((size & (size - 1)) == 0 && dp::fast::texel_coord4_pow2(x, size, c)) return c;
+  return dp::fast::texel_coord4(dp::fast::widen4(x), size);
+}
 [[gnu::always_inline]] inline GroupCoords group_coords(size_t m, const SampleRequest* r) {
   static_assert(offsetof(SampleRequest, s) == 0 && offsetof(SampleRequest, t) == 4);
   const auto st = [&](size_t k) __attribute__((always_inline)) {  // (s, t) of lane k in the low half
@@ -442,17 +451,17 @@ struct GroupCoords {
   };
   const __m128 x01 = _mm_unpacklo_ps(st(0), st(1)), x23 = _mm_unpacklo_ps(st(2), st(3));  // s0 s1 t0 t1, s2 s3 t2 t3
   const __m128 s = _mm_movelh_ps(x01, x23), t = _mm_movehl_ps(x23, x01);
-  return {dp::fast::widen4(s), dp::fast::widen4(t), (dp::fast::texel_coord4_lanes(s) & dp::fast::texel_coord4_lanes(t)) == 15};
+  return {s, t, (dp::fast::texel_coord4_lanes(s) & dp::fast::texel_coord4_lanes(t)) == 15};
 }
 
 // The four footprints on one level through the 4-lane address stage: coordinates
-// (dp::fast::texel_coord4), wrap (dp::fast::wrap2x4; the caller checks wrap2x4_takes), texel
+// (axis_coords: dp::fast::texel_coord4_pow2 or texel_coord4), wrap (dp::fast::wrap2x4; the caller checks wrap2x4_takes), texel
 // indices y w + x, then the texel words: when every lane's taps i0 and i0 + 1 are next to each
 // other in a row (and no tap is a border tap), each row's two words of a lane in one 64-bit load;
 // else one load per tap, and the border word where x or y is -1. Lanes equal lerp_lane's.
 template <WrapMode kWs, WrapMode kWt>
 [[gnu::always_inline]] inline GroupLanes group_lanes4(LevelView img, Rgba8 border, const GroupCoords& g) {
-  const dp::fast::TexelCoords4 u = dp::fast::texel_coord4(g.s, img.width), v = dp::fast::texel_coord4(g.t, img.height);
+  const dp::fast::TexelCoords4 u = axis_coords(g.s, img.width), v = axis_coords(g.t, img.height);
   __m128i x0, x1, y0, y1;
   dp::fast::wrap2x4<kWs>(u.i0, img.width, x0, x1);
   dp::fast::wrap2x4<kWt>(v.i0, img.height, y0, y1);
@@ -465,8 +474,14 @@ template <WrapMode kWs, WrapMode kWt>
     x0 = _mm_andnot_si128(bx0, x0), x1 = _mm_andnot_si128(bx1, x1);  // read texel 0 there, then the border word
     y0 = _mm_andnot_si128(by0, y0), y1 = _mm_andnot_si128(by1, y1);
   }
-  const __m128i w = _mm_set1_epi32(img.width);
-  const __m128i r0 = dp::fast::row_offset4(y0, w), r1 = dp::fast::row_offset4(y1, w);
+  __m128i r0, r1;  // y w: a shift on a power-of-two width
+  if ((img.width & (img.width - 1)) == 0) {
+    const int log2w = std::countr_zero(static_cast<unsigned>(img.width));
+    r0 = dp::fast::row_offset4_pow2(y0, log2w), r1 = dp::fast::row_offset4_pow2(y1, log2w);
+  } else {
+    const __m128i w = _mm_set1_epi32(img.width);
+    r0 = dp::fast::row_offset4(y0, w), r1 = dp::fast::row_offset4(y1, w);
+  }
   const __m128i ia = _mm_add_epi32(r0, x0), ic = _mm_add_epi32(r1, x0);
   const auto word = [&](int32_t i) __attribute__((always_inline)) {
     return std::bit_cast<int32_t>(img.texels[static_cast<uint32_t>(i)]);

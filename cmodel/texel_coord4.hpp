@@ -1,9 +1,12 @@
 // 4-lane address stage of the golden sampler's LINEAR batch (speed only, SSE2; sampler_fast.cpp,
 // Sampler::FastPaths::batch). Plain twins, which each lane must equal bit for bit:
 //   texel_coord4    dp::texel_coord (cmodel/datapath.hpp: float_to_fixed_fast, cmodel/fixed_coord.hpp)
+//   texel_coord4_pow2  texel_coord4 on a power-of-two extent, in binary32 (four lanes a register)
+//   row_offset4_pow2   row_offset4 (y w) on a power-of-two w: a shift
 //   wrap2x4         dp::fast::wrap_taps<kW, 2> (datapath_fast.hpp; wrap_run, texture.hpp); on repeat
 //                   over an extent other than a power of two, repeat_remainder4 (wrap_index's floor mod)
-// Equality tests: TexelCoord4.EqualsTexelCoordOnEveryExponent, TexelCoord4.WrapEqualsWrapTaps,
+// Equality tests: TexelCoord4.EqualsTexelCoordOnEveryExponent, TexelCoord4.Pow2EqualsTexelCoord,
+// TexelCoord4.WrapEqualsWrapTaps,
 // TexelCoord4.RepeatRemainderEqualsWrapIndex
 // (testbench/test_texel_coord4.cpp); through the batch, Properties.BatchQuadsEqualPlainPath and
 // BatchEqualsSample. Off with the fast-path switch (TFU_PLAIN=1) with the rest of the batch.
@@ -24,6 +27,7 @@
 #include <emmintrin.h>
 
 #include <bit>
+#include <climits>
 #include <cstdint>
 
 #include "cmodel/datapath.hpp"
@@ -70,6 +74,27 @@ struct TexelCoords4 {
   // u >> 8 fits 32 bits, so its low 32 bits are the same for a logical and an arithmetic shift
   return {low32(_mm_srli_epi64(u01, kSubTexelBits), _mm_srli_epi64(u23, kSubTexelBits)),
           _mm_and_si128(low32(u01, u23), _mm_set1_epi32((1 << kSubTexelBits) - 1))};
+}
+
+// texel_coord4 on a power-of-two extent W = 2^k in binary32 (fast path of texel_coord4; plain twins
+// texel_coord4 and dp::texel_coord; equality test TexelCoord4.Pow2EqualsTexelCoord): for a lane the
+// unit takes (texel_coord4_lanes: zero, or normal with |x| < 2^15), y = x 2^(k + 8) is exact in
+// binary32 (a multiply by a power of two whose result stays normal, below 2^38); when every lane's
+// |y| < 2^30 (else it returns false and the caller takes texel_coord4), floor(y) is the truncation
+// cvttps2dq (no rounding mode involved) less one where y is below the truncation read back as a
+// float (exact: an integer of at most 24 significant bits, or y itself), and u = floor(y) - 2^7,
+// i0 = u >> 8, f = u & 255 in 32-bit lanes (|u| < 2^30 + 2^7). No step rounds and none meets a
+// denormal, so FTZ, DAZ and the rounding mode do not matter. Four lanes a register instead of two.
+[[gnu::always_inline]] inline bool texel_coord4_pow2(__m128 x, int size, TexelCoords4& out) {
+  static_assert(kSubTexelBits == 8);
+  const __m128 y = _mm_mul_ps(x, _mm_set1_ps(static_cast<float>(size) * 256.0f));  // exact
+  const __m128 ay = _mm_and_ps(y, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF)));
+  if (_mm_movemask_ps(_mm_cmplt_ps(ay, _mm_set1_ps(0x1p30f))) != 15) return false;
+  const __m128i t = _mm_cvttps_epi32(y);
+  const __m128i below = _mm_castps_si128(_mm_cmplt_ps(y, _mm_cvtepi32_ps(t)));  // y < trunc(y): -1
+  const __m128i u = _mm_sub_epi32(_mm_add_epi32(t, below), _mm_set1_epi32(1 << (kSubTexelBits - 1)));
+  out = {_mm_srai_epi32(u, kSubTexelBits), _mm_and_si128(u, _mm_set1_epi32((1 << kSubTexelBits) - 1))};
+  return true;
 }
 
 // Whether wrap2x4 takes the mode (kWrap2x4) and, on this extent, the mode: repeat (on any extent
@@ -122,8 +147,14 @@ template <WrapMode kW>
       const __m128i lo = _mm_add_epi32(hi, _mm_and_si128(d, _mm_srai_epi32(d, 31)));
       return _mm_andnot_si128(_mm_srai_epi32(lo, 31), lo);
     };
+    // The second tap from the first: clamp(i0 + 1) = clamp(i0) + 1 where 0 <= i0 < size - 1 (an
+    // unsigned compare: signed after flipping the sign bits), else clamp(i0) (both 0 below the
+    // extent, both size - 1 at and above its last texel).
+    const __m128i sign = _mm_set1_epi32(INT32_MIN);
+    const __m128i inside = _mm_cmpgt_epi32(_mm_xor_si128(hi, sign), _mm_xor_si128(i0, sign));  // -1 where 0 <= i0 < size - 1
     t0 = clamp(i0);
-    t1 = clamp(i1);
+    t1 = _mm_sub_epi32(t0, inside);
+    (void)i1;
   } else {
     static_assert(kW == WrapMode::ClampToBorder);
     const __m128i n = _mm_set1_epi32(size);
@@ -141,6 +172,10 @@ template <WrapMode kW>
   const __m128i even = _mm_mul_epu32(y, w), odd = _mm_mul_epu32(_mm_srli_epi64(y, 32), w);
   return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(3, 1, 2, 0)), _mm_shuffle_epi32(odd, _MM_SHUFFLE(3, 1, 2, 0)));
 }
+
+// row_offset4 on a power-of-two w = 2^log2w: y << log2w (fast path of row_offset4, its plain twin;
+// equality test TexelCoord4.RowOffsetEqualsProduct): one shift instead of two pmuludq and shuffles.
+[[gnu::always_inline]] inline __m128i row_offset4_pow2(__m128i y, int log2w) { return _mm_sll_epi32(y, _mm_cvtsi32_si128(log2w)); }
 
 }  // namespace tfu::dp::fast
 

@@ -5,11 +5,13 @@
 // derivatives_from_quad (and the dispatch under the fast-path switch).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/fixed_coord.hpp"
@@ -86,6 +88,45 @@ TEST(LodFast, QuadDerivativesEqualThePlainTwin) {
     const TexelDerivatives want = derivatives_from_quad_plain(s, t, w, h);
     ASSERT_TRUE(same(lod_fast::derivatives_from_quad(s, t, w, h), want)) << n;
     ASSERT_TRUE(same(derivatives_from_quad(s, t, w, h), want)) << n;
+  }
+}
+
+// The inline lambda of the renderer (lod_fast::lambda_from_length_sq, lambda_from_quad) against
+// the LOD unit's plain path: every leading-one position of rho^2 (0..63) with boundary and random
+// lower bits, and 0; then quads as above against lambda_from_derivatives(derivatives_from_quad_plain).
+TEST(LodFast, LambdaFromLengthEqualsThePlainUnit) {
+  std::mt19937_64 rng(11);
+  ASSERT_EQ(lod_fast::lambda_from_length_sq(0), lambda_from_length_sq(0));
+  for (int e = 0; e < 64; ++e) {
+    const uint64_t top = uint64_t{1} << e, low = top - 1;
+    std::vector<uint64_t> xs{top, top | low, top | (low >> 1), top | 1, top | (low & 0x5555555555555555u)};
+    for (int k = 0; k < 2000; ++k) xs.push_back(top | (rng() & low));
+    for (uint64_t x : xs) ASSERT_EQ(lod_fast::lambda_from_length_sq(x), lambda_from_length_sq(x)) << x;
+  }
+  for (uint64_t x = 1; x < (1u << 20); ++x) ASSERT_EQ(lod_fast::lambda_from_length_sq(x), lambda_from_length_sq(x)) << x;
+}
+
+TEST(LodFast, LambdaFromQuadEqualsThePlainTwin) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> near(-2.0f, 2.0f), far(-1e6f, 1e6f), spread(1e-6f, 1e-1f);
+  std::uniform_int_distribution<uint32_t> bits;
+  std::uniform_int_distribution<int> size(1, 32768), pick(0, 9);
+  const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
+                            -std::numeric_limits<float>::denorm_min(), 1e30f, -1e30f, 0.5f};
+  const int quads = test::iterations(200000);
+  for (int n = 0; n < quads; ++n) {
+    float s[4], t[4];
+    const float base_s = near(rng), base_t = near(rng), d = spread(rng);
+    for (size_t k = 0; k < 4; ++k) {
+      const int kind = pick(rng);
+      s[k] = kind < 6 ? base_s + near(rng) * d : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
+      t[k] = kind < 6 ? base_t + near(rng) * d : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
+    }
+    if (n % 11 == 0) std::copy(s, s + 4, t);  // equal lengths
+    if (n % 13 == 0) s[1] = s[0], s[2] = s[0], t[1] = t[0], t[2] = t[0];  // rho = 0
+    const int w = n % 7 == 0 ? 32768 : n % 7 == 1 ? 1 : size(rng), h = n % 5 == 0 ? 32768 : size(rng);
+    ASSERT_EQ(lod_fast::lambda_from_quad(s, t, w, h), lambda_from_derivatives(derivatives_from_quad_plain(s, t, w, h))) << n;
   }
 }
 

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cfenv>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -119,6 +121,86 @@ TEST(TexelCoord4, EqualsTexelCoordOnEveryExponent) {
   EXPECT_GT(left, 100'000u);  // the lanes left to the plain unit were seen
 }
 
+// The binary32 coordinate unit on power-of-two extents (texel_coord4_pow2) against dp::texel_coord:
+// runs on four lanes the unit takes and must take them exactly when every |x| W 2^8 < 2^30 (else
+// the caller uses texel_coord4, compared above). Every extent 2^0..2^15, every exponent and sign
+// with boundary and random mantissas, the values next to the 2^30 limit, and a sweep of every
+// 4093rd float bit pattern; under the four rounding modes and with FTZ and DAZ.
+void check4_pow2(const std::array<float, 4>& x, int size, size_t& compared, size_t& declined) {
+  for (float v : x)
+    if (!taken(v)) return;  // the batch's caller never passes such a group here
+  const __m128 v = _mm_setr_ps(x[0], x[1], x[2], x[3]);
+  bool inside = true;
+  for (float e : x) inside &= std::abs(static_cast<double>(e) * size * 256.0) < 0x1p30;
+  dp::fast::TexelCoords4 c{};
+  const bool took = dp::fast::texel_coord4_pow2(v, size, c);
+  ASSERT_EQ(took, inside) << x[0] << ' ' << x[1] << ' ' << x[2] << ' ' << x[3] << " size " << size;
+  if (!took) {
+    ++declined;
+    return;
+  }
+  alignas(16) std::array<int32_t, 4> i0{}, f{};
+  _mm_store_si128(reinterpret_cast<__m128i*>(i0.data()), c.i0);
+  _mm_store_si128(reinterpret_cast<__m128i*>(f.data()), c.f);
+  for (size_t k = 0; k < 4; ++k) {
+    const dp::LevelCoord p = dp::texel_coord(x[k], size);
+    ASSERT_EQ(int64_t{i0[k]}, p.i0) << std::hex << std::bit_cast<uint32_t>(x[k]) << std::dec << " size " << size;
+    ASSERT_EQ(static_cast<uint32_t>(f[k]), p.f) << std::hex << std::bit_cast<uint32_t>(x[k]) << std::dec << " size " << size;
+    ++compared;
+  }
+}
+
+TEST(TexelCoord4, Pow2EqualsTexelCoord) {
+  std::mt19937 rng(43);
+  std::uniform_int_distribution<uint32_t> mant(0, 0x7FFFFF);
+  size_t compared = 0, declined = 0;
+  for (int mode = 0; mode < FpEnvironment::kCount; ++mode) {
+    const FpEnvironment env(mode);
+    ASSERT_TRUE(env.set()) << mode;
+    for (int k = 0; k <= 15; ++k) {
+      const int size = 1 << k;
+      std::vector<float> xs;
+      for (uint32_t exp = 0; exp < 256; ++exp)
+        for (uint32_t sign = 0; sign < 2; ++sign) {
+          for (uint32_t m : {0u, 1u, 0x400000u, 0x7FFFFFu, 0x7FFFFEu}) xs.push_back(std::bit_cast<float>(sign << 31 | exp << 23 | m));
+          for (int r = 0; r < (mode == 0 ? 16 : 4); ++r) xs.push_back(std::bit_cast<float>(sign << 31 | exp << 23 | mant(rng)));
+        }
+      // Next to the limit |x| W 2^8 = 2^30, both signs, and next to texel centres and edges.
+      const float lim = std::ldexp(1.0f, 22 - k);
+      for (float b : {lim, -lim})
+        for (int d = -8; d <= 8; ++d) {
+          uint32_t bits = std::bit_cast<uint32_t>(b);
+          bits = static_cast<uint32_t>(static_cast<int64_t>(bits) + d);
+          xs.push_back(std::bit_cast<float>(bits));
+        }
+      for (int i = -40; i <= 40; ++i)
+        for (float off : {0.0f, 0.5f}) {
+          const float c = (static_cast<float>(i) + off) / static_cast<float>(size);
+          xs.push_back(c), xs.push_back(std::nextafter(c, -1e30f)), xs.push_back(std::nextafter(c, 1e30f));
+        }
+      std::shuffle(xs.begin(), xs.end(), rng);
+      while (xs.size() % 4 != 0) xs.push_back(0.25f);
+      for (size_t i = 0; i < xs.size(); i += 4) {
+        check4_pow2({xs[i], xs[i + 1], xs[i + 2], xs[i + 3]}, size, compared, declined);
+        if (HasFatalFailure()) return;
+      }
+      // Single lanes (the other three 0.5): every one of them decides alone.
+      for (float x : xs) {
+        check4_pow2({x, 0.5f, 0.5f, 0.5f}, size, compared, declined);
+        if (HasFatalFailure()) return;
+      }
+      if (mode == 0)
+        for (uint64_t b = 0; b < (uint64_t{1} << 32); b += 4093) {
+          const float x = std::bit_cast<float>(static_cast<uint32_t>(b));
+          check4_pow2({x, -x, 0.5f, x * 0.5f}, size, compared, declined);
+          if (HasFatalFailure()) return;
+        }
+    }
+  }
+  EXPECT_GT(compared, 10'000'000u);
+  EXPECT_GT(declined, 10'000u);  // groups left to texel_coord4 were seen
+}
+
 // The wrap unit of the batch (repeat on any extent, clamp to edge, clamp to border) against
 // wrap_taps<kW, 2> on taps around and far outside every extent.
 template <WrapMode kW>
@@ -202,6 +284,10 @@ TEST(TexelCoord4, RowOffsetEqualsProduct) {
     _mm_store_si128(reinterpret_cast<__m128i*>(r.data()),
                     dp::fast::row_offset4(_mm_setr_epi32(ys[0], ys[1], ys[2], ys[3]), _mm_set1_epi32(ww)));
     for (size_t k = 0; k < 4; ++k) ASSERT_EQ(r[k], ys[k] * ww);
+    const int log2w = i % 16;  // the shift on every power-of-two width
+    _mm_store_si128(reinterpret_cast<__m128i*>(r.data()),
+                    dp::fast::row_offset4_pow2(_mm_setr_epi32(ys[0], ys[1], ys[2], ys[3]), log2w));
+    for (size_t k = 0; k < 4; ++k) ASSERT_EQ(r[k], ys[k] * (1 << log2w));
   }
 }
 
