@@ -18,6 +18,7 @@
 #include "cmodel/error.hpp"
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/parallel.hpp"
+#include "cmodel/raster_quad_avx.hpp"
 #include "cmodel/raster_quad_fast.hpp"
 #include "cmodel/texenv.hpp"
 #include "cmodel/texenv_quad.hpp"
@@ -197,6 +198,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   const auto area = static_cast<double>(tri.area);
   // The fast paths (raster_quad_fast.hpp, texenv_quad.hpp: four pixels at once) or their plain twins.
   const bool fast = fast_paths_enabled();
+  const bool avx = fast && raster_avx::available();  // the quad's interpolation four lanes a register (raster_quad_avx.hpp)
   const int display_shift = ctx.scene->display_shift;
   // The options and buffers in locals: the colour stores (bytes) may alias anything, and the
   // compiler would reload them through ctx after each.
@@ -269,8 +271,12 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       std::array<double, 4> z{};
       unsigned mask = 0;
       if (fast) {
-        raster_fast::barycentrics(qe, area, tri, lanes);
-        z = raster_fast::depth(lanes, tri);
+        if (avx) {
+          raster_avx::barycentrics_depth(qe, area, tri, lanes, z);
+        } else {
+          raster_fast::barycentrics(qe, area, tri, lanes);
+          z = raster_fast::depth(lanes, tri);
+        }
         mask = raster_fast::depth_test(covered, z, depth, static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx),
                                        static_cast<size_t>(W), qx + 1 < W && rows_in == 0xFu);
         if (mesh.vertex_colour)
@@ -304,7 +310,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
         const TextureStage& stage = *ss.stage;
         const Sampler& sampler = *ss.sampler;
         float s[4], t[4];
-        if (fast)
+        if (avx)
+          raster_avx::st(lanes, tri, ss.uv_set, s, t);
+        else if (fast)
           raster_fast::st(lanes, tri, ss.uv_set, s, t);
         else
           for (size_t k = 0; k < 4; ++k) {

@@ -152,9 +152,10 @@ inline void spread_texels(unsigned mask, std::array<Rgba8, 4>& texel) {
 }
 
 // Per-pixel values of one quad, pixel k in lane k (pixel order of raster.hpp).
+// 32-byte aligned: one AVX register a row (raster_quad_avx.cpp).
 struct QuadLanes {
-  alignas(16) std::array<std::array<double, 4>, 3> b;  // b[i][k]: barycentric i of pixel k
-  alignas(16) std::array<double, 4> inv_w;              // sum b_i / w_i, made positive (interpolate_st)
+  alignas(32) std::array<std::array<double, 4>, 3> b;  // b[i][k]: barycentric i of pixel k
+  alignas(32) std::array<double, 4> inv_w;              // sum b_i / w_i, made positive (interpolate_st)
 };
 
 // b[i][k] = e[i][k] / area (RasterTriangle::barycentric at pixel k's centre, whose edge functions
