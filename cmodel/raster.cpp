@@ -229,6 +229,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   };
   std::array<StageState, kMaxStages> stage_state{};
   for (size_t st = 0; st < std::min(stage_count, stage_state.size()); ++st) stage_state[st] = make_state(st);
+  unsigned uv_sets = 0;  // bit u: a stage reads UV set u (the AVX form forms them once per quad)
+  for (const TextureStage& stage : mesh.stages) uv_sets |= 1u << stage.uv_set;
+  raster_avx::QuadCoords coords{};
   for (int qy = qy_first; qy <= qy_last; qy += 2) {
     // The quads of this row that can hold a covered centre: the union of the covered intervals of
     // its two pixel rows; the quads outside it have no covered centre (what the test below would
@@ -305,14 +308,17 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       if (ideal_path)
         for (size_t k = 0; k < 4; ++k)
           ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
+      if (avx) raster_avx::st_sets(lanes, tri, uv_sets, coords);
       for (size_t st = 0; st < stage_count; ++st) {
         const StageState ss = st < stage_state.size() ? stage_state[st] : make_state(st);
         const TextureStage& stage = *ss.stage;
         const Sampler& sampler = *ss.sampler;
         float s[4], t[4];
-        if (avx)
-          raster_avx::st(lanes, tri, ss.uv_set, s, t);
-        else if (fast)
+        if (avx) {
+          const auto uv = static_cast<size_t>(ss.uv_set);
+          std::memcpy(s, coords.s[uv].data(), sizeof s);
+          std::memcpy(t, coords.t[uv].data(), sizeof t);
+        } else if (fast)
           raster_fast::st(lanes, tri, ss.uv_set, s, t);
         else
           for (size_t k = 0; k < 4; ++k) {

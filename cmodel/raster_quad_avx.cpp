@@ -54,8 +54,9 @@ TFU_AVX void barycentrics_depth(const raster_fast::QuadEdges& qe, double area, c
   _mm256_storeu_pd(z.data(), acc);
 }
 
-TFU_AVX void st(const raster_fast::QuadLanes& q, const RasterTriangle& tri, int set, float* s, float* t) {
-  const auto uv = static_cast<size_t>(set);
+// The body of st() and st_sets(), inlined into both.
+TFU_AVX [[gnu::always_inline]] static inline void st_avx(const raster_fast::QuadLanes& q, const RasterTriangle& tri, size_t uv, float* s,
+                                                        float* t) {
   // s/w and t/w from 0.0 (interpolate_st's sums), divided by 1/w, clamped as std::clamp(v, -1e30,
   // 1e30) = max(lo, min(hi, v)) (vminpd/vmaxpd return their second operand for NaN, as minpd/maxpd)
   // and rounded to FP32 by `vcvtpd2ps` (each lane as cvtsd2ss, MXCSR's rounding mode).
@@ -71,6 +72,15 @@ TFU_AVX void st(const raster_fast::QuadLanes& q, const RasterTriangle& tri, int 
   _mm_storeu_ps(t, _mm256_cvtpd_ps(_mm256_max_pd(lo, _mm256_min_pd(hi, _mm256_div_pd(t_w, iw)))));
 }
 
+TFU_AVX void st(const raster_fast::QuadLanes& q, const RasterTriangle& tri, int set, float* s, float* t) {
+  st_avx(q, tri, static_cast<size_t>(set), s, t);
+}
+
+TFU_AVX void st_sets(const raster_fast::QuadLanes& q, const RasterTriangle& tri, unsigned sets, QuadCoords& c) {
+  for (size_t set = 0; set < 2; ++set)
+    if (sets >> set & 1u) st_avx(q, tri, set, c.s[set].data(), c.t[set].data());
+}
+
 #else
 
 bool available() { return false; }
@@ -82,6 +92,11 @@ void barycentrics_depth(const raster_fast::QuadEdges& qe, double area, const Ras
 }
 
 void st(const raster_fast::QuadLanes& q, const RasterTriangle& tri, int set, float* s, float* t) { raster_fast::st(q, tri, set, s, t); }
+
+void st_sets(const raster_fast::QuadLanes& q, const RasterTriangle& tri, unsigned sets, QuadCoords& c) {
+  for (size_t set = 0; set < 2; ++set)
+    if (sets >> set & 1u) raster_fast::st(q, tri, static_cast<int>(set), c.s[set].data(), c.t[set].data());
+}
 
 #endif
 

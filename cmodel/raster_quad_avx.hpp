@@ -38,4 +38,14 @@ void barycentrics_depth(const raster_fast::QuadEdges& qe, double area, const Ras
 // = raster_fast::st(q, tri, set, s, t). Only with available().
 void st(const raster_fast::QuadLanes& q, const RasterTriangle& tri, int set, float* s, float* t);
 
+// The (s, t) of every UV set a quad's stages read, formed once before the stages: for each set
+// whose bit is in `sets` (bit 0: set 0, bit 1: set 1), s[set], t[set] = raster_fast::st(q, tri, set,
+// ...); the other sets' entries are left as they are. The four divisions of two sets issue back to
+// back, so the second set's wait overlaps the first stage's sampling instead of following it.
+// Only with available().
+struct QuadCoords {
+  alignas(16) std::array<std::array<float, 4>, 2> s, t;  // [UV set][pixel]
+};
+void st_sets(const raster_fast::QuadLanes& q, const RasterTriangle& tri, unsigned sets, QuadCoords& c);
+
 }  // namespace tfu::raster_avx

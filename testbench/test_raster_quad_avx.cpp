@@ -41,11 +41,30 @@ struct QuadResult {
   std::array<std::array<float, 4>, 2> s{}, t{};
 };
 
+// The AVX form, (s, t) by st() per set.
 QuadResult run_avx(const raster_fast::QuadEdges& qe, double area, const RasterTriangle& tri) {
   QuadResult r;
   raster_avx::barycentrics_depth(qe, area, tri, r.lanes, r.z);
   for (size_t set = 0; set < 2; ++set) raster_avx::st(r.lanes, tri, static_cast<int>(set), r.s[set].data(), r.t[set].data());
   return r;
+}
+
+// st_sets (the renderer's call) equals st() per set, bit for bit, for both sets and for each set
+// alone, which leaves the other set's entries as they were.
+::testing::AssertionResult st_sets_agree(const QuadResult& avx, const RasterTriangle& tri) {
+  for (unsigned sets = 1; sets <= 3; ++sets) {
+    raster_avx::QuadCoords c;
+    for (auto* a : {&c.s, &c.t})
+      for (auto& x : *a) x.fill(-2.5f);
+    raster_avx::st_sets(avx.lanes, tri, sets, c);
+    for (size_t set = 0; set < 2; ++set)
+      for (size_t k = 0; k < 4; ++k) {
+        const bool asked = (sets >> set & 1u) != 0;
+        if (!bits_equal(c.s[set][k], asked ? avx.s[set][k] : -2.5f) || !bits_equal(c.t[set][k], asked ? avx.t[set][k] : -2.5f))
+          return ::testing::AssertionFailure() << "sets " << sets << " set " << set << " lane " << k;
+      }
+  }
+  return ::testing::AssertionSuccess();
 }
 
 QuadResult run_sse2(const raster_fast::QuadEdges& qe, double area, const RasterTriangle& tri) {
@@ -157,6 +176,7 @@ TEST(RasterQuadAvx, EqualsTheSse2FormAndThePlainTwinOnRandomTriangles) {
         const raster_fast::QuadEdges qe = edges_at(*tri, qx, qy);
         const QuadResult avx = run_avx(qe, area, *tri);
         ASSERT_TRUE(same(avx, run_sse2(qe, area, *tri))) << "SSE2 form, mode " << mode << " triangle " << n;
+        ASSERT_TRUE(st_sets_agree(avx, *tri)) << "mode " << mode << " triangle " << n;
         ASSERT_TRUE(same(avx, run_plain(qe, area, *tri))) << "plain twin, mode " << mode << " triangle " << n;
         for (size_t k = 0; k < 4; ++k) {
           double inv_w = 0;
@@ -219,6 +239,7 @@ TEST(RasterQuadAvx, EqualsTheSse2FormAndThePlainTwinOnSpecialValues) {
       if (std::isnan(area) && !nan_inputs) area = 5.0;
       const QuadResult avx = run_avx(qe, area, tri);
       ASSERT_TRUE(same(avx, run_sse2(qe, area, tri), nan_inputs)) << "SSE2 form, mode " << mode << " quad " << n;
+      ASSERT_TRUE(st_sets_agree(avx, tri)) << "mode " << mode << " quad " << n;
       ASSERT_TRUE(same(avx, run_plain(qe, area, tri), nan_inputs)) << "plain twin, mode " << mode << " quad " << n;
       for (size_t k = 0; k < 4; ++k)
         for (const double x : {avx.lanes.b[0][k], avx.z[k], static_cast<double>(avx.s[0][k]), static_cast<double>(avx.t[1][k])}) {
