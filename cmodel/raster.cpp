@@ -19,6 +19,7 @@
 #include "cmodel/fast_paths.hpp"
 #include "cmodel/lod_fast.hpp"
 #include "cmodel/parallel.hpp"
+#include "cmodel/raster_quad_avx.hpp"
 #include "cmodel/raster_quad_fast.hpp"
 #include "cmodel/texenv.hpp"
 #include "cmodel/texenv_quad.hpp"
@@ -198,6 +199,7 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   const auto area = static_cast<double>(tri.area);
   // The fast paths (raster_quad_fast.hpp, texenv_quad.hpp: four pixels at once) or their plain twins.
   const bool fast = fast_paths_enabled();
+  const bool avx = fast && raster_avx::available();  // the quad's interpolation four lanes a register (raster_quad_avx.hpp)
   const int display_shift = ctx.scene->display_shift;
   // The options and buffers in locals: the colour stores (bytes) may alias anything, and the
   // compiler would reload them through ctx after each.
@@ -228,6 +230,9 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
   };
   std::array<StageState, kMaxStages> stage_state{};
   for (size_t st = 0; st < std::min(stage_count, stage_state.size()); ++st) stage_state[st] = make_state(st);
+  unsigned uv_sets = 0;  // bit u: a stage reads UV set u (the AVX form forms them once per quad)
+  for (const TextureStage& stage : mesh.stages) uv_sets |= 1u << stage.uv_set;
+  raster_avx::QuadCoords coords{};
   for (int qy = qy_first; qy <= qy_last; qy += 2) {
     // The quads of this row that can hold a covered centre: the union of the covered intervals of
     // its two pixel rows; the quads outside it have no covered centre (what the test below would
@@ -270,8 +275,12 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       std::array<double, 4> z{};
       unsigned mask = 0;
       if (fast) {
-        raster_fast::barycentrics(qe, area, tri, lanes);
-        z = raster_fast::depth(lanes, tri);
+        if (avx) {
+          raster_avx::barycentrics_depth(qe, area, tri, lanes, z);
+        } else {
+          raster_fast::barycentrics(qe, area, tri, lanes);
+          z = raster_fast::depth(lanes, tri);
+        }
         mask = raster_fast::depth_test(covered, z, depth, static_cast<size_t>(qy) * static_cast<size_t>(W) + static_cast<size_t>(qx),
                                        static_cast<size_t>(W), qx + 1 < W && rows_in == 0xFu);
         if (mesh.vertex_colour)
@@ -300,12 +309,17 @@ void shade_triangle(Context& ctx, const RasterTriangle& tri, int y0, int y1, Ban
       if (ideal_path)
         for (size_t k = 0; k < 4; ++k)
           ideal[k] = {colour[k].r / 255.0, colour[k].g / 255.0, colour[k].b / 255.0, colour[k].a / 255.0};
+      if (avx) raster_avx::st_sets(lanes, tri, uv_sets, coords);
       for (size_t st = 0; st < stage_count; ++st) {
         const StageState ss = st < stage_state.size() ? stage_state[st] : make_state(st);
         const TextureStage& stage = *ss.stage;
         const Sampler& sampler = *ss.sampler;
         float s[4], t[4];
-        if (fast)
+        if (avx) {
+          const auto uv = static_cast<size_t>(ss.uv_set);
+          std::memcpy(s, coords.s[uv].data(), sizeof s);
+          std::memcpy(t, coords.t[uv].data(), sizeof t);
+        } else if (fast)
           raster_fast::st(lanes, tri, ss.uv_set, s, t);
         else
           for (size_t k = 0; k < 4; ++k) {

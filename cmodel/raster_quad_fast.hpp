@@ -14,6 +14,8 @@
 // two pixels per SSE2 register (SSE2 is part of x86-64; packed double operations round each lane as
 // the scalar ones do). 1/w is formed once per pixel and shared by the stages, which the plain twin
 // recomputes per stage with the same operations. Elsewhere a portable per-lane loop stands in.
+// On a CPU with AVX the renderer runs raster_quad_avx.hpp's form of barycentrics, depth and st (a
+// quad's four lanes in one register), whose plain twin is this SSE2 form (RasterQuadAvx.*).
 // write_quad (the drawn pixels' colour and depth writes, two per row at once) has the per-pixel
 // write loop of shade_triangle as its plain twin; it is checked by the renders with the fast paths
 // on and off (PlainPaths.*, RasterQuadFast.WriteQuadEqualsThePerPixelWrites).
@@ -152,9 +154,10 @@ inline void spread_texels(unsigned mask, std::array<Rgba8, 4>& texel) {
 }
 
 // Per-pixel values of one quad, pixel k in lane k (pixel order of raster.hpp).
+// 32-byte aligned: one AVX register a row (raster_quad_avx.cpp).
 struct QuadLanes {
-  alignas(16) std::array<std::array<double, 4>, 3> b;  // b[i][k]: barycentric i of pixel k
-  alignas(16) std::array<double, 4> inv_w;              // sum b_i / w_i, made positive (interpolate_st)
+  alignas(32) std::array<std::array<double, 4>, 3> b;  // b[i][k]: barycentric i of pixel k
+  alignas(32) std::array<double, 4> inv_w;              // sum b_i / w_i, made positive (interpolate_st)
 };
 
 // b[i][k] = e[i][k] / area (RasterTriangle::barycentric at pixel k's centre, whose edge functions

@@ -18,9 +18,12 @@
 #include "cmodel/datapath.hpp"
 #include "cmodel/datapath_fast.hpp"
 #include "cmodel/texel_coord4.hpp"
+#include "testbench/fp_environment.hpp"
 
 namespace tfu {
 namespace {
+
+using test::FpEnvironment;
 
 // Extents: every power of two 1..2^15, the odd and largest ones, and random ones.
 std::vector<int> extents(std::mt19937& rng) {
@@ -55,33 +58,6 @@ void check4(const std::array<float, 4>& x, int size, size_t& compared) {
     ++compared;
   }
 }
-
-// The floating-point environments the tests run under, one by one: the four IEEE rounding modes
-// (round to nearest first), then round to nearest with MXCSR's flush-to-zero and
-// denormals-are-zero set. The previous environment comes back when the guard leaves scope, also on
-// a failed assertion's return.
-class FpEnvironment {
- public:
-  static constexpr int kCount = 5;
-  explicit FpEnvironment(int mode) : csr_(_mm_getcsr()) {
-    static constexpr int kRounding[] = {FE_TONEAREST, FE_DOWNWARD, FE_UPWARD, FE_TOWARDZERO};
-    if (mode < 4)
-      set_ = std::fesetround(kRounding[mode]) == 0;
-    else
-      _mm_setcsr(csr_ | 0x8040u);  // FTZ and DAZ
-  }
-  ~FpEnvironment() {
-    std::fesetround(FE_TONEAREST);
-    _mm_setcsr(csr_);
-  }
-  FpEnvironment(const FpEnvironment&) = delete;
-  FpEnvironment& operator=(const FpEnvironment&) = delete;
-  bool set() const { return set_; }
-
- private:
-  unsigned csr_;
-  bool set_ = true;
-};
 
 // Every exponent field 0..255, both signs, the boundary mantissas (0, 1, half, all ones) and random
 // ones, on every extent of extents(): NaN, infinities, denormals, zeros and huge values are among
