@@ -305,6 +305,17 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
   // output side at e and e + 1), no stall counted (the footprint counted), the same pops into the
   // same channels. (Behind a miss the output side lags the input side by the memory's latency:
   // the hits behind it leave the miss FIFO one a cycle, E' + 1.)
+  //
+  // A run of them (software speed only, the same plain twin and test): after a lockstep footprint
+  // at P (last_push P, kernel_select's last P + 1, the cache's last accept P + 2 with the port held
+  // one cycle as before, its line buffer unchanged, the filter's last its exit + 1), the next
+  // footprint's t is P + 1, and kernel_select.last == t, the cache's last accept t + 1 with
+  // port_cycles_ 1 and the line buffer's room, and the filter's in_step all hold already: of the
+  // checks only the miss FIFO's room at t + 2 is left to ask, besides the footprint's own (not the
+  // last, one bank cycle, no misses). The run goes on local copies of the four channels, the cache's
+  // and the filter's timing (registers: the copy in `p` lives in memory across the quad), which go
+  // back into `p` after it, with address_gen's last push and kernel_select's last, which nothing in
+  // the run reads; its footprints count after it (a lockstep footprint stalls nowhere).
   const bool lockstep_depths = ucfg.channel_depth >= 2 && u.filter && u.filter->extra_clocks(4) == 0;
   const auto probe_quad = [&](int64_t quad_taken, AnisoLod lod) __attribute__((noinline)) {
     const int footprints = probes.address(quad, lod);
@@ -320,12 +331,29 @@ UnitOutput recurrences(const Frame& frame, RequestStream& trace, const UnitConfi
         if (lockstep_depths && j > 0 && j + 1 < footprints && probes.hits_in_one_cycle(k, j) &&
             p.kernel_select.last == t && p.cache.in_step(t + 2, p.miss_fifo) &&
             p.filter.in_step(p.cache.last_exit() + 2)) {
-          p.address_gen.last_push = t;
-          p.footprint.pop(log.at(KernelSelectTakesFootprint, t + 1));
-          p.kernel_select.last = t + 1;
-          log.at(CacheAcceptsFootprint, t + 2);
-          const int64_t e = log.at(CacheEmitsFootprint, p.cache.step(t + 2, p.shaped_footprint, p.miss_fifo, stalls));
-          p.filter.step(log.at(FilterFinishesFootprint, e + 1), p.texels);
+          ChannelTimes run_footprint = p.footprint.lend(), run_shaped = p.shaped_footprint.lend(),
+                       run_miss_fifo = p.miss_fifo.lend(), run_texels = p.texels.lend();
+          CacheStage::Timing run_cache = p.cache;
+          FilterUnit::Timing run_filter = p.filter;
+          CacheStage::StallCounts run_stalls;
+          for (int64_t at = t;; ++at, ++j) {  // footprint j at P = at
+            run_footprint.pop(log.at(KernelSelectTakesFootprint, at + 1));
+            log.at(CacheAcceptsFootprint, at + 2);
+            const int64_t e = log.at(CacheEmitsFootprint, run_cache.step(at + 2, run_shaped, run_miss_fifo, run_stalls));
+            run_filter.step(log.at(FilterFinishesFootprint, e + 1), run_texels);
+            if (!(j + 2 < footprints && probes.hits_in_one_cycle(k, j + 1) && run_miss_fifo.freed() <= at + 3)) {
+              p.address_gen.last_push = at;
+              p.kernel_select.last = at + 1;
+              break;
+            }
+          }
+          p.footprint.settle(run_footprint);
+          p.shaped_footprint.settle(run_shaped);
+          p.miss_fifo.settle(run_miss_fifo);
+          p.texels.settle(run_texels);
+          p.cache = run_cache;
+          p.filter = run_filter;
+          stalls.footprints += run_stalls.footprints;
           continue;
         }
         const int64_t exit = through_cache(p, j == 0, pixel_taken, false, stalls, [&](uint64_t now, int& bank_cycles) {
