@@ -58,6 +58,17 @@ inline constexpr double kLimit = 70368744177664.0;    // 2^46 = kFixedLimit
   return _mm_sub_epi64(_mm_castpd_si128(_mm_add_pd(d, m)), _mm_castpd_si128(m));
 }
 
+// Pixels 0, 1, 2 of the quad in Q.16 level-0 texels, (u, v) a register: fixed_q16 of s W and t H.
+[[gnu::always_inline]] inline void quad_positions(const float s[4], const float t[4], int width, int height, __m128d& p0,
+                                                  __m128d& p1, __m128d& p2) {
+  const __m128 sv = _mm_loadu_ps(s), tv = _mm_loadu_ps(t);
+  const __m128 st01 = _mm_unpacklo_ps(sv, tv), st23 = _mm_unpackhi_ps(sv, tv);  // s0 t0 s1 t1, s2 t2 s3 t3
+  const __m128d scale = _mm_set_pd(static_cast<double>(height) * 65536.0, static_cast<double>(width) * 65536.0);
+  p0 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st01), scale));                      // u0 v0
+  p1 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(st01, st01)), scale));  // u1 v1
+  p2 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st23), scale));                      // u2 v2
+}
+
 }  // namespace detail
 
 // = float_to_fixed(x, scale, 16) (the lane form above on one value; what the tests sweep).
@@ -70,12 +81,8 @@ inline int64_t to_fixed_q16(float x, uint32_t scale) {
 // = derivatives_from_quad_plain(s, t, width, height) for width, height in 1..2^15.
 inline TexelDerivatives derivatives_from_quad(const float s[4], const float t[4], int width, int height) {
   using namespace detail;
-  const __m128 sv = _mm_loadu_ps(s), tv = _mm_loadu_ps(t);
-  const __m128 st01 = _mm_unpacklo_ps(sv, tv), st23 = _mm_unpackhi_ps(sv, tv);  // s0 t0 s1 t1, s2 t2 s3 t3
-  const __m128d scale = _mm_set_pd(static_cast<double>(height) * 65536.0, static_cast<double>(width) * 65536.0);
-  const __m128d p0 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st01), scale));                    // u0 v0
-  const __m128d p1 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(st01, st01)), scale));  // u1 v1
-  const __m128d p2 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st23), scale));                    // u2 v2
+  __m128d p0, p1, p2;
+  quad_positions(s, t, width, height, p0, p1, p2);
   TexelDerivatives d;
   static_assert(sizeof(TexelDerivatives) == 4 * sizeof(int64_t), "dudx, dvdx, dudy, dvdy in order");
   _mm_storeu_si128(reinterpret_cast<__m128i*>(&d.dudx), to_int64(_mm_sub_pd(p1, p0)));
@@ -114,12 +121,8 @@ inline int32_t lambda_from_length_sq(uint64_t rho2_q32) {
 inline int32_t lambda_from_quad(const float s[4], const float t[4], int width, int height) {
 #if TFU_LOD_FAST_SSE2
   using namespace detail;
-  const __m128 sv = _mm_loadu_ps(s), tv = _mm_loadu_ps(t);
-  const __m128 st01 = _mm_unpacklo_ps(sv, tv), st23 = _mm_unpackhi_ps(sv, tv);  // s0 t0 s1 t1, s2 t2 s3 t3
-  const __m128d scale = _mm_set_pd(static_cast<double>(height) * 65536.0, static_cast<double>(width) * 65536.0);
-  const __m128d p0 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st01), scale));                      // u0 v0
-  const __m128d p1 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(st01, st01)), scale));  // u1 v1
-  const __m128d p2 = fixed_q16(_mm_mul_pd(_mm_cvtps_pd(st23), scale));                      // u2 v2
+  __m128d p0, p1, p2;
+  quad_positions(s, t, width, height, p0, p1, p2);
   const __m128d abs = _mm_castsi128_pd(_mm_set1_epi64x(INT64_MAX)), clamp = _mm_set1_pd(kDerivativeClamp);
   const auto magnitude = [&](__m128d d) __attribute__((always_inline)) {  // two 32-bit lanes, low half
     return _mm_cvttpd_epi32(_mm_min_pd(_mm_and_pd(d, abs), clamp));

@@ -66,24 +66,42 @@ TEST(LodFast, ConversionEqualsFloatToFixedOnAStridedSweepOfAllFloats) {
   }
 }
 
+// A random quad's (s, t): per pixel mostly a real quad (values within `spread` of a base),
+// sometimes far apart, random bit patterns or special values.
+class RandomQuad {
+ public:
+  explicit RandomQuad(uint32_t seed) : rng_(seed) {}
+  std::mt19937& rng() { return rng_; }
+  void next(float spread, float s[4], float t[4]) {
+    const float base_s = near_(rng_), base_t = near_(rng_);
+    for (size_t k = 0; k < 4; ++k) {
+      const int kind = pick_(rng_);
+      s[k] = kind < 6 ? base_s + near_(rng_) * spread : kind < 8 ? far_(rng_) : kind < 9 ? std::bit_cast<float>(bits_(rng_)) : special();
+      t[k] = kind < 6 ? base_t + near_(rng_) * spread : kind < 8 ? far_(rng_) : kind < 9 ? std::bit_cast<float>(bits_(rng_)) : special();
+    }
+  }
+
+ private:
+  float special() {
+    static constexpr float kSpecials[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                                          std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
+                                          -std::numeric_limits<float>::denorm_min(), 1e30f, -1e30f, 0.5f};
+    return kSpecials[bits_(rng_) % 10];
+  }
+  std::mt19937 rng_;
+  std::uniform_real_distribution<float> near_{-2.0f, 2.0f}, far_{-1e6f, 1e6f};
+  std::uniform_int_distribution<uint32_t> bits_;
+  std::uniform_int_distribution<int> pick_{0, 9};
+};
+
 TEST(LodFast, QuadDerivativesEqualThePlainTwin) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> near(-2.0f, 2.0f), far(-1e6f, 1e6f);
-  std::uniform_int_distribution<uint32_t> bits;
-  std::uniform_int_distribution<int> size(1, 32768), pick(0, 9);
-  const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                            std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
-                            -std::numeric_limits<float>::denorm_min(), 1e30f, -1e30f, 0.5f};
+  RandomQuad quad(7);
+  std::mt19937& rng = quad.rng();
+  std::uniform_int_distribution<int> size(1, 32768);
   const int quads = test::iterations(200000);
   for (int n = 0; n < quads; ++n) {
     float s[4], t[4];
-    const float base_s = near(rng), base_t = near(rng);
-    for (size_t k = 0; k < 4; ++k) {
-      const int kind = pick(rng);
-      // Mostly a real quad (close values), sometimes far apart, random bit patterns or specials.
-      s[k] = kind < 6 ? base_s + near(rng) * 1e-3f : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
-      t[k] = kind < 6 ? base_t + near(rng) * 1e-3f : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
-    }
+    quad.next(1e-3f, s, t);
     const int w = n % 7 == 0 ? 32768 : n % 7 == 1 ? 1 : size(rng), h = n % 5 == 0 ? 32768 : size(rng);
     const TexelDerivatives want = derivatives_from_quad_plain(s, t, w, h);
     ASSERT_TRUE(same(lod_fast::derivatives_from_quad(s, t, w, h), want)) << n;
@@ -107,22 +125,14 @@ TEST(LodFast, LambdaFromLengthEqualsThePlainUnit) {
 }
 
 TEST(LodFast, LambdaFromQuadEqualsThePlainTwin) {
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<float> near(-2.0f, 2.0f), far(-1e6f, 1e6f), spread(1e-6f, 1e-1f);
-  std::uniform_int_distribution<uint32_t> bits;
-  std::uniform_int_distribution<int> size(1, 32768), pick(0, 9);
-  const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
-                            std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
-                            -std::numeric_limits<float>::denorm_min(), 1e30f, -1e30f, 0.5f};
+  RandomQuad quad(9);
+  std::mt19937& rng = quad.rng();
+  std::uniform_real_distribution<float> spread(1e-6f, 1e-1f);
+  std::uniform_int_distribution<int> size(1, 32768);
   const int quads = test::iterations(200000);
   for (int n = 0; n < quads; ++n) {
     float s[4], t[4];
-    const float base_s = near(rng), base_t = near(rng), d = spread(rng);
-    for (size_t k = 0; k < 4; ++k) {
-      const int kind = pick(rng);
-      s[k] = kind < 6 ? base_s + near(rng) * d : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
-      t[k] = kind < 6 ? base_t + near(rng) * d : kind < 8 ? far(rng) : kind < 9 ? std::bit_cast<float>(bits(rng)) : specials[bits(rng) % 10];
-    }
+    quad.next(spread(rng), s, t);
     if (n % 11 == 0) std::copy(s, s + 4, t);  // equal lengths
     if (n % 13 == 0) s[1] = s[0], s[2] = s[0], t[1] = t[0], t[2] = t[0];  // rho = 0
     const int w = n % 7 == 0 ? 32768 : n % 7 == 1 ? 1 : size(rng), h = n % 5 == 0 ? 32768 : size(rng);

@@ -23,6 +23,7 @@
 #include "cmodel/raster_quad_fast.hpp"
 #include "testbench/fp_environment.hpp"
 #include "testbench/iterations.hpp"
+#include "testbench/quad_edges.hpp"
 
 // Its own namespace: the unity build compiles this file with test_raster_quad_fast.cpp, whose
 // helpers have the same names.
@@ -124,14 +125,7 @@ QuadResult run_plain(const raster_fast::QuadEdges& qe, double area, const Raster
   return ::testing::AssertionSuccess();
 }
 
-raster_fast::QuadEdges edges_at(const RasterTriangle& tri, int qx, int qy) {
-  raster_fast::QuadEdges q;
-  for (size_t k = 0; k < 4; ++k)
-    for (int i = 0; i < 3; ++i)
-      q.e[static_cast<size_t>(i)][k] = tri.edge(i, RasterTriangle::centre(qx + static_cast<int>(k & 1)),
-                                                RasterTriangle::centre(qy + static_cast<int>(k >> 1)));
-  return q;
-}
+using test::edges_at;
 
 // A random triangle of one of the shapes (huge, tiny, large, medium, slivers, horizontal and
 // vertical edges, vertices on pixel centres) with depths, 1/w (near 1, or over five decades: steep

@@ -20,6 +20,7 @@
 #include "cmodel/raster_quad_fast.hpp"
 #include "cmodel/scene.hpp"
 #include "testbench/iterations.hpp"
+#include "testbench/quad_edges.hpp"
 
 namespace tfu {
 namespace {
@@ -151,14 +152,7 @@ TEST(RasterQuadFast, BandClearsEqualAFreshRender) {
 // functions near 2^58), and thin slivers; quads in and around each bounding box. The packed
 // coverage test equals the fill-rule test e_i + bias_i >= 0 per pixel and RasterTriangle::covers_pixel,
 // and the edges stepped quad by quad equal RasterTriangle::edge at each quad.
-raster_fast::QuadEdges edges_at(const RasterTriangle& tri, int qx, int qy) {
-  raster_fast::QuadEdges q;
-  for (size_t k = 0; k < 4; ++k)
-    for (int i = 0; i < 3; ++i)
-      q.e[static_cast<size_t>(i)][k] = tri.edge(i, RasterTriangle::centre(qx + static_cast<int>(k & 1)),
-                                                RasterTriangle::centre(qy + static_cast<int>(k >> 1)));
-  return q;
-}
+using test::edges_at;
 
 std::optional<RasterTriangle> random_triangle(std::mt19937_64& rng, int n) {
   const double span = n % 4 == 0 ? 1e6 : n % 4 == 1 ? 3.0 : n % 4 == 2 ? 300.0 : 40.0;
