@@ -55,7 +55,7 @@ TFU_AVX void barycentrics_depth(const raster_fast::QuadEdges& qe, double area, c
 }
 
 // The body of st() and st_sets(), inlined into both.
-TFU_AVX [[gnu::always_inline]] static inline void st_avx(const raster_fast::QuadLanes& q, const RasterTriangle& tri, size_t uv, float* s,
+[[gnu::always_inline]] TFU_AVX static inline void st_avx(const raster_fast::QuadLanes& q, const RasterTriangle& tri, size_t uv, float* s,
                                                         float* t) {
   // s/w and t/w from 0.0 (interpolate_st's sums), divided by 1/w, clamped as std::clamp(v, -1e30,
   // 1e30) = max(lo, min(hi, v)) (vminpd/vmaxpd return their second operand for NaN, as minpd/maxpd)
